@@ -1,0 +1,9 @@
+#pragma once
+// Each command group registers its subcommands on the top-level app.
+#include <CLI/CLI.hpp>
+
+namespace plumekit::cli {
+
+void add_map_commands(CLI::App& app);
+
+}  // namespace plumekit::cli

@@ -1,0 +1,81 @@
+#pragma once
+// Plain 2-D geometry on doubles: points, polygons, predicates.
+// Exact predicates for planning live in planner/ (CGAL); these serve validation,
+// rasterization and drawing, where a tolerance of ~1e-12 m is harmless.
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace plumekit {
+
+struct Vec2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+inline Vec2 operator+(Vec2 a, Vec2 b) {
+  return {a.x + b.x, a.y + b.y};
+}
+inline Vec2 operator-(Vec2 a, Vec2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
+inline Vec2 operator*(double s, Vec2 a) {
+  return {s * a.x, s * a.y};
+}
+inline bool operator==(Vec2 a, Vec2 b) {
+  return a.x == b.x && a.y == b.y;
+}
+inline bool operator!=(Vec2 a, Vec2 b) {
+  return !(a == b);
+}
+inline double dot(Vec2 a, Vec2 b) {
+  return a.x * b.x + a.y * b.y;
+}
+inline double cross(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+inline double norm(Vec2 a) {
+  return std::hypot(a.x, a.y);
+}
+inline bool is_finite(Vec2 a) {
+  return std::isfinite(a.x) && std::isfinite(a.y);
+}
+
+// Vertices in order, either orientation, last edge closes back to the first.
+using Polygon = std::vector<Vec2>;
+
+struct Box {
+  Vec2 lo;
+  Vec2 hi;
+  bool contains(Vec2 p) const { return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y; }
+};
+
+// > 0 when a, b, c turn counter-clockwise, < 0 clockwise, 0 collinear.
+inline double orient(Vec2 a, Vec2 b, Vec2 c) {
+  return cross(b - a, c - a);
+}
+
+double signed_area(const Polygon& poly);  // > 0 for counter-clockwise
+Box bounding_box(const Polygon& poly);
+double distance_to_segment(Vec2 p, Vec2 a, Vec2 b);
+bool point_on_segment(Vec2 p, Vec2 a, Vec2 b);
+// Closed segments [a,b] and [c,d] share at least one point.
+bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+enum class Location { Outside, Boundary, Inside };
+Location locate(const Polygon& poly, Vec2 p);
+// Inside or on the boundary.
+inline bool covers(const Polygon& poly, Vec2 p) {
+  return locate(poly, p) != Location::Outside;
+}
+
+// Why `poly` is not a simple polygon (too few vertices, a repeated vertex, zero
+// area, two edges that cross or touch), or nullopt when it is simple.
+std::optional<std::string> simplicity_fault(const Polygon& poly);
+
+// "(1.5, 2)" — for messages.
+std::string to_string(Vec2 p);
+
+}  // namespace plumekit

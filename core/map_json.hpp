@@ -1,0 +1,29 @@
+#pragma once
+// The plumekit-map/1 JSON format (see ../shared/DESIGN.md and the README).
+// Reading validates everything; a fault throws InputError naming the file,
+// the key (e.g. "obstacles[2][1]") and what is wrong.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+#include "core/map.hpp"
+
+namespace plumekit {
+
+inline constexpr const char* kMapFormat = "plumekit-map/1";
+
+// Parse and validate map text; `origin` names the file in messages.
+Map parse_map(std::string_view text, const std::string& origin);
+Map read_map(const std::filesystem::path& path);
+
+// Checks the geometry of a map already in memory (the same checks read_map
+// makes after parsing): spans, polygons, sources.
+void validate_map(const Map& map, const std::string& origin);
+
+nlohmann::ordered_json map_to_json(const Map& map);
+// Validates, then writes atomically (no partial file on failure).
+void write_map(const Map& map, const std::filesystem::path& path);
+
+}  // namespace plumekit

@@ -1,0 +1,103 @@
+#include "core/rasterize.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace plumekit {
+
+GridShape GridShape::with_cell(double width, double height, double cell) {
+  GridShape s;
+  s.width = width;
+  s.height = height;
+  s.nx = std::max(1, static_cast<int>(std::lround(width / cell)));
+  s.ny = std::max(1, static_cast<int>(std::lround(height / cell)));
+  return s;
+}
+
+Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape) {
+  Grid<std::uint8_t> grid(shape, 0);
+  for (const Polygon& poly : map.obstacles) {
+    // Only the cells whose centres fall in the polygon's bounding box can be solid.
+    const Box box = bounding_box(poly);
+    const int i0 = std::max(0, static_cast<int>(std::floor(box.lo.x / shape.dx() - 0.5)));
+    const int i1 = std::min(shape.nx - 1, static_cast<int>(std::ceil(box.hi.x / shape.dx() - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::floor(box.lo.y / shape.dy() - 0.5)));
+    const int j1 = std::min(shape.ny - 1, static_cast<int>(std::ceil(box.hi.y / shape.dy() - 0.5)));
+    for (int j = j0; j <= j1; ++j) {
+      for (int i = i0; i <= i1; ++i) {
+        if (!grid(i, j) && covers(poly, shape.centre(i, j))) grid(i, j) = 1;
+      }
+    }
+  }
+  return grid;
+}
+
+namespace {
+
+bool in_span(const Opening& o, Side side, double s) {
+  return o.side == side && s >= o.from && s <= o.to;
+}
+
+// The label a free cell gets from one wall it touches.
+std::uint8_t wall_label(const Map& map, Side side, double s) {
+  if (in_span(map.inlet, side, s)) return kInlet;
+  if (in_span(map.outlet, side, s)) return kOutlet;
+  return kWall;
+}
+
+}  // namespace
+
+Grid<std::uint8_t> rasterize_labels(const Map& map, const GridShape& shape) {
+  const Grid<std::uint8_t> solid = rasterize_occupancy(map, shape);
+  Grid<std::uint8_t> labels(shape, kFree);
+  for (int j = 0; j < shape.ny; ++j) {
+    for (int i = 0; i < shape.nx; ++i) {
+      if (solid(i, j)) {
+        labels(i, j) = kObstacle;
+        continue;
+      }
+      const Vec2 c = shape.centre(i, j);
+      std::uint8_t label = kFree;
+      auto touch = [&](bool touches, Side side, double s) {
+        if (!touches) return;
+        const std::uint8_t l = wall_label(map, side, s);
+        // Openings win over plain wall at corners.
+        if (label == kFree || (label == kWall && l != kWall)) label = l;
+      };
+      touch(i == 0, Side::Left, c.y);
+      touch(i == shape.nx - 1, Side::Right, c.y);
+      touch(j == 0, Side::Bottom, c.x);
+      touch(j == shape.ny - 1, Side::Top, c.x);
+      labels(i, j) = label;
+    }
+  }
+  return labels;
+}
+
+bool inlet_reaches_outlet(const Grid<std::uint8_t>& labels) {
+  const GridShape& s = labels.shape;
+  std::vector<char> seen(s.size(), 0);
+  std::vector<std::pair<int, int>> stack;
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i)
+      if (labels(i, j) == kInlet) {
+        seen[s.index(i, j)] = 1;
+        stack.emplace_back(i, j);
+      }
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (labels(i, j) == kOutlet) return true;
+    const int di[] = {1, -1, 0, 0}, dj[] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+      const int a = i + di[k], b = j + dj[k];
+      if (!s.contains(a, b) || seen[s.index(a, b)] || labels(a, b) == kObstacle) continue;
+      seen[s.index(a, b)] = 1;
+      stack.emplace_back(a, b);
+    }
+  }
+  return false;
+}
+
+}  // namespace plumekit

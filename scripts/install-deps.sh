@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Installs every Debian package plumekit needs to build, test and run.
+# Idempotent: when all packages are present it changes nothing and exits 0.
+# Works as root, or as a user with sudo.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake pkg-config git
+  # numerics and geometry
+  libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
+  # planning: OMPL links only with these boost components present
+  libompl-dev libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
+  # images, PNG, ROS map_server files (YAML + PGM/PNG)
+  libopencv-dev libyaml-cpp-dev
+  # file formats and the command line
+  nlohmann-json3-dev libcli11-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+if [[ $(id -u) -eq 0 ]]; then
+  sudo=()
+elif command -v sudo >/dev/null 2>&1; then
+  sudo=(sudo)
+else
+  echo "install-deps: need root or sudo to install: ${missing[*]}" >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+"${sudo[@]}" apt-get update -q
+"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"

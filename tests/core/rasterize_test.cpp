@@ -1,0 +1,104 @@
+#include "core/rasterize.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace plumekit {
+namespace {
+
+Map arena_with(std::vector<Polygon> obstacles) {
+  Map map = default_arena(10.0, 4.0);
+  map.obstacles = std::move(obstacles);
+  return map;
+}
+
+TEST(Rasterize, GridShapeRoundsToWholeCells) {
+  const GridShape s = GridShape::with_cell(10.0, 4.0, 0.05);
+  EXPECT_EQ(s.nx, 200);
+  EXPECT_EQ(s.ny, 80);
+  EXPECT_DOUBLE_EQ(s.dx(), 0.05);
+  const GridShape odd = GridShape::with_cell(10.0, 4.0, 0.3);  // 33.3 -> 33 cells
+  EXPECT_EQ(odd.nx, 33);
+  EXPECT_NEAR(odd.dx() * odd.nx, 10.0, 1e-12);
+  EXPECT_EQ(odd.ny, 13);
+  const GridShape s64{64, 64, 10.0, 4.0};  // the CNN's grid: non-square cells
+  EXPECT_DOUBLE_EQ(s64.centre(0, 63).y, 4.0 - 0.5 * 4.0 / 64);
+}
+
+TEST(Rasterize, CellIsSolidWhenItsCentreIsInsideOrOnTheBoundary) {
+  // Cells of 1 m: centres at 0.5, 1.5, ... The square's edges pass through
+  // the centres at x = 2.5 and y = 1.5 and between centres elsewhere.
+  const Map map = arena_with({{{2.5, 0.2}, {4.2, 0.2}, {4.2, 1.5}, {2.5, 1.5}}});
+  const auto g = rasterize_occupancy(map, GridShape{10, 4, 10.0, 4.0});
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 10; ++i) {
+      const bool expected = (i == 2 || i == 3) && (j == 0 || j == 1);
+      EXPECT_EQ(g(i, j), expected ? 1 : 0) << "cell " << i << "," << j;
+    }
+}
+
+TEST(Rasterize, SolidAreaConvergesToPolygonArea) {
+  const Polygon tri{{1.0, 0.3}, {6.1, 0.7}, {3.3, 3.6}};
+  const Map map = arena_with({tri});
+  double previous_error = HUGE_VAL;
+  for (double cell : {0.2, 0.1, 0.05, 0.025}) {
+    const GridShape s = GridShape::with_cell(10, 4, cell);
+    const auto g = rasterize_occupancy(map, s);
+    double area = 0;
+    for (auto v : g.values)
+      area += v * s.dx() * s.dy();
+    const double error = std::abs(area - std::abs(signed_area(tri)));
+    EXPECT_LT(error, previous_error) << "cell " << cell;
+    EXPECT_LT(error, 20 * cell) << "cell " << cell;  // O(perimeter * cell)
+    previous_error = error;
+  }
+}
+
+TEST(Rasterize, LabelsMarkObstaclesWallsAndOpenings) {
+  Map map = arena_with({{{4, 1}, {6, 1}, {6, 3}, {4, 3}}});
+  map.inlet.from = 1.0;  // inlet on the middle of the left wall only
+  map.inlet.to = 3.0;
+  const GridShape s{10, 4, 10.0, 4.0};
+  const auto l = rasterize_labels(map, s);
+  EXPECT_EQ(l(4, 1), kObstacle);
+  EXPECT_EQ(l(5, 2), kObstacle);
+  EXPECT_EQ(l(2, 2), kFree);
+  EXPECT_EQ(l(0, 1), kInlet);  // centre y = 1.5 in [1, 3]
+  EXPECT_EQ(l(0, 2), kInlet);
+  EXPECT_EQ(l(0, 0), kWall);  // left-bottom corner, outside the inlet span
+  EXPECT_EQ(l(0, 3), kWall);
+  EXPECT_EQ(l(9, 0), kOutlet);  // corner cell: the outlet wins over the bottom wall
+  EXPECT_EQ(l(9, 2), kOutlet);
+  EXPECT_EQ(l(5, 0), kWall);
+  EXPECT_EQ(l(5, 3), kWall);
+}
+
+TEST(Rasterize, ObstacleOnWallHidesTheWallLabel) {
+  const Map map = arena_with({{{0, 0}, {2, 0}, {2, 1}, {0, 1}}});
+  const auto l = rasterize_labels(map, GridShape{10, 4, 10.0, 4.0});
+  EXPECT_EQ(l(0, 0), kObstacle);
+  EXPECT_EQ(l(1, 0), kObstacle);
+  EXPECT_EQ(l(0, 1), kInlet);
+}
+
+}  // namespace
+}  // namespace plumekit
+
+namespace plumekit {
+namespace {
+
+TEST(Rasterize, InletReachesOutletUnlessAWallBlocksTheWay) {
+  const GridShape s = GridShape::with_cell(10, 4, 0.1);
+  const Map open = arena_with({{{4, 0}, {5, 0}, {5, 3.5}, {4, 3.5}}});
+  EXPECT_TRUE(inlet_reaches_outlet(rasterize_labels(open, s)));
+  const Map closed = arena_with({{{4, 0}, {5, 0}, {5, 4}, {4, 4}}});
+  EXPECT_FALSE(inlet_reaches_outlet(rasterize_labels(closed, s)));
+  // A gap narrower than one cell closes the way at that resolution.
+  const Map slit = arena_with({{{4, 0}, {5, 0}, {5, 3.96}, {4, 3.96}}});
+  EXPECT_FALSE(inlet_reaches_outlet(rasterize_labels(slit, s)));
+  EXPECT_TRUE(inlet_reaches_outlet(rasterize_labels(slit, GridShape::with_cell(10, 4, 0.02))));
+}
+
+}  // namespace
+}  // namespace plumekit
