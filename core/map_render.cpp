@@ -1,5 +1,6 @@
 #include "core/map_render.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -50,9 +51,9 @@ void put_text(cv::Mat& img, const std::string& text, cv::Point at, double size,
 }  // namespace
 
 MapCanvas::MapCanvas(const Map& map, double px_per_m)
-    : map_(map), px_per_m_(px_per_m), left_(56), top_(40) {
-  const int right = 40, bottom = 76;
-  const int w = static_cast<int>(std::ceil(map.width * px_per_m)) + left_ + right;
+    : map_(map), px_per_m_(px_per_m), left_(56), top_(40), right_(110) {
+  const int bottom = 76;
+  const int w = static_cast<int>(std::ceil(map.width * px_per_m)) + left_ + right_;
   const int h = static_cast<int>(std::ceil(map.height * px_per_m)) + top_ + bottom;
   image_ = cv::Mat(h, w, CV_8UC3, kBackground);
 }
@@ -180,6 +181,52 @@ void MapCanvas::draw_map() {
   title << (map_.name.empty() ? "map" : map_.name) << "  (" << format_number(map_.width) << " x "
         << format_number(map_.height) << " m, " << map_.obstacles.size() << " obstacles)";
   draw_title(title.str());
+}
+
+void MapCanvas::draw_field(const Grid<double>& field, double lo, double hi, int colormap) {
+  const GridShape& g = field.shape;
+  cv::Mat grey(g.ny, g.nx, CV_8U), valid(g.ny, g.nx, CV_8U);
+  const double span = hi > lo ? hi - lo : 1.0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const double v = field(i, j);
+      const int row = g.ny - 1 - j;  // image rows run top-down
+      valid.at<uchar>(row, i) = std::isnan(v) ? 0 : 255;
+      grey.at<uchar>(row, i) =
+          static_cast<uchar>(std::lround(255.0 * std::clamp((v - lo) / span, 0.0, 1.0)));
+    }
+  cv::Mat colour;
+  cv::applyColorMap(grey, colour, colormap);
+  const cv::Point a = pixel({0, map_.height}), b = pixel({map_.width, 0});
+  const cv::Size size(b.x - a.x, b.y - a.y);
+  cv::Mat scaled, mask;
+  cv::resize(colour, scaled, size, 0, 0, cv::INTER_NEAREST);
+  cv::resize(valid, mask, size, 0, 0, cv::INTER_NEAREST);
+  scaled.copyTo(image_(cv::Rect(a, size)), mask);
+}
+
+void MapCanvas::draw_colour_bar(double lo, double hi, const std::string& label, int colormap) {
+  const cv::Point top = pixel({map_.width, map_.height}) + cv::Point(28, 0);
+  const int height = pixel({0, 0}).y - top.y, width = 16;
+  cv::Mat ramp(height, 1, CV_8U);
+  for (int r = 0; r < height; ++r)
+    ramp.at<uchar>(r, 0) = static_cast<uchar>(255 - (255 * r) / std::max(1, height - 1));
+  cv::Mat colour, wide;
+  cv::applyColorMap(ramp, colour, colormap);
+  cv::resize(colour, wide, cv::Size(width, height), 0, 0, cv::INTER_NEAREST);
+  wide.copyTo(image_(cv::Rect(top, wide.size())));
+  cv::rectangle(image_, cv::Rect(top, wide.size()), kText, 1);
+  put_text(image_, format_number(hi), top + cv::Point(width + 4, 8), 0.4, kText);
+  put_text(image_, format_number(lo), top + cv::Point(width + 4, height), 0.4, kText);
+  put_text(image_, label, top + cv::Point(-8, -10), 0.4, kText);
+}
+
+void MapCanvas::draw_path(const std::vector<Vec2>& path, const cv::Scalar& colour, int thickness) {
+  std::vector<cv::Point> pts;
+  for (Vec2 p : path)
+    pts.push_back(fixed(to_px(p)));
+  cv::polylines(image_, std::vector<std::vector<cv::Point>>{pts}, false, colour, thickness,
+                cv::LINE_AA, kShift);
 }
 
 void write_png(const cv::Mat& image, const std::filesystem::path& path) {

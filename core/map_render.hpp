@@ -6,7 +6,10 @@
 #include <string>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <vector>
 
+#include "core/grid.hpp"
 #include "core/map.hpp"
 
 namespace plumekit {
@@ -34,10 +37,20 @@ class MapCanvas {
   // The whole map: free space, obstacles, walls, openings, sources, scale.
   void draw_map();
 
+  // Paints a cell-centred field over the arena with a colour map (OpenCV's
+  // viridis by default), values clamped to [lo, hi]; NaN cells stay unpainted.
+  void draw_field(const Grid<double>& field, double lo, double hi,
+                  int colormap = cv::COLORMAP_VIRIDIS);
+  // A vertical colour bar right of the arena, labelled lo .. hi and `label`.
+  void draw_colour_bar(double lo, double hi, const std::string& label,
+                       int colormap = cv::COLORMAP_VIRIDIS);
+  // A polyline in world coordinates.
+  void draw_path(const std::vector<Vec2>& path, const cv::Scalar& colour, int thickness = 1);
+
  private:
   Map map_;
   double px_per_m_;
-  int left_, top_;  // margins in pixels
+  int left_, top_, right_;  // margins in pixels
   cv::Mat image_;
 };
 

@@ -1,0 +1,105 @@
+#include "cfd/flow_output.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "cfd/flow_render.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/npy.hpp"
+
+namespace plumekit::cfd {
+
+nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
+                                    const FlowOptions& options) {
+  nlohmann::ordered_json j;
+  j["format"] = "plumekit-wind/1";
+  j["grid"] = {{"nx", s.nx},
+               {"ny", s.ny},
+               {"dx", s.dx},
+               {"dy", s.dy},
+               {"origin", {0.0, 0.0}},
+               {"convention",
+                "arrays (ny, nx), row-major, row 0 at y = 0, cell-centred: value [j][i] at "
+                "((i + 0.5) dx, (j + 0.5) dy); zero inside obstacles"}};
+  j["cell"] = options.cell;
+  j["viscosity"] = s.nu;
+  j["turbulence"] = to_string(s.turbulence);
+  j["convection"] = to_string(s.convection);
+  j["tolerance"] = s.tolerance;
+  j["converged"] = s.converged;
+  j["iterations"] = s.iterations;
+  j["factorizations"] = s.factorizations;
+  j["final_residuals"] = {{"momentum", s.momentum_residual}, {"continuity", s.continuity_residual}};
+  j["inflow_m2_per_s"] = s.inflow;
+  j["outflow_m2_per_s"] = s.outflow;
+  j["mass_imbalance"] = s.mass_imbalance;
+  j["max_speed"] = wind.max_speed();
+  j["max_eddy_viscosity"] = s.max_eddy_viscosity;
+  j["seconds"] = s.seconds;
+  nlohmann::ordered_json history = nlohmann::ordered_json::array();
+  for (const IterationRecord& r : s.history)
+    history.push_back({r.momentum, r.continuity});
+  j["residual_history"] = history;
+  return j;
+}
+
+std::string wind_vti(const WindField& wind) {
+  const GridShape& g = wind.shape();
+  std::ostringstream s;
+  s.precision(7);
+  s << "<?xml version=\"1.0\"?>\n"
+    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+    << "  <ImageData WholeExtent=\"0 " << g.nx << " 0 " << g.ny
+    << " 0 0\" Origin=\"0 0 0\" Spacing=\"" << g.dx() << ' ' << g.dy() << " 1\">\n"
+    << "    <Piece Extent=\"0 " << g.nx << " 0 " << g.ny << " 0 0\">\n"
+    << "      <CellData Vectors=\"velocity\" Scalars=\"speed\">\n";
+  auto array = [&](const char* name, int components, auto value) {
+    s << "        <DataArray type=\"Float32\" Name=\"" << name << "\" NumberOfComponents=\""
+      << components << "\" format=\"ascii\">\n";
+    for (int j = 0; j < g.ny; ++j) {
+      s << "         ";
+      for (int i = 0; i < g.nx; ++i)
+        s << ' ' << value(i, j);
+      s << '\n';
+    }
+    s << "        </DataArray>\n";
+  };
+  array("velocity", 3, [&](int i, int j) {
+    const Vec2 v = wind.cell_velocity(i, j);
+    std::ostringstream t;
+    t.precision(7);
+    t << v.x << ' ' << v.y << " 0";
+    return t.str();
+  });
+  array("pressure", 1, [&](int i, int j) { return wind.cell_pressure(i, j); });
+  array("speed", 1, [&](int i, int j) { return norm(wind.cell_velocity(i, j)); });
+  array("solid", 1, [&](int i, int j) { return wind.solid(i, j) ? 1 : 0; });
+  s << "      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n";
+  return s.str();
+}
+
+void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResult& result,
+                const FlowOptions& options) {
+  const WindField& wind = result.wind;
+  const std::vector<std::size_t> shape{static_cast<std::size_t>(wind.shape().ny),
+                                       static_cast<std::size_t>(wind.shape().nx)};
+  std::vector<uchar> png;
+  cv::imencode(".png", render_wind(map, wind), png);
+  // Everything is produced in memory first, so a failure leaves no partial set.
+  const std::pair<const char*, std::string> files[] = {
+      {"u.npy", npy_float32(wind.u(), shape)},
+      {"v.npy", npy_float32(wind.v(), shape)},
+      {"p.npy", npy_float32(wind.p(), shape)},
+      {"wind.vti", wind_vti(wind)},
+      {"wind.png", std::string(png.begin(), png.end())},
+      {"wind.json", summary_json(result.summary, wind, options).dump(2) + "\n"},
+  };
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir.string() + ": cannot create the output directory: " + ec.message());
+  for (const auto& [name, bytes] : files)
+    write_file_atomic(dir / name, bytes);
+}
+
+}  // namespace plumekit::cfd

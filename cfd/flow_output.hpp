@@ -1,0 +1,25 @@
+#pragma once
+// Writes a solved flow to a directory: wind.json (summary and grid
+// convention), u.npy / v.npy / p.npy (float32, (ny, nx), cell-centred, row 0 at
+// y = 0, zero inside obstacles), wind.vti (ParaView) and wind.png.
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "cfd/flow_solver.hpp"
+#include "core/map.hpp"
+
+namespace plumekit::cfd {
+
+nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
+                                    const FlowOptions& options);
+
+// VTK XML ImageData with cell data: velocity (3 components), pressure, speed, solid.
+std::string wind_vti(const WindField& wind);
+
+// All five files; each appears whole or not at all, and none is written
+// unless all could be produced.
+void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResult& result,
+                const FlowOptions& options);
+
+}  // namespace plumekit::cfd

@@ -1,0 +1,12 @@
+#pragma once
+// The wind as a picture: speed colour map, streamlines, obstacles, a colour bar.
+#include <opencv2/core.hpp>
+
+#include "cfd/wind_field.hpp"
+#include "core/map.hpp"
+
+namespace plumekit::cfd {
+
+cv::Mat render_wind(const Map& map, const WindField& wind, double px_per_m = 100.0);
+
+}  // namespace plumekit::cfd

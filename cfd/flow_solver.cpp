@@ -1,0 +1,252 @@
+#include "cfd/flow_solver.hpp"
+
+#include <Eigen/UmfPackSupport>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "cfd/eddy_viscosity.hpp"
+#include "cfd/grid_check.hpp"
+#include "cfd/navier_stokes.hpp"
+#include "cfd/staggered_grid.hpp"
+
+namespace plumekit::cfd {
+
+const char* to_string(Turbulence t) {
+  return t == Turbulence::None ? "none" : "mixing-length";
+}
+
+const char* to_string(Convection c) {
+  switch (c) {
+    case Convection::Upwind:
+      return "upwind";
+    case Convection::Central:
+      return "central";
+    case Convection::VanLeer:
+      return "vanleer";
+  }
+  return "?";
+}
+
+std::string FlowSummary::history_text() const {
+  std::ostringstream s;
+  s << "  iter   momentum    continuity  cfl\n";
+  for (std::size_t k = 0; k < history.size(); ++k) {
+    char line[96];
+    std::snprintf(line, sizeof line, "  %4zu   %.3e   %.3e   %.1e\n", k, history[k].momentum,
+                  history[k].continuity, history[k].cfl);
+    s << line;
+  }
+  return s.str();
+}
+
+namespace {
+
+void check_options(const FlowOptions& o) {
+  auto bad = [](const std::string& what) { throw InputError(what); };
+  if (!(std::isfinite(o.nu) && o.nu > 0.0)) bad("--nu: the viscosity must be positive and finite");
+  if (!(std::isfinite(o.cell) && o.cell > 0.0)) bad("--cell: the cell size must be positive");
+  if (!(o.tolerance > 0.0)) bad("--tol: the tolerance must be positive");
+  if (o.max_iterations < 1) bad("--max-iter: at least one iteration is needed");
+  if (!(o.kappa > 0.0)) bad("kappa: must be positive");
+}
+
+// Reference scales for the normalised residuals.
+struct Scales {
+  double speed = 1.0;
+  double length = 1.0;
+};
+
+Scales reference_scales(const Map& map, const FlowOptions& o) {
+  Scales s;
+  s.length = std::min(map.width, map.height);
+  double u = o.closed ? 0.0 : map.inlet.speed;
+  for (double w : o.wall_speed)
+    u = std::max(u, std::abs(w));
+  s.speed = u > 0.0 ? u : 1.0;
+  return s;
+}
+
+}  // namespace
+
+FlowResult solve(const Map& map, const FlowOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  check_options(options);
+  const GridShape shape = GridShape::with_cell(map.width, map.height, options.cell);
+  check_grid(map, shape, options);
+
+  const StaggeredGrid grid(map, shape, options);
+  NavierStokes equations(grid, options.convection);
+  const int n = grid.unknowns(), n_mom = grid.velocity_unknowns();
+  const Scales scales = reference_scales(map, options);
+  EddyViscosity eddy(grid, options);
+
+  FlowSummary summary;
+  summary.nx = shape.nx;
+  summary.ny = shape.ny;
+  summary.dx = shape.dx();
+  summary.dy = shape.dy();
+  summary.nu = options.nu;
+  summary.turbulence = options.turbulence;
+  summary.convection = options.convection;
+  summary.tolerance = options.tolerance;
+
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), f(n), f_trial(n), step(n), rhs(n);
+  std::vector<double> nu_cell(shape.size(), options.nu);
+  equations.set_viscosity(nu_cell);
+
+  auto norms = [&](const Eigen::VectorXd& r) {
+    IterationRecord rec;
+    rec.momentum =
+        r.head(n_mom).lpNorm<Eigen::Infinity>() * scales.length / (scales.speed * scales.speed);
+    rec.continuity = r.tail(n - n_mom).lpNorm<Eigen::Infinity>() * scales.length / scales.speed;
+    return rec;
+  };
+  // Merit for globalisation: the RMS of the residual scaled like the norms.
+  Eigen::VectorXd weight(n);
+  weight.head(n_mom).setConstant(scales.length / (scales.speed * scales.speed));
+  weight.tail(n - n_mom).setConstant(scales.length / scales.speed);
+  auto merit = [&](const Eigen::VectorXd& r) {
+    return std::sqrt(r.cwiseProduct(weight).squaredNorm() / n);
+  };
+
+  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  bool analysed = false;
+  // Each step solves (J + I/dtau) dx = -F, dtau = cfl h / U: a huge cfl is
+  // Newton, a small one a damped implicit time step. The step is then cut
+  // back until the merit falls (backtracking). cfl grows with the merit's
+  // fall after each success (SER) and shrinks when no cut-back helps.
+  const double h = std::min(shape.dx(), shape.dy());
+  double cfl = 1e6;
+  bool refactor = true;
+
+  auto fail = [&](const std::string& why) {
+    summary.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::ostringstream msg;
+    msg << "flow solver: " << why << " after " << summary.iterations << " iterations on a "
+        << shape.nx << " x " << shape.ny << " grid (nu " << options.nu << " m^2/s, "
+        << to_string(options.convection) << " convection). Try a larger --nu, a finer --cell, or "
+        << "--convection upwind.\nResidual history:\n"
+        << summary.history_text();
+    throw ConvergenceError(msg.str(), summary);
+  };
+
+  equations.residual(x.data(), f.data());
+  IterationRecord current = norms(f);
+  double current_merit = merit(f);
+  Eigen::VectorXd trial(n);
+  for (int it = 0;; ++it) {
+    if (options.turbulence == Turbulence::MixingLength && it > 0) {
+      eddy.update(x.data(), nu_cell);
+      equations.set_viscosity(nu_cell);
+      equations.residual(x.data(), f.data());
+      current = norms(f);
+      current_merit = merit(f);
+    }
+    current.cfl = cfl;
+    summary.history.push_back(current);
+    summary.iterations = it;
+    if (options.verbose)
+      std::fprintf(stderr, "flow: iter %3d  momentum %.3e  continuity %.3e  cfl %.1e\n", it,
+                   current.momentum, current.continuity, cfl);
+    if (options.on_iteration) options.on_iteration(it, current.momentum, current.continuity);
+    if (!std::isfinite(current_merit)) fail("the residual became NaN");
+    if (current.momentum < options.tolerance && current.continuity < options.tolerance &&
+        (options.turbulence == Turbulence::None || eddy.settled())) {
+      summary.converged = true;
+      break;
+    }
+    if (it >= options.max_iterations) fail("no convergence");
+
+    // A factorization is reused while it keeps cutting the merit by 4x or
+    // more (such chord steps cost one solve); otherwise refactorize here.
+    if (refactor) {
+      equations.update_jacobian(x.data());
+      if (cfl < 1e15) equations.add_to_momentum_diagonal(scales.speed / (cfl * h));
+      if (!analysed) {
+        lu.analyzePattern(equations.jacobian());
+        analysed = true;
+      }
+      lu.factorize(equations.jacobian());
+      ++summary.factorizations;
+      if (lu.info() != Eigen::Success) {
+        cfl /= 10.0;
+        if (cfl < 1e-3) fail("the Newton matrix is singular");
+        continue;
+      }
+    }
+    const bool fresh = refactor;
+    rhs = -f;
+    step = lu.solve(rhs);
+    double lambda = 1.0, trial_merit = HUGE_VAL;
+    for (; lambda >= 1.0 / 16; lambda *= 0.5) {
+      trial = x + lambda * step;
+      equations.residual(trial.data(), f_trial.data());
+      trial_merit = merit(f_trial);
+      if (std::isfinite(trial_merit) && trial_merit < (1.0 - 1e-4 * lambda) * current_merit) break;
+      // The first step goes from rest to a flow that satisfies continuity (a
+      // Stokes-like solve); it is taken whole even if momentum grows.
+      if (it == 0 && std::isfinite(trial_merit)) break;
+    }
+    if (lambda < 1.0 / 16) {
+      // No cut-back helped. Renew a stale factorization first; with a fresh
+      // one, take a shorter pseudo-time step from the same point.
+      if (fresh) cfl = std::min(cfl, 1e3) / 10.0;
+      if (cfl < 1e-3) fail("the pseudo-time step collapsed");
+      refactor = true;
+      continue;
+    }
+    const double ratio = trial_merit / current_merit;
+    refactor = ratio > 0.25;
+    if (fresh && lambda == 1.0) cfl = std::min(cfl / std::max(ratio, 0.1), 1e15);
+    x.swap(trial);
+    f.swap(f_trial);
+    current = norms(f);
+    current_merit = trial_merit;
+  }
+
+  // Unpack the unknowns into full face arrays.
+  std::vector<double> face[2];
+  for (int c = 0; c < 2; ++c) {
+    face[c].resize(grid.face_count(c));
+    for (std::size_t k = 0; k < face[c].size(); ++k) {
+      const int col = grid.column(c, k);
+      face[c][k] = col >= 0 ? x[col] : grid.fixed_value(c, k);
+    }
+  }
+  std::vector<double> pressure(shape.size(), 0.0);
+  for (std::size_t k = 0; k < shape.size(); ++k)
+    if (const int col = grid.pressure_column(k); col >= 0) pressure[k] = x[col];
+
+  // Mass balance through the openings (per metre of depth).
+  for (int c = 0; c < 2; ++c) {
+    for (int b = 0; b < grid.n_across(c); ++b) {
+      for (int a : {0, grid.n_along(c)}) {
+        const std::size_t k = grid.face(c, a, b);
+        const double inward = (a == 0 ? 1.0 : -1.0) * face[c][k] * grid.h_across(c);
+        if (grid.kind(c, k) == kOutflow)
+          summary.outflow -= inward;
+        else if (inward > 0.0)
+          summary.inflow += inward;
+      }
+    }
+  }
+  summary.mass_imbalance =
+      summary.inflow > 0.0 ? std::abs(summary.inflow - summary.outflow) / summary.inflow : 0.0;
+  summary.momentum_residual = current.momentum;
+  summary.continuity_residual = current.continuity;
+  summary.max_eddy_viscosity = eddy.max_eddy_viscosity();
+
+  FlowResult result{WindField(shape, std::move(face[0]), std::move(face[1]), std::move(pressure),
+                              grid.solid_cells()),
+                    std::move(summary)};
+  result.summary.max_speed = result.wind.max_speed();
+  result.summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace plumekit::cfd

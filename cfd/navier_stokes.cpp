@@ -1,0 +1,262 @@
+#include "cfd/navier_stokes.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "cfd/dual.hpp"
+
+namespace plumekit::cfd {
+
+namespace {
+
+template <class T>
+T load(const Ref& r, const double* x);
+
+template <>
+double load<double>(const Ref& r, const double* x) {
+  return r.col >= 0 ? r.scale * x[r.col] + r.offset : r.offset;
+}
+
+template <>
+Dual load<Dual>(const Ref& r, const double* x) {
+  Dual d(load<double>(r, x));
+  if (r.col >= 0) d.d[r.local] = r.scale;
+  return d;
+}
+
+}  // namespace
+
+NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
+    : grid_(grid), convection_(convection) {
+  const int nx = grid.nx(), ny = grid.ny();
+  slot_begin_.assign(grid.unknowns() + 1, 0);
+  std::vector<std::vector<int>> cols_of_row(grid.unknowns());
+
+  for (int c = 0; c < 2; ++c) {
+    for (int b = 0; b < grid.n_across(c); ++b) {
+      for (int a = 0; a <= grid.n_along(c); ++a) {
+        const std::size_t f = grid.face(c, a, b);
+        if (grid.kind(c, f) == kFixed) continue;
+        MomentumRow m;
+        m.row = grid.column(c, f);
+        for (int k = -2; k <= 2; ++k)
+          m.w[k + 2] = k == 0 ? grid.real_face(c, f) : grid.along(c, a, b, k);
+        m.wb[1] = grid.across(c, a, b, -1);
+        m.wb[2] = grid.across(c, a, b, 1);
+        // Only the limited scheme reads two faces upwind; the others keep a
+        // compact stencil, which makes the factorization cheaper.
+        const bool wide = convection == Convection::VanLeer;
+        m.wb[0] = wide ? grid.across(c, a, b, -2) : m.wb[1];
+        m.wb[3] = wide ? grid.across(c, a, b, 2) : m.wb[2];
+        if (!wide) {
+          m.w[0] = m.w[1];
+          m.w[4] = m.w[3];
+        }
+        // The other component's faces at the CV's north (b+1) and south (b)
+        // sides, in the cells a-1 and a beside it.
+        m.o[0] = grid.other(c, b + 1, a - 1);
+        m.o[1] = grid.other(c, b + 1, a);
+        m.o[2] = grid.other(c, b, a - 1);
+        m.o[3] = grid.other(c, b, a);
+        m.p[0] = grid.pressure(c, b, a - 1);
+        m.p[1] = grid.pressure(c, b, a);
+        m.cell_w = static_cast<int>(grid.cell(c, std::max(a - 1, 0), b));
+        m.cell_e = static_cast<int>(grid.cell(c, std::min(a, grid.n_along(c) - 1), b));
+        // Corners of the cell grid, (nx+1) x (ny+1), at along a, across b / b+1.
+        auto corner = [&](int along, int across) {
+          const int i = c == 0 ? along : across, j = c == 0 ? across : along;
+          return j * (nx + 1) + i;
+        };
+        m.corner_s = corner(a, b);
+        m.corner_n = corner(a, b + 1);
+        m.inv_ha = 1.0 / grid.h_along(c);
+        m.inv_hb = 1.0 / grid.h_across(c);
+        momentum_.push_back(m);
+      }
+    }
+  }
+  bool pinned = false;
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t cell = grid.shape().index(i, j);
+      if (grid.solid(cell)) continue;
+      ContinuityRow r;
+      r.row = grid.pressure_column(cell);
+      r.f[0] = grid.real_face(0, grid.face(0, i + 1, j));
+      r.f[1] = grid.real_face(0, grid.face(0, i, j));
+      r.f[2] = grid.real_face(1, grid.face(1, j + 1, i));
+      r.f[3] = grid.real_face(1, grid.face(1, j, i));
+      r.inv_dx = 1.0 / grid.shape().dx();
+      r.inv_dy = 1.0 / grid.shape().dy();
+      r.pinned = !grid.has_outflow() && !pinned;
+      pinned = pinned || r.pinned;
+      if (r.pinned) r.f[0] = Ref{r.row, 1.0, 0.0, -1};
+      continuity_.push_back(r);
+    }
+  }
+
+  // Distinct unknowns per row, and the sparsity pattern they make.
+  for (MomentumRow& m : momentum_) {
+    Ref* refs[15];
+    int n = 0;
+    for (Ref& r : m.w)
+      refs[n++] = &r;
+    for (Ref& r : m.wb)
+      refs[n++] = &r;
+    for (Ref& r : m.o)
+      refs[n++] = &r;
+    for (Ref& r : m.p)
+      refs[n++] = &r;
+    std::vector<int>& cols = cols_of_row[m.row];
+    for (int k = 0; k < n; ++k)
+      if (refs[k]->col >= 0 && std::find(cols.begin(), cols.end(), refs[k]->col) == cols.end())
+        cols.push_back(refs[k]->col);
+    for (int k = 0; k < n; ++k)
+      if (refs[k]->col >= 0)
+        refs[k]->local =
+            static_cast<int>(std::find(cols.begin(), cols.end(), refs[k]->col) - cols.begin());
+  }
+  for (ContinuityRow& r : continuity_) {
+    std::vector<int>& cols = cols_of_row[r.row];
+    for (Ref& f : r.f)
+      if (f.col >= 0 && std::find(cols.begin(), cols.end(), f.col) == cols.end())
+        cols.push_back(f.col);
+    for (Ref& f : r.f)
+      if (f.col >= 0)
+        f.local = static_cast<int>(std::find(cols.begin(), cols.end(), f.col) - cols.begin());
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int row = 0; row < grid.unknowns(); ++row) {
+    const auto& cols = cols_of_row[row];
+    if (static_cast<int>(cols.size()) > kMaxLocal)
+      throw std::logic_error("flow equations: a row depends on more unknowns than kMaxLocal");
+    slot_begin_[row + 1] = slot_begin_[row] + static_cast<int>(cols.size());
+    for (int col : cols) {
+      slot_cols_.push_back(col);
+      triplets.emplace_back(row, col, 1.0);
+    }
+  }
+  jacobian_.resize(grid.unknowns(), grid.unknowns());
+  jacobian_.setFromTriplets(triplets.begin(), triplets.end());
+  jacobian_.makeCompressed();
+  // Where each (row, slot) lives among the column-major values.
+  slot_value_.resize(slot_cols_.size());
+  for (int row = 0; row < grid.unknowns(); ++row) {
+    for (int s = slot_begin_[row]; s < slot_begin_[row + 1]; ++s) {
+      const int col = slot_cols_[s];
+      const int* begin = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[col];
+      const int* end = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[col + 1];
+      slot_value_[s] =
+          static_cast<int>(std::lower_bound(begin, end, row) - jacobian_.innerIndexPtr());
+    }
+  }
+  nu_cell_.assign(grid.shape().size(), 0.0);
+  nu_corner_.assign(static_cast<std::size_t>(nx + 1) * (ny + 1), 0.0);
+}
+
+void NavierStokes::set_viscosity(const std::vector<double>& nu_cell) {
+  const int nx = grid_.nx(), ny = grid_.ny();
+  nu_cell_ = nu_cell;
+  // A corner takes the mean over the fluid cells around it.
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      double sum = 0.0, any = 0.0;
+      int n = 0;
+      for (int dj = -1; dj <= 0; ++dj)
+        for (int di = -1; di <= 0; ++di) {
+          const int a = i + di, b = j + dj;
+          if (a < 0 || b < 0 || a >= nx || b >= ny) continue;
+          const std::size_t cell = grid_.shape().index(a, b);
+          any = nu_cell[cell];
+          if (grid_.solid(cell)) continue;
+          sum += nu_cell[cell];
+          ++n;
+        }
+      nu_corner_[static_cast<std::size_t>(j) * (nx + 1) + i] = n ? sum / n : any;
+    }
+  }
+}
+
+template <class T>
+T NavierStokes::face_value(const T& flux, const T& far_m, const T& m, const T& p,
+                           const T& far_p) const {
+  // Value at the face between m and p, carried by `flux` (> 0 from m to p).
+  const bool forward = value(flux) >= 0.0;
+  switch (convection_) {
+    case Convection::Central:
+      return 0.5 * (m + p);
+    case Convection::Upwind:
+      return forward ? m : p;
+    case Convection::VanLeer: {
+      // Upwind value plus half the van Leer-limited slope:
+      // psi(r) (d - u) = (a|b| + |a| b) / (|a| + |b|), a = u - uu, b = d - u.
+      const T& up = forward ? m : p;
+      const T& down = forward ? p : m;
+      const T& far = forward ? far_m : far_p;
+      const T a = up - far, b = down - up;
+      const T aa = abs(a), ab = abs(b);
+      return up + 0.5 * (a * ab + aa * b) / (aa + ab + 1e-30);
+    }
+  }
+  return m;
+}
+
+template <class T>
+T NavierStokes::momentum(const MomentumRow& r, const double* x) const {
+  T w[5], wb[4], o[4];
+  for (int k = 0; k < 5; ++k)
+    w[k] = load<T>(r.w[k], x);
+  for (int k = 0; k < 4; ++k)
+    wb[k] = load<T>(r.wb[k], x);
+  for (int k = 0; k < 4; ++k)
+    o[k] = load<T>(r.o[k], x);
+  const T& w0 = w[2];
+  const T f_e = 0.5 * (w0 + w[3]), f_w = 0.5 * (w[1] + w0);
+  const T g_n = 0.5 * (o[0] + o[1]), g_s = 0.5 * (o[2] + o[3]);
+  const T convection =
+      (f_e * face_value(f_e, w[1], w0, w[3], w[4]) - f_w * face_value(f_w, w[0], w[1], w0, w[3])) *
+          r.inv_ha +
+      (g_n * face_value(g_n, wb[1], w0, wb[2], wb[3]) -
+       g_s * face_value(g_s, wb[0], wb[1], w0, wb[2])) *
+          r.inv_hb;
+  const double nu_e = nu_cell_[r.cell_e], nu_w = nu_cell_[r.cell_w];
+  const double nu_n = nu_corner_[r.corner_n], nu_s = nu_corner_[r.corner_s];
+  const T diffusion = (nu_e * (w[3] - w0) - nu_w * (w0 - w[1])) * (r.inv_ha * r.inv_ha) +
+                      (nu_n * (wb[2] - w0) - nu_s * (w0 - wb[1])) * (r.inv_hb * r.inv_hb);
+  const T pressure = (load<T>(r.p[1], x) - load<T>(r.p[0], x)) * r.inv_ha;
+  return convection - diffusion + pressure;
+}
+
+template <class T>
+T NavierStokes::continuity(const ContinuityRow& r, const double* x) const {
+  if (r.pinned) return load<T>(r.f[0], x);
+  return (load<T>(r.f[0], x) - load<T>(r.f[1], x)) * r.inv_dx +
+         (load<T>(r.f[2], x) - load<T>(r.f[3], x)) * r.inv_dy;
+}
+
+void NavierStokes::residual(const double* x, double* out) const {
+  for (const MomentumRow& r : momentum_)
+    out[r.row] = momentum<double>(r, x);
+  for (const ContinuityRow& r : continuity_)
+    out[r.row] = continuity<double>(r, x);
+}
+
+void NavierStokes::update_jacobian(const double* x) {
+  double* values = jacobian_.valuePtr();
+  auto store = [&](int row, const Dual& d) {
+    for (int s = slot_begin_[row]; s < slot_begin_[row + 1]; ++s)
+      values[slot_value_[s]] = d.d[s - slot_begin_[row]];
+  };
+  for (const MomentumRow& r : momentum_)
+    store(r.row, momentum<Dual>(r, x));
+  for (const ContinuityRow& r : continuity_)
+    store(r.row, continuity<Dual>(r, x));
+}
+
+void NavierStokes::add_to_momentum_diagonal(double s) {
+  double* values = jacobian_.valuePtr();
+  for (const MomentumRow& r : momentum_)
+    values[slot_value_[slot_begin_[r.row] + r.w[2].local]] += s;
+}
+
+}  // namespace plumekit::cfd

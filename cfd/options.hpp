@@ -1,0 +1,44 @@
+#pragma once
+// Options of the steady flow solver, with the defaults the dataset generator
+// uses. See cfd/README.md for why these defaults give converged steady flows.
+#include <array>
+#include <functional>
+#include <string>
+
+namespace plumekit::cfd {
+
+enum class Turbulence { None, MixingLength };
+enum class Convection {
+  Upwind,   // first order, bounded
+  Central,  // second order, unbounded when the cell Peclet number exceeds 2
+  VanLeer,  // second order where smooth, bounded (TVD, van Leer limiter)
+};
+
+const char* to_string(Turbulence t);
+const char* to_string(Convection c);
+
+struct FlowOptions {
+  double cell = 0.05;  // m; cells per side = round(extent / cell)
+  double nu = 0.01;    // m^2/s, (effective) kinematic viscosity
+  Turbulence turbulence = Turbulence::None;
+  Convection convection = Convection::VanLeer;
+  // Mixing-length closure: nu_t = lm^2 |S|, lm = min(kappa d, lm_max), d the
+  // distance to the nearest no-slip surface. lm_max <= 0 means 0.09 times half
+  // the arena's smaller side (Escudier's 0.09 delta).
+  double kappa = 0.41;
+  double lm_max = 0.0;
+  // Stop when both normalised residuals (see FlowSummary) are below this.
+  double tolerance = 1e-8;
+  int max_iterations = 60;
+  // Tangential velocity of each wall (left, right, bottom, top), m/s, in the
+  // direction of increasing x or y along it: a moving lid. 0 is no-slip.
+  std::array<double, 4> wall_speed{0.0, 0.0, 0.0, 0.0};
+  // Treat the inlet and outlet as walls: a closed box, as in the lid-driven
+  // cavity. The pressure is then fixed to 0 in one cell.
+  bool closed = false;
+  bool verbose = false;  // a line per iteration on stderr
+  // Called after each iteration with (iteration, momentum, continuity residual).
+  std::function<void(int, double, double)> on_iteration;
+};
+
+}  // namespace plumekit::cfd

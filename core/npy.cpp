@@ -1,0 +1,90 @@
+#include "core/npy.hpp"
+
+#include <cstring>
+#include <numeric>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+
+namespace plumekit {
+
+namespace {
+
+std::string header(const char* descr, const std::vector<std::size_t>& shape) {
+  std::string dims;
+  for (std::size_t d : shape)
+    dims += std::to_string(d) + ", ";
+  if (shape.size() > 1) dims.erase(dims.size() - 2);  // (n,) keeps its comma
+  std::string dict =
+      "{'descr': '" + std::string(descr) + "', 'fortran_order': False, 'shape': (" + dims + "), }";
+  // Magic (6) + version (2) + length (2) + dict + padding + '\n', a multiple of 64.
+  const std::size_t total = 10 + dict.size() + 1;
+  dict.append((64 - total % 64) % 64, ' ');
+  dict += '\n';
+  std::string out("\x93NUMPY\x01\x00", 8);
+  out += static_cast<char>(dict.size() & 0xff);
+  out += static_cast<char>(dict.size() >> 8);
+  return out + dict;
+}
+
+}  // namespace
+
+std::string npy_float32(const std::vector<float>& values, const std::vector<std::size_t>& shape) {
+  std::string out = header("<f4", shape);
+  const std::size_t offset = out.size();
+  out.resize(offset + values.size() * sizeof(float));
+  std::memcpy(out.data() + offset, values.data(),
+              values.size() * sizeof(float));  // x86: little-endian
+  return out;
+}
+
+std::string npy_float32(const std::vector<double>& values, const std::vector<std::size_t>& shape) {
+  return npy_float32(std::vector<float>(values.begin(), values.end()), shape);
+}
+
+NpyArray read_npy(const std::filesystem::path& path) {
+  const std::string bytes = read_file(path);
+  auto bad = [&](const std::string& what) { throw InputError(path.string() + ": " + what); };
+  if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) bad("not an .npy file");
+  const std::size_t len =
+      static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8);
+  if (bytes[6] != 1 || bytes.size() < 10 + len) bad("unsupported .npy version or truncated header");
+  const std::string dict = bytes.substr(10, len);
+  const bool f4 = dict.find("'descr': '<f4'") != std::string::npos;
+  const bool f8 = dict.find("'descr': '<f8'") != std::string::npos;
+  if (!f4 && !f8) bad("only little-endian float32/float64 arrays are read");
+  if (dict.find("'fortran_order': False") == std::string::npos)
+    bad("Fortran order is not supported");
+  NpyArray a;
+  const std::size_t open = dict.find("'shape': (");
+  if (open == std::string::npos) bad("header has no shape");
+  std::size_t p = open + 10;
+  while (p < dict.size() && dict[p] != ')') {
+    if (std::isdigit(static_cast<unsigned char>(dict[p]))) {
+      std::size_t used = 0;
+      a.shape.push_back(std::stoull(dict.substr(p), &used));
+      p += used;
+    } else {
+      ++p;
+    }
+  }
+  const std::size_t count =
+      std::accumulate(a.shape.begin(), a.shape.end(), std::size_t{1}, std::multiplies<>());
+  const std::size_t width = f4 ? 4 : 8;
+  if (bytes.size() != 10 + len + count * width)
+    bad("data size does not match the shape (truncated?)");
+  a.values.resize(count);
+  const char* data = bytes.data() + 10 + len;
+  for (std::size_t k = 0; k < count; ++k) {
+    if (f4) {
+      float v;
+      std::memcpy(&v, data + 4 * k, 4);
+      a.values[k] = v;
+    } else {
+      std::memcpy(&a.values[k], data + 8 * k, 8);
+    }
+  }
+  return a;
+}
+
+}  // namespace plumekit

@@ -1,0 +1,23 @@
+#pragma once
+// NumPy .npy files (format 1.0), little-endian float32 or float64, C order:
+// what numpy.load and torch.from_numpy read directly.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace plumekit {
+
+// Bytes of an .npy file holding `values` (converted to float32) with `shape`.
+std::string npy_float32(const std::vector<double>& values, const std::vector<std::size_t>& shape);
+std::string npy_float32(const std::vector<float>& values, const std::vector<std::size_t>& shape);
+
+struct NpyArray {
+  std::vector<std::size_t> shape;
+  std::vector<double> values;  // converted from the file's float32/float64
+};
+
+// Reads a float32 or float64 C-order array; InputError naming the file otherwise.
+NpyArray read_npy(const std::filesystem::path& path);
+
+}  // namespace plumekit
