@@ -19,7 +19,7 @@ void add_flow_commands(CLI::App& app) {
     std::string map = default_map().string();
     std::string out;
     std::string turbulence = "none";
-    std::string convection = "vanleer";
+    std::string convection = "central";
     cfd::FlowOptions options;
   };
   auto a = std::make_shared<Args>();

@@ -37,6 +37,9 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
   j["max_speed"] = wind.max_speed();
   j["max_eddy_viscosity"] = s.max_eddy_viscosity;
   j["seconds"] = s.seconds;
+  j["seconds_breakdown"] = {{"coarse_grids", s.coarse_seconds},
+                            {"factorizations", s.factor_seconds},
+                            {"solves", s.solve_seconds}};
   nlohmann::ordered_json history = nlohmann::ordered_json::array();
   for (const IterationRecord& r : s.history)
     history.push_back({r.momentum, r.continuity});

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
 #include "cfd/eddy_viscosity.hpp"
@@ -71,6 +72,53 @@ Scales reference_scales(const Map& map, const FlowOptions& o) {
 
 }  // namespace
 
+namespace {
+
+// Initial unknowns from a coarser solution: velocities sampled at the fine
+// faces, pressure from the coarse cell that holds each fine cell centre.
+Eigen::VectorXd interpolate(const StaggeredGrid& grid, const WindField& coarse) {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(grid.unknowns());
+  const GridShape& s = grid.shape();
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 0; a <= grid.n_along(c); ++a) {
+        const int col = grid.column(c, grid.face(c, a, b));
+        if (col < 0) continue;
+        const Vec2 at =
+            c == 0 ? Vec2{a * s.dx(), (b + 0.5) * s.dy()} : Vec2{(b + 0.5) * s.dx(), a * s.dy()};
+        const Vec2 w = coarse.at(at);
+        x[col] = c == 0 ? w.x : w.y;
+      }
+  const GridShape& cs = coarse.shape();
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const int col = grid.pressure_column(s.index(i, j));
+      if (col < 0) continue;
+      const Vec2 c = s.centre(i, j);
+      const int ci = std::min(cs.nx - 1, static_cast<int>(c.x / cs.dx()));
+      const int cj = std::min(cs.ny - 1, static_cast<int>(c.y / cs.dy()));
+      x[col] = coarse.cell_pressure(ci, cj);
+    }
+  return x;
+}
+
+// The coarse flow to start from, if a twice-coarser grid is worth solving and
+// can represent the map; otherwise none (Newton starts from rest).
+std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options,
+                                      const GridShape& shape) {
+  if (!options.sequencing || std::min(shape.nx, shape.ny) < 50) return std::nullopt;
+  FlowOptions coarse = options;
+  coarse.cell = 2.0 * std::max(shape.dx(), shape.dy());
+  coarse.on_iteration = nullptr;
+  try {
+    return solve(map, coarse).wind;
+  } catch (const InputError&) {
+    return std::nullopt;  // the coarse grid closes a gap, or does not converge
+  }
+}
+
+}  // namespace
+
 FlowResult solve(const Map& map, const FlowOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   check_options(options);
@@ -93,7 +141,12 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   summary.convection = options.convection;
   summary.tolerance = options.tolerance;
 
-  Eigen::VectorXd x = Eigen::VectorXd::Zero(n), f(n), f_trial(n), step(n), rhs(n);
+  const auto t_coarse = std::chrono::steady_clock::now();
+  const std::optional<WindField> coarse = coarse_start(map, options, shape);
+  summary.coarse_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_coarse).count();
+  Eigen::VectorXd x = coarse ? interpolate(grid, *coarse) : Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd f(n), f_trial(n), step(n), rhs(n);
   std::vector<double> nu_cell(shape.size(), options.nu);
   equations.set_viscosity(nu_cell);
 
@@ -113,6 +166,9 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   };
 
   Eigen::UmfPackLU<Eigen::SparseMatrix<double>> lu;
+  // No iterative refinement: Newton's next residual does that job, and each
+  // refinement step would cost another pair of triangular solves.
+  lu.umfpackControl()(UMFPACK_IRSTEP) = 0;
   bool analysed = false;
   // Each step solves (J + I/dtau) dx = -F, dtau = cfl h / U: a huge cfl is
   // Newton, a small one a damped implicit time step. The step is then cut
@@ -170,7 +226,10 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
         lu.analyzePattern(equations.jacobian());
         analysed = true;
       }
+      const auto t_factor = std::chrono::steady_clock::now();
       lu.factorize(equations.jacobian());
+      summary.factor_seconds +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t_factor).count();
       ++summary.factorizations;
       if (lu.info() != Eigen::Success) {
         cfl /= 10.0;
@@ -180,7 +239,10 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
     }
     const bool fresh = refactor;
     rhs = -f;
+    const auto t_solve = std::chrono::steady_clock::now();
     step = lu.solve(rhs);
+    summary.solve_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_solve).count();
     double lambda = 1.0, trial_merit = HUGE_VAL;
     for (; lambda >= 1.0 / 16; lambda *= 0.5) {
       trial = x + lambda * step;
@@ -189,7 +251,7 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
       if (std::isfinite(trial_merit) && trial_merit < (1.0 - 1e-4 * lambda) * current_merit) break;
       // The first step goes from rest to a flow that satisfies continuity (a
       // Stokes-like solve); it is taken whole even if momentum grows.
-      if (it == 0 && std::isfinite(trial_merit)) break;
+      if (it == 0 && !coarse && std::isfinite(trial_merit)) break;
     }
     if (lambda < 1.0 / 16) {
       // No cut-back helped. Renew a stale factorization first; with a fresh

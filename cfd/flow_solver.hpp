@@ -32,7 +32,7 @@ struct FlowSummary {
   double dx = 0.0, dy = 0.0;
   double nu = 0.0;
   Turbulence turbulence = Turbulence::None;
-  Convection convection = Convection::VanLeer;
+  Convection convection = Convection::Central;
   double tolerance = 0.0;
   bool converged = false;
   int iterations = 0;
@@ -45,7 +45,10 @@ struct FlowSummary {
   double mass_imbalance = 0.0;  // |inflow - outflow| / inflow
   double max_speed = 0.0;
   double max_eddy_viscosity = 0.0;
-  double seconds = 0.0;
+  double seconds = 0.0;              // wall time of the whole solve
+  double coarse_seconds = 0.0;       // of which: the coarser grids (sequencing)
+  double factor_seconds = 0.0;       //   LU factorizations on this grid
+  double solve_seconds = 0.0;        //   triangular solves on this grid
   std::string history_text() const;  // a table of the residual history
 };
 

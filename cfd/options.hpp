@@ -21,7 +21,7 @@ struct FlowOptions {
   double cell = 0.05;  // m; cells per side = round(extent / cell)
   double nu = 0.01;    // m^2/s, (effective) kinematic viscosity
   Turbulence turbulence = Turbulence::None;
-  Convection convection = Convection::VanLeer;
+  Convection convection = Convection::Central;
   // Mixing-length closure: nu_t = lm^2 |S|, lm = min(kappa d, lm_max), d the
   // distance to the nearest no-slip surface. lm_max <= 0 means 0.09 times half
   // the arena's smaller side (Escudier's 0.09 delta).
@@ -36,6 +36,10 @@ struct FlowOptions {
   // Treat the inlet and outlet as walls: a closed box, as in the lid-driven
   // cavity. The pressure is then fixed to 0 in one cell.
   bool closed = false;
+  // Grid sequencing: first solve on a grid twice as coarse (recursively, down
+  // to about 50 cells across) and start Newton from that flow. Newton then
+  // needs fewer of the expensive fine-grid factorizations.
+  bool sequencing = true;
   bool verbose = false;  // a line per iteration on stderr
   // Called after each iteration with (iteration, momentum, continuity residual).
   std::function<void(int, double, double)> on_iteration;
