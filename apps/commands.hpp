@@ -5,5 +5,6 @@
 namespace plumekit::cli {
 
 void add_map_commands(CLI::App& app);
+void add_plan_commands(CLI::App& app);
 
 }  // namespace plumekit::cli

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough(false);
   plumekit::cli::add_map_commands(app);
+  plumekit::cli::add_plan_commands(app);
 
   try {
     app.parse(argc, argv);
