@@ -68,6 +68,27 @@ Vec2 closest_on_segment(Vec2 p, Vec2 a, Vec2 b, double& t) {
   return a + t * d;
 }
 
+// Rounding the exact boundary to doubles can collapse a sliver thinner than
+// an ulp into a spike (the ring runs out and straight back) whose free side
+// is undecidable locally. Such a sliver has no width: cut it off, and drop
+// rings left with no area.
+bool clean_ring(Polygon& ring) {
+  for (bool changed = true; changed && ring.size() >= 3;) {
+    changed = false;
+    for (std::size_t k = 0; k < ring.size() && ring.size() >= 3;) {
+      const std::size_t n = ring.size();
+      const Vec2 u = ring[(k + n - 1) % n], v = ring[k], w = ring[(k + 1) % n];
+      if (u == v || (exact_orient(u, v, w) == 0 && dot_sign(u, v, w) >= 0)) {
+        ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(k));
+        changed = true;
+      } else {
+        ++k;
+      }
+    }
+  }
+  return ring.size() >= 3;
+}
+
 }  // namespace
 
 std::size_t FreeSpace::PointHash::operator()(const Vec2& p) const {
@@ -84,6 +105,16 @@ FreeSpace::FreeSpace(const Map& map, double margin, int arc_segments)
       margin_(margin),
       arc_segments_(arc_segments),
       regions_(inflate_free_space(map, margin, arc_segments)) {
+  std::vector<Region> kept;
+  for (Region& r : regions_) {
+    if (!clean_ring(r.outer)) continue;
+    std::vector<Polygon> holes;
+    for (Polygon& h : r.holes)
+      if (clean_ring(h)) holes.push_back(std::move(h));
+    r.holes = std::move(holes);
+    kept.push_back(std::move(r));
+  }
+  regions_ = std::move(kept);
   auto add_ring = [&](const Polygon& ring) {
     const std::size_t n = ring.size();
     for (std::size_t k = 0; k < n; ++k) {

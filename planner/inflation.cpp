@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <iterator>
+#include <type_traits>
+#include <utility>
 
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Polygon_2.h>
@@ -29,11 +31,22 @@ CPolygon to_cgal(const Polygon& poly) {
   return out;
 }
 
+// The double nearest to an exact coordinate, so that e.g. 2 - 0.15 comes back
+// as the double 1.85 that a user types.
+double nearest_double(const K::FT& value) {
+  const auto& exact = CGAL::exact(value);
+  using Exact = std::decay_t<decltype(exact)>;
+  const std::pair<double, double> bounds = CGAL::to_interval(exact);
+  if (bounds.first == bounds.second) return bounds.first;
+  const Exact below = exact - Exact(bounds.first), above = Exact(bounds.second) - exact;
+  return above < below ? bounds.second : bounds.first;
+}
+
 // Rounds once to doubles; drops a vertex that rounds onto its predecessor.
 Polygon to_doubles(const CPolygon& poly) {
   Polygon out;
   for (auto it = poly.vertices_begin(); it != poly.vertices_end(); ++it) {
-    const Vec2 v{CGAL::to_double(it->x()), CGAL::to_double(it->y())};
+    const Vec2 v{nearest_double(it->x()), nearest_double(it->y())};
     if (out.empty() || out.back() != v) out.push_back(v);
   }
   while (out.size() > 1 && out.front() == out.back())

@@ -3,7 +3,6 @@
 #include <atomic>
 #include <chrono>
 #include <mutex>
-#include <thread>
 
 #include <ompl/base/MotionValidator.h>
 #include <ompl/base/ProblemDefinition.h>
@@ -134,17 +133,15 @@ PlanResult OmplPlanner::plan(Vec2 start, Vec2 goal) const {
   planner->setProblemDefinition(pdef);
   planner->setup();
 
-  // The iteration budget counts the planner's own loop (PRM* also polls for a
-  // solution from a helper thread, which is not counted).
+  // The budget counts evaluations of the termination condition: once per
+  // iteration for RRT*; PRM* also polls it from a helper thread every
+  // millisecond, so its count (and result) can vary a little between runs.
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(options_.ompl_time_limit_s);
-  const std::thread::id caller = std::this_thread::get_id();
   std::atomic<int> iterations{0};
   const int budget = options_.ompl_iterations;
-  ob::PlannerTerminationCondition ptc([&] {
-    if (std::this_thread::get_id() == caller && ++iterations > budget) return true;
-    return std::chrono::steady_clock::now() > deadline;
-  });
+  ob::PlannerTerminationCondition ptc(
+      [&] { return ++iterations > budget || std::chrono::steady_clock::now() > deadline; });
   const ob::PlannerStatus status = planner->solve(ptc);
   if (status != ob::PlannerStatus::EXACT_SOLUTION || !pdef->hasExactSolution())
     throw_unreachable(space_, r);
