@@ -94,7 +94,7 @@ cv::Mat draw_plan(const Map& map, const pl::FreeSpace& space, const pl::PlanResu
   if (r.start_moved) moved(r.requested_start, r.start);
   if (r.goal_moved) moved(r.requested_goal, r.goal);
   canvas.draw_marker(r.start, cv::Scalar(40, 160, 40), 7);
-  canvas.draw_marker(r.goal, cv::Scalar(40, 40, 210), 7);
+  canvas.draw_marker(r.goal, cv::Scalar(170, 40, 170), 7);  // purple: sources are red
   canvas.draw_title(title);
   return img.clone();
 }

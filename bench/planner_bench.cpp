@@ -3,7 +3,7 @@
 // query time, and how long OMPL's RRT* and PRM* take to return a path within
 // 1 % of the VG optimum (or how close they got within the budget).
 //
-//   ./build/bench/planner_bench [--queries 2000] [--ompl-queries 3] [--ompl-budget 2]
+//   ./build/bench/planner_bench [--queries 2000] [--ompl-queries 10] [--ompl-budget 2]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -84,7 +84,7 @@ struct Query {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int n_queries = 2000, n_ompl = 3;
+  int n_queries = 2000, n_ompl = 10;
   double ompl_budget = 2.0;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--queries")) n_queries = std::atoi(argv[i + 1]);
@@ -155,9 +155,11 @@ int main(int argc, char** argv) {
   // path is within 1 % of the VG optimum, or the time budget is spent.
   std::printf(
       "\nOMPL, time to a path within 1%% of the VG optimum (simplified; median over "
-      "queries), else the best length ratio reached\n");
-  std::printf("%-12s %-8s %8s %12s %12s %10s\n", "map", "planner", "reached", "median_s",
-              "iterations", "best_ratio");
+      "queries);\n"
+      "ratio: OMPL length / VG length where it stopped; x_vg_time: OMPL time / median VG "
+      "query time\n");
+  std::printf("%-12s %-8s %8s %10s %10s %10s %9s\n", "map", "planner", "reached", "median_ms",
+              "iterations", "ratio", "x_vg_time");
   for (std::size_t mi = 0; mi < maps.size(); ++mi)
     for (PlannerKind kind : {PlannerKind::RRTstar, PlannerKind::PRMstar}) {
       std::vector<double> times, iters, ratios;
@@ -187,9 +189,9 @@ int main(int argc, char** argv) {
         }
         ratios.push_back(best);
       }
-      std::printf("%-12s %-8s %5d/%-2zu %12.4f %12.0f %10.4f\n", maps[mi].name.c_str(),
-                  to_string(kind), reached, ompl_queries[mi].size(), median(times), median(iters),
-                  median(ratios));
+      std::printf("%-12s %-8s %5d/%-2zu %10.2f %10.0f %10.4f %9.0f\n", maps[mi].name.c_str(),
+                  to_string(kind), reached, ompl_queries[mi].size(), median(times) * 1e3,
+                  median(iters), median(ratios), median(times) * 1e6 / all_medians[mi]);
     }
   std::printf("\nworst median VG query: %.2f us\n",
               *std::max_element(all_medians.begin(), all_medians.end()));
