@@ -165,6 +165,7 @@ PlanResult OmplPlanner::plan(Vec2 start, Vec2 goal) const {
   }
   for (std::size_t k = 1; k < r.path.size(); ++k)
     r.length += norm(r.path[k] - r.path[k - 1]);
+  r.expanded = iterations.load();
   return r;
 }
 

@@ -54,7 +54,8 @@ struct PlanResult {
   Vec2 start, goal;
   bool start_moved = false;
   bool goal_moved = false;
-  int expanded = 0;  // VG: nodes A* expanded; OMPL: 0
+  // VG: nodes A* closed. OMPL: termination checks, about one per iteration.
+  int expanded = 0;
 };
 
 class Planner {

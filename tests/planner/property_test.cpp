@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <memory>
 #include <queue>
 
 #include "core/error.hpp"
@@ -67,6 +68,70 @@ class Reference {
   std::vector<char> sees_;
 };
 
+// An oracle independent of the planner's geometry: flood fill over 5 cm cells
+// whose centres keep margin + 4 cm from every obstacle and wall (the half
+// diagonal of a cell plus the N-gon's over-inflation is less), entered from the
+// ends by straight segments that keep the margin. Connected means reachable.
+class FloodFill {
+ public:
+  FloodFill(const Map& map, double margin)
+      : map_(map),
+        margin_(margin),
+        nx_(static_cast<int>(map.width / kCell)),
+        ny_(static_cast<int>(map.height / kCell)),
+        ok_(nx_ * ny_) {
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i)
+        ok_[j * nx_ + i] = clearance(map, {centre(i, j), centre(i, j)}) >= margin + 0.04;
+  }
+
+  bool connects(Vec2 s, Vec2 g) const {
+    std::vector<char> seen(nx_ * ny_, 0);
+    std::vector<int> stack = entries(s);
+    for (int c : stack)
+      seen[c] = 1;
+    while (!stack.empty()) {
+      const int c = stack.back();
+      stack.pop_back();
+      const int i = c % nx_, j = c / nx_;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int a = i + di, b = j + dj;
+          if (a < 0 || b < 0 || a >= nx_ || b >= ny_ || !ok_[b * nx_ + a] || seen[b * nx_ + a])
+            continue;
+          seen[b * nx_ + a] = 1;
+          stack.push_back(b * nx_ + a);
+        }
+    }
+    for (int c : entries(g))
+      if (seen[c]) return true;
+    return false;
+  }
+
+ private:
+  static constexpr double kCell = 0.05;
+  Vec2 centre(int i, int j) const { return {(i + 0.5) * kCell, (j + 0.5) * kCell}; }
+  // Cells near p that a straight segment keeping the margin reaches.
+  std::vector<int> entries(Vec2 p) const {
+    std::vector<int> out;
+    for (int j = 0; j < ny_; ++j)
+      for (int i = 0; i < nx_; ++i)
+        if (ok_[j * nx_ + i] && norm(centre(i, j) - p) < 0.15 &&
+            clearance(map_, {p, centre(i, j)}) >= margin_)
+          out.push_back(j * nx_ + i);
+    return out;
+  }
+
+  const Map& map_;
+  double margin_;
+  int nx_, ny_;
+  std::vector<char> ok_;
+};
+
+bool grid_connects(const Map& map, Vec2 s, Vec2 g, double margin) {
+  return FloodFill(map, margin).connects(s, g);
+}
+
 // A query end: mostly random free points, sometimes exactly a free-space
 // vertex or a point in the margin of a wall.
 Vec2 pick(MapGenerator& gen, const Map& map, const FreeSpace& space, int mode) {
@@ -87,6 +152,7 @@ TEST(Property, RandomMapsKeepTheMarginFindEveryReachableGoalAndAreShortest) {
     const VisibilityGraphPlanner vg(map, options);
     const FreeSpace& space = vg.free_space();
     const Reference reference(space);
+    std::unique_ptr<FloodFill> flood;  // built for the first unreachable query only
     for (int q = 0; q < queries; ++q) {
       Vec2 s = pick(gen, map, space, q % 5), g = pick(gen, map, space, (q + 2) % 5);
       if (map.obstacle_at(s) >= 0 || map.obstacle_at(g) >= 0) continue;
@@ -110,6 +176,8 @@ TEST(Property, RandomMapsKeepTheMarginFindEveryReachableGoalAndAreShortest) {
         ++unreachable;
         EXPECT_NE(rs, rg) << "a reachable goal was not found: " << e.what();
         EXPECT_EQ(best, std::numeric_limits<double>::infinity());
+        if (!flood) flood = std::make_unique<FloodFill>(map, kMargin);
+        EXPECT_FALSE(flood->connects(s2, g2)) << "a flood fill joins them";
         continue;
       }
       ++found;
@@ -136,6 +204,18 @@ TEST(Property, RandomMapsKeepTheMarginFindEveryReachableGoalAndAreShortest) {
   EXPECT_GT(moved, 1000);
   std::printf("[ property ] %d paths found, %d unreachable, %d ends moved\n", found, unreachable,
               moved);
+}
+
+TEST(Property, TheFloodFillOracleSeesGapsAndWalls) {
+  using testing::map_with;
+  using testing::rect;
+  EXPECT_TRUE(grid_connects(map_with({}), {1, 2}, {9, 2}, kMargin));
+  EXPECT_FALSE(grid_connects(map_with({rect(4, 0, 5, 4)}), {1, 2}, {9, 2}, kMargin));
+  // A 0.45 m gap passes a 0.15 m margin; a 0.25 m gap does not.
+  EXPECT_TRUE(
+      grid_connects(map_with({rect(4, 0, 5, 1.8), rect(4, 2.25, 5, 4)}), {1, 2}, {9, 2}, kMargin));
+  EXPECT_FALSE(
+      grid_connects(map_with({rect(4, 0, 5, 1.8), rect(4, 2.05, 5, 4)}), {1, 2}, {9, 2}, kMargin));
 }
 
 TEST(Property, VgIsNeverLongerThanOmpl) {
@@ -175,6 +255,30 @@ TEST(Property, VgIsNeverLongerThanOmpl) {
     }
   }
   EXPECT_GT(compared, 20);
+}
+
+TEST(Property, OmplStopsOnceItsPathMeetsTheTargetLength) {
+  const Map m = testing::map_with({{{4.0, 1.0},
+                                    {5.8, 1.0},
+                                    {5.8, 3.0},
+                                    {4.0, 3.0},
+                                    {4.0, 2.6},
+                                    {5.3, 2.6},
+                                    {5.3, 1.4},
+                                    {4.0, 1.4}},
+                                   testing::rect(7.5, 0, 8.1, 1.2)});
+  PlannerOptions options;
+  const double best = VisibilityGraphPlanner(m, options).plan({4.6, 2}, {9, 2}).length;
+  options.ompl_iterations = 1000000;
+  options.ompl_time_limit_s = 600.0;
+  options.ompl_target_length = 1.5 * best;
+  options.ompl_simplify = false;
+  for (PlannerKind kind : {PlannerKind::RRTstar, PlannerKind::PRMstar}) {
+    const PlanResult r = OmplPlanner(m, options, kind).plan({4.6, 2}, {9, 2});
+    EXPECT_LE(r.length, 1.5 * best + 1e-9) << to_string(kind);
+    EXPECT_GE(r.length, best - 1e-9) << to_string(kind);
+    EXPECT_LT(r.expanded, 1000000) << to_string(kind);
+  }
 }
 
 TEST(Property, OmplFailsCleanlyOnAnUnreachableGoal) {
