@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   app.fallthrough(false);
   plumekit::cli::add_map_commands(app);
   plumekit::cli::add_flow_commands(app);
+  plumekit::cli::add_plan_commands(app);
 
   try {
     app.parse(argc, argv);
