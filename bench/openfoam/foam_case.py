@@ -514,7 +514,7 @@ def _parse_value(text, i, width):
             k = _balanced(text, j)
             return np.array(text[j + 1:k - 1].split(), dtype=float).reshape(1, width)
         return np.array([float(text[j:text.index(";", j)])]).reshape(1, 1)
-    mo = re.compile(r"List<\w+>\s*(\d+)\s*").match(text, j)
+    mo = re.compile(r"(?:List<\w+>)?\s*(\d+)\s*").match(text, j)  # empty list: `nonuniform 0()`
     n = int(mo.group(1))
     j = mo.end()
     k = _balanced(text, j)
