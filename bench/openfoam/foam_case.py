@@ -549,6 +549,12 @@ def patch_names_of(case):
     return re.findall(r"^\s*(\w+)\s*\n\s*\{", body, re.M)
 
 
+def case_meta(case):
+    """The case summary written by write_case and completed by mesh_case."""
+    with open(f"{case}/plumekit_case.json") as f:
+        return json.load(f)
+
+
 def mesh_case(case):
     """Meshes the case and writes 0/U and 0/p. Returns {program: seconds}. Also verifies (and
     records in cells.npy) which (row, column) of plumekit's grid each OpenFOAM cell is, from
