@@ -37,6 +37,9 @@ TARGET_SPEEDUP = 20.0
 TARGET_REL_L2 = 0.05
 
 
+LAST_CPU = [0.0]  # CPU seconds of the last plumekit run
+
+
 def run_plumekit(exe, map_path, cell, nu, out):
     """One `plumekit flow` run. Returns wall seconds, the wind.json summary and u, v arrays,
     or raises RuntimeError with the reason."""
@@ -45,8 +48,10 @@ def run_plumekit(exe, map_path, cell, nu, out):
     cmd = [exe, "flow", map_path, "--out", out, "--cell", repr(cell), "--nu", repr(nu),
            "--turbulence", "none", "--json"]
     t0 = time.perf_counter()
+    c0 = foam_case._child_cpu()
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     wall = time.perf_counter() - t0
+    LAST_CPU[0] = foam_case._child_cpu() - c0
     if r.returncode != 0:
         msg = (r.stderr.strip() or r.stdout.strip()).splitlines()[-5:]
         raise RuntimeError(f"`{' '.join(cmd)}` exited {r.returncode}: " + " | ".join(msg))
@@ -86,10 +91,12 @@ def bench_cell(args, m, map_path, cell, root, log):
     for k in range(args.repeats):
         r = foam_case.run_solver(case)
         runs.append(r)
-        log(f"[{cell:g} m] simpleFoam run {k + 1}/{args.repeats}: {r['seconds']:.2f} s, "
+        log(f"[{cell:g} m] simpleFoam run {k + 1}/{args.repeats}: {r['seconds']:.2f} s "
+            f"(cpu {r['cpu_seconds']:.2f} s), "
             f"{r['iterations']} iterations, converged={r['converged']}")
     row["simpleFoam_seconds"] = statistics.median(r["seconds"] for r in runs)
     row["simpleFoam_seconds_all"] = [r["seconds"] for r in runs]
+    row["simpleFoam_cpu_seconds"] = statistics.median(r["cpu_seconds"] for r in runs)
     row["simpleFoam_iterations"] = runs[-1]["iterations"]
     row["simpleFoam_converged"] = all(r["converged"] for r in runs)
     row["simpleFoam_final_residuals"] = runs[-1]["final_residuals"]
@@ -104,18 +111,21 @@ def bench_cell(args, m, map_path, cell, root, log):
         row["plumekit_error"] = f"plumekit binary not found or not executable: {exe}"
     else:
         try:
-            walls, solver = [], []
+            walls, solver, cpu = [], [], []
             for k in range(args.repeats):
                 out = os.path.join(root, f"cell-{cell:g}", "plumekit")
                 wall, wind, u, v = run_plumekit(exe, map_path, cell, args.nu, out)
                 walls.append(wall)
+                cpu.append(LAST_CPU[0])
                 solver.append(float(wind.get("seconds", float("nan"))))
-                log(f"[{cell:g} m] plumekit run {k + 1}/{args.repeats}: {wall:.3f} s wall, "
+                log(f"[{cell:g} m] plumekit run {k + 1}/{args.repeats}: {wall:.3f} s wall "
+                    f"(cpu {cpu[-1]:.3f} s), "
                     f"{solver[-1]:.3f} s solver, {wind.get('iterations')} iterations")
             if u.shape != (ny, nx) or v.shape != (ny, nx):
                 raise RuntimeError(f"plumekit grid {u.shape} differs from ({ny}, {nx})")
             row["plumekit_seconds"] = statistics.median(walls)
             row["plumekit_seconds_all"] = walls
+            row["plumekit_cpu_seconds"] = statistics.median(cpu)
             row["plumekit_solver_seconds"] = statistics.median(solver)
             row["plumekit_iterations"] = wind.get("iterations")
             row["ratio"] = row["simpleFoam_seconds"] / row["plumekit_seconds"]
@@ -150,6 +160,8 @@ def print_table(rows, map_path, nu):
         print("  ".join(s.rjust(w[i]) for i, s in enumerate(l)))
         if k == 0:
             print("  ".join("-" * x for x in w))
+    print(f"load average at the end: {' '.join(f'{x:.2f}' for x in os.getloadavg())} "
+          f"on {os.cpu_count()} CPUs (other work on the machine inflates wall times)")
     print(f"times are medians of wall-clock runs; ratio = simpleFoam s / plumekit s "
           f"(targets: >= {TARGET_SPEEDUP:g}x, rel L2 <= {100 * TARGET_REL_L2:g} %)")
     if any(not r["simpleFoam_converged"] for r in rows):
@@ -197,7 +209,7 @@ def main():
             shutil.rmtree(root, ignore_errors=True)
 
     if args.json:
-        json.dump({"map": map_path, "nu": args.nu, "repeats": args.repeats,
+        json.dump({"map": map_path, "loadavg_end": os.getloadavg(), "nu": args.nu, "repeats": args.repeats,
                    "plumekit": args.plumekit, "openfoam": "v1912 (Debian)",
                    "targets": {"speedup": TARGET_SPEEDUP, "rel_l2": TARGET_REL_L2},
                    "results": rows}, sys.stdout, indent=1)

@@ -23,6 +23,7 @@ import json
 import math
 import os
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -469,6 +470,14 @@ def foam_env():
     return env
 
 
+LAST_CPU = [0.0]  # CPU seconds (user + sys) of the last foam_run, for a loaded machine
+
+
+def _child_cpu():
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def foam_run(case, args, log_name):
     """Runs one OpenFOAM program in the case, log to case/log.NAME; raises with the log's tail
     on failure. Returns the wall-clock seconds."""
@@ -478,10 +487,12 @@ def foam_run(case, args, log_name):
     env = foam_env()
     env["PWD"] = os.path.abspath(case)  # else OpenFOAM warns that PWD is not the cwd
     t0 = time.perf_counter()
+    c0 = _child_cpu()
     with open(log, "w") as f:
         r = subprocess.run(args + ["-case", os.path.abspath(case)], stdout=f,
                            stderr=subprocess.STDOUT, env=env, cwd=case)
     dt = time.perf_counter() - t0
+    LAST_CPU[0] = _child_cpu() - c0
     if r.returncode != 0:
         with open(log) as f:
             tail = "".join(f.readlines()[-30:])
@@ -659,7 +670,7 @@ def run_solver(case, log_name="simpleFoam"):
         found = re.findall(rf"Solving for {field}, Initial residual = ([0-9.eE+-]+)", log)
         if found:
             res[field] = float(found[-1])
-    return {"seconds": seconds, "iterations": iters[-1] if iters else 0,
+    return {"seconds": seconds, "cpu_seconds": LAST_CPU[0], "iterations": iters[-1] if iters else 0,
             "converged": conv is not None, "final_residuals": res}
 
 
