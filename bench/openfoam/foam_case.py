@@ -463,10 +463,10 @@ relaxationFactors
 # ----------------------------------------------------------------------------------------------
 
 def foam_env():
+    # Debian's programs live in /usr/bin and need no `source .../etc/bashrc`; without
+    # WM_PROJECT_DIR they stop with "Could not find mandatory etc entry 'controlDict'".
     env = dict(os.environ)
     env["WM_PROJECT_DIR"] = WM_PROJECT_DIR
-    # Keep OpenFOAM from starting MPI machinery or reading stray user settings.
-    env.setdefault("FOAM_SIGFPE", "1")
     return env
 
 
