@@ -128,6 +128,9 @@ def bench_cell(args, m, map_path, cell, root, log):
             row["plumekit_cpu_seconds"] = statistics.median(cpu)
             row["plumekit_solver_seconds"] = statistics.median(solver)
             row["plumekit_iterations"] = wind.get("iterations")
+            # Recorded so that a result says which scheme and tolerance plumekit used.
+            for key in ("convection", "tolerance", "converged"):
+                row[f"plumekit_{key}"] = wind.get(key)
             row["ratio"] = row["simpleFoam_seconds"] / row["plumekit_seconds"]
             row["ratio_solver"] = row["simpleFoam_seconds"] / row["plumekit_solver_seconds"]
             row["rel_l2"], row["max_abs_diff"] = compare(u, v, of["u"], of["v"], fluid)
@@ -167,6 +170,11 @@ def print_table(rows, map_path, nu):
     if any(not r["simpleFoam_converged"] for r in rows):
         print("! simpleFoam stopped at its iteration limit without meeting residualControl")
     for r in rows:
+        if r.get("plumekit_seconds") is not None:
+            print(f"plumekit at {r['cell']:g} m: {r['plumekit_iterations']} iterations, "
+                  f"convection {r.get('plumekit_convection')}, tolerance "
+                  f"{r.get('plumekit_tolerance')}, converged {r.get('plumekit_converged')}, "
+                  f"nonzero velocity in {r['solid_mismatch']} obstacle cells")
         if r["plumekit_error"]:
             print(f"plumekit at {r['cell']:g} m: {r['plumekit_error']}")
 
