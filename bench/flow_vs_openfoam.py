@@ -8,7 +8,7 @@ ratio and the difference of the two velocity fields over the fluid cells.
 
     /usr/bin/python3 bench/flow_vs_openfoam.py [--map data/maps/cluttered-1.json]
         [--cells 0.05,0.025] [--nu 0.01] [--plumekit build/plumekit] [--keep DIR]
-        [--repeats N] [--foam-tol 1e-6] [--json]
+        [--repeats N] [--foam-tol 1e-6] [--foam-convection SCHEME] [--json]
 
 Needs Debian's openfoam and python3-numpy (bench/openfoam/install.sh); run with /usr/bin/python3.
 If the plumekit binary is missing or fails, the OpenFOAM half is still reported.
@@ -78,7 +78,8 @@ def compare(u_pk, v_pk, u_of, v_of, fluid):
 def bench_cell(args, m, map_path, cell, root, log):
     case = os.path.join(root, f"cell-{cell:g}", "openfoam")
     meta = foam_case.write_case(m, cell, args.nu, case,
-                                {"p_tol": args.foam_tol, "U_tol": args.foam_tol})
+                                {"p_tol": args.foam_tol, "U_tol": args.foam_tol,
+                                 "convection": args.foam_convection})
     mesh_times = foam_case.mesh_case(case)  # not timed in the comparison
     meta = foam_case.case_meta(case)
     nx, ny = meta["nx"], meta["ny"]
@@ -86,7 +87,8 @@ def bench_cell(args, m, map_path, cell, root, log):
         f"{sum(mesh_times.values()):.1f} s")
 
     row = {"cell": cell, "nx": nx, "ny": ny, "n_fluid": meta["n_fluid"],
-           "cell_order": meta["cell_order"], "foam_tol": args.foam_tol}
+           "cell_order": meta["cell_order"], "foam_tol": args.foam_tol,
+           "foam_convection": args.foam_convection}
     runs = []
     for k in range(args.repeats):
         r = foam_case.run_solver(case)
@@ -191,6 +193,8 @@ def main():
     ap.add_argument("--repeats", type=int, default=1, help="timed runs per solver and cell size")
     ap.add_argument("--foam-tol", type=float, default=foam_case.DEFAULTS["p_tol"],
                     help="simpleFoam residualControl for p and U (initial residuals)")
+    ap.add_argument("--foam-convection", default=foam_case.DEFAULTS["convection"],
+                    help="simpleFoam's div(phi,U) scheme (default: %(default)s)")
     ap.add_argument("--json", action="store_true", help="print a JSON result on stdout instead "
                     "of the table")
     args = ap.parse_args()
