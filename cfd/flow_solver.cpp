@@ -102,13 +102,25 @@ Eigen::VectorXd interpolate(const StaggeredGrid& grid, const WindField& coarse) 
   return x;
 }
 
+// Grids with fewer cells than this across are solved from rest.
+constexpr int kMinSequencedCells = 50;
+// A factorization is kept for further (chord) steps while each step still
+// halves the merit; a chord step costs one triangular solve, a fresh
+// factorization ten to twenty of them.
+constexpr double kChordRatio = 0.5;
+// Coarse grids only provide a start; their own discretisation error is far
+// above this.
+constexpr double kCoarseTolerance = 1e-4;
+
 // The coarse flow to start from, if a twice-coarser grid is worth solving and
 // can represent the map; otherwise none (Newton starts from rest).
 std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options,
                                       const GridShape& shape) {
-  if (!options.sequencing || std::min(shape.nx, shape.ny) < 50) return std::nullopt;
+  if (!options.sequencing || std::min(shape.nx, shape.ny) < kMinSequencedCells) return std::nullopt;
   FlowOptions coarse = options;
   coarse.cell = 2.0 * std::max(shape.dx(), shape.dy());
+  // A start needs no more accuracy than the coarse grid's own discretisation error.
+  coarse.tolerance = std::max(options.tolerance, kCoarseTolerance);
   coarse.on_iteration = nullptr;
   try {
     return solve(map, coarse).wind;
@@ -217,8 +229,8 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
     }
     if (it >= options.max_iterations) fail("no convergence");
 
-    // A factorization is reused while it keeps cutting the merit by 4x or
-    // more (such chord steps cost one solve); otherwise refactorize here.
+    // Refactorize unless the last step showed the current factorization
+    // still converging fast enough (kChordRatio).
     if (refactor) {
       equations.update_jacobian(x.data());
       if (cfl < 1e15) equations.add_to_momentum_diagonal(scales.speed / (cfl * h));
@@ -262,7 +274,7 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
       continue;
     }
     const double ratio = trial_merit / current_merit;
-    refactor = ratio > 0.25;
+    refactor = ratio > kChordRatio;
     if (fresh && lambda == 1.0) cfl = std::min(cfl / std::max(ratio, 0.1), 1e15);
     x.swap(trial);
     f.swap(f_trial);
