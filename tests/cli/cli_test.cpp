@@ -1,55 +1,22 @@
 // End-to-end tests of the plumekit command: exit codes, messages, outputs.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+
+#include "support/cli_runner.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kExe = PLUMEKIT_EXE;
 const fs::path kData = PLUMEKIT_DATA_DIR;
 const fs::path kBadMaps = PLUMEKIT_TEST_DATA "/bad-maps";
 
-struct Result {
-  int code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-class Cli : public ::testing::Test {
- protected:
-  fs::path dir = fs::temp_directory_path() /
-                 ("plumekit_cli_" +
-                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-  void SetUp() override { fs::create_directories(dir); }
-  void TearDown() override { fs::remove_all(dir); }
-
-  Result run(const std::string& args) {
-    const std::string cmd = kExe.string() + " " + args + " >" + (dir / "stdout").string() + " 2>" +
-                            (dir / "stderr").string();
-    const int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir / "stdout");
-    r.err = slurp(dir / "stderr");
-    fs::remove(dir / "stdout");
-    fs::remove(dir / "stderr");
-    return r;
-  }
-};
+using Result = plumekit::test::CliResult;
+class Cli : public plumekit::test::CliTest {};
 
 TEST_F(Cli, ValidateAcceptsShippedMaps) {
   for (const auto& entry : fs::directory_iterator(kData / "maps")) {
