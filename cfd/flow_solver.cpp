@@ -103,7 +103,7 @@ Eigen::VectorXd interpolate(const StaggeredGrid& grid, const WindField& coarse) 
 }
 
 // Grids with fewer cells than this across are solved from rest.
-constexpr int kMinSequencedCells = 50;
+constexpr int kMinSequencedCells = 25;
 // A factorization is kept for further (chord) steps while each step still
 // halves the merit; a chord step costs one triangular solve, a fresh
 // factorization ten to twenty of them.
@@ -121,6 +121,10 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
   coarse.cell = 2.0 * std::max(shape.dx(), shape.dy());
   // A start needs no more accuracy than the coarse grid's own discretisation error.
   coarse.tolerance = std::max(options.tolerance, kCoarseTolerance);
+  // The coarsest grid starts from rest, where first-order upwinding makes
+  // Newton converge in a few steps; its flow is only a start for the next grid.
+  const GridShape cs = GridShape::with_cell(map.width, map.height, coarse.cell);
+  if (std::min(cs.nx, cs.ny) < kMinSequencedCells) coarse.convection = Convection::Upwind;
   coarse.on_iteration = nullptr;
   try {
     return solve(map, coarse).wind;
