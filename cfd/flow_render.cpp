@@ -100,6 +100,7 @@ cv::Mat render_wind(const Map& map, const WindField& wind, double px_per_m) {
              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
   }
   canvas.draw_walls_and_openings();
+  canvas.draw_sources();
   canvas.draw_axes_and_scale();
   canvas.draw_colour_bar(0.0, vmax, "speed [m/s]");
   std::ostringstream title;
