@@ -24,6 +24,18 @@ Dual load<Dual>(const Ref& r, const double* x) {
   return d;
 }
 
+// Lists the distinct unknowns the refs read, in order of first use, and
+// gives each ref its slot in that list.
+template <std::size_t N>
+void assign_slots(Ref* (&refs)[N], std::vector<int>& cols) {
+  for (Ref* r : refs) {
+    if (r->col < 0) continue;
+    const auto it = std::find(cols.begin(), cols.end(), r->col);
+    r->local = static_cast<int>(it - cols.begin());
+    if (it == cols.end()) cols.push_back(r->col);
+  }
+}
+
 }  // namespace
 
 NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
@@ -97,33 +109,13 @@ NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
 
   // Distinct unknowns per row, and the sparsity pattern they make.
   for (MomentumRow& m : momentum_) {
-    Ref* refs[15];
-    int n = 0;
-    for (Ref& r : m.w)
-      refs[n++] = &r;
-    for (Ref& r : m.wb)
-      refs[n++] = &r;
-    for (Ref& r : m.o)
-      refs[n++] = &r;
-    for (Ref& r : m.p)
-      refs[n++] = &r;
-    std::vector<int>& cols = cols_of_row[m.row];
-    for (int k = 0; k < n; ++k)
-      if (refs[k]->col >= 0 && std::find(cols.begin(), cols.end(), refs[k]->col) == cols.end())
-        cols.push_back(refs[k]->col);
-    for (int k = 0; k < n; ++k)
-      if (refs[k]->col >= 0)
-        refs[k]->local =
-            static_cast<int>(std::find(cols.begin(), cols.end(), refs[k]->col) - cols.begin());
+    Ref* refs[] = {&m.w[0],  &m.w[1], &m.w[2], &m.w[3], &m.w[4], &m.wb[0], &m.wb[1], &m.wb[2],
+                   &m.wb[3], &m.o[0], &m.o[1], &m.o[2], &m.o[3], &m.p[0],  &m.p[1]};
+    assign_slots(refs, cols_of_row[m.row]);
   }
   for (ContinuityRow& r : continuity_) {
-    std::vector<int>& cols = cols_of_row[r.row];
-    for (Ref& f : r.f)
-      if (f.col >= 0 && std::find(cols.begin(), cols.end(), f.col) == cols.end())
-        cols.push_back(f.col);
-    for (Ref& f : r.f)
-      if (f.col >= 0)
-        f.local = static_cast<int>(std::find(cols.begin(), cols.end(), f.col) - cols.begin());
+    Ref* refs[] = {&r.f[0], &r.f[1], &r.f[2], &r.f[3]};
+    assign_slots(refs, cols_of_row[r.row]);
   }
   std::vector<Eigen::Triplet<double>> triplets;
   for (int row = 0; row < grid.unknowns(); ++row) {
