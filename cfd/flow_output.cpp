@@ -7,6 +7,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/npy.hpp"
+#include "core/vti.hpp"
 
 namespace plumekit::cfd {
 
@@ -49,37 +50,18 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
 
 std::string wind_vti(const WindField& wind) {
   const GridShape& g = wind.shape();
-  std::ostringstream s;
-  s.precision(7);
-  s << "<?xml version=\"1.0\"?>\n"
-    << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
-    << "  <ImageData WholeExtent=\"0 " << g.nx << " 0 " << g.ny
-    << " 0 0\" Origin=\"0 0 0\" Spacing=\"" << g.dx() << ' ' << g.dy() << " 1\">\n"
-    << "    <Piece Extent=\"0 " << g.nx << " 0 " << g.ny << " 0 0\">\n"
-    << "      <CellData Vectors=\"velocity\" Scalars=\"speed\">\n";
-  auto array = [&](const char* name, int components, auto value) {
-    s << "        <DataArray type=\"Float32\" Name=\"" << name << "\" NumberOfComponents=\""
-      << components << "\" format=\"ascii\">\n";
-    for (int j = 0; j < g.ny; ++j) {
-      s << "         ";
-      for (int i = 0; i < g.nx; ++i)
-        s << ' ' << value(i, j);
-      s << '\n';
+  VtiArray velocity{"velocity", 3, {}}, pressure{"pressure", 1, {}}, speed{"speed", 1, {}},
+      solid{"solid", 1, {}};
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const Vec2 v = wind.cell_velocity(i, j);
+      velocity.values.insert(velocity.values.end(),
+                             {static_cast<float>(v.x), static_cast<float>(v.y), 0.0f});
+      pressure.values.push_back(static_cast<float>(wind.cell_pressure(i, j)));
+      speed.values.push_back(static_cast<float>(norm(v)));
+      solid.values.push_back(wind.solid(i, j) ? 1.0f : 0.0f);
     }
-    s << "        </DataArray>\n";
-  };
-  array("velocity", 3, [&](int i, int j) {
-    const Vec2 v = wind.cell_velocity(i, j);
-    std::ostringstream t;
-    t.precision(7);
-    t << v.x << ' ' << v.y << " 0";
-    return t.str();
-  });
-  array("pressure", 1, [&](int i, int j) { return wind.cell_pressure(i, j); });
-  array("speed", 1, [&](int i, int j) { return norm(wind.cell_velocity(i, j)); });
-  array("solid", 1, [&](int i, int j) { return wind.solid(i, j) ? 1 : 0; });
-  s << "      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n";
-  return s.str();
+  return vti_cell_data(g, {velocity, pressure, speed, solid}, "velocity", "speed");
 }
 
 void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResult& result,
