@@ -29,7 +29,7 @@ struct FlowOptions {
   double lm_max = 0.0;
   // Stop when both normalised residuals (see FlowSummary) are below this.
   double tolerance = 1e-8;
-  int max_iterations = 60;
+  int max_iterations = 100;
   // Tangential velocity of each wall (left, right, bottom, top), m/s, in the
   // direction of increasing x or y along it: a moving lid. 0 is no-slip.
   std::array<double, 4> wall_speed{0.0, 0.0, 0.0, 0.0};
