@@ -28,6 +28,8 @@ class Network {
   // multiplied by its scale from the file (so in the file's output units).
   Tensor predict(const Tensor& input) const;
 
+  // The file's description (header, layers, contract, outputs). Its raw tensors are released once
+  // converted into the layers, so `weights` and `biases` are empty here.
   const ModelFile& file() const { return file_; }
   std::size_t parameter_count() const;
   // Multiply-adds times two, per sample, of all convolutions at the file's grid.

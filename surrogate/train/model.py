@@ -97,3 +97,36 @@ def pick_device():
 
 if __name__ == "__main__":
     print(parameter_count(PlumeUNet()))
+
+
+def pool_margin(model, x):
+    """Per sample, the smallest margin of any 2x2 max-pool decision, relative to that level's
+    largest |pre-activation|, computed in float64. A window is decided by max(v1 - v2, -z_max): the
+    gap between its two largest post-ReLU values, or how far below zero all its pre-activations
+    are (then every value is an exact 0 and the first wins). Float32 engines that sum in different
+    orders agree on every argmax, and so within rounding everywhere, when this is well above
+    float32's accumulated rounding (~1e-6 for these layers); below it, max-unpool may move a value."""
+    m64 = PlumeUNet(model.in_channels, model.out_channels, model.filters, model.kernel, model.convs)
+    m64.load_state_dict(model.state_dict())
+    m64 = m64.double().eval()
+    h = torch.as_tensor(x).double()
+    margin = torch.full((h.shape[0],), float("inf"), dtype=torch.float64)
+    with torch.no_grad():
+        for block in m64.encoder:
+            for j, conv in enumerate(block):
+                z = conv(h)
+                h = F.relu(z)
+            n, c, rows, cols = z.shape
+            pr, pc = rows // 2, cols // 2
+
+            def windows(t):
+                t = t[..., :2 * pr, :2 * pc].reshape(n, c, pr, 2, pc, 2)
+                return t.permute(0, 1, 2, 4, 3, 5).reshape(n, c, pr, pc, 4)
+
+            v = torch.sort(windows(h), dim=-1, descending=True).values
+            z_max = windows(z).max(dim=-1).values
+            decided = torch.maximum(v[..., 0] - v[..., 1], -z_max)
+            scale = z.abs().reshape(n, -1).max(dim=1).values.clamp_min(1e-300)
+            margin = torch.minimum(margin, decided.reshape(n, -1).min(dim=1).values / scale)
+            h = F.max_pool2d(h, 2, 2)
+    return margin.numpy()
