@@ -18,6 +18,26 @@ struct Network::Workspace {
 Network::Network(ModelFile file, EngineOptions options)
     : file_(std::move(file)), options_(options) {
   if (options_.threads < 1) throw std::invalid_argument("EngineOptions.threads must be >= 1");
+  // A ModelFile from parse_model_file is consistent; one put together by hand must be too.
+  const std::vector<LayerSpec> expected = deepcfd_layers(file_.architecture);
+  bool consistent = expected.size() == file_.layers.size() &&
+                    file_.weights.size() == expected.size() &&
+                    file_.biases.size() == expected.size() &&
+                    static_cast<int>(file_.outputs.size()) == file_.architecture.out_channels &&
+                    file_.features.rows >= 1 && file_.features.cols >= 1;
+  for (std::size_t i = 0; consistent && i < expected.size(); ++i) {
+    const LayerSpec& e = expected[i];
+    const LayerSpec& l = file_.layers[i];
+    consistent = l.op == e.op && l.in == e.in && l.out == e.out && l.kernel == e.kernel &&
+                 l.padding == e.padding && l.relu == e.relu &&
+                 file_.weights[i].size() == e.weight_count() &&
+                 file_.biases[i].size() == static_cast<std::size_t>(e.out);
+  }
+  if (!consistent) {
+    throw std::invalid_argument(
+        "Network: the ModelFile's layers and tensors do not fit its "
+        "architecture (build it with parse_model_file)");
+  }
   const std::size_t encoder_layers =
       file_.architecture.filters.size() * file_.architecture.convs_per_block;
   for (std::size_t i = 0; i < file_.layers.size(); ++i) {

@@ -71,5 +71,11 @@ TEST(Golden, PredictRefusesAWrongInputShape) {
   EXPECT_THROW(net.predict(Tensor(1, 3, 64, 64)), std::invalid_argument);
 }
 
+TEST(Golden, NetworkRefusesAnInconsistentHandMadeModelFile) {
+  ModelFile m = read_model_file(kDir + "odd.pkcnn");
+  m.biases.pop_back();
+  EXPECT_THROW(Network{m}, std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace plumekit::surrogate
