@@ -1,0 +1,319 @@
+#include "surrogate/model_file.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "surrogate/sha256.hpp"
+
+namespace plumekit::surrogate {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kPrefix = 16;  // magic, version, header length
+constexpr std::size_t kDigest = 32;
+
+std::uint32_t read_u32_le(const char* p) {
+  const auto* b = reinterpret_cast<const unsigned char*>(p);
+  return std::uint32_t{b[0]} | (std::uint32_t{b[1]} << 8) | (std::uint32_t{b[2]} << 16) |
+         (std::uint32_t{b[3]} << 24);
+}
+
+float read_f32_le(const char* p) {
+  const std::uint32_t bits = read_u32_le(p);
+  float f;
+  std::memcpy(&f, &bits, sizeof f);
+  return f;
+}
+
+std::string shape_text(const std::vector<int>& s) {
+  std::ostringstream os;
+  os << '[';
+  for (std::size_t i = 0; i < s.size(); ++i)
+    os << (i ? "," : "") << s[i];
+  os << ']';
+  return os.str();
+}
+
+const char* op_name(LayerOp op) {
+  return op == LayerOp::kConv2d ? "conv2d" : "conv_transpose2d";
+}
+
+[[noreturn]] void fail(const std::string& source, const std::string& what) {
+  throw InputError(source + ": " + what);
+}
+
+// Reads key `key` of `j` as T, naming the key when it is missing or of the wrong type.
+template <typename T>
+T get(const json& j, const char* key, const std::string& source, const std::string& where) {
+  if (!j.is_object() || !j.contains(key))
+    fail(source, "header: " + where + " has no \"" + key + "\"");
+  try {
+    return j.at(key).get<T>();
+  } catch (const json::exception&) {
+    fail(source, "header: " + where + "." + key + " has the wrong type");
+  }
+}
+
+Architecture parse_architecture(const json& j, const std::string& source) {
+  Architecture a;
+  const std::string type = get<std::string>(j, "type", source, "architecture");
+  if (type != "deepcfd-unet") {
+    fail(source,
+         "header: architecture.type is \"" + type + "\", this engine runs \"deepcfd-unet\"");
+  }
+  a.in_channels = get<int>(j, "in_channels", source, "architecture");
+  a.out_channels = get<int>(j, "out_channels", source, "architecture");
+  a.filters = get<std::vector<int>>(j, "filters", source, "architecture");
+  a.kernel = get<int>(j, "kernel", source, "architecture");
+  a.padding = get<int>(j, "padding", source, "architecture");
+  a.convs_per_block = get<int>(j, "convs_per_block", source, "architecture");
+  bool ok = a.in_channels > 0 && a.out_channels > 0 && !a.filters.empty() && a.kernel > 0 &&
+            a.kernel % 2 == 1 && a.padding == a.kernel / 2 && a.convs_per_block > 0 &&
+            a.filters.size() <= 16 && a.kernel <= 15 && a.in_channels <= 4096 &&
+            a.out_channels <= 64;
+  for (int f : a.filters)
+    ok = ok && f > 0 && f <= 4096;
+  if (!ok) {
+    fail(source,
+         "shape mismatch: architecture needs positive channels, an odd kernel and "
+         "padding = kernel/2 (kernel " +
+             std::to_string(a.kernel) + ", padding " + std::to_string(a.padding) + ", filters " +
+             shape_text(a.filters) + ")");
+  }
+  return a;
+}
+
+// The file's layer table must be exactly the one its architecture implies.
+void check_layers(const json& j, const std::vector<LayerSpec>& expected,
+                  const std::string& source) {
+  if (!j.is_array()) fail(source, "header: \"layers\" is not an array");
+  if (j.size() != expected.size()) {
+    fail(source, "shape mismatch: the file lists " + std::to_string(j.size()) +
+                     " layers, its architecture has " + std::to_string(expected.size()));
+  }
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    const LayerSpec& e = expected[i];
+    const json& l = j[i];
+    const std::string where = "layers[" + std::to_string(i) + "]";
+    const auto name = get<std::string>(l, "name", source, where);
+    const auto op = get<std::string>(l, "op", source, where);
+    if (name != e.name || op != op_name(e.op)) {
+      fail(source, "shape mismatch: " + where + " is " + op + " \"" + name + "\", expected " +
+                       op_name(e.op) + " \"" + e.name + "\"");
+    }
+    const std::vector<int> weight = e.op == LayerOp::kConv2d
+                                        ? std::vector<int>{e.out, e.in, e.kernel, e.kernel}
+                                        : std::vector<int>{e.in, e.out, e.kernel, e.kernel};
+    const auto w = get<std::vector<int>>(l, "weight_shape", source, where);
+    const auto b = get<std::vector<int>>(l, "bias_shape", source, where);
+    const bool same = get<int>(l, "in", source, where) == e.in &&
+                      get<int>(l, "out", source, where) == e.out &&
+                      get<int>(l, "kernel", source, where) == e.kernel &&
+                      get<int>(l, "padding", source, where) == e.padding &&
+                      get<bool>(l, "relu", source, where) == e.relu && w == weight &&
+                      b == std::vector<int>{e.out};
+    if (!same) {
+      fail(source, "shape mismatch: layer \"" + e.name + "\" has weight " + shape_text(w) +
+                       " bias " + shape_text(b) + " in the file, the architecture needs weight " +
+                       shape_text(weight) + " bias [" + std::to_string(e.out) + "], padding " +
+                       std::to_string(e.padding) + ", relu " + (e.relu ? "true" : "false"));
+    }
+  }
+}
+
+FeatureContract parse_features(const json& j, int in_channels, const std::string& source) {
+  FeatureContract f;
+  const auto grid = get<std::vector<int>>(j, "grid", source, "features");
+  const auto arena = get<std::vector<double>>(j, "arena", source, "features");
+  if (grid.size() != 2 || grid[0] < 1 || grid[1] < 1 || grid[0] > 4096 || grid[1] > 4096) {
+    fail(source, "shape mismatch: features.grid must be [rows, cols], got " + shape_text(grid));
+  }
+  if (arena.size() != 2 || !(arena[0] > 0) || !(arena[1] > 0)) {
+    fail(source, "header: features.arena must be [width, height] in metres, both positive");
+  }
+  f.rows = grid[0];
+  f.cols = grid[1];
+  f.width = arena[0];
+  f.height = arena[1];
+  const json& ch = j.contains("channels") ? j.at("channels") : json();
+  if (!ch.is_array() || static_cast<int>(ch.size()) != in_channels) {
+    fail(source, "shape mismatch: features.channels must list " + std::to_string(in_channels) +
+                     " input channels");
+  }
+  // The contract this engine's callers know how to build (DESIGN.md, features).
+  const char* names[] = {"region", "signed_distance", "source_distance"};
+  const char* units[] = {"label", "m", "m"};
+  for (std::size_t i = 0; i < ch.size(); ++i) {
+    const std::string where = "features.channels[" + std::to_string(i) + "]";
+    FeatureChannel c{get<std::string>(ch[i], "name", source, where),
+                     get<std::string>(ch[i], "unit", source, where)};
+    if (i >= 3 || c.name != names[i] || c.unit != units[i]) {
+      fail(source, "header: " + where + " is \"" + c.name + "\" in \"" + c.unit +
+                       "\"; the feature contract is region (label), signed_distance (m), "
+                       "source_distance (m)");
+    }
+    f.channels.push_back(c);
+  }
+  f.source_distance_form = get<std::string>(ch[2], "form", source, "features.channels[2]");
+  if (f.source_distance_form != "euclidean") {
+    fail(source, "header: source_distance form \"" + f.source_distance_form +
+                     "\" is unknown; this engine builds \"euclidean\"");
+  }
+  return f;
+}
+
+}  // namespace
+
+std::vector<LayerSpec> deepcfd_layers(const Architecture& a) {
+  std::vector<LayerSpec> layers;
+  const int levels = static_cast<int>(a.filters.size());
+  const int n = a.convs_per_block;
+  int prev = a.in_channels;
+  for (int b = 0; b < levels; ++b) {
+    for (int j = 0; j < n; ++j) {
+      layers.push_back({"encoder." + std::to_string(b) + "." + std::to_string(j), LayerOp::kConv2d,
+                        j == 0 ? prev : a.filters[b], a.filters[b], a.kernel, a.padding, true});
+    }
+    prev = a.filters[b];
+  }
+  for (int o = 0; o < a.out_channels; ++o) {
+    for (int b = levels - 1; b >= 0; --b) {
+      const int f = a.filters[b];
+      const int last_out = b > 0 ? a.filters[b - 1] : 1;
+      for (int j = 0; j < n; ++j) {
+        const bool final_layer = b == 0 && j == n - 1;
+        layers.push_back(
+            {"decoder." + std::to_string(o) + "." + std::to_string(b) + "." + std::to_string(j),
+             LayerOp::kConvTranspose2d, j == 0 ? 2 * f : f, j == n - 1 ? last_out : f, a.kernel,
+             a.padding, !final_layer});
+      }
+    }
+  }
+  return layers;
+}
+
+std::size_t parameter_count(const std::vector<LayerSpec>& layers) {
+  std::size_t n = 0;
+  for (const auto& l : layers)
+    n += l.parameter_count();
+  return n;
+}
+
+ModelFile parse_model_file(std::string_view bytes, const std::string& source) {
+  if (bytes.size() < kPrefix) {
+    fail(source,
+         "truncated: " + std::to_string(bytes.size()) + " bytes, shorter than the 16-byte prefix");
+  }
+  if (std::memcmp(bytes.data(), kModelMagic, sizeof kModelMagic) != 0) {
+    fail(source, "wrong magic: not a plumekit-cnn model file (expected \"PLUMECNN\")");
+  }
+  const std::uint32_t version = read_u32_le(bytes.data() + 8);
+  if (version != kModelVersion) {
+    fail(source, "unknown version " + std::to_string(version) + " (this engine reads version " +
+                     std::to_string(kModelVersion) + ")");
+  }
+  const std::size_t header_len = read_u32_le(bytes.data() + 12);
+  if (bytes.size() < kPrefix + header_len) {
+    fail(source, "truncated: the header needs " + std::to_string(header_len) + " bytes, " +
+                     std::to_string(bytes.size() - kPrefix) + " remain");
+  }
+  json header;
+  try {
+    header = json::parse(bytes.substr(kPrefix, header_len));
+  } catch (const json::exception& e) {
+    fail(source, std::string("header is not valid JSON: ") + e.what());
+  }
+  const auto format = get<std::string>(header, "format", source, "header");
+  if (format != "plumekit-cnn/1") {
+    fail(source, "unknown version: header format \"" + format + "\", expected \"plumekit-cnn/1\"");
+  }
+  const auto data_bytes = get<std::uint64_t>(header, "data_bytes", source, "header");
+  const std::size_t data_offset = (kPrefix + header_len + 15) / 16 * 16;
+  if (data_bytes > bytes.size()) {
+    fail(source, "truncated: the header announces " + std::to_string(data_bytes) +
+                     " bytes of tensors, the file has " + std::to_string(bytes.size()));
+  }
+  const std::size_t expected_size = data_offset + data_bytes + kDigest;
+  if (bytes.size() < expected_size) {
+    fail(source, "truncated: " + std::to_string(bytes.size()) + " bytes, the header implies " +
+                     std::to_string(expected_size));
+  }
+  if (bytes.size() > expected_size) {
+    fail(source, std::to_string(bytes.size() - expected_size) +
+                     " unexpected bytes after the checksum (file size " +
+                     std::to_string(bytes.size()) + ", header implies " +
+                     std::to_string(expected_size) + ")");
+  }
+  const Sha256Digest digest = sha256(bytes.substr(0, data_offset + data_bytes));
+  if (std::memcmp(digest.data(), bytes.data() + data_offset + data_bytes, kDigest) != 0) {
+    fail(source, "checksum mismatch: SHA-256 of the contents is " + to_hex(digest) +
+                     ", the file says otherwise (the file is corrupt)");
+  }
+
+  ModelFile m;
+  m.header_json = std::string(bytes.substr(kPrefix, header_len));
+  m.sha256_hex = to_hex(digest);
+  m.architecture = parse_architecture(
+      header.contains("architecture") ? header.at("architecture") : json(), source);
+  m.layers = deepcfd_layers(m.architecture);
+  check_layers(header.contains("layers") ? header.at("layers") : json(), m.layers, source);
+  const std::size_t params = parameter_count(m.layers);
+  if (get<std::uint64_t>(header, "parameter_count", source, "header") != params ||
+      data_bytes != 4 * params) {
+    fail(source, "shape mismatch: the architecture has " + std::to_string(params) +
+                     " parameters (" + std::to_string(4 * params) + " bytes), the file holds " +
+                     std::to_string(data_bytes) + " bytes");
+  }
+  m.features = parse_features(header.contains("features") ? header.at("features") : json(),
+                              m.architecture.in_channels, source);
+  const int levels = static_cast<int>(m.architecture.filters.size());
+  if ((m.features.rows >> levels) < 1 || (m.features.cols >> levels) < 1) {
+    fail(source, "shape mismatch: a " + std::to_string(m.features.rows) + "x" +
+                     std::to_string(m.features.cols) + " grid cannot be pooled " +
+                     std::to_string(levels) + " times");
+  }
+  const json outs = header.contains("outputs") ? header.at("outputs") : json();
+  if (!outs.is_array() || static_cast<int>(outs.size()) != m.architecture.out_channels) {
+    fail(source, "shape mismatch: \"outputs\" must describe " +
+                     std::to_string(m.architecture.out_channels) + " output channels");
+  }
+  for (std::size_t i = 0; i < outs.size(); ++i) {
+    const std::string where = "outputs[" + std::to_string(i) + "]";
+    OutputSpec o{get<std::string>(outs[i], "name", source, where),
+                 get<std::string>(outs[i], "unit", source, where),
+                 get<float>(outs[i], "scale", source, where)};
+    if (!std::isfinite(o.scale)) fail(source, "header: " + where + ".scale is not finite");
+    m.outputs.push_back(o);
+  }
+
+  // Tensors, in layer order: weight then bias.
+  const char* p = bytes.data() + data_offset;
+  auto read_tensor = [&](const LayerSpec& l, std::size_t count, const char* what) {
+    std::vector<float> t(count);
+    for (std::size_t i = 0; i < count; ++i, p += 4) {
+      t[i] = read_f32_le(p);
+      if (!std::isfinite(t[i])) {
+        fail(source, "NaN or infinite weight in layer \"" + l.name + "\" (" + what + " element " +
+                         std::to_string(i) + ")");
+      }
+    }
+    return t;
+  };
+  for (const LayerSpec& l : m.layers) {
+    m.weights.push_back(read_tensor(l, l.weight_count(), "weight"));
+    m.biases.push_back(read_tensor(l, static_cast<std::size_t>(l.out), "bias"));
+  }
+  return m;
+}
+
+ModelFile read_model_file(const std::filesystem::path& path) {
+  return parse_model_file(read_file(path), path.string());
+}
+
+}  // namespace plumekit::surrogate

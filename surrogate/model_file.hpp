@@ -1,0 +1,83 @@
+#pragma once
+// plumekit-cnn/1 model files: the one place that reads them (the format is in README.md; the
+// writer is train/model_file.py). Reading either returns a complete, checked model or throws
+// InputError naming the file and the fault, so no caller ever sees a half-loaded model.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace plumekit::surrogate {
+
+inline constexpr char kModelMagic[8] = {'P', 'L', 'U', 'M', 'E', 'C', 'N', 'N'};
+inline constexpr unsigned kModelVersion = 1;
+
+// DeepCFD U-Net hyper-parameters; DESIGN.md's network is the default.
+struct Architecture {
+  int in_channels = 3;
+  int out_channels = 2;
+  std::vector<int> filters = {8, 16, 32, 32};
+  int kernel = 5;
+  int padding = 2;
+  int convs_per_block = 3;
+};
+
+enum class LayerOp { kConv2d, kConvTranspose2d };
+
+// One convolution. Weights as PyTorch stores them: conv2d [out, in, k, k], conv_transpose2d
+// [in, out, k, k]; bias [out].
+struct LayerSpec {
+  std::string name;
+  LayerOp op = LayerOp::kConv2d;
+  int in = 0;
+  int out = 0;
+  int kernel = 0;
+  int padding = 0;
+  bool relu = true;
+
+  std::size_t weight_count() const { return static_cast<std::size_t>(in) * out * kernel * kernel; }
+  std::size_t parameter_count() const { return weight_count() + out; }
+};
+
+// The layers of `arch` in execution order, which is also their order in the file: encoder levels
+// 0..L-1, then for each output its decoder from level L-1 down to 0.
+std::vector<LayerSpec> deepcfd_layers(const Architecture& arch);
+std::size_t parameter_count(const std::vector<LayerSpec>& layers);
+
+// What the inputs must hold: the engine's callers build features by this contract.
+struct FeatureChannel {
+  std::string name;  // region, signed_distance, source_distance
+  std::string unit;
+};
+struct FeatureContract {
+  int rows = 64;        // grid rows (along y), row 0 at y = 0, cell-centred
+  int cols = 64;        // grid columns (along x)
+  double width = 10.0;  // arena size in metres (x)
+  double height = 4.0;  // (y)
+  std::vector<FeatureChannel> channels;
+  std::string source_distance_form;  // "euclidean": metres from each cell centre to the source
+};
+
+struct OutputSpec {
+  std::string name;  // mean, std
+  std::string unit;
+  float scale = 1.0f;  // network output times scale = value in `unit`
+};
+
+struct ModelFile {
+  Architecture architecture;
+  std::vector<LayerSpec> layers;
+  std::vector<std::vector<float>> weights;  // per layer, PyTorch layout (see LayerSpec)
+  std::vector<std::vector<float>> biases;
+  FeatureContract features;
+  std::vector<OutputSpec> outputs;
+  std::string header_json;  // the whole header, for what the engine does not interpret
+  std::string sha256_hex;
+};
+
+// `source` names the bytes in messages (usually the file path).
+ModelFile parse_model_file(std::string_view bytes, const std::string& source);
+ModelFile read_model_file(const std::filesystem::path& path);
+
+}  // namespace plumekit::surrogate

@@ -1,0 +1,48 @@
+#pragma once
+// The surrogate's inference engine: a DeepCFD U-Net loaded once from a plumekit-cnn file and run
+// many times. Construction either yields a complete network or throws; predict() is const and may
+// be called from several threads at once.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+#include "surrogate/layers.hpp"
+#include "surrogate/model_file.hpp"
+#include "surrogate/tensor.hpp"
+
+namespace plumekit::surrogate {
+
+struct EngineOptions {
+  // Threads per predict() call. The samples of a batch are split among them; a batch of one runs
+  // on one thread (the GEMMs of one 64x64 sample are too small to share well). Default 1.
+  int threads = 1;
+};
+
+class Network {
+ public:
+  explicit Network(ModelFile file, EngineOptions options = {});
+  // Reads and checks `path`; InputError naming the file and the fault when it is malformed.
+  static Network load(const std::filesystem::path& path, EngineOptions options = {});
+
+  // input [n, in_channels, rows, cols] -> [n, out_channels, rows, cols], each output channel
+  // multiplied by its scale from the file (so in the file's output units).
+  Tensor predict(const Tensor& input) const;
+
+  // The file's description (header, layers, contract, outputs). Its raw tensors are released once
+  // converted into the layers, so `weights` and `biases` are empty here.
+  const ModelFile& file() const { return file_; }
+  std::size_t parameter_count() const;
+  // Multiply-adds times two, per sample, of all convolutions at the file's grid.
+  double flops_per_sample() const;
+
+ private:
+  struct Workspace;
+  void forward_sample(const float* x, float* y, Workspace& ws) const;
+
+  ModelFile file_;
+  EngineOptions options_;
+  std::vector<Conv> encoder_;  // level-major, convs_per_block per level
+  std::vector<Conv> decoder_;  // output-major, then level L-1..0, convs_per_block per level
+};
+
+}  // namespace plumekit::surrogate

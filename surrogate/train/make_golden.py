@@ -1,0 +1,77 @@
+"""Writes the golden model files and input/output pairs that tests/surrogate checks the C++ engine
+against. Run from the repository root:  /usr/bin/python3 surrogate/train/make_golden.py
+Deterministic (fixed seeds, CPU); rewrites tests/data/surrogate/.
+"""
+import argparse
+import os
+import sys
+
+import numpy as np
+import torch
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from model import REAL_PARAMETERS, PlumeUNet, parameter_count, pool_margin  # noqa: E402
+from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, write_model  # noqa: E402
+
+
+def features(rng, n, rows, cols, arena):
+    """Plausible feature maps: labels 0..4 in patches (so max-pool meets ties), SDF, distance."""
+    x = np.zeros((n, 3, rows, cols), dtype=np.float32)
+    for i in range(n):
+        coarse = rng.integers(0, 5, size=(rows // 4 + 1, cols // 4 + 1))
+        x[i, 0] = np.kron(coarse, np.ones((4, 4)))[:rows, :cols]
+        x[i, 1] = rng.uniform(-0.5, 2.0, size=(rows, cols))
+        yy, xx = np.meshgrid((np.arange(rows) + 0.5) * arena[1] / rows,
+                             (np.arange(cols) + 0.5) * arena[0] / cols, indexing="ij")
+        sx, sy = rng.uniform(0, arena[0]), rng.uniform(0, arena[1])
+        x[i, 2] = np.hypot(xx - sx, yy - sy)
+    return x
+
+
+def golden(out_dir, stem, model, batch, features_meta, outputs_meta, seed):
+    rows, cols = features_meta["grid"]
+    rng = np.random.default_rng(seed)
+    x = features(rng, batch, rows, cols, features_meta["arena"])
+    model.eval()
+    with torch.no_grad():
+        y = model(torch.from_numpy(x)).numpy()
+    # How exposed the pair is to max-pool near-ties (model.pool_margin); printed, for the record.
+    margin = float(pool_margin(model, x).min())
+    scales = np.array([o["scale"] for o in outputs_meta], dtype=np.float32)
+    y = y * scales[None, :, None, None]
+    size = write_model(os.path.join(out_dir, stem + ".pkcnn"), model, features_meta, outputs_meta,
+                       training={"note": "random initialisation, seed %d; golden test model" % seed})
+    np.save(os.path.join(out_dir, stem + "_input.npy"), x)
+    np.save(os.path.join(out_dir, stem + "_output.npy"), y.astype(np.float32))
+    print(f"{stem}: {parameter_count(model)} parameters, {size} bytes, input {x.shape}, "
+          f"output max |y| {np.abs(y).max():.4g}, smallest max-pool margin {margin:.2g}")
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    default_out = os.path.normpath(os.path.join(here, "..", "..", "tests", "data", "surrogate"))
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--out", default=default_out)
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    torch.set_num_threads(1)
+
+    # (a) the real architecture, randomly initialised.
+    torch.manual_seed(5)
+    real = PlumeUNet()
+    count = parameter_count(real)
+    if count != REAL_PARAMETERS:
+        sys.exit(f"real architecture has {count} parameters, DESIGN.md says {REAL_PARAMETERS}")
+    golden(args.out, "real", real, 1, DEFAULT_FEATURES, DEFAULT_OUTPUTS, seed=11)
+
+    # (b) odd channel counts, kernel 3, 2 convolutions a block, a grid that does not halve evenly
+    # (max-pool floors, max-unpool pads back) and a non-unit output scale.
+    torch.manual_seed(7)
+    odd = PlumeUNet(in_channels=3, out_channels=2, filters=(3, 5, 7, 9), kernel=3, convs=2)
+    feats = dict(DEFAULT_FEATURES, grid=[21, 30], arena=[7.5, 5.25])
+    outs = [dict(DEFAULT_OUTPUTS[0], scale=2.5), dict(DEFAULT_OUTPUTS[1])]
+    golden(args.out, "odd", odd, 3, feats, outs, seed=13)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,98 @@
+"""Writer of plumekit-cnn/1 model files (the format is specified in ../README.md).
+
+Layout, all integers little-endian:
+  magic "PLUMECNN" (8 bytes) | version u32 = 1 | header length u32 | header JSON (UTF-8)
+  | zero padding to a multiple of 16 | tensors, float32 LE | SHA-256 of every byte before it (32).
+The C++ reader is surrogate/model_file.cpp.
+"""
+import hashlib
+import json
+import struct
+
+import numpy as np
+
+MAGIC = b"PLUMECNN"
+VERSION = 1
+FORMAT = "plumekit-cnn/1"
+
+# The feature contract of plumekit's datasets (dataset/ builds these channels).
+DEFAULT_FEATURES = {
+    "grid": [64, 64],
+    "arena": [10.0, 4.0],
+    "cells": "cell-centred: row r at y = (r + 0.5) * arena[1] / grid[0], column c at "
+             "x = (c + 0.5) * arena[0] / grid[1]; row 0 at y = 0",
+    "channels": [
+        {"name": "region", "unit": "label",
+         "labels": {"obstacle": 0, "free": 1, "wall": 2, "inlet": 3, "outlet": 4}},
+        {"name": "signed_distance", "unit": "m", "sign": "negative inside obstacles"},
+        {"name": "source_distance", "unit": "m", "form": "euclidean"},
+    ],
+}
+
+DEFAULT_OUTPUTS = [
+    {"name": "mean", "unit": "concentration (dataset units)", "scale": 1.0},
+    {"name": "std", "unit": "concentration (dataset units)", "scale": 1.0},
+]
+
+
+def header_for(model, features=None, outputs=None, training=None):
+    features = features or DEFAULT_FEATURES
+    outputs = outputs or DEFAULT_OUTPUTS
+    layers = []
+    count = 0
+    for name, op, conv, relu in model.layer_table():
+        w = list(conv.weight.shape)
+        cin, cout = (w[1], w[0]) if op == "conv2d" else (w[0], w[1])
+        layers.append({"name": name, "op": op, "in": cin, "out": cout, "kernel": model.kernel,
+                       "padding": model.padding, "relu": relu, "weight_shape": w,
+                       "bias_shape": [cout]})
+        count += conv.weight.numel() + conv.bias.numel()
+    header = {
+        "format": FORMAT,
+        "architecture": {
+            "type": "deepcfd-unet",
+            "in_channels": model.in_channels,
+            "out_channels": model.out_channels,
+            "filters": list(model.filters),
+            "kernel": model.kernel,
+            "padding": model.padding,
+            "convs_per_block": model.convs,
+        },
+        "layers": layers,
+        "parameter_count": count,
+        "data_bytes": 4 * count,
+        "features": features,
+        "outputs": outputs,
+    }
+    if training is not None:
+        header["training"] = training
+    return header
+
+
+def model_bytes(model, features=None, outputs=None, training=None):
+    header = header_for(model, features, outputs, training)
+    text = json.dumps(header, indent=1).encode("utf-8")
+    head = MAGIC + struct.pack("<II", VERSION, len(text)) + text
+    head += b"\0" * (-len(head) % 16)
+    chunks = []
+    for _, _, conv, _ in model.layer_table():
+        for t in (conv.weight, conv.bias):
+            chunks.append(t.detach().cpu().contiguous().numpy().astype("<f4").tobytes())
+    body = head + b"".join(chunks)
+    assert len(body) - len(head) == header["data_bytes"]
+    return body + hashlib.sha256(body).digest()
+
+
+def write_model(path, model, features=None, outputs=None, training=None):
+    """Writes atomically: a temporary file renamed over `path` once complete."""
+    import os
+    data = model_bytes(model, features, outputs, training)
+    tmp = f"{path}.tmp{os.getpid()}"
+    with open(tmp, "wb") as f:
+        f.write(data)
+    os.replace(tmp, path)
+    return len(data)
+
+
+def output_scales(outputs=None):
+    return np.array([o["scale"] for o in (outputs or DEFAULT_OUTPUTS)], dtype=np.float32)

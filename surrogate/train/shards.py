@@ -1,0 +1,59 @@
+"""Reads plumekit-dataset/1 directories (dataset/README.md) memory-mapped, and splits them by map.
+
+DIR/manifest.json lists `shards` (each with `name`, else `map_index`); DIR/shards/NAME/ holds
+inputs.npy float32 [n,3,64,64], targets.npy float32 [n,2,64,64], sources.npy float32 [n,2] and
+map_ids.npy int [n]. Arrays stay on disk (numpy mmap_mode='r'); a batch copies only its rows.
+"""
+import json
+import os
+
+import numpy as np
+
+
+class Shard:
+    def __init__(self, directory):
+        self.directory = directory
+        load = lambda name: np.load(os.path.join(directory, name), mmap_mode="r")  # noqa: E731
+        self.inputs = load("inputs.npy")
+        self.targets = load("targets.npy")
+        self.map_ids = np.asarray(load("map_ids.npy")).astype(np.int64)
+        n = self.inputs.shape[0]
+        if (self.inputs.ndim != 4 or self.inputs.shape[1] != 3 or self.targets.shape[0] != n
+                or self.targets.shape[1] != 2 or self.targets.shape[2:] != self.inputs.shape[2:]
+                or self.map_ids.shape != (n,)):
+            raise ValueError(f"{directory}: inconsistent shard shapes {self.inputs.shape}, "
+                             f"{self.targets.shape}, {self.map_ids.shape}")
+
+
+def open_dataset(directory):
+    with open(os.path.join(directory, "manifest.json")) as f:
+        manifest = json.load(f)
+    shards = []
+    for s in manifest["shards"]:
+        name = s.get("name") or "shard-%05d" % s["map_index"]
+        shards.append(Shard(os.path.join(directory, "shards", name)))
+    if not shards:
+        raise ValueError(f"{directory}: manifest lists no shards")
+    return manifest, shards
+
+
+def split_by_map(shards, val_fraction, seed):
+    """Rows (shard, row) of training and validation, and the validation map ids; no map is in
+    both."""
+    maps = sorted({int(m) for s in shards for m in np.unique(s.map_ids)})
+    rng = np.random.default_rng(seed)
+    order = rng.permutation(len(maps))
+    n_val = max(1, int(round(val_fraction * len(maps)))) if len(maps) > 1 else 0
+    val_maps = {maps[i] for i in order[:n_val]}
+    train, val = [], []
+    for si, s in enumerate(shards):
+        for row, m in enumerate(s.map_ids):
+            (val if int(m) in val_maps else train).append((si, row))
+    return train, val, sorted(val_maps)
+
+
+def batch(shards, rows):
+    """Stacks the rows (shard, row) into float32 arrays x [b,3,H,W], y [b,2,H,W]."""
+    x = np.stack([shards[s].inputs[r] for s, r in rows]).astype(np.float32)
+    y = np.stack([shards[s].targets[r] for s, r in rows]).astype(np.float32)
+    return x, y

@@ -1,0 +1,195 @@
+"""Trains the plume U-Net on a plumekit dataset and writes a plumekit-cnn/1 model file.
+
+    /usr/bin/python3 surrogate/train/train.py --data DATASET_DIR --work WORK_DIR --out MODEL.pkcnn
+
+Loss: mean squared error over all pixels of both output channels (mean and std) of the scaled
+targets, target / s, with one scale s for both channels: the largest mean concentration in the
+training split (`--target-scale` overrides). The thesis trained on raw values (0 to over 3000); the
+division keeps AdamW's lr 1e-3 in a sensible range and changes nothing else, since the model file's
+output scale is s and the engine multiplies by it, so predictions come out in dataset units.
+
+Split: by map id, --val-fraction of the maps (default 10 %) for validation, never seen in training.
+Optimiser: AdamW, lr 1e-3, weight decay 5e-3 (DESIGN.md). Batches of 32 by default.
+Every epoch: WORK/log.csv gains a line (epoch, step, train loss, val loss, val RMSE of the mean in
+dataset units, seconds); WORK/checkpoint.pt is rewritten (model, optimiser, epoch, RNG, best), and
+WORK/best.pt when validation improved. Rerunning the same command resumes from the checkpoint.
+Training stops after --epochs, after --patience epochs without a better validation loss, or after
+--max-steps optimiser steps. The best model is written to --out, with a golden input/output pair
+(OUT_input.npy, OUT_output.npy: validation samples and PyTorch's prediction in dataset units; see
+golden_pair() for which samples).
+Runs unchanged on CUDA when a GPU is present.
+"""
+import argparse
+import csv
+import os
+import sys
+import time
+
+import numpy as np
+import torch
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: E402
+from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, write_model  # noqa: E402
+from shards import batch, open_dataset, split_by_map  # noqa: E402
+
+
+def parse_args(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--data", required=True, help="dataset directory (manifest.json, shards/)")
+    ap.add_argument("--work", required=True, help="checkpoints and log.csv")
+    ap.add_argument("--out", required=True, help="model file to write")
+    ap.add_argument("--epochs", type=int, default=1000)
+    ap.add_argument("--max-steps", type=int, default=0, help="stop after this many steps (0: no limit)")
+    ap.add_argument("--batch", type=int, default=32)
+    ap.add_argument("--lr", type=float, default=1e-3)
+    ap.add_argument("--weight-decay", type=float, default=5e-3)
+    ap.add_argument("--val-fraction", type=float, default=0.1)
+    ap.add_argument("--patience", type=int, default=20, help="epochs without improvement")
+    ap.add_argument("--target-scale", type=float, default=0.0, help="0: max training mean")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--threads", type=int, default=os.cpu_count() or 1,
+                    help="CPU threads (Debian's torch defaults to 1)")
+    ap.add_argument("--golden", type=int, default=2, help="samples in the golden pair")
+    return ap.parse_args(argv)
+
+
+def evaluate(model, shards, rows, scale, device, batch_size):
+    """(loss on scaled targets, RMSE of the mean channel in dataset units)."""
+    model.eval()
+    total, sq_mean, count = 0.0, 0.0, 0
+    with torch.no_grad():
+        for i in range(0, len(rows), batch_size):
+            x, y = batch(shards, rows[i:i + batch_size])
+            x = torch.from_numpy(x).to(device)
+            y = torch.from_numpy(y).to(device) / scale
+            p = model(x)
+            total += torch.mean((p - y) ** 2).item() * len(x)
+            sq_mean += torch.mean(((p[:, 0] - y[:, 0]) * scale) ** 2).item() * len(x)
+            count += len(x)
+    return total / max(count, 1), (sq_mean / max(count, 1)) ** 0.5
+
+
+def golden_pair(model, shards, rows, count, tries=64):
+    """Inputs and float32 outputs of the `count` samples, among the first `tries`, whose max-pool
+    decisions have the widest margins (model.pool_margin). A 2x2 max-pool whose two largest inputs
+    differ by less than float32 rounding picks its argmax by summation order, and max-unpool then
+    moves a decoder value to another pixel, so two correct float32 engines can disagree there by
+    ~1e-3 or more. On smooth plumes every sample has some such window (margins ~1e-8..1e-6), so this
+    only picks the least exposed ones; the margins are printed."""
+    x, _ = batch(shards, rows[:tries])
+    margins = pool_margin(model, x)
+    best = np.argsort(-margins)[:count]
+    with torch.no_grad():
+        y = model(torch.from_numpy(x[best])).numpy()
+    print("golden pair: samples (shard, row) %s, pool margins %s" % (
+        [tuple(int(v) for v in rows[i]) for i in best], ", ".join("%.2g" % margins[i] for i in best)))
+    return x[best], y
+
+
+def main(argv=None):
+    args = parse_args(argv)
+    torch.set_num_threads(max(1, args.threads))
+    device = pick_device()
+    os.makedirs(args.work, exist_ok=True)
+    manifest, shards = open_dataset(args.data)
+    train_rows, val_rows, val_maps = split_by_map(shards, args.val_fraction, args.seed)
+    if not train_rows or not val_rows:
+        sys.exit("train.py: need at least two maps (one for validation)")
+    scale = args.target_scale
+    if scale <= 0:  # the largest training mean, read shard by shard from the memory maps
+        val_set = set(val_maps)
+        scale = 0.0
+        for s in shards:
+            keep = ~np.isin(s.map_ids, list(val_set))
+            if keep.any():
+                scale = max(scale, float(np.max(s.targets[np.flatnonzero(keep), 0])))
+        scale = scale if scale > 0 else 1.0
+
+    torch.manual_seed(args.seed)
+    model = PlumeUNet().to(device)
+    opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)
+    state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale}
+    ckpt_path = os.path.join(args.work, "checkpoint.pt")
+    best_path = os.path.join(args.work, "best.pt")
+    if os.path.exists(ckpt_path):
+        ckpt = torch.load(ckpt_path, map_location=device)
+        model.load_state_dict(ckpt["model"])
+        opt.load_state_dict(ckpt["optimizer"])
+        state = ckpt["state"]
+        torch.set_rng_state(ckpt["torch_rng"])
+        scale = state["scale"]
+        print(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
+    print(f"{parameter_count(model)} parameters on {device}; {len(train_rows)} training and "
+          f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
+
+    log_path = os.path.join(args.work, "log.csv")
+    new_log = not os.path.exists(log_path)
+    with open(log_path, "a", newline="") as log_file:
+        log = csv.writer(log_file)
+        if new_log:
+            log.writerow(["epoch", "step", "train_loss", "val_loss", "val_rmse_mean", "seconds"])
+        while state["epoch"] < args.epochs and state["stale"] < args.patience:
+            if args.max_steps and state["step"] >= args.max_steps:
+                break
+            t0 = time.time()
+            model.train()
+            # Seeded by epoch, so a resumed run draws the same batches as an uninterrupted one.
+            order = np.random.default_rng([args.seed, state["epoch"]]).permutation(len(train_rows))
+            running, seen = 0.0, 0
+            for i in range(0, len(order), args.batch):
+                if args.max_steps and state["step"] >= args.max_steps:
+                    break
+                rows = sorted(train_rows[j] for j in order[i:i + args.batch])
+                x, y = batch(shards, rows)
+                x = torch.from_numpy(x).to(device)
+                y = torch.from_numpy(y).to(device) / scale
+                loss = torch.mean((model(x) - y) ** 2)
+                opt.zero_grad()
+                loss.backward()
+                opt.step()
+                state["step"] += 1
+                running += loss.item() * len(rows)
+                seen += len(rows)
+            state["epoch"] += 1
+            val_loss, val_rmse = evaluate(model, shards, val_rows, scale, device, args.batch)
+            train_loss = running / max(seen, 1)
+            log.writerow([state["epoch"], state["step"], f"{train_loss:.6g}", f"{val_loss:.6g}",
+                          f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"])
+            log_file.flush()
+            print(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
+                  f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g})")
+            if val_loss < state["best_val"]:
+                state["best_val"], state["stale"] = val_loss, 0
+                torch.save({"model": model.state_dict(), "state": dict(state)}, best_path + ".tmp")
+                os.replace(best_path + ".tmp", best_path)
+            else:
+                state["stale"] += 1
+            torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(),
+                        "state": state, "torch_rng": torch.get_rng_state()}, ckpt_path + ".tmp")
+            os.replace(ckpt_path + ".tmp", ckpt_path)
+
+    best = torch.load(best_path, map_location="cpu")
+    final = PlumeUNet()
+    final.load_state_dict(best["model"])
+    final.eval()
+    outputs = [dict(o, scale=scale) for o in DEFAULT_OUTPUTS]
+    features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
+    training = {"dataset": os.path.abspath(args.data), "dataset_format": manifest.get("format"),
+                "train_samples": len(train_rows), "val_samples": len(val_rows),
+                "val_maps": val_maps, "epochs": best["state"]["epoch"],
+                "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],
+                "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
+                "lr": args.lr, "weight_decay": args.weight_decay, "batch": args.batch,
+                "seed": args.seed}
+    size = write_model(args.out, final, features, outputs, training)
+    x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
+    y = y * scale
+    stem = os.path.splitext(args.out)[0]
+    np.save(stem + "_input.npy", x)
+    np.save(stem + "_output.npy", y.astype(np.float32))
+    print(f"wrote {args.out} ({size} bytes) from epoch {best['state']['epoch']}")
+
+
+if __name__ == "__main__":
+    main()

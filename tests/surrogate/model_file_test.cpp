@@ -1,0 +1,128 @@
+// plumekit-cnn/1: the architecture's parameter count, and each kind of malformed file refused.
+#include "surrogate/model_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "surrogate/network.hpp"
+#include "surrogate/sha256.hpp"
+
+namespace plumekit::surrogate {
+namespace {
+
+const std::string kOdd = std::string(PLUMEKIT_TEST_DATA) + "/surrogate/odd.pkcnn";
+
+TEST(ModelFile, DesignArchitectureHas600130Parameters) {
+  EXPECT_EQ(parameter_count(deepcfd_layers(Architecture{})), 600130u);
+}
+
+TEST(ModelFile, ReadsTheGoldenFile) {
+  const ModelFile m = read_model_file(kOdd);
+  EXPECT_EQ(m.architecture.filters, (std::vector<int>{3, 5, 7, 9}));
+  EXPECT_EQ(m.architecture.kernel, 3);
+  EXPECT_EQ(m.features.rows, 21);
+  EXPECT_EQ(m.features.cols, 30);
+  EXPECT_EQ(m.features.source_distance_form, "euclidean");
+  ASSERT_EQ(m.outputs.size(), 2u);
+  EXPECT_EQ(m.outputs[0].name, "mean");
+  EXPECT_FLOAT_EQ(m.outputs[0].scale, 2.5f);
+  EXPECT_EQ(m.layers.size(), m.weights.size());
+}
+
+// A model file taken apart, to be edited and put back together with a correct checksum.
+struct Parts {
+  std::string prefix;  // magic + version
+  nlohmann::json header;
+  std::string data;
+
+  explicit Parts(const std::string& bytes) {
+    std::uint32_t len;
+    std::memcpy(&len, bytes.data() + 12, 4);
+    prefix = bytes.substr(0, 12);
+    header = nlohmann::json::parse(bytes.substr(16, len));
+    const std::size_t offset = (16 + len + 15) / 16 * 16;
+    data = bytes.substr(offset, bytes.size() - offset - 32);
+  }
+  std::string bytes() const {
+    const std::string text = header.dump();
+    const auto len = static_cast<std::uint32_t>(text.size());
+    std::string out = prefix + std::string(reinterpret_cast<const char*>(&len), 4) + text;
+    out.resize((out.size() + 15) / 16 * 16, '\0');
+    out += data;
+    const Sha256Digest d = sha256(out);
+    return out + std::string(d.begin(), d.end());
+  }
+};
+
+void expect_refused(const std::string& bytes, const std::string& fault) {
+  try {
+    const Network net(parse_model_file(bytes, "bad.pkcnn"));
+    ADD_FAILURE() << "accepted a file that should fail with \"" << fault << "\"";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.pkcnn"), std::string::npos) << what;
+    EXPECT_NE(what.find(fault), std::string::npos) << what;
+  }
+}
+
+TEST(ModelFile, RoundTripOfTheTestHelperIsAccepted) {
+  EXPECT_NO_THROW(parse_model_file(Parts(read_file(kOdd)).bytes(), "ok.pkcnn"));
+}
+
+TEST(ModelFile, RefusesTruncated) {
+  const std::string good = read_file(kOdd);
+  expect_refused(good.substr(0, good.size() - 100), "truncated");
+  expect_refused(good.substr(0, 40), "truncated");
+  expect_refused(good.substr(0, 10), "truncated");
+  expect_refused(good + "x", "unexpected bytes");
+}
+
+TEST(ModelFile, RefusesWrongMagic) {
+  std::string bad = read_file(kOdd);
+  bad[0] = 'Q';
+  expect_refused(bad, "wrong magic");
+}
+
+TEST(ModelFile, RefusesUnknownVersion) {
+  std::string bad = read_file(kOdd);
+  bad[8] = 2;
+  expect_refused(bad, "unknown version 2");
+}
+
+TEST(ModelFile, RefusesShapeMismatch) {
+  Parts p(read_file(kOdd));
+  p.header["layers"][4]["weight_shape"][1] = 6;
+  expect_refused(p.bytes(), "shape mismatch");
+
+  Parts q(read_file(kOdd));
+  q.header["architecture"]["filters"][3] = 8;  // the layer table and tensors still say 9
+  expect_refused(q.bytes(), "shape mismatch");
+
+  Parts r(read_file(kOdd));
+  r.data.resize(r.data.size() - 4);
+  r.header["data_bytes"] = r.data.size();
+  expect_refused(r.bytes(), "shape mismatch");
+}
+
+TEST(ModelFile, RefusesChecksumMismatch) {
+  std::string bad = read_file(kOdd);
+  bad[bad.size() - 1000] ^= 0x01;  // one bit in a tensor
+  expect_refused(bad, "checksum mismatch");
+}
+
+TEST(ModelFile, RefusesNaNWeights) {
+  Parts p(read_file(kOdd));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(&p.data[4 * 123], &nan, 4);
+  expect_refused(p.bytes(), "NaN");
+}
+
+}  // namespace
+}  // namespace plumekit::surrogate
