@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs every Debian package plumekit needs to build, test and run.
+# Installs every Debian package plumekit needs to build, test and run, or,
+# given package names as arguments, just those (the benchmarks' extras).
 # Idempotent: when all packages are present it changes nothing and exits 0.
 # Works as root, or as a user with sudo.
 set -euo pipefail
@@ -23,6 +24,10 @@ packages=(
   # thread unless told otherwise (torch.set_num_threads), which the training script does.
   python3-torch python3-numpy
 )
+
+if [[ $# -gt 0 ]]; then
+  packages=("$@")
+fi
 
 missing=()
 for p in "${packages[@]}"; do
