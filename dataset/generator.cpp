@@ -125,7 +125,15 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
           cfd::FlowOptions fo = o.flow;
           fo.on_iteration = nullptr;
           fo.verbose = false;
-          const cfd::FlowResult flow = cfd::solve(map, fo);
+          cfd::FlowResult flow;
+          try {
+            flow = cfd::solve(map, fo);
+          } catch (const cfd::ConvergenceError&) {
+            // Central convection can stall on a coarse grid; first-order
+            // upwind always converges. wind.json records which one was used.
+            fo.convection = cfd::Convection::Upwind;
+            flow = cfd::solve(map, fo);
+          }
           write_wind_cache(wind_dir, flow, fo);
           wind = flow.wind;
         }

@@ -37,7 +37,10 @@ void write_wind_cache(const fs::path& dir, const cfd::FlowResult& flow,
        "face_v[j][i] the y-velocity at x = (i+0.5)*dx, y = j*dy; u, v, solid "
        "cell-centred; row 0 at y = 0"}};
   nlohmann::ordered_json s = cfd::summary_json(flow.summary, w, options);
+  // Timings would make two identical runs differ byte for byte.
   s.erase("residual_history");
+  s.erase("seconds");
+  s.erase("seconds_breakdown");
   j["flow"] = s;
   write_file_atomic(tmp / "wind.json", j.dump(2) + "\n");  // last: marks the cache complete
   fs::remove_all(dir);

@@ -19,6 +19,8 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the dataset tests load a generated dataset with numpy, as PyTorch users will
+  python3-numpy
 )
 
 missing=()
