@@ -2,7 +2,9 @@
 // matches the published test vectors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
 
 #include "core/map_json.hpp"
@@ -113,6 +115,29 @@ TEST(Features, FollowTheContract) {
   const std::vector<float> d = source_feature({2.0, 1.0}, g);
   EXPECT_NEAR(d[g.index(10, 20)], std::hypot(g.centre(10, 20).x - 2.0, g.centre(10, 20).y - 1.0),
               1e-5);
+}
+
+}  // namespace
+}  // namespace plumekit::dataset
+
+namespace plumekit::dataset {
+namespace {
+
+TEST(TestMaps, NineValidMapsWithTwentySourcesEach) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(PLUMEKIT_DATA_DIR) / "test-maps"))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_EQ(files.size(), 9u);
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    const Map m = read_map(files[k]);  // validates
+    EXPECT_EQ(m.sources.size(), 20u) << files[k];
+    EXPECT_EQ(m.obstacles.empty(), k == 0) << files[k] << ": only map 0 is empty";
+    EXPECT_TRUE(robot_can_cross(m, 0.15)) << files[k];
+    for (Vec2 s : m.sources)
+      EXPECT_GE(signed_distance(m, s), 0.1) << files[k] << " source " << to_string(s);
+  }
 }
 
 }  // namespace
