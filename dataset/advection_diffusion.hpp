@@ -19,9 +19,9 @@ namespace plumekit::dataset {
 
 struct AdvectionDiffusionOptions {
   // Constant eddy diffusivity, m^2/s. 0.05 gives a plume sigma of about 0.7 m
-  // 5 m downstream of the source at 1 m/s (sigma^2 = 2 D x / u), the width of
-  // the thesis's indoor plumes; it equals the filament model's default
-  // equivalent diffusivity (filament_model.hpp).
+  // 5 m downstream of the source at 1 m/s (sigma^2 = 2 D x / u), a plausible
+  // width for a plume in a 4 m wide room; it equals the filament model's
+  // default equivalent diffusivity (filament_model.hpp).
   double diffusivity = 0.05;
   // Release rate per metre of depth, concentration units * m^2/s. With the
   // defaults, concentrations 1 m downstream of a source in a 1 m/s wind are

@@ -20,8 +20,10 @@
 namespace plumekit::dataset {
 
 struct FilamentOptions {
-  // Filaments released per second (Neumann 2013 used 500/s; 200/s keeps a
-  // 64x64 sensor grid cheap and the mean within a few % of the 500/s one).
+  // Filaments released per second (Neumann used 500/s). Each carries
+  // release_rate / release_per_second, so the rate leaves the expected mean
+  // unchanged and only sets the sampling noise; 200/s keeps the 64x64 sensor
+  // grid cheap (the thesis-scale dataset in ~20 min on 2 cores).
   double release_per_second = 200.0;
   // Release rate per metre of depth (concentration units * m^2/s), shared
   // with the advection-diffusion model so both give the same mean.
