@@ -6,6 +6,7 @@
 #include <mutex>
 #include <set>
 #include <thread>
+#include <tuple>
 
 #include "cfd/flow_solver.hpp"
 #include "core/atomic_file.hpp"
@@ -31,12 +32,29 @@ std::string map_stem(int index) {
   return "map-" + shard_name(index).substr(6);
 }
 
+// Replacement draws for a random map whose steady flow does not converge.
+constexpr int kMaxRedraws = 8;
+
 // The map of index i and its sources (random, or given).
-std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i) {
+std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redraw) {
   if (!o.given_maps.empty()) return {o.given_maps[i], o.map_files[i]};
-  RandomMap r = random_map(o.map, o.seed, i);
+  RandomMap r = random_map(o.map, o.seed, i, redraw);
   r.map.sources = random_sources(r.map, o.sources, o.source_clearance, o.seed, i);
   return {r.map, r.family};
+}
+
+// Central convection first; first-order upwind if Newton stalls on it.
+// wind.json records which one was used.
+cfd::FlowResult solve_flow(const Map& map, cfd::FlowOptions& fo) {
+  fo.on_iteration = nullptr;
+  fo.verbose = false;
+  try {
+    return cfd::solve(map, fo);
+  } catch (const cfd::ConvergenceError&) {
+    if (fo.convection == cfd::Convection::Upwind) throw;
+    fo.convection = cfd::Convection::Upwind;
+    return cfd::solve(map, fo);
+  }
 }
 
 }  // namespace
@@ -102,41 +120,53 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
       if (m >= mine.size()) return;
       try {
         const int index = mine[m];
-        auto [map, family] = dataset_map(o, index);
         ShardEntry& e = entries[m];
         e.map_index = index;
-        e.family = family;
         e.samples = samples_of[m];
         const fs::path shard_dir = out / "shards" / shard_name(index);
         const fs::path map_file = out / "maps" / (map_stem(index) + ".json");
+        const fs::path wind_dir = out / "wind" / map_stem(index);
+        auto family_from_file = [&] {
+          return o.given_maps.empty() ? family_of(read_map(map_file).name) : o.map_files[index];
+        };
         if (auto sums = verify_shard(shard_dir); sums && fs::exists(map_file)) {
           e.checksums = *sums;
+          e.family = family_from_file();
           done += e.samples;
           std::lock_guard lock(mutex);
           ++summary.maps_resumed;
           continue;
         }
-        write_map(map, map_file);
-        const fs::path wind_dir = out / "wind" / map_stem(index);
         auto t = Clock::now();
-        std::optional<cfd::WindField> wind = read_wind_cache(wind_dir);
+        Map map;
+        std::string family;
+        std::optional<cfd::WindField> wind;
+        if (fs::exists(map_file)) wind = read_wind_cache(wind_dir);
         const bool cached = wind.has_value();
-        if (!cached) {
-          cfd::FlowOptions fo = o.flow;
-          fo.on_iteration = nullptr;
-          fo.verbose = false;
-          cfd::FlowResult flow;
-          try {
-            flow = cfd::solve(map, fo);
-          } catch (const cfd::ConvergenceError&) {
-            // Central convection can stall on a coarse grid; first-order
-            // upwind always converges. wind.json records which one was used.
-            fo.convection = cfd::Convection::Upwind;
-            flow = cfd::solve(map, fo);
+        if (cached) {
+          map = read_map(map_file);
+          family = family_from_file();
+        } else {
+          // A map with no steady flow (vortex shedding behind a bluff body
+          // at Re ~ 200) cannot be used: draw a replacement for its index.
+          for (int redraw = 0;; ++redraw) {
+            std::tie(map, family) = dataset_map(o, index, redraw);
+            cfd::FlowOptions fo = o.flow;
+            try {
+              const cfd::FlowResult flow = solve_flow(map, fo);
+              write_wind_cache(wind_dir, flow, fo);
+              wind = flow.wind;
+              break;
+            } catch (const cfd::ConvergenceError& error) {
+              if (!o.given_maps.empty()) throw InputError(o.map_files[index] + ": " + error.what());
+              if (redraw >= kMaxRedraws)
+                throw InputError("map " + std::to_string(index) + ": no steady flow in " +
+                                 std::to_string(kMaxRedraws + 1) + " draws: " + error.what());
+            }
           }
-          write_wind_cache(wind_dir, flow, fo);
-          wind = flow.wind;
+          write_map(map, map_file);  // after its wind: a map file with a wind cache is complete
         }
+        e.family = family;
         const double flow_s = since(t);
         t = Clock::now();
         const GridShape sensors = feature_grid(map);

@@ -150,19 +150,31 @@ bool robot_can_cross(const Map& map, double margin) {
   return false;
 }
 
-RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_t index) {
+std::string family_of(const std::string& name) {
+  for (const char* f : {"two-rectangles", "rectangle", "l-shape", "u-shape"}) {
+    const std::string tail = std::string("-") + f;
+    if (name.size() >= tail.size() &&
+        name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
+      return f;
+  }
+  return "";
+}
+
+RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_t index,
+                     std::uint64_t redraw) {
   if (!(o.width > 2 * o.end_clearance + 0.5) || !(o.height > 1.0))
     throw InputError(
         "random maps: the arena must be wider than 2 * end_clearance + 0.5 m and "
         "higher than 1 m");
   static const char* const kFamilies[] = {"rectangle", "two-rectangles", "l-shape", "u-shape"};
-  Draw d(derive_seed(seed, index, 0, Stream::MapGeometry));
+  Draw d(derive_seed(seed, index, redraw, Stream::MapGeometry));
   RandomMap r;
   r.family = kFamilies[d.pick(4)];
   for (r.attempts = 1; r.attempts <= o.max_attempts; ++r.attempts) {
     Map map = default_arena(o.width, o.height);
     map.inlet.speed = o.inlet_speed;
-    map.name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" + r.family;
+    map.name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" +
+               (redraw > 0 ? "r" + std::to_string(redraw) + "-" : std::string()) + r.family;
     if (r.family == "two-rectangles") {
       map.obstacles.push_back(draw_obstacle(d, "rectangle", o));
       map.obstacles.push_back(draw_obstacle(d, "rectangle", o));

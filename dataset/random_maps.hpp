@@ -33,8 +33,15 @@ struct RandomMap {
   int attempts = 0;    // draws rejected by the checks, plus one
 };
 
-// Map number `index` of the maps drawn from `seed`. Deterministic.
-RandomMap random_map(const RandomMapOptions& options, std::uint64_t seed, std::uint64_t index);
+// Map number `index` of the maps drawn from `seed`. Deterministic. `redraw`
+// > 0 gives replacement draws for the same index (the dataset generator uses
+// them when the steady flow of a map does not converge); their names end in
+// -rN-FAMILY.
+RandomMap random_map(const RandomMapOptions& options, std::uint64_t seed, std::uint64_t index,
+                     std::uint64_t redraw = 0);
+
+// The family a random map's name ends with, or "" when it is none of them.
+std::string family_of(const std::string& map_name);
 
 // `count` sources uniformly over the free space at least `clearance` metres
 // from every obstacle and wall, drawn from (seed, map index). Deterministic.

@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/map_json.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/shard.hpp"
 
@@ -225,6 +226,38 @@ TEST(Generate, BadInputExitsTwoAndWritesNothing) {
   EXPECT_EQ(run(kExe + " plume --source 3.2,1.0 --out " + d.string() + " 2>/dev/null"), 2);
   EXPECT_EQ(run(kExe + " dataset show " + d.string() + " --out x.png 2>/dev/null"), 2);
   EXPECT_FALSE(fs::exists(d));
+}
+
+}  // namespace
+}  // namespace plumekit::dataset
+
+namespace plumekit::dataset {
+namespace {
+
+TEST(Generate, RedrawsAMapWithoutSteadyFlowThenGivesUpNamingIt) {
+  DatasetOptions o = small();
+  o.maps = 1;
+  o.sources = 1;
+  o.flow.max_iterations = 1;  // no flow converges: every draw fails
+  const fs::path d = scratch("no-flow");
+  try {
+    generate_dataset(d, o, {});
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("map 0: no steady flow in 9 draws"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(d / "maps/map-00000.json"));
+  EXPECT_FALSE(fs::exists(d / "shards/shard-00000"));
+  fs::remove_all(d);
+}
+
+TEST(RandomMaps, RedrawsDifferAndNameTheirFamily) {
+  const RandomMap a = random_map({}, 1, 31), b = random_map({}, 1, 31, 1);
+  EXPECT_NE(map_to_json(a.map), map_to_json(b.map));
+  EXPECT_EQ(family_of(a.map.name), a.family);
+  EXPECT_EQ(family_of(b.map.name), b.family);
+  EXPECT_NE(b.map.name.find("-r1-"), std::string::npos);
 }
 
 }  // namespace
