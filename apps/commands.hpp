@@ -7,5 +7,6 @@ namespace plumekit::cli {
 void add_map_commands(CLI::App& app);
 void add_flow_commands(CLI::App& app);
 void add_plan_commands(CLI::App& app);
+void add_dataset_commands(CLI::App& app);
 
 }  // namespace plumekit::cli

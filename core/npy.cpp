@@ -27,7 +27,26 @@ std::string header(const char* descr, const std::vector<std::size_t>& shape) {
   return out + dict;
 }
 
+template <class T>
+std::string npy_bytes(const char* descr, const std::vector<T>& values,
+                      const std::vector<std::size_t>& shape) {
+  std::string out = header(descr, shape);
+  const std::size_t offset = out.size();
+  out.resize(offset + values.size() * sizeof(T));
+  if (!values.empty()) std::memcpy(out.data() + offset, values.data(), values.size() * sizeof(T));
+  return out;
+}
+
 }  // namespace
+
+std::string npy_float64(const std::vector<double>& values, const std::vector<std::size_t>& shape) {
+  return npy_bytes("<f8", values, shape);
+}
+
+std::string npy_int32(const std::vector<std::int32_t>& values,
+                      const std::vector<std::size_t>& shape) {
+  return npy_bytes("<i4", values, shape);
+}
 
 std::string npy_float32(const std::vector<float>& values, const std::vector<std::size_t>& shape) {
   std::string out = header("<f4", shape);

@@ -11,6 +11,10 @@ namespace plumekit {
 // Bytes of an .npy file holding `values` (converted to float32) with `shape`.
 std::string npy_float32(const std::vector<double>& values, const std::vector<std::size_t>& shape);
 std::string npy_float32(const std::vector<float>& values, const std::vector<std::size_t>& shape);
+// float64 (for fields that must round-trip exactly) and int32 (for ids).
+std::string npy_float64(const std::vector<double>& values, const std::vector<std::size_t>& shape);
+std::string npy_int32(const std::vector<std::int32_t>& values,
+                      const std::vector<std::size_t>& shape);
 
 struct NpyArray {
   std::vector<std::size_t> shape;

@@ -20,8 +20,9 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
-  # surrogate training and its golden files: run with /usr/bin/python3. Debian's torch uses one
-  # thread unless told otherwise (torch.set_num_threads), which the training script does.
+  # surrogate training and its golden files, and the dataset tests' numpy round trip: run with
+  # /usr/bin/python3. Debian's torch uses one thread unless told otherwise (torch.set_num_threads),
+  # which the training script does.
   python3-torch python3-numpy
 )
 

@@ -8,7 +8,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "surrogate/sha256.hpp"
+#include "core/sha256.hpp"
 
 namespace plumekit::surrogate {
 namespace {

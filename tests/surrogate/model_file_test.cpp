@@ -11,8 +11,8 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/sha256.hpp"
 #include "surrogate/network.hpp"
-#include "surrogate/sha256.hpp"
 
 namespace plumekit::surrogate {
 namespace {

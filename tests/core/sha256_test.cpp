@@ -1,11 +1,11 @@
 // SHA-256 against the FIPS 180-2 / NIST example vectors.
-#include "surrogate/sha256.hpp"
+#include "core/sha256.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-namespace plumekit::surrogate {
+namespace plumekit {
 namespace {
 
 TEST(Sha256, PublishedTestVectors) {
@@ -22,5 +22,14 @@ TEST(Sha256, PublishedTestVectors) {
             "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
 }
 
+TEST(Sha256, IncrementalEqualsWhole) {
+  Sha256 h;
+  const std::string chunk(1000, 'a');
+  for (int k = 0; k < 1000; ++k)
+    h.update(chunk);
+  EXPECT_EQ(h.hex_digest(), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  EXPECT_EQ(sha256_hex("abc"), to_hex(sha256("abc")));
+}
+
 }  // namespace
-}  // namespace plumekit::surrogate
+}  // namespace plumekit

@@ -1,0 +1,37 @@
+#pragma once
+// SHA-256 (FIPS 180-4): the checksum of dataset shards and model files. It is
+// what `sha256sum` and Python's hashlib print, so anyone can check a file
+// without plumekit.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace plumekit {
+
+using Sha256Digest = std::array<std::uint8_t, 32>;
+
+// Incremental hashing, for files read in pieces.
+class Sha256 {
+ public:
+  Sha256();
+  void update(std::string_view bytes);
+  Sha256Digest digest();     // finishes the hash
+  std::string hex_digest();  // 64 lowercase hex digits; finishes the hash
+
+ private:
+  void block(const unsigned char* p);
+  std::uint32_t h_[8];
+  unsigned char buf_[64];
+  std::size_t used_ = 0;
+  std::uint64_t length_ = 0;  // bytes
+};
+
+Sha256Digest sha256(std::string_view bytes);
+std::string to_hex(const Sha256Digest& digest);  // 64 lowercase hex digits
+std::string sha256_hex(std::string_view bytes);
+// Of a file's contents; InputError naming the file when it cannot be read.
+std::string sha256_file(const std::filesystem::path& path);
+
+}  // namespace plumekit

@@ -1,0 +1,63 @@
+#include "dataset/features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/rasterize.hpp"
+
+namespace plumekit::dataset {
+
+namespace {
+
+// The parts of one arena wall that are not an opening, as segments.
+void solid_wall_segments(const Map& map, Side side, std::vector<std::pair<Vec2, Vec2>>& out) {
+  const double length = map.wall_length(side);
+  std::vector<std::pair<double, double>> gaps;
+  for (const Opening* o : {static_cast<const Opening*>(&map.inlet), &map.outlet})
+    if (o->side == side) gaps.emplace_back(std::min(o->from, o->to), std::max(o->from, o->to));
+  std::sort(gaps.begin(), gaps.end());
+  double s = 0.0;
+  for (const auto& [a, b] : gaps) {
+    if (a > s) out.emplace_back(map.wall_point(side, s), map.wall_point(side, a));
+    s = std::max(s, b);
+  }
+  if (s < length) out.emplace_back(map.wall_point(side, s), map.wall_point(side, length));
+}
+
+}  // namespace
+
+double signed_distance(const Map& map, Vec2 p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Polygon& poly : map.obstacles)
+    for (std::size_t k = 0; k < poly.size(); ++k)
+      d = std::min(d, distance_to_segment(p, poly[k], poly[(k + 1) % poly.size()]));
+  std::vector<std::pair<Vec2, Vec2>> walls;
+  for (Side side : {Side::Left, Side::Right, Side::Bottom, Side::Top})
+    solid_wall_segments(map, side, walls);
+  for (const auto& [a, b] : walls)
+    d = std::min(d, distance_to_segment(p, a, b));
+  return map.obstacle_at(p) >= 0 ? -d : d;
+}
+
+std::vector<float> map_features(const Map& map, const GridShape& shape) {
+  const Grid<std::uint8_t> labels = rasterize_labels(map, shape);
+  std::vector<float> out(2 * shape.size());
+  for (int j = 0; j < shape.ny; ++j)
+    for (int i = 0; i < shape.nx; ++i) {
+      const std::size_t k = shape.index(i, j);
+      out[k] = static_cast<float>(labels.values[k]);
+      out[shape.size() + k] = static_cast<float>(signed_distance(map, shape.centre(i, j)));
+    }
+  return out;
+}
+
+std::vector<float> source_feature(Vec2 source, const GridShape& shape) {
+  std::vector<float> out(shape.size());
+  for (int j = 0; j < shape.ny; ++j)
+    for (int i = 0; i < shape.nx; ++i)
+      out[shape.index(i, j)] = static_cast<float>(norm(shape.centre(i, j) - source));
+  return out;
+}
+
+}  // namespace plumekit::dataset

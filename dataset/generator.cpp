@@ -1,0 +1,321 @@
+#include "dataset/generator.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <set>
+#include <thread>
+#include <tuple>
+
+#include "cfd/flow_solver.hpp"
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/map_json.hpp"
+#include "dataset/features.hpp"
+#include "dataset/seed.hpp"
+#include "core/sha256.hpp"
+#include "dataset/wind_cache.hpp"
+
+namespace plumekit::dataset {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+std::string map_stem(int index) {
+  return "map-" + shard_name(index).substr(6);
+}
+
+// Replacement draws for a random map whose steady flow does not converge.
+constexpr int kMaxRedraws = 8;
+
+// The map of index i and its sources (random, or given).
+std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redraw) {
+  if (!o.given_maps.empty()) return {o.given_maps[i], o.map_files[i]};
+  RandomMap r = random_map(o.map, o.seed, i, redraw);
+  r.map.sources = random_sources(r.map, o.sources, o.source_clearance, o.seed, i);
+  return {r.map, r.family};
+}
+
+// Central convection first; first-order upwind if Newton stalls on it.
+// wind.json records which one was used.
+cfd::FlowResult solve_flow(const Map& map, cfd::FlowOptions& fo) {
+  fo.on_iteration = nullptr;
+  fo.verbose = false;
+  try {
+    return cfd::solve(map, fo);
+  } catch (const cfd::ConvergenceError&) {
+    if (fo.convection == cfd::Convection::Upwind) throw;
+    fo.convection = cfd::Convection::Upwind;
+    return cfd::solve(map, fo);
+  }
+}
+
+}  // namespace
+
+std::string part_manifest_name(int k, int n) {
+  return "manifest.part-" + std::to_string(k) + "-of-" + std::to_string(n) + ".json";
+}
+
+DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
+                                const RunOptions& run) {
+  const auto t0 = Clock::now();
+  const int maps = o.given_maps.empty() ? o.maps : static_cast<int>(o.given_maps.size());
+  if (maps <= 0) throw InputError("--maps must be positive");
+  if (o.given_maps.empty() && o.sources <= 0) throw InputError("--sources must be positive");
+  if (run.threads <= 0) throw InputError("--threads must be positive");
+  if (run.part_n <= 0 || run.part_k < 0 || run.part_k >= run.part_n)
+    throw InputError("--shard K/N needs 0 <= K < N");
+  for (std::size_t i = 0; i < o.given_maps.size(); ++i)
+    if (o.given_maps[i].sources.empty())
+      throw InputError(o.map_files[i] + ": the map has no sources");
+
+  // A dataset directory belongs to one set of parameters.
+  const nlohmann::ordered_json params = parameters_json(o);
+  fs::create_directories(out / "maps");
+  fs::create_directories(out / "wind");
+  fs::create_directories(out / "shards");
+  const fs::path pfile = out / "parameters.json";
+  if (fs::exists(pfile)) {
+    if (nlohmann::ordered_json::parse(read_file(pfile)) != params)
+      throw InputError(out.string() +
+                       " holds a dataset made with other parameters (parameters.json); use "
+                       "another --out or the same parameters");
+  } else {
+    write_file_atomic(pfile, params.dump(2) + "\n");
+  }
+  remove_temporaries(out / "maps");
+  remove_temporaries(out / "wind");
+  remove_temporaries(out / "shards");
+
+  std::vector<int> mine;
+  for (int i = run.part_k; i < maps; i += run.part_n)
+    mine.push_back(i);
+  std::vector<ShardEntry> entries(mine.size());
+  long long total = 0;
+  std::vector<int> samples_of(mine.size());
+  for (std::size_t m = 0; m < mine.size(); ++m) {
+    samples_of[m] =
+        o.given_maps.empty() ? o.sources : static_cast<int>(o.given_maps[mine[m]].sources.size());
+    total += samples_of[m];
+  }
+
+  DatasetSummary summary;
+  summary.maps = static_cast<int>(mine.size());
+  std::atomic<std::size_t> next{0};
+  std::atomic<long long> done{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex mutex;
+
+  auto work = [&] {
+    while (!failed) {
+      const std::size_t m = next++;
+      if (m >= mine.size()) return;
+      try {
+        const int index = mine[m];
+        ShardEntry& e = entries[m];
+        e.map_index = index;
+        e.samples = samples_of[m];
+        const fs::path shard_dir = out / "shards" / shard_name(index);
+        const fs::path map_file = out / "maps" / (map_stem(index) + ".json");
+        const fs::path wind_dir = out / "wind" / map_stem(index);
+        auto family_from_file = [&] {
+          return o.given_maps.empty() ? family_of(read_map(map_file).name) : o.map_files[index];
+        };
+        if (auto sums = verify_shard(shard_dir); sums && fs::exists(map_file)) {
+          e.checksums = *sums;
+          e.family = family_from_file();
+          done += e.samples;
+          std::lock_guard lock(mutex);
+          ++summary.maps_resumed;
+          continue;
+        }
+        auto t = Clock::now();
+        Map map;
+        std::string family;
+        std::optional<cfd::WindField> wind;
+        if (fs::exists(map_file)) wind = read_wind_cache(wind_dir);
+        const bool cached = wind.has_value();
+        if (cached) {
+          map = read_map(map_file);
+          family = family_from_file();
+        } else {
+          // A map with no steady flow (vortex shedding behind a bluff body
+          // at Re ~ 200) cannot be used: draw a replacement for its index.
+          for (int redraw = 0;; ++redraw) {
+            std::tie(map, family) = dataset_map(o, index, redraw);
+            cfd::FlowOptions fo = o.flow;
+            try {
+              const cfd::FlowResult flow = solve_flow(map, fo);
+              write_wind_cache(wind_dir, flow, fo);
+              wind = flow.wind;
+              break;
+            } catch (const cfd::ConvergenceError& error) {
+              if (!o.given_maps.empty()) throw InputError(o.map_files[index] + ": " + error.what());
+              if (redraw >= kMaxRedraws)
+                throw InputError("map " + std::to_string(index) + ": no steady flow in " +
+                                 std::to_string(kMaxRedraws + 1) + " draws: " + error.what());
+            }
+          }
+          write_map(map, map_file);  // after its wind: a map file with a wind cache is complete
+        }
+        e.family = family;
+        const double flow_s = since(t);
+        t = Clock::now();
+        const GridShape sensors = feature_grid(map);
+        const std::vector<float> base = map_features(map, sensors);
+        const MapPlumes plumes(map, *wind, sensors, o.plume);
+        ShardArrays a;
+        a.samples = e.samples;
+        const std::size_t cells = sensors.size();
+        a.inputs.reserve(a.samples * 3 * cells);
+        a.targets.reserve(a.samples * 2 * cells);
+        for (int s = 0; s < a.samples; ++s) {
+          const Vec2 src = map.sources[s];
+          const PlumeTargets p = plumes.run(src, derive_seed(o.seed, index, s, Stream::Filaments));
+          a.inputs.insert(a.inputs.end(), base.begin(), base.end());
+          const std::vector<float> d = source_feature(src, sensors);
+          a.inputs.insert(a.inputs.end(), d.begin(), d.end());
+          for (double v : p.mean.values)
+            a.targets.push_back(static_cast<float>(v));
+          for (double v : p.std.values)
+            a.targets.push_back(static_cast<float>(v));
+          a.sources.push_back(static_cast<float>(src.x));
+          a.sources.push_back(static_cast<float>(src.y));
+          a.map_ids.push_back(index);
+          ++done;
+        }
+        e.checksums = write_shard(shard_dir, a);
+        std::lock_guard lock(mutex);
+        summary.samples += a.samples;
+        summary.flow_seconds += flow_s;
+        summary.plume_seconds += since(t);
+        if (cached) ++summary.winds_cached;
+      } catch (...) {
+        std::lock_guard lock(mutex);
+        if (!error) error = std::current_exception();
+        failed = true;
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  const int threads = std::min<int>(run.threads, std::max<std::size_t>(1, mine.size()));
+  for (int t = 0; t < threads; ++t)
+    pool.emplace_back(work);
+  while (true) {
+    const long long d = done;
+    if (run.progress) run.progress(d, total);
+    bool finished = true;
+    {
+      std::lock_guard lock(mutex);
+      finished = failed || d >= total;
+    }
+    if (finished) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  }
+  for (auto& th : pool)
+    th.join();
+  if (error) std::rethrow_exception(error);
+  if (run.progress) run.progress(total, total);
+
+  const std::string name =
+      run.part_n > 1 ? part_manifest_name(run.part_k, run.part_n) : std::string("manifest.json");
+  write_file_atomic(out / name,
+                    manifest_json(params, entries, run.part_k, run.part_n).dump(2) + "\n");
+  summary.seconds = since(t0);
+  return summary;
+}
+
+MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& parts) {
+  if (parts.empty()) throw InputError("dataset merge: name at least one part directory");
+  std::vector<std::pair<fs::path, nlohmann::ordered_json>> manifests;
+  std::set<fs::path> seen_dirs;
+  for (const fs::path& dir : parts) {
+    const fs::path canon = fs::weakly_canonical(dir);
+    if (!seen_dirs.insert(canon).second) continue;
+    if (!fs::is_directory(dir)) throw InputError(dir.string() + ": not a directory");
+    bool any = false;
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string f = e.path().filename().string();
+      if (f.rfind("manifest.part-", 0) == 0 && e.path().extension() == ".json") {
+        manifests.emplace_back(dir, nlohmann::ordered_json::parse(read_file(e.path())));
+        any = true;
+      }
+    }
+    if (!any) throw InputError(dir.string() + ": no manifest.part-K-of-N.json in it");
+  }
+  const nlohmann::ordered_json& params = manifests.front().second.at("generator");
+  const int n = manifests.front().second.at("part").at("n").get<int>();
+  const int maps = params.at("maps").get<int>();
+  std::set<int> parts_seen;
+  std::vector<ShardEntry> entries(maps);
+  std::vector<fs::path> from(maps);
+  std::vector<bool> have(maps, false);
+  MergeSummary summary;
+  for (const auto& [dir, m] : manifests) {
+    if (m.at("generator") != params)
+      throw InputError(dir.string() + ": its parts were made with other parameters");
+    if (m.at("part").at("n").get<int>() != n)
+      throw InputError(dir.string() + ": parts of different splits (N differs)");
+    parts_seen.insert(m.at("part").at("k").get<int>());
+    for (const auto& s : m.at("shards")) {
+      const int i = s.at("map_index").get<int>();
+      if (i < 0 || i >= maps) throw InputError(dir.string() + ": map index out of range");
+      if (have[i]) throw InputError(dir.string() + ": map " + std::to_string(i) + " twice");
+      have[i] = true;
+      ShardEntry& e = entries[i];
+      e.map_index = i;
+      e.family = s.at("family").get<std::string>();
+      e.samples = s.at("samples").get<int>();
+      for (const auto& [name, hex] : s.at("sha256").items())
+        e.checksums[name] = hex.get<std::string>();
+      from[i] = dir;
+      const fs::path sd = dir / "shards" / shard_name(i);
+      for (const auto& [name, hex] : e.checksums)
+        if (sha256_file(sd / name) != hex)
+          throw InputError((sd / name).string() + ": checksum does not match its manifest");
+      ++summary.shards;
+      summary.samples += e.samples;
+    }
+  }
+  for (int k = 0; k < n; ++k)
+    if (!parts_seen.count(k))
+      throw InputError("dataset merge: part " + std::to_string(k) + " of " + std::to_string(n) +
+                       " is missing");
+  for (int i = 0; i < maps; ++i)
+    if (!have[i]) throw InputError("dataset merge: no part holds map " + std::to_string(i));
+  summary.parts = static_cast<int>(parts_seen.size());
+
+  fs::create_directories(out / "shards");
+  fs::create_directories(out / "maps");
+  fs::create_directories(out / "wind");
+  for (int i = 0; i < maps; ++i) {
+    if (fs::weakly_canonical(from[i]) == fs::weakly_canonical(out)) continue;
+    const std::string stem = map_stem(i);
+    const auto copy_dir = [](const fs::path& src, const fs::path& dst) {
+      const fs::path tmp = dst.string() + ".tmp-merge";
+      fs::remove_all(tmp);
+      fs::copy(src, tmp, fs::copy_options::recursive);
+      fs::remove_all(dst);
+      fs::rename(tmp, dst);
+    };
+    copy_dir(from[i] / "shards" / shard_name(i), out / "shards" / shard_name(i));
+    copy_dir(from[i] / "wind" / stem, out / "wind" / stem);
+    write_file_atomic(out / "maps" / (stem + ".json"),
+                      read_file(from[i] / "maps" / (stem + ".json")));
+  }
+  if (fs::weakly_canonical(manifests.front().first) != fs::weakly_canonical(out))
+    write_file_atomic(out / "parameters.json",
+                      read_file(manifests.front().first / "parameters.json"));
+  write_file_atomic(out / "manifest.json", manifest_json(params, entries, 0, 1).dump(2) + "\n");
+  return summary;
+}
+
+}  // namespace plumekit::dataset

@@ -1,0 +1,135 @@
+#include "dataset/manifest.hpp"
+
+#include <cstdio>
+
+#include "core/map_json.hpp"
+
+namespace plumekit::dataset {
+
+std::string shard_name(int map_index) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "shard-%05d", map_index);
+  return buf;
+}
+
+nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
+  const FilamentOptions& f = o.plume.filament;
+  const AdvectionDiffusionOptions& a = o.plume.advection_diffusion;
+  nlohmann::ordered_json j;
+  j["seed"] = o.seed;
+  j["seeding"] =
+      "every random stream is SplitMix64-derived from (seed, map index, source index, purpose): "
+      "map geometry, sources, filament walk";
+  j["maps"] = o.given_maps.empty() ? o.maps : static_cast<int>(o.given_maps.size());
+  if (o.given_maps.empty()) {
+    j["sources_per_map"] = o.sources;
+    j["source_clearance_m"] = o.source_clearance;
+    j["random_maps"] = {{"width", o.map.width},
+                        {"height", o.map.height},
+                        {"inlet_speed", o.map.inlet_speed},
+                        {"end_clearance", o.map.end_clearance},
+                        {"robot_margin", o.map.robot_margin},
+                        {"min_gap", o.map.min_gap}};
+  } else {
+    j["map_files"] = o.map_files;
+    j["sources_per_map"] = "each map's own sources";
+  }
+  j["flow"] = {{"cell", o.flow.cell},
+               {"nu", o.flow.nu},
+               {"turbulence", cfd::to_string(o.flow.turbulence)},
+               {"convection", cfd::to_string(o.flow.convection)},
+               {"tolerance", o.flow.tolerance}};
+  j["plume_model"] = to_string(o.plume.model);
+  if (o.plume.model == PlumeModel::Filament)
+    j["filament"] = {{"release_per_second", f.release_per_second},
+                     {"release_rate", f.release_rate},
+                     {"initial_radius", f.initial_radius},
+                     {"growth", f.growth},
+                     {"sigma_walk", f.sigma_walk},
+                     {"meander_speed", f.meander_speed},
+                     {"meander_time", f.meander_time},
+                     {"dt", f.dt},
+                     {"max_radius", f.max_radius},
+                     {"steady_window", f.steady_window},
+                     {"steady_tolerance", f.steady_tolerance},
+                     {"min_spinup", f.min_spinup},
+                     {"max_spinup", f.max_spinup},
+                     {"record_seconds", f.record_seconds},
+                     {"sample_rate", f.sample_rate},
+                     {"cutoff", f.cutoff},
+                     {"equivalent_diffusivity", f.equivalent_diffusivity()}};
+  else
+    j["advection_diffusion"] = {{"diffusivity", a.diffusivity},
+                                {"release_rate", a.release_rate},
+                                {"scheme", "finite volumes on the flow grid, Patankar hybrid"}};
+  return j;
+}
+
+nlohmann::ordered_json contract_json() {
+  nlohmann::ordered_json j;
+  j["grid"] = {{"nx", 64},
+               {"ny", 64},
+               {"extent",
+                "the whole arena, cell-centred: centre (i + 0.5) * W / 64, "
+                "(j + 0.5) * H / 64"},
+               {"order",
+                "C order, [..., row j, column i]; row 0 at y = 0 (bottom), column 0 at "
+                "x = 0 (left): flip rows to show with y up"}};
+  j["inputs"] = {
+      {"dtype", "float32"},
+      {"shape", "[n, 3, 64, 64]"},
+      {"channels",
+       {"0: region label of the cell centre as a float: inside obstacle 0, free 1, wall 2, "
+        "inlet 3, outlet 4 (plumekit's rasterization rule: centre inside or on an obstacle "
+        "boundary is obstacle; free cells on the arena edge take their wall's label)",
+        "1: signed distance in metres from the cell centre to the nearest solid surface "
+        "(obstacle edges and the arena walls outside the inlet and outlet), computed exactly "
+        "from the polygons; negative inside obstacles",
+        "2: Euclidean distance in metres from the cell centre to the source (not its inverse)"}}};
+  j["targets"] = {
+      {"dtype", "float32"},
+      {"shape", "[n, 2, 64, 64]"},
+      {"channels",
+       {"0: mean concentration at the sensor (the cell centre)",
+        "1: standard deviation of the concentration over the recording (population std; "
+        "0 everywhere for the advection-diffusion model)"}},
+      {"units",
+       "concentration units of a release of release_rate per metre of depth "
+       "(units * m^2/s); with the default 1000 values run 0..~3000, like the thesis's "
+       "unnormalised dataset; sensors inside obstacles read 0"}};
+  j["sources"] = {{"dtype", "float32"}, {"shape", "[n, 2]"}, {"meaning", "x, y in metres"}};
+  j["map_ids"] = {{"dtype", "int32"},
+                  {"shape", "[n]"},
+                  {"meaning", "index of the map: maps/map-NNNNN.json, wind/map-NNNNN/"}};
+  return j;
+}
+
+nlohmann::ordered_json manifest_json(const nlohmann::ordered_json& parameters,
+                                     const std::vector<ShardEntry>& shards, int part_k,
+                                     int part_n) {
+  nlohmann::ordered_json j;
+  j["format"] = kDatasetFormat;
+  if (part_n > 1) j["part"] = {{"k", part_k}, {"n", part_n}};
+  j["generator"] = parameters;
+  j["contract"] = contract_json();
+  long long samples = 0;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const ShardEntry& s : shards) {
+    samples += s.samples;
+    nlohmann::ordered_json sums = nlohmann::ordered_json::object();
+    for (const auto& [name, hex] : s.checksums)
+      sums[name] = hex;
+    list.push_back({{"name", shard_name(s.map_index)},
+                    {"map_index", s.map_index},
+                    {"map", "maps/map-" + shard_name(s.map_index).substr(6) + ".json"},
+                    {"family", s.family},
+                    {"samples", s.samples},
+                    {"sha256", sums}});
+  }
+  j["samples"] = samples;
+  j["checksum"] = "SHA-256 of each file (as sha256sum prints it)";
+  j["shards"] = list;
+  return j;
+}
+
+}  // namespace plumekit::dataset

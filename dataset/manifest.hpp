@@ -1,0 +1,52 @@
+#pragma once
+// manifest.json: what a dataset holds, exactly: the format version, every
+// generator parameter and the seed, the feature and target contract, and each
+// shard's sample count and file checksums. It holds no timings and no thread
+// count, so the same seed and parameters give the same bytes.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cfd/options.hpp"
+#include "dataset/plume.hpp"
+#include "dataset/random_maps.hpp"
+#include "dataset/shard.hpp"
+
+namespace plumekit::dataset {
+
+inline constexpr const char* kDatasetFormat = "plumekit-dataset/1";
+
+struct DatasetOptions {
+  int maps = 180;     // the thesis's dataset: 180 maps x 100 sources
+  int sources = 100;  // per map
+  std::uint64_t seed = 0;
+  PlumeOptions plume;
+  RandomMapOptions map;
+  cfd::FlowOptions flow;  // cell 0.05 m, nu 0.01 m^2/s, central convection
+  // Sources lie at least this far from every obstacle and wall.
+  double source_clearance = 0.1;
+  // Instead of random maps: these maps, each with its own `sources` (the test
+  // maps' ground truth). `map_files` names them in the manifest.
+  std::vector<Map> given_maps;
+  std::vector<std::string> map_files;
+};
+
+// Every parameter that changes the bytes of the dataset.
+nlohmann::ordered_json parameters_json(const DatasetOptions& o);
+// The feature/target contract, in words and numbers.
+nlohmann::ordered_json contract_json();
+
+struct ShardEntry {
+  int map_index = 0;
+  std::string family;  // the random map's family, or the map file
+  int samples = 0;
+  Checksums checksums;
+};
+
+nlohmann::ordered_json manifest_json(const nlohmann::ordered_json& parameters,
+                                     const std::vector<ShardEntry>& shards, int part_k, int part_n);
+
+std::string shard_name(int map_index);  // shard-00007
+
+}  // namespace plumekit::dataset

@@ -1,0 +1,209 @@
+#include "dataset/random_maps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/map_json.hpp"
+#include "core/rasterize.hpp"
+#include "dataset/features.hpp"
+#include "dataset/seed.hpp"
+
+namespace plumekit::dataset {
+
+double unit_uniform(std::uint64_t bits) {
+  return static_cast<double>(bits >> 11) * 0x1.0p-53;
+}
+
+namespace {
+
+class Draw {
+ public:
+  explicit Draw(std::uint64_t seed) : rng_(seed) {}
+  double uniform(double a, double b) { return a + (b - a) * unit_uniform(rng_()); }
+  int pick(int n) { return std::min(n - 1, static_cast<int>(uniform(0.0, n))); }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+// A shape in local coordinates [0, w] x [0, h], turned by quarter turns and
+// placed with its bounding box's lower-left corner at `at`.
+Polygon place(const Polygon& local, double w, double h, int quarter_turns, Vec2 at) {
+  Polygon out;
+  for (Vec2 p : local) {
+    Vec2 q = p;
+    switch (quarter_turns & 3) {
+      case 1:
+        q = {h - p.y, p.x};
+        break;
+      case 2:
+        q = {w - p.x, h - p.y};
+        break;
+      case 3:
+        q = {p.y, w - p.x};
+        break;
+      default:
+        break;
+    }
+    out.push_back(q + at);
+  }
+  return out;
+}
+
+// Bounding box size after the turns.
+std::pair<double, double> turned(double w, double h, int turns) {
+  return (turns & 1) ? std::make_pair(h, w) : std::make_pair(w, h);
+}
+
+// Where a box of height bh goes: on the floor, hanging from the ceiling, or
+// floating with at least min_gap above and below.
+double place_y(Draw& d, double bh, const RandomMapOptions& o) {
+  const int mode = d.pick(3);
+  if (mode == 0) return 0.0;
+  if (mode == 1) return o.height - bh;
+  const double lo = o.min_gap, hi = o.height - bh - o.min_gap;
+  return hi > lo ? d.uniform(lo, hi) : 0.0;
+}
+
+double place_x(Draw& d, double bw, const RandomMapOptions& o) {
+  return d.uniform(o.end_clearance, std::max(o.end_clearance, o.width - o.end_clearance - bw));
+}
+
+double polygon_distance(const Polygon& a, const Polygon& b) {
+  double d = 1e300;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      const Vec2 a0 = a[i], a1 = a[(i + 1) % a.size()], b0 = b[k], b1 = b[(k + 1) % b.size()];
+      if (segments_intersect(a0, a1, b0, b1)) return 0.0;
+      d = std::min({d, distance_to_segment(a0, b0, b1), distance_to_segment(a1, b0, b1),
+                    distance_to_segment(b0, a0, a1), distance_to_segment(b1, a0, a1)});
+    }
+  return d;
+}
+
+Polygon draw_obstacle(Draw& d, const std::string& family, const RandomMapOptions& o) {
+  if (family == "l-shape" || family == "u-shape") {
+    const bool u = family == "u-shape";
+    const double w = d.uniform(u ? 0.9 : 0.8, 2.0), h = d.uniform(u ? 0.9 : 0.8, 2.6);
+    const double t = d.uniform(0.2, u ? 0.35 : 0.5);
+    const int turns = d.pick(4);
+    Polygon local;
+    if (u)
+      local = {{0, 0}, {w, 0}, {w, h}, {w - t, h}, {w - t, t}, {t, t}, {t, h}, {0, h}};
+    else
+      local = {{0, 0}, {w, 0}, {w, t}, {t, t}, {t, h}, {0, h}};
+    const auto [bw, bh] = turned(w, h, turns);
+    return place(local, w, h, turns, {place_x(d, bw, o), place_y(d, bh, o)});
+  }
+  const double w = d.uniform(0.3, 1.5), h = d.uniform(0.4, 2.6);
+  return place({{0, 0}, {w, 0}, {w, h}, {0, h}}, w, h, 0, {place_x(d, w, o), place_y(d, h, o)});
+}
+
+bool acceptable(const Map& map, const RandomMapOptions& o) {
+  try {
+    validate_map(map, map.name);
+  } catch (const InputError&) {
+    return false;
+  }
+  for (std::size_t a = 0; a < map.obstacles.size(); ++a) {
+    const Box b = bounding_box(map.obstacles[a]);
+    // Touching the floor or ceiling is fine; a slit under or over is not.
+    const double below = b.lo.y, above = map.height - b.hi.y;
+    if ((below > 0.0 && below < o.min_gap) || (above > 0.0 && above < o.min_gap)) return false;
+    for (std::size_t c = a + 1; c < map.obstacles.size(); ++c)
+      if (polygon_distance(map.obstacles[a], map.obstacles[c]) < o.min_gap) return false;
+  }
+  const GridShape flow = GridShape::with_cell(map.width, map.height, 0.05);
+  if (!inlet_reaches_outlet(rasterize_labels(map, flow))) return false;
+  return robot_can_cross(map, o.robot_margin);
+}
+
+}  // namespace
+
+bool robot_can_cross(const Map& map, double margin) {
+  const GridShape g = GridShape::with_cell(map.width, map.height, 0.05);
+  std::vector<std::uint8_t> ok(g.size(), 0), seen(g.size(), 0);
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      ok[g.index(i, j)] = signed_distance(map, g.centre(i, j)) >= margin;
+  std::vector<std::pair<int, int>> stack;
+  for (int j = 0; j < g.ny; ++j)
+    if (ok[g.index(0, j)]) {
+      stack.emplace_back(0, j);
+      seen[g.index(0, j)] = 1;
+    }
+  while (!stack.empty()) {
+    const auto [i, j] = stack.back();
+    stack.pop_back();
+    if (i == g.nx - 1) return true;
+    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+    for (int k = 0; k < 4; ++k) {
+      const int a = i + di[k], b = j + dj[k];
+      if (!g.contains(a, b) || !ok[g.index(a, b)] || seen[g.index(a, b)]) continue;
+      seen[g.index(a, b)] = 1;
+      stack.emplace_back(a, b);
+    }
+  }
+  return false;
+}
+
+std::string family_of(const std::string& name) {
+  for (const char* f : {"two-rectangles", "rectangle", "l-shape", "u-shape"}) {
+    const std::string tail = std::string("-") + f;
+    if (name.size() >= tail.size() &&
+        name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
+      return f;
+  }
+  return "";
+}
+
+RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_t index,
+                     std::uint64_t redraw) {
+  if (!(o.width > 2 * o.end_clearance + 0.5) || !(o.height > 1.0))
+    throw InputError(
+        "random maps: the arena must be wider than 2 * end_clearance + 0.5 m and "
+        "higher than 1 m");
+  static const char* const kFamilies[] = {"rectangle", "two-rectangles", "l-shape", "u-shape"};
+  Draw d(derive_seed(seed, index, redraw, Stream::MapGeometry));
+  RandomMap r;
+  r.family = kFamilies[d.pick(4)];
+  for (r.attempts = 1; r.attempts <= o.max_attempts; ++r.attempts) {
+    Map map = default_arena(o.width, o.height);
+    map.inlet.speed = o.inlet_speed;
+    map.name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" +
+               (redraw > 0 ? "r" + std::to_string(redraw) + "-" : std::string()) + r.family;
+    if (r.family == "two-rectangles") {
+      map.obstacles.push_back(draw_obstacle(d, "rectangle", o));
+      map.obstacles.push_back(draw_obstacle(d, "rectangle", o));
+    } else {
+      map.obstacles.push_back(draw_obstacle(d, r.family, o));
+    }
+    if (acceptable(map, o)) {
+      r.map = std::move(map);
+      return r;
+    }
+  }
+  throw InputError("random maps: no acceptable " + r.family + " map in " +
+                   std::to_string(o.max_attempts) + " draws; relax min_gap or robot_margin");
+}
+
+std::vector<Vec2> random_sources(const Map& map, int count, double clearance, std::uint64_t seed,
+                                 std::uint64_t map_index) {
+  Draw d(derive_seed(seed, map_index, 0, Stream::Sources));
+  std::vector<Vec2> out;
+  int tries = 0;
+  while (static_cast<int>(out.size()) < count) {
+    if (++tries > 1000 * (count + 1))
+      throw InputError("random sources: map " + map.name + " has too little free space at " +
+                       std::to_string(clearance) + " m clearance");
+    const Vec2 p{d.uniform(clearance, map.width - clearance),
+                 d.uniform(clearance, map.height - clearance)};
+    if (signed_distance(map, p) >= clearance) out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace plumekit::dataset

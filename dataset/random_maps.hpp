@@ -1,0 +1,59 @@
+#pragma once
+// Random cluttered maps in the source thesis's families (Rahbar 2021,
+// Fig. 14.1): one rectangle, two separate rectangles, an L-shape, a U-shape,
+// axis-aligned, at random sizes, positions and orientations. Every map keeps
+// its inlet and outlet open, lets air and a robot through (see the checks in
+// random_map()), and is a pure function of (seed, index).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/map.hpp"
+
+namespace plumekit::dataset {
+
+struct RandomMapOptions {
+  double width = 10.0;       // m, the thesis arena
+  double height = 4.0;       // m
+  double inlet_speed = 1.0;  // m/s, uniform over the whole left wall; outlet the whole right wall
+  // Obstacles stay this far from the inlet and outlet walls, so both stay open
+  // and the flow is developed before it meets an obstacle.
+  double end_clearance = 1.0;
+  // A robot of this radius (plus safety) must be able to go from the inlet to
+  // the outlet, and every gap between two obstacles, or an obstacle and a wall,
+  // is either closed (touching) or at least min_gap wide.
+  double robot_margin = 0.15;
+  double min_gap = 0.4;
+  int max_attempts = 10000;
+};
+
+struct RandomMap {
+  Map map;
+  std::string family;  // rectangle, two-rectangles, l-shape, u-shape
+  int attempts = 0;    // draws rejected by the checks, plus one
+};
+
+// Map number `index` of the maps drawn from `seed`. Deterministic. `redraw`
+// > 0 gives replacement draws for the same index (the dataset generator uses
+// them when the steady flow of a map does not converge); their names end in
+// -rN-FAMILY.
+RandomMap random_map(const RandomMapOptions& options, std::uint64_t seed, std::uint64_t index,
+                     std::uint64_t redraw = 0);
+
+// The family a random map's name ends with, or "" when it is none of them.
+std::string family_of(const std::string& map_name);
+
+// `count` sources uniformly over the free space at least `clearance` metres
+// from every obstacle and wall, drawn from (seed, map index). Deterministic.
+std::vector<Vec2> random_sources(const Map& map, int count, double clearance, std::uint64_t seed,
+                                 std::uint64_t map_index);
+
+// Robot check: cells (0.05 m) whose centre is at least `margin` from every
+// solid surface connect the inlet side to the outlet side.
+bool robot_can_cross(const Map& map, double margin);
+
+// Uniform double in [0, 1) from 53 random bits: the same on every platform
+// (std::uniform_real_distribution is not).
+double unit_uniform(std::uint64_t bits);
+
+}  // namespace plumekit::dataset

@@ -1,0 +1,74 @@
+#include "dataset/wind_cache.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+
+#include "cfd/flow_output.hpp"
+#include "core/atomic_file.hpp"
+#include "core/npy.hpp"
+
+namespace plumekit::dataset {
+
+namespace fs = std::filesystem;
+
+void write_wind_cache(const fs::path& dir, const cfd::FlowResult& flow,
+                      const cfd::FlowOptions& options) {
+  const cfd::WindField& w = flow.wind;
+  const GridShape& g = w.shape();
+  const std::size_t nx = g.nx, ny = g.ny;
+  static std::atomic<int> counter{0};
+  const fs::path tmp =
+      dir.parent_path() / (dir.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
+                           std::to_string(counter++));
+  fs::remove_all(tmp);
+  fs::create_directories(tmp);
+  write_file_atomic(tmp / "face_u.npy", npy_float64(w.face_u(), {ny, nx + 1}));
+  write_file_atomic(tmp / "face_v.npy", npy_float64(w.face_v(), {ny + 1, nx}));
+  write_file_atomic(tmp / "u.npy", npy_float32(w.u(), {ny, nx}));
+  write_file_atomic(tmp / "v.npy", npy_float32(w.v(), {ny, nx}));
+  std::vector<double> solid(w.solid_cells().begin(), w.solid_cells().end());
+  write_file_atomic(tmp / "solid.npy", npy_float32(solid, {ny, nx}));
+  nlohmann::ordered_json j{
+      {"format", "plumekit-wind-cache/1"},
+      {"grid", {{"nx", g.nx}, {"ny", g.ny}, {"width", g.width}, {"height", g.height}}},
+      {"convention",
+       "face_u[j][i] is the x-velocity at x = i*dx, y = (j+0.5)*dy; "
+       "face_v[j][i] the y-velocity at x = (i+0.5)*dx, y = j*dy; u, v, solid "
+       "cell-centred; row 0 at y = 0"}};
+  nlohmann::ordered_json s = cfd::summary_json(flow.summary, w, options);
+  // Timings would make two identical runs differ byte for byte.
+  s.erase("residual_history");
+  s.erase("seconds");
+  s.erase("seconds_breakdown");
+  j["flow"] = s;
+  write_file_atomic(tmp / "wind.json", j.dump(2) + "\n");  // last: marks the cache complete
+  fs::remove_all(dir);
+  fs::rename(tmp, dir);
+}
+
+std::optional<cfd::WindField> read_wind_cache(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(dir / "wind.json", ec)) return std::nullopt;
+  try {
+    const auto j = nlohmann::json::parse(read_file(dir / "wind.json"));
+    const GridShape g{j.at("grid").at("nx").get<int>(), j.at("grid").at("ny").get<int>(),
+                      j.at("grid").at("width").get<double>(),
+                      j.at("grid").at("height").get<double>()};
+    NpyArray fu = read_npy(dir / "face_u.npy"), fv = read_npy(dir / "face_v.npy");
+    NpyArray solid = read_npy(dir / "solid.npy");
+    if (fu.values.size() != static_cast<std::size_t>(g.nx + 1) * g.ny ||
+        fv.values.size() != static_cast<std::size_t>(g.ny + 1) * g.nx ||
+        solid.values.size() != g.size())
+      return std::nullopt;
+    std::vector<std::uint8_t> s(g.size());
+    for (std::size_t k = 0; k < g.size(); ++k)
+      s[k] = solid.values[k] != 0.0;
+    return cfd::WindField(g, std::move(fu.values), std::move(fv.values),
+                          std::vector<double>(g.size(), 0.0), std::move(s));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace plumekit::dataset

@@ -1,0 +1,120 @@
+// The steady advection-diffusion plume against the analytic point-source
+// solution, its conservation, and the adjoint identity.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "../cfd/reference_csv.hpp"
+#include "cfd/flow_solver.hpp"
+#include "core/map_json.hpp"
+#include "dataset/advection_diffusion.hpp"
+#include "uniform_wind.hpp"
+
+namespace plumekit::dataset {
+namespace {
+
+// Value of a flow-grid field at a point, as sensors read it.
+double at(const AdvectionDiffusion& ad, const Grid<double>& c, Vec2 p) {
+  double v = 0.0;
+  for (const auto& [k, w] : ad.point_weights(p))
+    v += w * c.values[k];
+  return v;
+}
+
+// The tabulated benchmark: u = 1, D = 0.1, Q = 1, source (2, 5), zero-flux
+// walls at y = 0 and 10 (column C_wall_images), domain [0, 50] x [0, 10].
+class PointSource : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    wind_ = new cfd::WindField(test::uniform_wind(50.0, 10.0, 0.1, 1.0));
+    ad_ = new AdvectionDiffusion(*wind_, {0.1, 1.0});
+    c_ = new Grid<double>(ad_->solve({2.0, 5.0}));
+  }
+  static void TearDownTestSuite() {
+    delete c_;
+    delete ad_;
+    delete wind_;
+  }
+  static cfd::WindField* wind_;
+  static AdvectionDiffusion* ad_;
+  static Grid<double>* c_;
+};
+cfd::WindField* PointSource::wind_ = nullptr;
+AdvectionDiffusion* PointSource::ad_ = nullptr;
+Grid<double>* PointSource::c_ = nullptr;
+
+TEST_F(PointSource, MatchesAnalyticSolutionInTheFarField) {
+  const test::Table t = test::read_reference("plume2d_point_source_analytic.csv");
+  ASSERT_FALSE(t.at("x").empty());
+  int checked = 0;
+  double worst = 0.0;
+  for (std::size_t k = 0; k < t.at("x").size(); ++k) {
+    const double x = t.at("x")[k], y = t.at("y")[k], r = t.at("r")[k];
+    const double exact = t.at("C_wall_images")[k];
+    // Far field: several diffusion lengths from the source (u r / 2D >= 20),
+    // downstream, and clear of the open outlet's boundary layer.
+    if (r < 4.0 || x < 2.0 || x > 45.0 || exact < 1e-3) continue;
+    const double c = at(*ad_, *c_, {x, y});
+    EXPECT_NEAR(c, exact, 0.05 * exact) << "at (" << x << ", " << y << ")";
+    worst = std::max(worst, std::abs(c - exact) / exact);
+    ++checked;
+  }
+  EXPECT_GE(checked, 10);
+  std::printf("far field: %d points, worst relative error %.4f\n", checked, worst);
+}
+
+TEST_F(PointSource, FluxThroughEveryDownstreamSectionIsTheReleaseRate) {
+  const GridShape& g = ad_->shape();
+  for (int i = 1; i <= g.nx; ++i) {
+    const double x = i * g.dx();
+    const double flux = ad_->flux_through_column(*c_, i);
+    // The release is shared by the cells either side of x = 2: skip that face.
+    if (x > 2.0 + 1e-9) {
+      EXPECT_NEAR(flux, 1.0, 1e-6) << "section x = " << x;
+    } else if (x < 2.0 - 1e-9) {
+      EXPECT_NEAR(flux, 0.0, 1e-6) << "upstream section x = " << x;
+    }
+  }
+}
+
+TEST_F(PointSource, IsNonNegative) {
+  for (double v : c_->values)
+    EXPECT_GE(v, 0.0);
+}
+
+// The adjoint reading of a sensor for a source equals the forward solution
+// of that source read at the sensor, in a solved cluttered flow.
+TEST(AdvectionDiffusion, AdjointEqualsForwardInClutteredFlow) {
+  const Map map = read_map(std::string(PLUMEKIT_DATA_DIR) + "/maps/cluttered-1.json");
+  cfd::FlowOptions fo;
+  fo.cell = 0.1;
+  const cfd::FlowResult flow = cfd::solve(map, fo);
+  const AdvectionDiffusion ad(flow.wind);
+  const GridShape& g = ad.shape();
+  for (const Vec2 sensor : {Vec2{5.3, 1.0}, Vec2{8.0, 3.1}, Vec2{4.0, 3.5}}) {
+    const Grid<double> adj = ad.adjoint(sensor);
+    int compared = 0;
+    for (const auto& [i, j] : {std::pair{5, 10}, std::pair{12, 30}, std::pair{20, 5},
+                               std::pair{45, 20}, std::pair{60, 35}}) {
+      if (ad.solid(i, j)) continue;
+      const Grid<double> fwd = ad.solve(g.centre(i, j));
+      const double expected = at(ad, fwd, sensor);
+      EXPECT_NEAR(adj(i, j), expected, 1e-9 * std::max(1.0, std::abs(expected)));
+      ++compared;
+    }
+    EXPECT_GE(compared, 4);
+  }
+  // The plume reaches round the L: a source upstream of it is read behind it.
+  const Grid<double> c = ad.solve({1.5, 1.0});
+  EXPECT_GT(at(ad, c, {5.0, 1.0}), 1.0);
+  EXPECT_EQ(c(static_cast<int>(3.2 / g.dx()), static_cast<int>(1.0 / g.dy())), 0.0);
+}
+
+TEST(AdvectionDiffusion, RejectsNonPositiveDiffusivity) {
+  const cfd::WindField w = test::uniform_wind(2.0, 1.0, 0.1, 1.0);
+  EXPECT_THROW(AdvectionDiffusion(w, {0.0, 1.0}), InputError);
+}
+
+}  // namespace
+}  // namespace plumekit::dataset

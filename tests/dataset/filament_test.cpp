@@ -1,0 +1,92 @@
+// The filament model: its long-time mean against the advection-diffusion
+// plume with the equivalent diffusivity, and obstacles it must never enter.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "cfd/flow_solver.hpp"
+#include "core/map_json.hpp"
+#include "dataset/advection_diffusion.hpp"
+#include "dataset/filament_model.hpp"
+#include "uniform_wind.hpp"
+
+namespace plumekit::dataset {
+namespace {
+
+TEST(FilamentModel, LongTimeMeanMatchesAdvectionDiffusionAlongTheCentreline) {
+  const Map map = default_arena(10.0, 4.0);
+  const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
+  FilamentOptions o;
+  o.meander_speed = 0.0;  // the equivalence holds for the per-filament walk and growth
+  o.record_seconds = 40.0;
+  o.sample_rate = 2.0;
+  const Vec2 source{1.0, 2.0};
+  const GridShape sensors{64, 64, 10.0, 4.0};
+  const SensorRecord rec = simulate_filaments(map, wind, source, sensors, o, 42);
+  EXPECT_TRUE(rec.summary.steady);
+  EXPECT_GT(rec.summary.left_through_outlet, 0);
+
+  const AdvectionDiffusion ad(wind, {o.equivalent_diffusivity(), o.release_rate});
+  const Grid<double> exact = resample(ad, ad.solve(source), sensors);
+  // Centreline: the two sensor rows either side of y = 2, averaged.
+  int checked = 0;
+  double worst = 0.0;
+  for (int i = 0; i < sensors.nx; ++i) {
+    const double x = sensors.centre(i, 0).x;
+    if (x < source.x + 1.0 || x > 8.5) continue;
+    const double f = 0.5 * (rec.mean(i, 31) + rec.mean(i, 32));
+    const double a = 0.5 * (exact(i, 31) + exact(i, 32));
+    EXPECT_NEAR(f, a, 0.15 * a) << "x = " << x;
+    worst = std::max(worst, std::abs(f - a) / a);
+    ++checked;
+  }
+  EXPECT_GE(checked, 40);
+  std::printf("centreline: %d sensors, worst relative difference %.4f\n", checked, worst);
+}
+
+TEST(FilamentModel, NoFilamentIsEverInsideAnObstacle) {
+  const Map map = read_map(std::string(PLUMEKIT_DATA_DIR) + "/maps/cluttered-1.json");
+  cfd::FlowOptions fo;
+  fo.cell = 0.1;
+  const cfd::FlowResult flow = cfd::solve(map, fo);
+  FilamentOptions o;
+  o.sigma_walk = 0.5;  // a wide walk, to push filaments at the obstacles often
+  FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, o, 7);
+  long long checked = 0;
+  for (int s = 0; s < 300; ++s) {
+    sim.step();
+    for (const Filament& f : sim.filaments()) {
+      ASSERT_LT(map.obstacle_at(f.position), 0) << "step " << s << " at " << to_string(f.position);
+      ASSERT_TRUE(map.in_arena(f.position));
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 10000);
+  EXPECT_GT(sim.summary().rejected_moves, 100);  // the test did meet the obstacles
+}
+
+TEST(FilamentModel, SameSeedSameRecordAndSensorsInObstaclesReadZero) {
+  const Map map = read_map(std::string(PLUMEKIT_DATA_DIR) + "/maps/cluttered-1.json");
+  cfd::FlowOptions fo;
+  fo.cell = 0.1;
+  const cfd::FlowResult flow = cfd::solve(map, fo);
+  FilamentOptions o;
+  o.max_spinup = 6.0;
+  o.record_seconds = 1.0;
+  const GridShape sensors{64, 64, 10.0, 4.0};
+  const SensorRecord a = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const SensorRecord b = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const SensorRecord c = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 4);
+  EXPECT_EQ(a.mean.values, b.mean.values);
+  EXPECT_EQ(a.std.values, b.std.values);
+  EXPECT_NE(a.mean.values, c.mean.values);
+  for (int j = 0; j < sensors.ny; ++j)
+    for (int i = 0; i < sensors.nx; ++i)
+      if (map.obstacle_at(sensors.centre(i, j)) >= 0) {
+        EXPECT_EQ(a.mean(i, j), 0.0);
+      }
+}
+
+}  // namespace
+}  // namespace plumekit::dataset
