@@ -35,21 +35,13 @@ Vec2 WindField::at(Vec2 point) const {
   const int ci = std::min(nx - 1, static_cast<int>(point.x / shape_.dx()));
   const int cj = std::min(ny - 1, static_cast<int>(point.y / shape_.dy()));
   if (solid(ci, cj)) return {0.0, 0.0};
-  // Bilinear between the four surrounding cell centres (constant beyond the
-  // outermost centres); solid cells contribute zero velocity.
-  auto axis = [](double g, int n, int& i0, double& t) {
-    g = std::clamp(g - 0.5, 0.0, static_cast<double>(n - 1));
-    i0 = std::min(static_cast<int>(g), std::max(n - 2, 0));
-    t = n > 1 ? g - i0 : 0.0;
-  };
-  int i0, j0;
-  double tx, ty;
-  axis(point.x / shape_.dx(), nx, i0, tx);
-  axis(point.y / shape_.dy(), ny, j0, ty);
-  const int i1 = std::min(i0 + 1, nx - 1), j1 = std::min(j0 + 1, ny - 1);
-  const double w00 = (1 - tx) * (1 - ty), w10 = tx * (1 - ty), w01 = (1 - tx) * ty, w11 = tx * ty;
-  const std::size_t k00 = shape_.index(i0, j0), k10 = shape_.index(i1, j0);
-  const std::size_t k01 = shape_.index(i0, j1), k11 = shape_.index(i1, j1);
+  // Bilinear between the four surrounding cell centres; solid cells
+  // contribute zero velocity.
+  const GridShape::Bilinear b = shape_.bilinear(point);
+  const double w00 = (1 - b.tx) * (1 - b.ty), w10 = b.tx * (1 - b.ty), w01 = (1 - b.tx) * b.ty,
+               w11 = b.tx * b.ty;
+  const std::size_t k00 = shape_.index(b.i0, b.j0), k10 = shape_.index(b.i1, b.j0);
+  const std::size_t k01 = shape_.index(b.i0, b.j1), k11 = shape_.index(b.i1, b.j1);
   return {w00 * u_[k00] + w10 * u_[k10] + w01 * u_[k01] + w11 * u_[k11],
           w00 * v_[k00] + w10 * v_[k10] + w01 * v_[k01] + w11 * v_[k11]};
 }

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -31,6 +32,27 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view bytes
     fs::remove(tmp, ec);
     throw InputError(path.string() + ": cannot move the finished file into place: " + ec.message());
   }
+}
+
+AtomicDirectory::AtomicDirectory(std::filesystem::path target) : target_(std::move(target)) {
+  // Unique per process and object, so parallel writers never share a temporary.
+  static std::atomic<int> counter{0};
+  temporary_ =
+      target_.parent_path() / (target_.filename().string() + ".tmp-" + std::to_string(::getpid()) +
+                               "-" + std::to_string(counter++));
+  std::filesystem::remove_all(temporary_);
+  std::filesystem::create_directories(temporary_);
+}
+
+AtomicDirectory::~AtomicDirectory() {
+  std::error_code ec;
+  if (!committed_) std::filesystem::remove_all(temporary_, ec);
+}
+
+void AtomicDirectory::commit() {
+  std::filesystem::remove_all(target_);  // an incomplete or corrupt earlier copy
+  std::filesystem::rename(temporary_, target_);
+  committed_ = true;
 }
 
 std::string read_file(const std::filesystem::path& path) {

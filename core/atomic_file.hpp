@@ -8,6 +8,24 @@ namespace plumekit {
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
 
+// A directory whose files appear all at once: they are written into a fresh
+// temporary sibling (path()), which replaces `target` on commit(). If never
+// committed (an exception, an interrupt), the temporary is removed.
+class AtomicDirectory {
+ public:
+  explicit AtomicDirectory(std::filesystem::path target);
+  ~AtomicDirectory();
+  AtomicDirectory(const AtomicDirectory&) = delete;
+  AtomicDirectory& operator=(const AtomicDirectory&) = delete;
+
+  const std::filesystem::path& path() const { return temporary_; }
+  void commit();
+
+ private:
+  std::filesystem::path target_, temporary_;
+  bool committed_ = false;
+};
+
 // Whole file as a string; InputError naming the file when it cannot be read.
 std::string read_file(const std::filesystem::path& path);
 

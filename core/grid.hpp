@@ -22,6 +22,15 @@ struct GridShape {
   Vec2 centre(int i, int j) const { return {(i + 0.5) * dx(), (j + 0.5) * dy()}; }
   bool contains(int i, int j) const { return i >= 0 && i < nx && j >= 0 && j < ny; }
 
+  // Bilinear interpolation between cell centres: value(p) = sum of w_ab f(i_a, j_b),
+  // with weights (1-tx)(1-ty), tx(1-ty), (1-tx)ty, tx ty; constant beyond the
+  // outermost centres.
+  struct Bilinear {
+    int i0, i1, j0, j1;
+    double tx, ty;
+  };
+  Bilinear bilinear(Vec2 p) const;
+
   // The grid whose cells are as close to `cell` metres as an integer count
   // allows: n = max(1, round(extent / cell)); the cell is then extent / n.
   static GridShape with_cell(double width, double height, double cell);

@@ -15,6 +15,19 @@ GridShape GridShape::with_cell(double width, double height, double cell) {
   return s;
 }
 
+GridShape::Bilinear GridShape::bilinear(Vec2 p) const {
+  auto axis = [](double g, int n, int& i0, int& i1, double& t) {
+    g = std::clamp(g - 0.5, 0.0, static_cast<double>(n - 1));
+    i0 = std::min(static_cast<int>(g), std::max(n - 2, 0));
+    i1 = std::min(i0 + 1, n - 1);
+    t = n > 1 ? g - i0 : 0.0;
+  };
+  Bilinear b;
+  axis(p.x / dx(), nx, b.i0, b.i1, b.tx);
+  axis(p.y / dy(), ny, b.j0, b.j1, b.ty);
+  return b;
+}
+
 Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape) {
   Grid<std::uint8_t> grid(shape, 0);
   for (const Polygon& poly : map.obstacles) {

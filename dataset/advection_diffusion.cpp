@@ -139,16 +139,9 @@ AdvectionDiffusion::~AdvectionDiffusion() = default;
 
 std::vector<std::pair<int, double>> AdvectionDiffusion::point_weights(Vec2 p) const {
   const int nx = shape_.nx, ny = shape_.ny;
-  auto axis = [](double g, int n, int& i0, double& t) {
-    g = std::clamp(g - 0.5, 0.0, static_cast<double>(n - 1));
-    i0 = std::min(static_cast<int>(g), std::max(n - 2, 0));
-    t = n > 1 ? g - i0 : 0.0;
-  };
-  int i0, j0;
-  double tx, ty;
-  axis(p.x / shape_.dx(), nx, i0, tx);
-  axis(p.y / shape_.dy(), ny, j0, ty);
-  const int i1 = std::min(i0 + 1, nx - 1), j1 = std::min(j0 + 1, ny - 1);
+  const GridShape::Bilinear b = shape_.bilinear(p);
+  const int i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
+  const double tx = b.tx, ty = b.ty;
   std::vector<std::pair<int, double>> w;
   double total = 0.0;
   auto add = [&](int i, int j, double weight) {

@@ -1,9 +1,5 @@
 #include "dataset/shard.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
-
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
@@ -23,12 +19,8 @@ Checksums write_shard(const fs::path& dir, const ShardArrays& a) {
       {"sources.npy", npy_float32(a.sources, {n, 2})},
       {"map_ids.npy", npy_int32(a.map_ids, {n})},
   };
-  static std::atomic<int> counter{0};
-  const fs::path tmp =
-      dir.parent_path() / (dir.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(counter++));
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  AtomicDirectory out(dir);
+  const fs::path& tmp = out.path();
   Checksums sums;
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   for (const auto& [name, bytes] : files) {
@@ -37,8 +29,7 @@ Checksums write_shard(const fs::path& dir, const ShardArrays& a) {
     j[name] = sums[name];
   }
   write_file_atomic(tmp / "checksums.json", j.dump(2) + "\n");
-  fs::remove_all(dir);  // a corrupt earlier copy
-  fs::rename(tmp, dir);
+  out.commit();
   return sums;
 }
 

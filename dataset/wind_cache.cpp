@@ -1,9 +1,5 @@
 #include "dataset/wind_cache.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
-
 #include "cfd/flow_output.hpp"
 #include "core/atomic_file.hpp"
 #include "core/npy.hpp"
@@ -17,12 +13,8 @@ void write_wind_cache(const fs::path& dir, const cfd::FlowResult& flow,
   const cfd::WindField& w = flow.wind;
   const GridShape& g = w.shape();
   const std::size_t nx = g.nx, ny = g.ny;
-  static std::atomic<int> counter{0};
-  const fs::path tmp =
-      dir.parent_path() / (dir.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(counter++));
-  fs::remove_all(tmp);
-  fs::create_directories(tmp);
+  AtomicDirectory out(dir);
+  const fs::path& tmp = out.path();
   write_file_atomic(tmp / "face_u.npy", npy_float64(w.face_u(), {ny, nx + 1}));
   write_file_atomic(tmp / "face_v.npy", npy_float64(w.face_v(), {ny + 1, nx}));
   write_file_atomic(tmp / "u.npy", npy_float32(w.u(), {ny, nx}));
@@ -43,8 +35,7 @@ void write_wind_cache(const fs::path& dir, const cfd::FlowResult& flow,
   s.erase("seconds_breakdown");
   j["flow"] = s;
   write_file_atomic(tmp / "wind.json", j.dump(2) + "\n");  // last: marks the cache complete
-  fs::remove_all(dir);
-  fs::rename(tmp, dir);
+  out.commit();
 }
 
 std::optional<cfd::WindField> read_wind_cache(const fs::path& dir) {
