@@ -1,4 +1,4 @@
-// Planner benchmark: on the shipped maps and a dense seeded map of 96
+// Planner benchmark: on the shipped maps, the nine test maps and a dense seeded map of 96
 // obstacle vertices, prints the visibility graph's build time, the median VG
 // query time, and how long OMPL's RRT* and PRM* take to return a path within
 // 1 % of the VG optimum (or how close they got within the budget).
@@ -94,9 +94,12 @@ int main(int argc, char** argv) {
 
   std::vector<Map> maps;
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(PLUMEKIT_DATA_DIR "/maps"))
-    files.push_back(e.path());
-  std::sort(files.begin(), files.end());
+  for (const char* folder : {PLUMEKIT_DATA_DIR "/maps", PLUMEKIT_DATA_DIR "/test-maps"}) {
+    std::vector<std::filesystem::path> here;
+    for (const auto& e : std::filesystem::directory_iterator(folder)) here.push_back(e.path());
+    std::sort(here.begin(), here.end());
+    files.insert(files.end(), here.begin(), here.end());
+  }
   for (const auto& f : files)
     maps.push_back(read_map(f));
   maps.push_back(dense_map());
