@@ -96,3 +96,37 @@ def write_model(path, model, features=None, outputs=None, training=None):
 
 def output_scales(outputs=None):
     return np.array([o["scale"] for o in (outputs or DEFAULT_OUTPUTS)], dtype=np.float32)
+
+
+def read_model(path):
+    """(PlumeUNet in eval mode, header dict) from a plumekit-cnn/1 file; ValueError naming the file
+    and the fault when it is malformed. The network outputs target / scale: multiply by
+    output_scales(header["outputs"]) for dataset units."""
+    import torch
+
+    from model import PlumeUNet
+    with open(path, "rb") as f:
+        data = f.read()
+    if len(data) < 16 + 32 or data[:8] != MAGIC:
+        raise ValueError(f"{path}: not a plumekit-cnn file (magic or size)")
+    version, length = struct.unpack("<II", data[8:16])
+    if version != VERSION:
+        raise ValueError(f"{path}: version {version}, this reader knows {VERSION}")
+    if hashlib.sha256(data[:-32]).digest() != data[-32:]:
+        raise ValueError(f"{path}: SHA-256 mismatch (truncated or corrupt)")
+    header = json.loads(data[16:16 + length].decode("utf-8"))
+    arch = header["architecture"]
+    model = PlumeUNet(arch["in_channels"], arch["out_channels"], arch["filters"], arch["kernel"],
+                      arch["convs_per_block"])
+    offset = 16 + length
+    offset += -offset % 16
+    values = np.frombuffer(data, dtype="<f4", count=header["data_bytes"] // 4, offset=offset)
+    at = 0
+    with torch.no_grad():
+        for _, _, conv, _ in model.layer_table():
+            for t in (conv.weight, conv.bias):
+                t.copy_(torch.from_numpy(values[at:at + t.numel()].copy()).reshape(t.shape))
+                at += t.numel()
+    if at != values.size:
+        raise ValueError(f"{path}: {values.size} weights in the file, the architecture has {at}")
+    return model.eval(), header

@@ -13,14 +13,20 @@ Optimiser: AdamW, lr 1e-3, weight decay 5e-3 (DESIGN.md). Batches of 32 by defau
 Every epoch: WORK/log.csv gains a line (epoch, step, train loss, val loss, val RMSE of the mean in
 dataset units, seconds); WORK/checkpoint.pt is rewritten (model, optimiser, epoch, RNG, best), and
 WORK/best.pt when validation improved. Rerunning the same command resumes from the checkpoint.
-Training stops after --epochs, after --patience epochs without a better validation loss, or after
---max-steps optimiser steps. The best model is written to --out, with a golden input/output pair
-(OUT_input.npy, OUT_output.npy: validation samples and PyTorch's prediction in dataset units; see
-golden_pair() for which samples).
+Training stops after --epochs, after --patience epochs without a better validation loss, after
+--max-steps optimiser steps, or once --max-minutes of wall time have passed in this invocation (the
+checkpoint is then written mid-epoch, and the same command with a larger limit carries on).
+WORK/checkpoint.pt is also rewritten every --checkpoint-minutes inside an epoch, so a killed run
+loses at most that much work. --lr-schedule cosine decays the learning rate from --lr to 1 % of it
+over --epochs (by step), for runs whose length is fixed in advance; the thesis kept it constant.
+The best finished epoch's model (or, if none finished, the current weights) is written to --out,
+with a golden input/output pair (OUT_input.npy, OUT_output.npy: validation samples and PyTorch's
+prediction in dataset units; see golden_pair() for which samples).
 Runs unchanged on CUDA when a GPU is present.
 """
 import argparse
 import csv
+import math
 import os
 import sys
 import time
@@ -41,6 +47,12 @@ def parse_args(argv=None):
     ap.add_argument("--out", required=True, help="model file to write")
     ap.add_argument("--epochs", type=int, default=1000)
     ap.add_argument("--max-steps", type=int, default=0, help="stop after this many steps (0: no limit)")
+    ap.add_argument("--max-minutes", type=float, default=0.0,
+                    help="stop after this much wall time in this invocation (0: no limit)")
+    ap.add_argument("--checkpoint-minutes", type=float, default=5.0,
+                    help="also checkpoint inside an epoch this often")
+    ap.add_argument("--lr-schedule", choices=["constant", "cosine"], default="constant",
+                    help="cosine: from --lr down to 1%% of it over --epochs")
     ap.add_argument("--batch", type=int, default=32)
     ap.add_argument("--lr", type=float, default=1e-3)
     ap.add_argument("--weight-decay", type=float, default=5e-3)
@@ -68,6 +80,14 @@ def evaluate(model, shards, rows, scale, device, batch_size):
             sq_mean += torch.mean(((p[:, 0] - y[:, 0]) * scale) ** 2).item() * len(x)
             count += len(x)
     return total / max(count, 1), (sq_mean / max(count, 1)) ** 0.5
+
+
+def learning_rate(args, step, steps_per_epoch):
+    if args.lr_schedule == "constant":
+        return args.lr
+    total = max(1, args.epochs * steps_per_epoch)
+    t = min(1.0, step / total)
+    return args.lr * (0.01 + 0.99 * 0.5 * (1.0 + math.cos(math.pi * t)))
 
 
 def golden_pair(model, shards, rows, count, tries=64):
@@ -109,7 +129,9 @@ def main(argv=None):
     torch.manual_seed(args.seed)
     model = PlumeUNet().to(device)
     opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)
-    state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale}
+    # batch: the next batch of the current epoch; running, seen: that epoch's loss sums so far.
+    state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale,
+             "batch": 0, "running": 0.0, "seen": 0}
     ckpt_path = os.path.join(args.work, "checkpoint.pt")
     best_path = os.path.join(args.work, "best.pt")
     if os.path.exists(ckpt_path):
@@ -119,6 +141,8 @@ def main(argv=None):
         state = ckpt["state"]
         torch.set_rng_state(ckpt["torch_rng"])
         scale = state["scale"]
+        for key, value in (("batch", 0), ("running", 0.0), ("seen", 0)):
+            state.setdefault(key, value)
         print(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
     print(f"{parameter_count(model)} parameters on {device}; {len(train_rows)} training and "
           f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
@@ -129,45 +153,69 @@ def main(argv=None):
         log = csv.writer(log_file)
         if new_log:
             log.writerow(["epoch", "step", "train_loss", "val_loss", "val_rmse_mean", "seconds"])
-        while state["epoch"] < args.epochs and state["stale"] < args.patience:
+        def save_checkpoint():
+            torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(),
+                        "state": state, "torch_rng": torch.get_rng_state()}, ckpt_path + ".tmp")
+            os.replace(ckpt_path + ".tmp", ckpt_path)
+
+        started = last_save = time.time()
+        out_of_time = False
+        steps_per_epoch = (len(train_rows) + args.batch - 1) // args.batch
+        while state["epoch"] < args.epochs and state["stale"] < args.patience and not out_of_time:
             if args.max_steps and state["step"] >= args.max_steps:
                 break
             t0 = time.time()
             model.train()
             # Seeded by epoch, so a resumed run draws the same batches as an uninterrupted one.
             order = np.random.default_rng([args.seed, state["epoch"]]).permutation(len(train_rows))
-            running, seen = 0.0, 0
-            for i in range(0, len(order), args.batch):
+            while state["batch"] < steps_per_epoch:
                 if args.max_steps and state["step"] >= args.max_steps:
                     break
+                if args.max_minutes and time.time() - started > 60.0 * args.max_minutes:
+                    out_of_time = True
+                    break
+                i = state["batch"] * args.batch
                 rows = sorted(train_rows[j] for j in order[i:i + args.batch])
                 x, y = batch(shards, rows)
                 x = torch.from_numpy(x).to(device)
                 y = torch.from_numpy(y).to(device) / scale
+                for group in opt.param_groups:
+                    group["lr"] = learning_rate(args, state["step"], steps_per_epoch)
                 loss = torch.mean((model(x) - y) ** 2)
                 opt.zero_grad()
                 loss.backward()
                 opt.step()
                 state["step"] += 1
-                running += loss.item() * len(rows)
-                seen += len(rows)
+                state["batch"] += 1
+                state["running"] += loss.item() * len(rows)
+                state["seen"] += len(rows)
+                if time.time() - last_save > 60.0 * args.checkpoint_minutes:
+                    save_checkpoint()
+                    last_save = time.time()
+            if state["batch"] < steps_per_epoch:  # stopped inside the epoch (time or steps)
+                save_checkpoint()
+                if not os.path.exists(best_path):  # no finished epoch yet: keep these weights
+                    val_loss, _ = evaluate(model, shards, val_rows, scale, device, args.batch)
+                    torch.save({"model": model.state_dict(), "state": dict(state, best_val=val_loss)},
+                               best_path)
+                break
             state["epoch"] += 1
             val_loss, val_rmse = evaluate(model, shards, val_rows, scale, device, args.batch)
-            train_loss = running / max(seen, 1)
+            train_loss = state["running"] / max(state["seen"], 1)
+            state["batch"], state["running"], state["seen"] = 0, 0.0, 0
             log.writerow([state["epoch"], state["step"], f"{train_loss:.6g}", f"{val_loss:.6g}",
                           f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"])
             log_file.flush()
             print(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
-                  f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g})")
+                  f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
             if val_loss < state["best_val"]:
                 state["best_val"], state["stale"] = val_loss, 0
                 torch.save({"model": model.state_dict(), "state": dict(state)}, best_path + ".tmp")
                 os.replace(best_path + ".tmp", best_path)
             else:
                 state["stale"] += 1
-            torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(),
-                        "state": state, "torch_rng": torch.get_rng_state()}, ckpt_path + ".tmp")
-            os.replace(ckpt_path + ".tmp", ckpt_path)
+            save_checkpoint()
+            last_save = time.time()
 
     best = torch.load(best_path, map_location="cpu")
     final = PlumeUNet()
@@ -180,7 +228,7 @@ def main(argv=None):
                 "val_maps": val_maps, "epochs": best["state"]["epoch"],
                 "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],
                 "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
-                "lr": args.lr, "weight_decay": args.weight_decay, "batch": args.batch,
+                "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay, "batch": args.batch,
                 "seed": args.seed}
     size = write_model(args.out, final, features, outputs, training)
     x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
