@@ -1,11 +1,11 @@
 #include "cfd/flow_output.hpp"
 
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "cfd/flow_render.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/image_io.hpp"
 #include "core/npy.hpp"
 #include "core/vti.hpp"
 
@@ -69,15 +69,14 @@ void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResu
   const WindField& wind = result.wind;
   const std::vector<std::size_t> shape{static_cast<std::size_t>(wind.shape().ny),
                                        static_cast<std::size_t>(wind.shape().nx)};
-  std::vector<uchar> png;
-  cv::imencode(".png", render_wind(map, wind), png);
+  const std::string png = encode_png(render_wind(map, wind));
   // Everything is produced in memory first, so a failure leaves no partial set.
   const std::pair<const char*, std::string> files[] = {
       {"u.npy", npy_float32(wind.u(), shape)},
       {"v.npy", npy_float32(wind.v(), shape)},
       {"p.npy", npy_float32(wind.p(), shape)},
       {"wind.vti", wind_vti(wind)},
-      {"wind.png", std::string(png.begin(), png.end())},
+      {"wind.png", png},
       {"wind.json", summary_json(result.summary, wind, options).dump(2) + "\n"},
   };
   std::error_code ec;

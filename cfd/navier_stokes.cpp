@@ -26,13 +26,20 @@ Dual load<Dual>(const Ref& r, const double* x) {
 
 // Lists the distinct unknowns the refs read, in order of first use, and
 // gives each ref its slot in that list.
+// cols holds kMaxLocal entries, count of them in use.
 template <std::size_t N>
-void assign_slots(Ref* (&refs)[N], std::vector<int>& cols) {
+void assign_slots(Ref* (&refs)[N], int* cols, int& count) {
   for (Ref* r : refs) {
     if (r->col < 0) continue;
-    const auto it = std::find(cols.begin(), cols.end(), r->col);
-    r->local = static_cast<int>(it - cols.begin());
-    if (it == cols.end()) cols.push_back(r->col);
+    int k = 0;
+    while (k < count && cols[k] != r->col)
+      ++k;
+    if (k == count) {
+      if (count == kMaxLocal)
+        throw std::logic_error("flow equations: a row depends on more unknowns than kMaxLocal");
+      cols[count++] = r->col;
+    }
+    r->local = k;
   }
 }
 
@@ -41,8 +48,12 @@ void assign_slots(Ref* (&refs)[N], std::vector<int>& cols) {
 NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
     : grid_(grid), convection_(convection) {
   const int nx = grid.nx(), ny = grid.ny();
-  slot_begin_.assign(grid.unknowns() + 1, 0);
-  std::vector<std::vector<int>> cols_of_row(grid.unknowns());
+  const int n = grid.unknowns();
+  slot_begin_.assign(n + 1, 0);
+  // Row r's distinct unknowns: cols_of_row[r * kMaxLocal + k], k < count_of_row[r].
+  std::vector<int> cols_of_row(static_cast<std::size_t>(n) * kMaxLocal), count_of_row(n, 0);
+  momentum_.reserve(grid.velocity_unknowns());
+  continuity_.reserve(n - grid.velocity_unknowns());
 
   for (int c = 0; c < 2; ++c) {
     for (int b = 0; b < grid.n_across(c); ++b) {
@@ -111,37 +122,41 @@ NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
   for (MomentumRow& m : momentum_) {
     Ref* refs[] = {&m.w[0],  &m.w[1], &m.w[2], &m.w[3], &m.w[4], &m.wb[0], &m.wb[1], &m.wb[2],
                    &m.wb[3], &m.o[0], &m.o[1], &m.o[2], &m.o[3], &m.p[0],  &m.p[1]};
-    assign_slots(refs, cols_of_row[m.row]);
+    assign_slots(refs, &cols_of_row[static_cast<std::size_t>(m.row) * kMaxLocal],
+                 count_of_row[m.row]);
   }
   for (ContinuityRow& r : continuity_) {
     Ref* refs[] = {&r.f[0], &r.f[1], &r.f[2], &r.f[3]};
-    assign_slots(refs, cols_of_row[r.row]);
+    assign_slots(refs, &cols_of_row[static_cast<std::size_t>(r.row) * kMaxLocal],
+                 count_of_row[r.row]);
   }
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int row = 0; row < grid.unknowns(); ++row) {
-    const auto& cols = cols_of_row[row];
-    if (static_cast<int>(cols.size()) > kMaxLocal)
-      throw std::logic_error("flow equations: a row depends on more unknowns than kMaxLocal");
-    slot_begin_[row + 1] = slot_begin_[row] + static_cast<int>(cols.size());
-    for (int col : cols) {
-      slot_cols_.push_back(col);
-      triplets.emplace_back(row, col, 1.0);
+  // The compressed-column pattern, built directly: count the entries of each
+  // column, then place rows in increasing order, which keeps every column's
+  // row indices sorted. Each (row, slot) remembers where its value lives.
+  for (int row = 0; row < n; ++row)
+    slot_begin_[row + 1] = slot_begin_[row] + count_of_row[row];
+  const int nnz = slot_begin_[n];
+  slot_cols_.resize(nnz);
+  slot_value_.resize(nnz);
+  std::vector<int> col_start(n + 1, 0);
+  for (int row = 0; row < n; ++row)
+    for (int k = 0; k < count_of_row[row]; ++k)
+      ++col_start[cols_of_row[static_cast<std::size_t>(row) * kMaxLocal + k] + 1];
+  for (int col = 0; col < n; ++col)
+    col_start[col + 1] += col_start[col];
+  jacobian_.resize(n, n);
+  jacobian_.resizeNonZeros(nnz);
+  std::copy(col_start.begin(), col_start.end(), jacobian_.outerIndexPtr());
+  std::vector<int> next(col_start.begin(), col_start.end() - 1);
+  for (int row = 0; row < n; ++row)
+    for (int k = 0; k < count_of_row[row]; ++k) {
+      const int col = cols_of_row[static_cast<std::size_t>(row) * kMaxLocal + k];
+      const int at = next[col]++;
+      jacobian_.innerIndexPtr()[at] = row;
+      jacobian_.valuePtr()[at] = 1.0;
+      slot_cols_[slot_begin_[row] + k] = col;
+      slot_value_[slot_begin_[row] + k] = at;
     }
-  }
-  jacobian_.resize(grid.unknowns(), grid.unknowns());
-  jacobian_.setFromTriplets(triplets.begin(), triplets.end());
-  jacobian_.makeCompressed();
-  // Where each (row, slot) lives among the column-major values.
-  slot_value_.resize(slot_cols_.size());
-  for (int row = 0; row < grid.unknowns(); ++row) {
-    for (int s = slot_begin_[row]; s < slot_begin_[row + 1]; ++s) {
-      const int col = slot_cols_[s];
-      const int* begin = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[col];
-      const int* end = jacobian_.innerIndexPtr() + jacobian_.outerIndexPtr()[col + 1];
-      slot_value_[s] =
-          static_cast<int>(std::lower_bound(begin, end, row) - jacobian_.innerIndexPtr());
-    }
-  }
   nu_cell_.assign(grid.shape().size(), 0.0);
   nu_corner_.assign(static_cast<std::size_t>(nx + 1) * (ny + 1), 0.0);
 }

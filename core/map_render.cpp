@@ -6,11 +6,11 @@
 #include <sstream>
 #include <vector>
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/image_io.hpp"
 
 namespace plumekit {
 
@@ -230,11 +230,7 @@ void MapCanvas::draw_path(const std::vector<Vec2>& path, const cv::Scalar& colou
 }
 
 void write_png(const cv::Mat& image, const std::filesystem::path& path) {
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes))
-    throw std::runtime_error(path.string() + ": PNG encoding failed");
-  write_file_atomic(path,
-                    std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  write_file_atomic(path, encode_png(image));
 }
 
 }  // namespace plumekit

@@ -6,10 +6,10 @@
 #include <unordered_map>
 
 #include <yaml-cpp/yaml.h>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.hpp"
+#include "core/image_io.hpp"
 #include "core/map_json.hpp"
 
 namespace plumekit {
@@ -217,7 +217,7 @@ RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImport
 
   std::filesystem::path image_path(image_name);
   if (image_path.is_relative()) image_path = yaml_path.parent_path() / image_path;
-  const cv::Mat image = cv::imread(image_path.string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat image = read_gray_image(image_path);
   if (image.empty())
     throw InputError(origin + ": image: cannot read '" + image_path.string() + "' as PGM/PNG");
 

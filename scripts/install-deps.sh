@@ -15,7 +15,7 @@ packages=(
   # planning: OMPL links only with these boost components present
   libompl-dev libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   # images, PNG, ROS map_server files (YAML + PGM/PNG)
-  libopencv-dev libyaml-cpp-dev
+  libopencv-dev libyaml-cpp-dev libpng-dev
   # file formats and the command line
   nlohmann-json3-dev libcli11-dev
   # tests and benchmarks
