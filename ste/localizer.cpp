@@ -1,0 +1,66 @@
+#include "ste/localizer.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/error.hpp"
+
+namespace plumekit::ste {
+
+LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
+                            const planner::Planner& planner, const Navigator& navigator,
+                            const StopOptions& stop) {
+  if (stop.max_samples < 1) throw InputError("max_samples must be at least 1");
+  using Clock = std::chrono::steady_clock;
+  LocalizationResult r;
+  r.start = start;
+  const double t_start = world.time();
+  Vec2 pos = start;
+  std::vector<Vec2> path_in;
+  std::vector<double> step_times;
+  for (;;) {
+    Step s;
+    s.position = pos;
+    s.distance_m = r.distance_m;
+    s.path_in = std::move(path_in);
+    s.value = world.sample(pos);
+    s.time_s = world.time() - t_start;
+
+    const auto t0 = Clock::now();
+    estimator.add(pos, s.value);
+    r.posterior = estimator.posterior();
+    s.estimate = r.posterior.expected_source();
+    s.map = r.posterior.map;
+    s.entropy = r.posterior.entropy;
+    if (r.posterior.entropy < stop.entropy_fraction * r.posterior.max_entropy)
+      r.stopped_by = "entropy";
+    else if (estimator.samples() >= stop.max_samples)
+      r.stopped_by = "max_samples";
+    planner::PlanResult path;
+    if (r.stopped_by.empty()) {
+      const Decision d = navigator.decide(pos, estimator, r.posterior);
+      path = planner.plan(pos, d.goal);
+    }
+    s.compute_s = std::chrono::duration<double>(Clock::now() - t0).count();
+    step_times.push_back(s.compute_s);
+    r.compute_s += s.compute_s;
+    r.steps.push_back(std::move(s));
+    if (!r.stopped_by.empty()) break;
+
+    world.travel(path.length);
+    r.distance_m += path.length;
+    pos = path.goal;
+    path_in = std::move(path.path);
+  }
+  r.samples = estimator.samples();
+  r.expected = r.posterior.expected;
+  r.estimate = r.posterior.expected_source();
+  r.map = r.posterior.map;
+  r.time_s = world.time() - t_start;
+  std::sort(step_times.begin(), step_times.end());
+  const std::size_t n = step_times.size();
+  r.median_step_s = n % 2 ? step_times[n / 2] : 0.5 * (step_times[n / 2 - 1] + step_times[n / 2]);
+  return r;
+}
+
+}  // namespace plumekit::ste
