@@ -48,6 +48,12 @@ std::string fmt(Vec2 p) {
   return "(" + fmt(p.x) + ", " + fmt(p.y) + ")";
 }
 
+// The demo: a test map whose obstacles bend the plume, a source behind them,
+// a start upwind.
+constexpr const char* kDemoMap = "test-4-l-shape.json";
+constexpr int kDemoSource = 1;
+const Vec2 kDemoStart{1.0, 1.0};
+
 fs::path shipped_model() {
   return data_dir() / "models" / "plume-unet.pkcnn";
 }
@@ -188,6 +194,28 @@ std::string run_text(const ste::Scenario& sc, Vec2 source, const ste::Localizati
   return h.str();
 }
 
+// The run of a map whose error is the median one: its typical trajectory.
+const ste::RunRecord& median_run(const std::vector<ste::RunRecord>& runs) {
+  std::vector<const ste::RunRecord*> sorted;
+  for (const ste::RunRecord& r : runs)
+    sorted.push_back(&r);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](auto* a, auto* b) { return a->error_m < b->error_m; });
+  return *sorted[(sorted.size() - 1) / 2];
+}
+
+ordered_json stats_json(const ste::Stats& s) {
+  return {{"runs", s.runs},
+          {"median_error_m", s.median_error_m},
+          {"mean_error_m", s.mean_error_m},
+          {"success_0_5m", s.success_0_5},
+          {"success_1_0m", s.success_1_0},
+          {"median_samples", s.median_samples},
+          {"median_distance_m", s.median_distance_m},
+          {"median_step_compute_s", s.median_step_s},
+          {"entropy_stops", s.entropy_stops}};
+}
+
 }  // namespace
 
 void add_ste_commands(CLI::App& app) {
@@ -236,6 +264,187 @@ void add_ste_commands(CLI::App& app) {
                  (fs::path(a->out) / "run.json").string();
       }
       report(j, human);
+    });
+  }
+
+  // ---- evaluate ------------------------------------------------------------
+  {
+    auto* cmd = app.add_subcommand(
+        "evaluate", "Localize every ground-truth source of every map N times; scores and pictures");
+    struct Args {
+      std::string maps, out = "out/evaluate";
+      int runs = 3, threads = 2, sources = 0;
+      std::uint64_t seed = 1;
+      SteArgs ste;
+    };
+    auto a = std::make_shared<Args>();
+    cmd->add_option("--maps", a->maps, "Directory of map files with \"sources\" (*.json)")
+        ->required();
+    cmd->add_option("--runs", a->runs, "Runs per source, from seeded random free starts")
+        ->capture_default_str();
+    cmd->add_option("--threads", a->threads, "Runs in parallel")->capture_default_str();
+    cmd->add_option("--sources", a->sources,
+                    "Only the first K sources of each map (0: all; a labelled subset)")
+        ->capture_default_str();
+    cmd->add_option("--seed", a->seed, "Seed of plumes, noise and starts")->capture_default_str();
+    cmd->add_option("--out,-o", a->out,
+                    "Output directory (replaced whole): runs.csv, summary.json, box plots, "
+                    "trajectories/")
+        ->capture_default_str();
+    add_ste_options(cmd, a->ste);
+    add_json_flag(cmd);
+    cmd->callback([a] {
+      ste::EvaluationOptions eo;
+      eo.ste = to_options(a->ste);
+      eo.runs = a->runs;
+      eo.threads = a->threads;
+      eo.sources = a->sources;
+      eo.seed = a->seed;
+      if (eo.runs < 1) throw InputError("--runs: must be at least 1");
+      if (eo.threads < 1) throw InputError("--threads: must be at least 1");
+      if (eo.sources < 0) throw InputError("--sources: must be >= 0");
+      if (!fs::is_directory(a->maps))
+        throw InputError("--maps: " + a->maps + " is not a directory");
+      std::vector<fs::path> files;
+      for (const auto& e : fs::directory_iterator(a->maps))
+        if (e.path().extension() == ".json") files.push_back(e.path());
+      std::sort(files.begin(), files.end());
+      if (files.empty()) throw InputError("--maps: no *.json map files in " + a->maps);
+      std::vector<Map> maps;
+      for (const fs::path& f : files)
+        maps.push_back(read_map(f));
+
+      AtomicDirectory dir(a->out);
+      fs::create_directories(dir.path() / "trajectories");
+      ProgressBar bar("evaluate");
+      const std::string label = ste::to_string(eo.ste.model);
+      const ste::EvaluationResult res = ste::evaluate(
+          maps, eo,
+          [&](int done, int total) {
+            bar.update(static_cast<double>(done) / total,
+                       std::to_string(done) + "/" + std::to_string(total) + " runs");
+          },
+          [&](const ste::Scenario& sc, const std::vector<ste::RunRecord>& runs) {
+            const ste::RunRecord& r = median_run(runs);
+            const std::string title = sc.map().name + ": " + label + ", source S" +
+                                      std::to_string(r.source_index) + " run " +
+                                      std::to_string(r.run) + " (median error " +
+                                      fmt(r.error_m) + " m, " + std::to_string(r.samples) +
+                                      " samples)";
+            write_png(ste::draw_trajectory(sc.map(), sc.mean_plume(r.source), r.result, r.source,
+                                           title),
+                      dir.path() / "trajectories" / (sc.map().name + ".png"));
+          });
+      bar.finish();
+
+      std::vector<std::vector<double>> errors, samples;
+      std::vector<std::string> labels;
+      ordered_json per_map = ordered_json::array();
+      for (std::size_t m = 0; m < res.maps.size(); ++m) {
+        const ste::MapReport& mr = res.maps[m];
+        ordered_json j{{"map", mr.name}};
+        j.update(stats_json(mr.stats));
+        j["wind_s"] = mr.wind_s;
+        j["table_build_s"] = mr.table_build_s;
+        j["wall_s"] = mr.wall_s;
+        per_map.push_back(j);
+        errors.emplace_back();
+        samples.emplace_back();
+        for (const ste::RunRecord& r : res.runs)
+          if (r.map_index == static_cast<int>(m)) {
+            errors.back().push_back(r.error_m);
+            samples.back().push_back(r.samples);
+          }
+        labels.push_back(std::to_string(m));
+      }
+      ordered_json summary{{"ok", true},
+                           {"maps_dir", a->maps},
+                           {"plume_model", label},
+                           {"runs_per_source", eo.runs},
+                           {"sources_per_map", eo.sources > 0 ? ordered_json(eo.sources)
+                                                              : ordered_json("all")},
+                           {"seed", eo.seed},
+                           {"threads", eo.threads},
+                           {"sigma_m", eo.ste.likelihood.sigma_m},
+                           {"noise", eo.ste.world.noise},
+                           {"overall", stats_json(res.overall)},
+                           {"maps", per_map},
+                           {"wall_s", res.wall_s}};
+      write_file_atomic(dir.path() / "runs.csv", ste::runs_csv(res));
+      write_file_atomic(dir.path() / "summary.json", summary.dump(2) + "\n");
+      write_png(ste::draw_box_plot(errors, labels, "error [m]",
+                                   "STE (" + label + ") localization error per test map", 0.5),
+                dir.path() / "boxplot-error.png");
+      write_png(ste::draw_box_plot(samples, labels, "samples",
+                                   "STE (" + label + ") samples per test map"),
+                dir.path() / "boxplot-samples.png");
+      dir.commit();
+
+      std::ostringstream h;
+      h << "evaluated " << res.runs.size() << " runs (" << maps.size() << " maps, " << label
+        << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
+      h << std::left << std::setw(22) << "map" << " median_err  mean_err  ok@0.5  ok@1.0  samples"
+        << "  dist_m  step_ms  table_s\n";
+      auto line = [&](const std::string& name, const ste::Stats& s, double table) {
+        h << std::left << std::setw(22) << name << std::right << std::setw(11)
+          << fmt(s.median_error_m) << std::setw(10) << fmt(s.mean_error_m) << std::setw(8)
+          << fmt(100 * s.success_0_5, 0) + "%" << std::setw(8) << fmt(100 * s.success_1_0, 0) + "%"
+          << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8)
+          << fmt(s.median_distance_m, 1) << std::setw(9) << fmt(1000 * s.median_step_s, 1)
+          << std::setw(9) << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
+      };
+      for (const ste::MapReport& mr : res.maps)
+        line(mr.name, mr.stats, mr.table_build_s);
+      line("overall", res.overall, -1);
+      h << "wrote " << a->out << "/{runs.csv, summary.json, boxplot-error.png, "
+        << "boxplot-samples.png, trajectories/}";
+      report(summary, h.str());
+    });
+  }
+
+  // ---- demo ------------------------------------------------------------------
+  {
+    auto* cmd = app.add_subcommand(
+        "demo", "Localize a gas source on a shipped test map and draw the run (under a minute)");
+    struct Args {
+      std::string out = "out/demo", plume_model;
+    };
+    auto a = std::make_shared<Args>();
+    cmd->add_option("--out,-o", a->out, "Where the pictures go")->capture_default_str();
+    cmd->add_option("--plume-model", a->plume_model,
+                    "surrogate, gaussian or physics (default: surrogate with the shipped model, "
+                    "else physics)");
+    add_json_flag(cmd);
+    cmd->callback([a] {
+      const fs::path map_file = data_dir() / "test-maps" / kDemoMap;
+      SteArgs args;
+      std::string note;
+      if (!a->plume_model.empty()) {
+        args.plume_model = a->plume_model;
+      } else if (fs::exists(shipped_model())) {
+        args.plume_model = "surrogate";
+      } else {
+        args.plume_model = "physics";
+        note = "note: " + shipped_model().string() +
+               " is not there yet, so this demo uses the physics plume model "
+               "(--plume-model physics); with the trained CNN it uses the surrogate.";
+      }
+      if (!note.empty() && !output().json) std::cerr << note << "\n";
+      const ste::SteOptions options = to_options(args);
+      const Map map = read_map(map_file);
+      const ste::Scenario sc(map, options);
+      const Vec2 source = map.sources.at(kDemoSource);
+      const Vec2 start = sc.check_start(kDemoStart);
+      const ste::LocalizationResult r = sc.run(source, start, ste::run_seed(1, 0, 0, 0));
+      const Pictures p = draw_run(sc, source, r, a->out, args.plume_model);
+      ordered_json j{{"ok", true},
+                     {"map", map_file.string()},
+                     {"plume_model", args.plume_model}};
+      if (!note.empty()) j["note"] = note;
+      j.update(run_json(sc, source, r));
+      j["out"] = {{"trajectory", p.trajectory.string()}, {"posterior", p.posterior.string()}};
+      report(j, run_text(sc, source, r) + "\npictures: " + p.trajectory.string() + " (trajectory), " +
+                    p.posterior.string() + " (posterior)");
     });
   }
 }

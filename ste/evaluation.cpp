@@ -52,7 +52,8 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
 }
 
 EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions& o,
-                          const std::function<void(int, int)>& progress) {
+                          const std::function<void(int, int)>& progress,
+                          const AfterMap& after_map) {
   if (o.runs < 1) throw InputError("--runs must be at least 1");
   if (o.threads < 1) throw InputError("--threads must be at least 1");
   if (o.sources < 0) throw InputError("--sources must be >= 0");
@@ -132,6 +133,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
     report.stats = summarise(ptrs);
     report.wall_s = std::chrono::duration<double>(Clock::now() - t_map).count();
     result.maps.push_back(report);
+    if (after_map) after_map(scenario, records);
     for (RunRecord& r : records)
       result.runs.push_back(std::move(r));
   }

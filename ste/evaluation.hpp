@@ -56,8 +56,12 @@ struct EvaluationResult {
 
 // `progress(done, total)` is called from the calling thread's perspective
 // under a lock, after each run.
+// `after_map` sees each map's scenario and records before the scenario goes
+// (for pictures that need the wind).
+using AfterMap = std::function<void(const Scenario&, const std::vector<RunRecord>&)>;
 EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions& options,
-                          const std::function<void(int, int)>& progress = {});
+                          const std::function<void(int, int)>& progress = {},
+                          const AfterMap& after_map = {});
 
 // CSV of all runs (one header line, one line per run).
 std::string runs_csv(const EvaluationResult& result);
