@@ -328,12 +328,11 @@ void add_ste_commands(CLI::App& app) {
             const ste::RunRecord& r = median_run(runs);
             const std::string title = sc.map().name + ": " + label + ", source S" +
                                       std::to_string(r.source_index) + " run " +
-                                      std::to_string(r.run) + " (median error " +
-                                      fmt(r.error_m) + " m, " + std::to_string(r.samples) +
-                                      " samples)";
-            write_png(ste::draw_trajectory(sc.map(), sc.mean_plume(r.source), r.result, r.source,
-                                           title),
-                      dir.path() / "trajectories" / (sc.map().name + ".png"));
+                                      std::to_string(r.run) + " (median error " + fmt(r.error_m) +
+                                      " m, " + std::to_string(r.samples) + " samples)";
+            write_png(
+                ste::draw_trajectory(sc.map(), sc.mean_plume(r.source), r.result, r.source, title),
+                dir.path() / "trajectories" / (sc.map().name + ".png"));
           });
       bar.finish();
 
@@ -357,19 +356,19 @@ void add_ste_commands(CLI::App& app) {
           }
         labels.push_back(std::to_string(m));
       }
-      ordered_json summary{{"ok", true},
-                           {"maps_dir", a->maps},
-                           {"plume_model", label},
-                           {"runs_per_source", eo.runs},
-                           {"sources_per_map", eo.sources > 0 ? ordered_json(eo.sources)
-                                                              : ordered_json("all")},
-                           {"seed", eo.seed},
-                           {"threads", eo.threads},
-                           {"sigma_m", eo.ste.likelihood.sigma_m},
-                           {"noise", eo.ste.world.noise},
-                           {"overall", stats_json(res.overall)},
-                           {"maps", per_map},
-                           {"wall_s", res.wall_s}};
+      ordered_json summary{
+          {"ok", true},
+          {"maps_dir", a->maps},
+          {"plume_model", label},
+          {"runs_per_source", eo.runs},
+          {"sources_per_map", eo.sources > 0 ? ordered_json(eo.sources) : ordered_json("all")},
+          {"seed", eo.seed},
+          {"threads", eo.threads},
+          {"sigma_m", eo.ste.likelihood.sigma_m},
+          {"noise", eo.ste.world.noise},
+          {"overall", stats_json(res.overall)},
+          {"maps", per_map},
+          {"wall_s", res.wall_s}};
       write_file_atomic(dir.path() / "runs.csv", ste::runs_csv(res));
       write_file_atomic(dir.path() / "summary.json", summary.dump(2) + "\n");
       write_png(ste::draw_box_plot(errors, labels, "error [m]",
@@ -383,15 +382,16 @@ void add_ste_commands(CLI::App& app) {
       std::ostringstream h;
       h << "evaluated " << res.runs.size() << " runs (" << maps.size() << " maps, " << label
         << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
-      h << std::left << std::setw(22) << "map" << " median_err  mean_err  ok@0.5  ok@1.0  samples"
+      h << std::left << std::setw(22) << "map"
+        << " median_err  mean_err  ok@0.5  ok@1.0  samples"
         << "  dist_m  step_ms  table_s\n";
       auto line = [&](const std::string& name, const ste::Stats& s, double table) {
         h << std::left << std::setw(22) << name << std::right << std::setw(11)
           << fmt(s.median_error_m) << std::setw(10) << fmt(s.mean_error_m) << std::setw(8)
           << fmt(100 * s.success_0_5, 0) + "%" << std::setw(8) << fmt(100 * s.success_1_0, 0) + "%"
-          << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8)
-          << fmt(s.median_distance_m, 1) << std::setw(9) << fmt(1000 * s.median_step_s, 1)
-          << std::setw(9) << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
+          << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1)
+          << std::setw(9) << fmt(1000 * s.median_step_s, 1) << std::setw(9)
+          << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
       };
       for (const ste::MapReport& mr : res.maps)
         line(mr.name, mr.stats, mr.table_build_s);
@@ -437,14 +437,12 @@ void add_ste_commands(CLI::App& app) {
       const Vec2 start = sc.check_start(kDemoStart);
       const ste::LocalizationResult r = sc.run(source, start, ste::run_seed(1, 0, 0, 0));
       const Pictures p = draw_run(sc, source, r, a->out, args.plume_model);
-      ordered_json j{{"ok", true},
-                     {"map", map_file.string()},
-                     {"plume_model", args.plume_model}};
+      ordered_json j{{"ok", true}, {"map", map_file.string()}, {"plume_model", args.plume_model}};
       if (!note.empty()) j["note"] = note;
       j.update(run_json(sc, source, r));
       j["out"] = {{"trajectory", p.trajectory.string()}, {"posterior", p.posterior.string()}};
-      report(j, run_text(sc, source, r) + "\npictures: " + p.trajectory.string() + " (trajectory), " +
-                    p.posterior.string() + " (posterior)");
+      report(j, run_text(sc, source, r) + "\npictures: " + p.trajectory.string() +
+                    " (trajectory), " + p.posterior.string() + " (posterior)");
     });
   }
 }
