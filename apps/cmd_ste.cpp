@@ -65,7 +65,7 @@ struct SteArgs {
   double sigma_m = 30.0, sigma_d = 0.0, noise = 0.0, speed = 0.5;
   double alpha = 0.5, beta = 0.75, step = 0.5, margin = 0.15;
   int max_samples = 50;
-  std::string table_cache;
+  std::string table_cache, release_scale;
 };
 
 void add_ste_options(CLI::App* cmd, SteArgs& a) {
@@ -89,6 +89,9 @@ void add_ste_options(CLI::App* cmd, SteArgs& a) {
       ->capture_default_str();
   cmd->add_option("--max-samples", a.max_samples, "Stop after this many samples")
       ->capture_default_str();
+  cmd->add_option("--release-scale", a.release_scale,
+                  "LO,HI: estimate the release rate as a scale in [LO, HI] of the nominal 1000, "
+                  "marginalised in closed form (surrogate, physics; default: known, 1)");
   cmd->add_option("--table-cache", a.table_cache,
                   "Directory caching surrogate tables (keyed by map and model hashes)");
 }
@@ -119,6 +122,13 @@ ste::SteOptions to_options(const SteArgs& a) {
   o.margin = a.margin;
   o.stop.max_samples = a.max_samples;
   o.table_cache = a.table_cache;
+  if (!a.release_scale.empty()) {
+    const Vec2 r = parse_xy(a.release_scale, "--release-scale");
+    if (!(r.x > 0.0) || r.y < r.x)
+      throw InputError("--release-scale: need 0 < LO <= HI, got '" + a.release_scale + "'");
+    o.physics.scale_lo = r.x;
+    o.physics.scale_hi = r.y;
+  }
   if (o.model == ste::PlumeModelKind::Surrogate) {
     o.model_path = a.model.empty() ? shipped_model().string() : a.model;
     if (!fs::exists(o.model_path))

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "dataset/seed.hpp"
 #include "ste/grid_estimator.hpp"
+#include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
 
@@ -68,8 +69,19 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
     case PlumeModelKind::Physics:
       model_ = std::make_unique<PhysicsPlume>(map_, wind_, options.physics);
       break;
-    case PlumeModelKind::Surrogate:
-      throw InputError("--plume-model surrogate: not available in this build");
+    case PlumeModelKind::Surrogate: {
+      SurrogatePlumeOptions so;
+      so.model = options.model_path;
+      so.source_cell = options.surrogate_cell;
+      so.threads = options.table_threads;
+      so.cache_dir = options.table_cache;
+      so.scale_lo = options.physics.scale_lo;
+      so.scale_hi = options.physics.scale_hi;
+      auto m = std::make_unique<SurrogatePlume>(map_, so);
+      table_from_cache_ = m->from_cache();
+      model_ = std::move(m);
+      break;
+    }
   }
   model_seconds_ = since(t0);
   planner::PlannerOptions po;

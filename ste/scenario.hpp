@@ -32,6 +32,7 @@ struct SteOptions {
   NavigationOptions navigation;
   StopOptions stop;
   WorldOptions world;
+  // Also holds the release-scale prior [scale_lo, scale_hi] of the surrogate.
   PhysicsPlumeOptions physics;
   GaussianPlumeBounds gaussian;
   double margin = 0.15;  // m, the planner's clearance (thesis 14.3.1)

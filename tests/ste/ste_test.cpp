@@ -7,12 +7,16 @@
 #include "../dataset/uniform_wind.hpp"
 #include "core/error.hpp"
 #include "core/map.hpp"
+#include "core/map_json.hpp"
 #include "planner/free_space.hpp"
 #include "ste/gaussian_plume.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/physics_plume.hpp"
 #include "ste/scenario.hpp"
+#include "ste/surrogate_plume.hpp"
+#include "surrogate/network.hpp"
+#include "surrogate/plume_model.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -196,6 +200,79 @@ TEST(Scenario, RejectsBadSourcesAndStarts) {
   const Vec2 moved = sc.check_start({2.45, 1.5});
   EXPECT_TRUE(sc.free_space().contains(moved));
   EXPECT_LT(moved.x, 2.36);
+}
+
+}  // namespace
+}  // namespace plumekit::ste
+
+namespace plumekit::ste {
+namespace {
+
+// The surrogate path with the committed random-weight golden model (never the
+// shipped one): the table, its cache, and a posterior on the model's own samples.
+const std::filesystem::path kRandomModel =
+    std::filesystem::path(PLUMEKIT_TEST_DATA) / "surrogate" / "real.pkcnn";
+
+TEST(SurrogatePlume, TableMatchesTheNetworkAndIsCached) {
+  const Map map =
+      read_map(std::filesystem::path(PLUMEKIT_DATA_DIR) / "test-maps" / "test-1-block.json");
+  const auto cache = std::filesystem::temp_directory_path() / "ste-surrogate-cache-test";
+  std::filesystem::remove_all(cache);
+  SurrogatePlumeOptions o;
+  o.model = kRandomModel;
+  o.source_cell = 0.5;  // 20 x 8 cells keep the test quick
+  o.cache_dir = cache;
+  const SurrogatePlume built(map, o);
+  EXPECT_FALSE(built.from_cache());
+  // The table holds what PlumeModel predicts.
+  auto net = std::make_shared<const surrogate::Network>(surrogate::Network::load(kRandomModel));
+  const surrogate::PlumeModel direct(net, map);
+  const Vec2 p{6.1, 2.9};
+  const int k = built.nearest_allowed({2.25, 0.75});
+  const double expect =
+      direct.predict(built.sources().centre(k % built.sources().nx, k / built.sources().nx))
+          .mean_at(p);
+  EXPECT_NEAR(built.readings_at(p)[k], expect, 1e-4 * std::max(1.0, std::abs(expect)));
+
+  const SurrogatePlume cached(map, o);
+  EXPECT_TRUE(cached.from_cache());
+  EXPECT_EQ(cached.readings_at(p), built.readings_at(p));
+  // Another geometry, another key.
+  Map moved = map;
+  moved.obstacles[0][0].x -= 0.1;
+  moved.obstacles[0][3].x -= 0.1;
+  const SurrogatePlume other(moved, o);
+  EXPECT_FALSE(other.from_cache());
+  EXPECT_NE(other.key(), built.key());
+  std::filesystem::remove_all(cache);
+}
+
+TEST(SurrogatePlume, PosteriorConcentratesOnTheTrueSourceWithItsOwnSamples) {
+  const Map map =
+      read_map(std::filesystem::path(PLUMEKIT_DATA_DIR) / "test-maps" / "test-1-block.json");
+  SurrogatePlumeOptions o;
+  o.model = kRandomModel;
+  o.source_cell = 0.4;
+  const SurrogatePlume model(map, o);
+  const Vec2 truth = model.sources().centre(17, 3);
+  const int k = model.nearest_allowed(truth);
+  ASSERT_EQ(model.sources().centre(k % model.sources().nx, k / model.sources().nx), truth);
+  // Random weights give small outputs: sigma_M in proportion keeps the test's meaning.
+  std::vector<std::pair<Vec2, double>> samples;
+  double top = 0.0;
+  for (Vec2 p : lattice(map, 0.5)) {
+    samples.push_back({p, model.readings_at(p)[k]});
+    top = std::max(top, std::abs(samples.back().second));
+  }
+  ASSERT_GT(top, 0.0);
+  LikelihoodOptions lo;
+  lo.sigma_m = 1e-3 * top;
+  GridEstimator est(model, lo, make_bins(map, {}));
+  for (const auto& [p, v] : samples)
+    est.add(p, v);
+  const Posterior post = est.posterior();
+  EXPECT_LT(norm(post.expected_source() - truth), 0.05);
+  EXPECT_LT(post.entropy, 0.02 * post.max_entropy);
 }
 
 }  // namespace
