@@ -87,21 +87,19 @@ cv::Mat draw_posterior(const Map& map, const Posterior& posterior, Vec2 source, 
                        const std::string& title) {
   MapCanvas canvas(with_source(map, source));
   canvas.draw_free_space();
-  // Probability per square metre, so grids of different cells compare.
-  Grid<double> density = posterior.marginal;
-  const double cell = density.shape.dx() * density.shape.dy();
-  double top = 0.0;
-  for (double& d : density.values) {
-    d /= cell;
-    top = std::max(top, d);
-  }
-  canvas.draw_field(density, 0.0, std::max(top, 1e-12), cv::COLORMAP_INFERNO);
+  // log10 of the probability relative to the most probable cell, over six
+  // decades: a certain posterior is one cell, and its tails still show.
+  Grid<double> field = posterior.marginal;
+  const double top = *std::max_element(field.values.begin(), field.values.end());
+  for (double& d : field.values)
+    d = d > 0.0 && top > 0.0 ? std::max(-6.0, std::log10(d / top)) : -6.0;
+  canvas.draw_field(field, -6.0, 0.0, cv::COLORMAP_INFERNO);
   canvas.draw_obstacles();
   canvas.draw_walls_and_openings();
   canvas.draw_axes_and_scale();
   canvas.draw_sources();
   draw_cross(canvas, estimate, kEstimate);
-  canvas.draw_colour_bar(0.0, top, "posterior density (1/m^2)", cv::COLORMAP_INFERNO);
+  canvas.draw_colour_bar(-6.0, 0.0, "log10 P / max P", cv::COLORMAP_INFERNO);
   canvas.draw_title(title);
   return canvas.image().clone();
 }
@@ -137,6 +135,8 @@ cv::Mat draw_box_plot(const std::vector<std::vector<double>>& groups,
   cv::line(img, {left, top + height}, {width - right, top + height}, ink, 1);
   cv::putText(img, title, {left, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.55, ink, 1, cv::LINE_AA);
   cv::putText(img, y_label, {8, top - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.42, ink, 1, cv::LINE_AA);
+  cv::putText(img, "test map", {(left + width - right) / 2 - 30, top + height + 45},
+              cv::FONT_HERSHEY_SIMPLEX, 0.45, ink, 1, cv::LINE_AA);
   for (std::size_t k = 0; k < groups.size(); ++k) {
     const int cx = left + w_box * static_cast<int>(k) + w_box / 2;
     const std::string& label = k < labels.size() ? labels[k] : std::to_string(k);
