@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <vector>
 
@@ -27,6 +28,13 @@ namespace {
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// CPU seconds of the whole process (all threads).
+double process_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 double median(std::vector<double> v) {
@@ -60,19 +68,23 @@ int main(int argc, char** argv) {
   std::printf("map %s, model %s\n", map.name.c_str(), model.string().c_str());
 
   // Table build, 1 and 2 threads.
-  double build[2] = {0, 0};
+  double build[2] = {0, 0}, cpu[2] = {0, 0};
   std::size_t cells = 0;
   for (int threads : {1, 2}) {
     ste::SurrogatePlumeOptions o;
     o.model = model;
     o.threads = threads;
     const auto t0 = Clock::now();
+    const double c0 = process_cpu();
     const ste::SurrogatePlume table(map, o);
     build[threads - 1] = seconds_since(t0);
+    cpu[threads - 1] = process_cpu() - c0;
     cells = std::count(table.allowed().begin(), table.allowed().end(), 1);
   }
-  std::printf("surrogate table: %zu source cells, build %.2f s on 1 thread, %.2f s on 2 (x%.2f)\n",
-              cells, build[0], build[1], build[0] / build[1]);
+  std::printf(
+      "surrogate table: %zu source cells, build wall %.2f s on 1 thread, %.2f s on 2 "
+      "(x%.2f); CPU %.2f s and %.2f s (%.1f ms per forward pass)\n",
+      cells, build[0], build[1], build[0] / build[1], cpu[0], cpu[1], 1000 * cpu[0] / cells);
 
   // Decision steps, one thread each.
   const int runs = 5;
@@ -83,7 +95,7 @@ int main(int argc, char** argv) {
     o.model_path = model.string();
     o.table_threads = 2;
     const ste::Scenario sc(map, o);
-    std::printf("%-9s median compute per decision step %.2f ms (%d runs; model build %.2f s)\n",
+    std::printf("%-9s median compute per decision step %.2f ms CPU (%d runs; model build %.2f s)\n",
                 ste::to_string(kind), 1000 * step_median(sc, runs), runs, sc.model_seconds());
   }
 
@@ -94,9 +106,9 @@ int main(int argc, char** argv) {
   const surrogate::PlumeModel plume(net, map);
   std::vector<Vec2> batch(32, map.sources[0]);
   plume.predict_batch(batch);  // warm-up
-  const auto t0 = Clock::now();
+  const double c0 = process_cpu();
   plume.predict_batch(batch);
-  const double per_pass = seconds_since(t0) / batch.size();
+  const double per_pass = (process_cpu() - c0) / batch.size();  // CPU: load-independent
   ste::SteOptions o;
   o.model = ste::PlumeModelKind::Surrogate;
   o.model_path = model.string();
@@ -107,7 +119,7 @@ int main(int argc, char** argv) {
   // for all points of its plume at once, so one pass per cell per step.
   const double without = per_pass * cells;
   std::printf(
-      "baseline (CNN per candidate source per step): %.1f ms per pass x %zu cells = %.2f s "
+      "baseline (CNN per candidate source per step): %.1f ms CPU per pass x %zu cells = %.2f s "
       "per step; the table makes a step x%.0f faster\n",
       1000 * per_pass, cells, without, without / with_table);
 }
