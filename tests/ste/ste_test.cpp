@@ -220,7 +220,7 @@ TEST(SurrogatePlume, TableMatchesTheNetworkAndIsCached) {
   std::filesystem::remove_all(cache);
   SurrogatePlumeOptions o;
   o.model = kRandomModel;
-  o.source_cell = 0.5;  // 20 x 8 cells keep the test quick
+  o.source_cell = 1.0;  // 10 x 4 cells keep the test quick (also under ASan)
   o.cache_dir = cache;
   const SurrogatePlume built(map, o);
   EXPECT_FALSE(built.from_cache());
@@ -228,7 +228,7 @@ TEST(SurrogatePlume, TableMatchesTheNetworkAndIsCached) {
   auto net = std::make_shared<const surrogate::Network>(surrogate::Network::load(kRandomModel));
   const surrogate::PlumeModel direct(net, map);
   const Vec2 p{6.1, 2.9};
-  const int k = built.nearest_allowed({2.25, 0.75});
+  const int k = built.nearest_allowed({2.5, 0.5});
   const double expect =
       direct.predict(built.sources().centre(k % built.sources().nx, k / built.sources().nx))
           .mean_at(p);
@@ -252,9 +252,9 @@ TEST(SurrogatePlume, PosteriorConcentratesOnTheTrueSourceWithItsOwnSamples) {
       read_map(std::filesystem::path(PLUMEKIT_DATA_DIR) / "test-maps" / "test-1-block.json");
   SurrogatePlumeOptions o;
   o.model = kRandomModel;
-  o.source_cell = 0.4;
+  o.source_cell = 0.8;  // 13 x 5 cells
   const SurrogatePlume model(map, o);
-  const Vec2 truth = model.sources().centre(17, 3);
+  const Vec2 truth = model.sources().centre(9, 2);
   const int k = model.nearest_allowed(truth);
   ASSERT_EQ(model.sources().centre(k % model.sources().nx, k / model.sources().nx), truth);
   // Random weights give small outputs: sigma_M in proportion keeps the test's meaning.
