@@ -8,5 +8,7 @@ void add_map_commands(CLI::App& app);
 void add_flow_commands(CLI::App& app);
 void add_plan_commands(CLI::App& app);
 void add_dataset_commands(CLI::App& app);
+void add_predict_commands(CLI::App& app);
+void add_ste_commands(CLI::App& app);  // localize, evaluate, demo
 
 }  // namespace plumekit::cli

@@ -34,6 +34,8 @@ int main(int argc, char** argv) {
   plumekit::cli::add_flow_commands(app);
   plumekit::cli::add_plan_commands(app);
   plumekit::cli::add_dataset_commands(app);
+  plumekit::cli::add_predict_commands(app);
+  plumekit::cli::add_ste_commands(app);
 
   try {
     app.parse(argc, argv);

@@ -149,16 +149,11 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
   }
 }
 
-SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
-                                const GridShape& sensors, const FilamentOptions& options,
-                                std::uint64_t seed) {
-  const auto t0 = std::chrono::steady_clock::now();
-  FilamentSimulation sim(map, wind, source, options, seed);
-  // Spin-up: window means of the filament count until two consecutive ones agree.
+bool spin_up(FilamentSimulation& sim, const FilamentOptions& options) {
+  // Window means of the filament count until two consecutive ones agree.
   const int per_window =
       std::max(1, static_cast<int>(std::lround(options.steady_window / options.dt)));
   double previous = -1.0;
-  bool steady = false;
   while (sim.time() < options.max_spinup - 1e-9) {
     double sum = 0.0;
     for (int s = 0; s < per_window; ++s) {
@@ -167,12 +162,32 @@ SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2
     }
     const double mean = sum / per_window;
     if (previous > 0.0 && sim.time() >= options.min_spinup - 1e-9 &&
-        std::abs(mean - previous) <= options.steady_tolerance * previous) {
-      steady = true;
-      break;
-    }
+        std::abs(mean - previous) <= options.steady_tolerance * previous)
+      return true;
     previous = mean;
   }
+  return false;
+}
+
+double FilamentSimulation::concentration_at(Vec2 p) const {
+  // The same kernel and cutoff as concentration(), at one point.
+  // (a square of half-side cutoff * R, as there).
+  double c = 0.0;
+  for (const Filament& f : filaments_) {
+    const double dx = p.x - f.position.x, dy = p.y - f.position.y;
+    const double reach = o_.cutoff * o_.cutoff * f.radius2;
+    if (dx * dx > reach || dy * dy > reach) continue;
+    c += std::exp(-(dx * dx + dy * dy) / f.radius2) / f.radius2;
+  }
+  return c * mass_ / kPi;
+}
+
+SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
+                                const GridShape& sensors, const FilamentOptions& options,
+                                std::uint64_t seed) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FilamentSimulation sim(map, wind, source, options, seed);
+  const bool steady = spin_up(sim, options);
   SensorRecord rec;
   rec.summary = sim.summary();
   rec.summary.spinup_seconds = sim.time();

@@ -86,6 +86,8 @@ class FilamentSimulation {
   const FilamentSummary& summary() const { return summary_; }
   // Adds the concentration at the cell centres of `shape` to `out`.
   void concentration(const GridShape& shape, std::vector<double>& out) const;
+  // The concentration at one point (what a robot's sensor reads there now).
+  double concentration_at(Vec2 p) const;
 
  private:
   bool free_at(Vec2 p) const;
@@ -109,6 +111,11 @@ struct SensorRecord {
   Grid<double> mean, std;
   FilamentSummary summary;
 };
+
+// Steps `sim` until statistically steady (the criterion of FilamentOptions);
+// returns false when it gave up at max_spinup. Used by simulate_filaments and
+// by ste/'s simulated world, whose plume then keeps running.
+bool spin_up(FilamentSimulation& sim, const FilamentOptions& options);
 
 // Spin up until statistically steady, then record the sensors at the cell
 // centres of `sensors`; sensors inside obstacles read 0.

@@ -10,4 +10,6 @@ map=data/maps/cluttered-1.json
 ./build/plumekit map render "$map" --out out/cluttered-1.png
 ./build/plumekit flow "$map" --out out/wind
 ./build/plumekit plan "$map" --from 1.0,1.0 --to 9.0,3.5 --out out/plan.png
-echo "demo: done; see out/cluttered-1.png, out/wind/wind.png and out/plan.png"
+echo "demo: pipeline so far done; see out/cluttered-1.png, out/wind/wind.png and out/plan.png"
+# The main job: a simulated robot localizes a gas source (ste/).
+./build/plumekit demo --out out/demo

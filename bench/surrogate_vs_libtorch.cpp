@@ -1,0 +1,204 @@
+// The engine against libtorch on the same weights, in one process: ms per sample, GFLOP/s and the
+// ratio, at batch 1 and 32 on 1 and 2 threads; and the machine's GEMM peak measured with Eigen, so
+// the engine's GFLOP/s can be read as a fraction of it.
+//
+// libtorch gets the weights from the same .pkcnn: read_model_file() gives every tensor in PyTorch's
+// own layout, which this program copies into torch::nn::Conv2d / ConvTranspose2d modules wired like
+// train/model.py (relu after each encoder conv, max-pool with indices, max-unpool, cat [skip, up]).
+// Its output is checked against the engine's before anything is timed.
+//
+// The two engines are timed alternately, repeat by repeat, so a change in the machine's load hits
+// both; medians of the repeats are printed. Build: scripts/install-deps.sh libtorch-dev, then the
+// target surrogate_vs_libtorch appears (it is built only when CMake finds Torch).
+#include <torch/torch.h>
+
+#include <Eigen/Core>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "surrogate/model_file.hpp"
+#include "surrogate/network.hpp"
+
+using namespace plumekit::surrogate;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// train/model.py's PlumeUNet, built from a model file's layer table and tensors.
+class TorchUNet {
+ public:
+  explicit TorchUNet(const ModelFile& f) : arch_(f.architecture), outputs_(f.outputs) {
+    torch::NoGradGuard no_grad;
+    for (std::size_t i = 0; i < f.layers.size(); ++i) {
+      const LayerSpec& l = f.layers[i];
+      const auto k = l.kernel;
+      auto weight = torch::from_blob(const_cast<float*>(f.weights[i].data()),
+                                     {l.op == LayerOp::kConv2d ? l.out : l.in,
+                                      l.op == LayerOp::kConv2d ? l.in : l.out, k, k})
+                        .clone();
+      auto bias = torch::from_blob(const_cast<float*>(f.biases[i].data()), {l.out}).clone();
+      if (l.op == LayerOp::kConv2d) {
+        torch::nn::Conv2d c(torch::nn::Conv2dOptions(l.in, l.out, k).padding(l.padding));
+        c->weight.copy_(weight);
+        c->bias.copy_(bias);
+        c->eval();
+        encoder_.push_back(c);
+      } else {
+        torch::nn::ConvTranspose2d c(
+            torch::nn::ConvTranspose2dOptions(l.in, l.out, k).padding(l.padding));
+        c->weight.copy_(weight);
+        c->bias.copy_(bias);
+        c->eval();
+        decoder_.push_back(c);
+      }
+      relu_.push_back(l.relu);
+    }
+  }
+
+  torch::Tensor forward(torch::Tensor x) {
+    const int levels = static_cast<int>(arch_.filters.size()), n = arch_.convs_per_block;
+    std::vector<torch::Tensor> skips, indices;
+    for (int b = 0; b < levels; ++b) {
+      for (int j = 0; j < n; ++j)
+        x = torch::relu(encoder_[b * n + j]->forward(x));
+      skips.push_back(x);
+      auto [pooled, index] = torch::max_pool2d_with_indices(x, {2, 2}, {2, 2});
+      x = pooled;
+      indices.push_back(index);
+    }
+    std::vector<torch::Tensor> outs;
+    std::size_t k = 0;
+    for (int o = 0; o < arch_.out_channels; ++o) {
+      torch::Tensor y = x;
+      for (int b = levels - 1; b >= 0; --b) {
+        y = torch::max_unpool2d(y, indices[b], {skips[b].size(2), skips[b].size(3)});
+        y = torch::cat({skips[b], y}, 1);
+        for (int j = 0; j < n; ++j, ++k) {
+          y = decoder_[k]->forward(y);
+          if (relu_[encoder_.size() + k]) y = torch::relu(y);
+        }
+      }
+      outs.push_back(y * outputs_[o].scale);
+    }
+    return torch::cat(outs, 1);
+  }
+
+ private:
+  Architecture arch_;
+  std::vector<OutputSpec> outputs_;
+  std::vector<torch::nn::Conv2d> encoder_;
+  std::vector<torch::nn::ConvTranspose2d> decoder_;
+  std::vector<bool> relu_;
+};
+
+using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+// Eigen's single-precision GEMM at n^3 on `threads` threads (one independent product each), GFLOP/s
+// summed over threads: the machine's practical peak for the kind of code the engine runs.
+double gemm_peak(int n, int threads, int repeats) {
+  std::vector<double> rates;
+  for (int r = 0; r < repeats; ++r) {
+    std::vector<double> secs(threads);
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t) {
+      pool.emplace_back([&, t] {
+        RowMatrix a = RowMatrix::Random(n, n), b = RowMatrix::Random(n, n), c(n, n);
+        c.noalias() = a * b;  // warm-up
+        const auto t0 = Clock::now();
+        c.noalias() = a * b;
+        secs[t] = seconds_since(t0);
+        if (c(0, 0) == 12345.0f) std::printf(" ");  // keep the product
+      });
+    }
+    for (auto& th : pool)
+      th.join();
+    rates.push_back(2.0 * n * n * n * threads / *std::max_element(secs.begin(), secs.end()) / 1e9);
+  }
+  return median(rates);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string path =
+      argc > 1 ? argv[1] : std::string(PLUMEKIT_TEST_DATA) + "/surrogate/real.pkcnn";
+  const int repeats = argc > 2 ? std::stoi(argv[2]) : 7;
+  const ModelFile file = read_model_file(path);
+  TorchUNet torch_net(file);
+  const auto& f = file.features;
+  std::printf("model %s: %zu parameters; %d repeats, medians\n", path.c_str(),
+              parameter_count(file.layers), repeats);
+
+  std::vector<double> peak(3);
+  for (int t : {1, 2}) {
+    peak[t] = gemm_peak(1024, t, repeats);
+    std::printf("Eigen GEMM 1024^3 on %d thread%s: %.1f GFLOP/s\n", t, t > 1 ? "s" : "", peak[t]);
+  }
+  std::printf(
+      "\nthreads batch | engine ms/sample GFLOP/s %%peak | libtorch ms/sample GFLOP/s | "
+      "speed-up\n");
+  for (int threads : {1, 2}) {
+    const Network net(file, EngineOptions{threads});
+    torch::set_num_threads(threads);
+    for (int batch : {1, 32}) {
+      Tensor x(batch, file.architecture.in_channels, f.rows, f.cols);
+      std::mt19937 rng(1);
+      std::uniform_real_distribution<float> u(0.0f, 4.0f);
+      for (float& v : x.data)
+        v = u(rng);
+      const torch::Tensor tx = torch::from_blob(x.data.data(), {x.n, x.c, x.h, x.w}).clone();
+      torch::NoGradGuard no_grad;
+      // Same weights, same answer: max |difference| over max |value|.
+      const Tensor ours = net.predict(x);
+      const torch::Tensor theirs = torch_net.forward(tx).contiguous();
+      double diff = 0, top = 0;
+      for (std::size_t i = 0; i < ours.data.size(); ++i) {
+        diff = std::max(diff, std::abs(double(ours.data[i]) - theirs.data_ptr<float>()[i]));
+        top = std::max(top, std::abs(double(ours.data[i])));
+      }
+      const int runs = batch == 1 ? 10 : 1;
+      std::vector<double> ours_s, theirs_s;
+      for (int r = 0; r < repeats; ++r) {
+        auto t0 = Clock::now();
+        for (int i = 0; i < runs; ++i)
+          net.predict(x);
+        ours_s.push_back(seconds_since(t0) / runs / batch);
+        t0 = Clock::now();
+        for (int i = 0; i < runs; ++i)
+          torch_net.forward(tx);
+        theirs_s.push_back(seconds_since(t0) / runs / batch);
+      }
+      std::vector<double> ratio;
+      for (int r = 0; r < repeats; ++r)
+        ratio.push_back(theirs_s[r] / ours_s[r]);
+      const double a = median(ours_s), b = median(theirs_s);
+      const double flops = net.flops_per_sample();
+      std::printf(
+          "   %d    %3d  |   %7.2f    %6.1f   %4.0f%% |   %7.2f    %6.1f  | %5.2fx  (max rel "
+          "diff %.1e)\n",
+          threads, batch, a * 1e3, flops / a / 1e9, 100 * flops / a / 1e9 / peak[threads], b * 1e3,
+          flops / b / 1e9, median(ratio), top > 0 ? diff / top : diff);
+    }
+  }
+  std::printf(
+      "\nspeed-up = libtorch time / engine time, median over the repeats of the ratio measured "
+      "back to back; %%peak = engine GFLOP/s over Eigen's GEMM on as many threads.\n");
+  return 0;
+}

@@ -1,0 +1,69 @@
+#pragma once
+// The evaluation harness (thesis section 14.3.2): every ground-truth source of
+// every map, `runs` times each from seeded random free starts, in parallel.
+// Results do not depend on the thread count: run k's seed is a function of
+// (seed, map, source, run) only, and records are kept in run order.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/map.hpp"
+#include "ste/scenario.hpp"
+
+namespace plumekit::ste {
+
+struct EvaluationOptions {
+  SteOptions ste;
+  int runs = 3;
+  std::uint64_t seed = 1;
+  int threads = 2;
+  int sources = 0;  // 0: all of each map's sources; K: the first K (a labelled subset)
+};
+
+struct RunRecord {
+  std::string map;
+  int map_index = 0, source_index = 0, run = 0;
+  Vec2 source, start, estimate;
+  double error_m = 0.0;
+  int samples = 0;
+  double distance_m = 0.0, mission_s = 0.0, compute_s = 0.0, median_step_s = 0.0;
+  std::string stopped_by;
+  LocalizationResult result;  // kept for the example pictures
+};
+
+struct Stats {
+  int runs = 0;
+  double median_error_m = 0, mean_error_m = 0, success_0_5 = 0, success_1_0 = 0;
+  double median_samples = 0, median_distance_m = 0, median_step_s = 0;
+  double entropy_stops = 0;  // fraction stopped by the entropy rule
+};
+Stats summarise(const std::vector<const RunRecord*>& runs);
+
+struct MapReport {
+  std::string name;
+  Stats stats;
+  double wind_s = 0, table_build_s = 0, wall_s = 0;
+};
+
+struct EvaluationResult {
+  std::vector<RunRecord> runs;
+  std::vector<MapReport> maps;
+  Stats overall;
+  double wall_s = 0;
+};
+
+// `progress(done, total)` is called from the calling thread's perspective
+// under a lock, after each run.
+// `after_map` sees each map's scenario and records before the scenario goes
+// (for pictures that need the wind).
+using AfterMap = std::function<void(const Scenario&, const std::vector<RunRecord>&)>;
+EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions& options,
+                          const std::function<void(int, int)>& progress = {},
+                          const AfterMap& after_map = {});
+
+// CSV of all runs (one header line, one line per run).
+std::string runs_csv(const EvaluationResult& result);
+
+}  // namespace plumekit::ste

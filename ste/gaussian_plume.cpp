@@ -1,0 +1,53 @@
+#include "ste/gaussian_plume.hpp"
+
+#include <cmath>
+
+namespace plumekit::ste {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+Vec2 inward_normal(Side side) {
+  switch (side) {
+    case Side::Left:
+      return {1.0, 0.0};
+    case Side::Right:
+      return {-1.0, 0.0};
+    case Side::Bottom:
+      return {0.0, 1.0};
+    case Side::Top:
+      return {0.0, -1.0};
+  }
+  return {1.0, 0.0};
+}
+}  // namespace
+
+GaussianPlume::GaussianPlume(const Map& map, const GaussianPlumeBounds& b)
+    : parameters_{{"x", 0.0, map.width},
+                  {"y", 0.0, map.height},
+                  {"Q", 0.0, b.q_max},
+                  {"a", b.a_min, b.a_max},
+                  {"b", b.b_min, b.b_max}},
+      downwind_(inward_normal(map.inlet.side)),
+      // A parabolic profile's mean is 2/3 of its peak.
+      speed_(map.inlet.profile == Profile::Parabolic ? map.inlet.speed * 2.0 / 3.0
+                                                     : map.inlet.speed) {}
+
+double GaussianPlume::predict_at(const double* m, Vec2 p) const {
+  const Vec2 r{p.x - m[0], p.y - m[1]};
+  const double d = dot(r, downwind_);
+  if (d <= 0.0) return 0.0;
+  const double c = cross(downwind_, r);
+  const double sigma = m[3] * d + m[4];
+  return m[2] / (2.0 * kPi * speed_ * sigma) * std::exp(-c * c / (2.0 * sigma * sigma));
+}
+
+std::vector<double> GaussianPlume::predict(const std::vector<double>& params,
+                                           const std::vector<Vec2>& points) const {
+  std::vector<double> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out[i] = predict_at(params.data(), points[i]);
+  return out;
+}
+
+}  // namespace plumekit::ste

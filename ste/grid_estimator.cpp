@@ -1,0 +1,164 @@
+#include "ste/grid_estimator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+
+namespace plumekit::ste {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+const double kSqrt2 = std::sqrt(2.0);
+const double kLogSqrtPi = 0.5 * std::log(3.14159265358979323846);
+
+// log(erfc(x)), also where erfc underflows (its asymptotic series).
+double log_erfc(double x) {
+  if (x < 20.0) return std::log(std::erfc(x));
+  return -x * x - std::log(x) - kLogSqrtPi + std::log1p(-0.5 / (x * x));
+}
+
+// log(Phi(b) - Phi(a)) for a < b, with Phi the standard normal CDF.
+double log_phi_diff(double a, double b) {
+  if (a >= 0.0) {  // both in the upper tail: 1 - Phi(a) - (1 - Phi(b))
+    const double la = log_erfc(a / kSqrt2), lb = log_erfc(b / kSqrt2);
+    return std::log(0.5) + la + std::log1p(-std::exp(lb - la));
+  }
+  if (b <= 0.0) return log_phi_diff(-b, -a);
+  return std::log1p(-0.5 * std::erfc(b / kSqrt2) - 0.5 * std::erfc(-a / kSqrt2));
+}
+
+// log of the integral over s in [lo, hi] of exp(-(a s^2 - 2 b s + c) / (2 var)).
+double log_marginal_scale(double a, double b, double c, double var, double lo, double hi) {
+  if (a <= 1e-12 * var) return -c / (2.0 * var) + std::log(hi - lo);
+  const double mu = b / a, sd = std::sqrt(var / a);
+  return -(c - b * mu) / (2.0 * var) + std::log(std::sqrt(2.0 * 3.14159265358979323846) * sd) +
+         log_phi_diff((lo - mu) / sd, (hi - mu) / sd);
+}
+
+// Mean of the scale's posterior at one cell: a normal truncated to [lo, hi].
+double mean_scale(double a, double b, double var, double lo, double hi) {
+  if (a <= 1e-12 * var) return 0.5 * (lo + hi);
+  const double mu = b / a, sd = std::sqrt(var / a);
+  const double al = (lo - mu) / sd, be = (hi - mu) / sd;
+  const double lz = log_phi_diff(al, be);
+  const double log_pdf0 = -0.5 * std::log(2.0 * 3.14159265358979323846);
+  const double m =
+      mu + sd * (std::exp(log_pdf0 - 0.5 * al * al - lz) - std::exp(log_pdf0 - 0.5 * be * be - lz));
+  return std::clamp(std::isfinite(m) ? m : mu, lo, hi);
+}
+
+}  // namespace
+
+GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOptions& likelihood,
+                             const GridShape& bins)
+    : model_(model), likelihood_(likelihood), bins_(bins) {
+  const std::vector<Parameter>& p = model.parameters();
+  scale_lo_ = p.size() > 2 ? p[2].lo : 1.0;
+  scale_hi_ = p.size() > 2 ? p[2].hi : 1.0;
+  if (!(scale_lo_ > 0.0) || scale_hi_ < scale_lo_)
+    throw InputError("release scale prior: need 0 < lo <= hi");
+  if (!(likelihood.variance() > 0.0)) throw InputError("sigma_M^2 + sigma_D^2 must be positive");
+  a_.assign(model.sources().size(), 0.0);
+  b_.assign(model.sources().size(), 0.0);
+  // The largest entropy: every bin holding an allowed cell equally likely.
+  Grid<double> uniform(model.sources(), 0.0);
+  for (std::size_t k = 0; k < uniform.values.size(); ++k)
+    uniform.values[k] = model.allowed()[k];
+  std::vector<std::uint8_t> reached(bins.size(), 0);
+  const GridShape& g = model.sources();
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (model.allowed()[g.index(i, j)]) {
+        const Vec2 c = g.centre(i, j);
+        reached[bins.index(std::clamp(static_cast<int>(c.x / bins.dx()), 0, bins.nx - 1),
+                           std::clamp(static_cast<int>(c.y / bins.dy()), 0, bins.ny - 1))] = 1;
+      }
+  const long n = std::count(reached.begin(), reached.end(), 1);
+  if (n == 0) throw InputError("the map leaves no free cell for a source");
+  max_entropy_ = std::log(static_cast<double>(n));
+}
+
+void GridEstimator::add(Vec2 p, double value) {
+  const std::vector<double> r = model_.readings_at(p);
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    a_[k] += r[k] * r[k];
+    b_[k] += r[k] * value;
+  }
+  c_ += value * value;
+  ++samples_;
+}
+
+std::vector<double> GridEstimator::log_weights(const std::vector<double>& a,
+                                               const std::vector<double>& b, double c) const {
+  const double var = likelihood_.variance();
+  const std::vector<std::uint8_t>& ok = model_.allowed();
+  std::vector<double> l(a.size(), -kInf);
+  double top = -kInf;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (!ok[k]) continue;
+    if (scale_hi_ == scale_lo_) {
+      const double s = scale_lo_;
+      l[k] = -(c - 2.0 * s * b[k] + s * s * a[k]) / (2.0 * var);
+    } else {
+      l[k] = log_marginal_scale(a[k], b[k], c, var, scale_lo_, scale_hi_);
+    }
+    top = std::max(top, l[k]);
+  }
+  double sum = 0.0;
+  for (double v : l)
+    if (v > -kInf) sum += std::exp(v - top);
+  const double norm = top + std::log(sum);
+  for (double& v : l)
+    if (v > -kInf) v -= norm;
+  return l;
+}
+
+Posterior GridEstimator::posterior() {
+  const std::vector<double> l = log_weights(a_, b_, c_);
+  const GridShape& g = model_.sources();
+  Posterior post;
+  post.marginal = Grid<double>(g, 0.0);
+  double ex = 0.0, ey = 0.0, es = 0.0, best = -kInf;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const std::size_t k = g.index(i, j);
+      if (l[k] == -kInf) continue;
+      const double w = std::exp(l[k]);
+      post.marginal.values[k] = w;
+      const Vec2 c = g.centre(i, j);
+      ex += w * c.x;
+      ey += w * c.y;
+      es += w * (scale_hi_ == scale_lo_
+                     ? scale_lo_
+                     : mean_scale(a_[k], b_[k], likelihood_.variance(), scale_lo_, scale_hi_));
+      if (l[k] > best) best = l[k], post.map = c;
+    }
+  post.expected = {ex, ey, es};
+  post.entropy = entropy_on_bins(post.marginal, bins_);
+  post.max_entropy = max_entropy_;
+  return post;
+}
+
+double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
+  const std::vector<double> r = model_.readings_at(p);
+  const int at = model_.nearest_allowed(current.expected_source());
+  const double predicted = at < 0 ? 0.0 : current.expected.at(2) * r[at];
+  std::vector<double> a = a_, b = b_;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    a[k] += r[k] * r[k];
+    b[k] += r[k] * predicted;
+  }
+  const std::vector<double> lq = log_weights(a, b, c_ + predicted * predicted);
+  double kl = 0.0;
+  for (std::size_t k = 0; k < lq.size(); ++k) {
+    const double pk = current.marginal.values[k];
+    if (pk <= 0.0 || lq[k] == -kInf) continue;
+    kl += pk * (std::log(pk) - lq[k]);
+  }
+  return std::max(0.0, kl);
+}
+
+}  // namespace plumekit::ste

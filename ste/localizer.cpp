@@ -1,0 +1,77 @@
+#include "ste/localizer.hpp"
+
+#include <algorithm>
+#include <ctime>
+
+#include "core/error.hpp"
+
+namespace plumekit::ste {
+
+namespace {
+
+// CPU time of the calling thread: a decision step runs on one thread, and
+// this reads the same on a loaded machine as on a quiet one.
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
+
+LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
+                            const planner::Planner& planner, const Navigator& navigator,
+                            const StopOptions& stop) {
+  if (stop.max_samples < 1) throw InputError("max_samples must be at least 1");
+  LocalizationResult r;
+  r.start = start;
+  const double t_start = world.time();
+  Vec2 pos = start;
+  std::vector<Vec2> path_in;
+  std::vector<double> step_times;
+  for (;;) {
+    Step s;
+    s.position = pos;
+    s.distance_m = r.distance_m;
+    s.path_in = std::move(path_in);
+    s.value = world.sample(pos);
+    s.time_s = world.time() - t_start;
+
+    const double t0 = thread_cpu_seconds();
+    estimator.add(pos, s.value);
+    r.posterior = estimator.posterior();
+    s.estimate = r.posterior.expected_source();
+    s.map = r.posterior.map;
+    s.entropy = r.posterior.entropy;
+    if (r.posterior.entropy < stop.entropy_fraction * r.posterior.max_entropy)
+      r.stopped_by = "entropy";
+    else if (estimator.samples() >= stop.max_samples)
+      r.stopped_by = "max_samples";
+    planner::PlanResult path;
+    if (r.stopped_by.empty()) {
+      const Decision d = navigator.decide(pos, estimator, r.posterior);
+      path = planner.plan(pos, d.goal);
+    }
+    s.compute_s = thread_cpu_seconds() - t0;
+    step_times.push_back(s.compute_s);
+    r.compute_s += s.compute_s;
+    r.steps.push_back(std::move(s));
+    if (!r.stopped_by.empty()) break;
+
+    world.travel(path.length);
+    r.distance_m += path.length;
+    pos = path.goal;
+    path_in = std::move(path.path);
+  }
+  r.samples = estimator.samples();
+  r.expected = r.posterior.expected;
+  r.estimate = r.posterior.expected_source();
+  r.map = r.posterior.map;
+  r.time_s = world.time() - t_start;
+  std::sort(step_times.begin(), step_times.end());
+  const std::size_t n = step_times.size();
+  r.median_step_s = n % 2 ? step_times[n / 2] : 0.5 * (step_times[n / 2 - 1] + step_times[n / 2]);
+  return r;
+}
+
+}  // namespace plumekit::ste

@@ -1,0 +1,52 @@
+#pragma once
+// The STE loop (thesis ch. 7): sample, update the posterior, stop when it is
+// certain (entropy below a fraction of its maximum) or after max_samples,
+// else choose the next sampling point and travel there along a planner path
+// while the world's plume runs on. The declared source is the posterior's
+// expected value.
+#include <string>
+#include <vector>
+
+#include "planner/planner.hpp"
+#include "ste/navigation.hpp"
+#include "ste/posterior.hpp"
+#include "ste/world.hpp"
+
+namespace plumekit::ste {
+
+struct StopOptions {
+  double entropy_fraction = 0.02;  // stop below 2 % of the maximum entropy
+  int max_samples = 50;
+};
+
+struct Step {
+  Vec2 position;            // where the sample was taken
+  double value = 0.0;       // its mean concentration
+  double time_s = 0.0;      // simulated time since the robot started, at the sample's end
+  double distance_m = 0.0;  // travelled before it
+  Vec2 estimate, map;       // posterior after it
+  double entropy = 0.0;
+  double compute_s = 0.0;     // estimation + navigation + planning after this sample
+  std::vector<Vec2> path_in;  // the path that led here (empty for the first)
+};
+
+struct LocalizationResult {
+  Vec2 start;
+  Vec2 estimate;  // declared: the expected value
+  std::vector<double> expected;
+  Vec2 map;
+  int samples = 0;
+  double distance_m = 0.0;
+  double time_s = 0.0;         // simulated mission time
+  double compute_s = 0.0;      // total decision compute
+  double median_step_s = 0.0;  // median compute per decision step
+  std::string stopped_by;      // "entropy" or "max_samples"
+  std::vector<Step> steps;
+  Posterior posterior;
+};
+
+LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
+                            const planner::Planner& planner, const Navigator& navigator,
+                            const StopOptions& stop);
+
+}  // namespace plumekit::ste

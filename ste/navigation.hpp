@@ -1,0 +1,54 @@
+#pragma once
+// Where to sample next (thesis sections 7.3 and 13.2).
+//
+// Candidates: a lattice of `step`-metre moves around the robot (the thesis
+// code's 3 x 3 lattice of 0.5 m steps, the robot's own cell left out);
+// candidates outside the inflated free space, or in a piece of it the robot
+// cannot reach, are dropped. Each is scored by the KL divergence between the
+// current posterior and the one predicted after sampling there.
+//
+//   V = alpha (best candidate - robot) + (1 - alpha) (target - robot)
+//
+// The target is the maximum of beta P_M(x, y) + (1 - beta) D_I(x, y) over the
+// thesis's posterior bins (0.5 x 0.2 m; section 13.2, `enhanced`): on a finer
+// grid D_I would always pick the cell next to the robot, D_I the normalised inverse
+// distance from the robot (0 on its own cell); or the MAP (section 7.3). A
+// goal that falls outside free space is moved to the nearest free point.
+#include <vector>
+
+#include "planner/free_space.hpp"
+#include "ste/posterior.hpp"
+
+namespace plumekit::ste {
+
+struct NavigationOptions {
+  double step = 0.5;   // m, lattice spacing
+  int lattice = 1;     // moves of up to `lattice` steps per axis: (2 lattice + 1)^2 - 1 candidates
+  double alpha = 0.5;  // weight of the KL move against the source move
+  double beta = 0.75;  // weight of the marginal against the inverse distance
+  bool enhanced = true;  // section 13.2's combined target; false: the MAP
+};
+
+struct Decision {
+  Vec2 goal;
+  Vec2 kld_target, source_target;
+  std::vector<Vec2> candidates;  // the ones kept
+  std::vector<double> gains;     // their KL divergences, nats
+};
+
+class Navigator {
+ public:
+  // `bins`: where P_M and D_I are combined (the posterior bins).
+  Navigator(const planner::FreeSpace& space, const GridShape& bins,
+            const NavigationOptions& options);
+  Decision decide(Vec2 robot, const Estimator& estimator, const Posterior& posterior) const;
+  const NavigationOptions& options() const { return options_; }
+
+ private:
+  const planner::FreeSpace& space_;
+  GridShape bins_;
+  NavigationOptions options_;
+  std::vector<int> region_;  // per bin: the free-space piece its centre lies in, or -1
+};
+
+}  // namespace plumekit::ste

@@ -1,0 +1,34 @@
+#include "ste/physics_plume.hpp"
+
+#include "core/error.hpp"
+
+namespace plumekit::ste {
+
+PhysicsPlume::PhysicsPlume(const Map& map, const cfd::WindField& wind, const PhysicsPlumeOptions& o)
+    : parameters_{{"x", 0.0, map.width},
+                  {"y", 0.0, map.height},
+                  {"release_scale", o.scale_lo, o.scale_hi}},
+      sources_(GridShape::with_cell(map.width, map.height, o.source_cell)),
+      allowed_(free_cells(map, sources_, 0.0)),
+      ad_(std::make_unique<dataset::AdvectionDiffusion>(wind, o.advection_diffusion)) {
+  if (!(o.source_cell > 0.0)) throw InputError("physics plume model: source_cell must be positive");
+  // A cell whose centre is free but falls in a solid flow cell cannot hold a source.
+  for (int j = 0; j < sources_.ny; ++j)
+    for (int i = 0; i < sources_.nx; ++i) {
+      const Vec2 c = sources_.centre(i, j);
+      const GridShape& f = ad_->shape();
+      const int fi = std::min(f.nx - 1, static_cast<int>(c.x / f.dx()));
+      const int fj = std::min(f.ny - 1, static_cast<int>(c.y / f.dy()));
+      if (ad_->solid(fi, fj)) allowed_[sources_.index(i, j)] = 0;
+    }
+}
+
+std::vector<double> PhysicsPlume::readings_at(Vec2 p) const {
+  const Grid<double> r = dataset::resample(*ad_, ad_->adjoint(p), sources_);
+  std::vector<double> out(r.values);
+  for (std::size_t k = 0; k < out.size(); ++k)
+    if (!allowed_[k]) out[k] = 0.0;
+  return out;
+}
+
+}  // namespace plumekit::ste

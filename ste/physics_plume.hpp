@@ -1,0 +1,43 @@
+#pragma once
+// The physics plume model: steady advection-diffusion in the map's solved
+// wind (dataset/advection_diffusion.hpp), the exact mean of the generator's
+// own physics. One transposed (adjoint) solve per sensor position gives that
+// position's reading for every candidate source at once, so readings_at costs
+// one sparse triangular solve pair on the flow grid plus a resampling.
+#include <memory>
+
+#include "cfd/wind_field.hpp"
+#include "dataset/advection_diffusion.hpp"
+#include "ste/plume_model.hpp"
+
+namespace plumekit::ste {
+
+struct PhysicsPlumeOptions {
+  // Candidate source cells, metres (0.1 m: 100 x 40 on the 10 x 4 arena).
+  double source_cell = 0.1;
+  // Eddy diffusivity and release rate: the dataset's advection-diffusion
+  // defaults (D = 0.05 m^2/s equals the filament model's equivalent
+  // diffusivity without its meander; release 1000).
+  dataset::AdvectionDiffusionOptions advection_diffusion;
+  // Prior bounds of the release scale (1 = the dataset's release rate).
+  double scale_lo = 1.0, scale_hi = 1.0;
+};
+
+class PhysicsPlume final : public SourceTableModel {
+ public:
+  PhysicsPlume(const Map& map, const cfd::WindField& wind, const PhysicsPlumeOptions& options = {});
+  std::string name() const override { return "physics"; }
+  const std::vector<Parameter>& parameters() const override { return parameters_; }
+  const GridShape& sources() const override { return sources_; }
+  const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
+  std::vector<double> readings_at(Vec2 p) const override;
+  const dataset::AdvectionDiffusion& operator_() const { return *ad_; }
+
+ private:
+  std::vector<Parameter> parameters_;
+  GridShape sources_;
+  std::vector<std::uint8_t> allowed_;
+  std::unique_ptr<dataset::AdvectionDiffusion> ad_;
+};
+
+}  // namespace plumekit::ste

@@ -1,0 +1,57 @@
+#pragma once
+// The posterior over a plume model's parameters and what STE reads from it,
+// and the estimator interface the localization loop drives.
+//
+// Likelihood (thesis eq. 7.5): P(D|m) ~ exp(-1/2 sum_i (D_i - C_i(m))^2 / (sigma_M^2 + sigma_D^2)).
+// Prior: uniform inside the parameter bounds, zero where the source would be
+// inside an obstacle.
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/grid.hpp"
+#include "core/map.hpp"
+
+namespace plumekit::ste {
+
+struct LikelihoodOptions {
+  double sigma_m = 30.0;  // model error, dataset units (thesis, simulation)
+  double sigma_d = 0.0;   // measurement error (thesis: 0 in simulation, 125 in the wind tunnel)
+  double variance() const { return sigma_m * sigma_m + sigma_d * sigma_d; }
+};
+
+// The (x, y) bins of the thesis code: 0.5 m in x, 0.2 m in y. The entropy
+// (and so the stopping rule) is measured on them whatever the estimator's own
+// resolution, so the 2 % threshold means the same for every plume model.
+struct BinOptions {
+  double x = 0.5, y = 0.2;
+};
+GridShape make_bins(const Map& map, const BinOptions& bins);
+
+struct Posterior {
+  std::vector<double> expected;  // expected value of every parameter (the declared estimate)
+  Vec2 map;                      // maximum a posteriori source position (navigation)
+  // The (x, y) marginal on the estimator's own grid (sums to 1).
+  Grid<double> marginal;
+  double entropy = 0.0;      // nats, of the marginal aggregated on the bins
+  double max_entropy = 0.0;  // log of the number of bins the prior reaches
+  Vec2 expected_source() const { return {expected.at(0), expected.at(1)}; }
+};
+
+// Aggregates a marginal onto bins (by cell centre) and returns its entropy in nats.
+double entropy_on_bins(const Grid<double>& marginal, const GridShape& bins);
+
+class Estimator {
+ public:
+  virtual ~Estimator() = default;
+  // A sample: the mean concentration measured at p.
+  virtual void add(Vec2 p, double value) = 0;
+  virtual int samples() const = 0;
+  // The posterior given all samples so far.
+  virtual Posterior posterior() = 0;
+  // The navigation reward (thesis eq. 7.6): KL(P || Q), where P is the current
+  // posterior and Q the one after a sample at p that reads what the model
+  // predicts there for the current expected parameters.
+  virtual double information_gain(Vec2 p, const Posterior& current) const = 0;
+};
+
+}  // namespace plumekit::ste

@@ -1,0 +1,150 @@
+#include "ste/scenario.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "cfd/flow_solver.hpp"
+#include "core/error.hpp"
+#include "dataset/seed.hpp"
+#include "ste/grid_estimator.hpp"
+#include "ste/surrogate_plume.hpp"
+
+namespace plumekit::ste {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+cfd::WindField solve_wind(const Map& map) {
+  cfd::FlowOptions fo;
+  try {
+    return cfd::solve(map, fo).wind;
+  } catch (const cfd::ConvergenceError&) {
+    fo.convection = cfd::Convection::Upwind;
+    return cfd::solve(map, fo).wind;
+  }
+}
+
+}  // namespace
+
+const char* to_string(PlumeModelKind kind) {
+  switch (kind) {
+    case PlumeModelKind::Surrogate:
+      return "surrogate";
+    case PlumeModelKind::Gaussian:
+      return "gaussian";
+    case PlumeModelKind::Physics:
+      return "physics";
+  }
+  return "?";
+}
+
+PlumeModelKind parse_plume_model_kind(const std::string& name) {
+  if (name == "surrogate") return PlumeModelKind::Surrogate;
+  if (name == "gaussian") return PlumeModelKind::Gaussian;
+  if (name == "physics") return PlumeModelKind::Physics;
+  throw InputError("--plume-model: unknown plume model '" + name +
+                   "' (use surrogate, gaussian or physics)");
+}
+
+std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t source,
+                       std::uint64_t run) {
+  using dataset::splitmix64;
+  return splitmix64(splitmix64(splitmix64(splitmix64(seed) ^ map) ^ source) ^ (run + 0x57E));
+}
+
+Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
+  auto t0 = Clock::now();
+  wind_ = solve_wind(map_);
+  wind_seconds_ = since(t0);
+  t0 = Clock::now();
+  switch (options.model) {
+    case PlumeModelKind::Gaussian:
+      model_ = std::make_unique<GaussianPlume>(map_, options.gaussian);
+      break;
+    case PlumeModelKind::Physics:
+      model_ = std::make_unique<PhysicsPlume>(map_, wind_, options.physics);
+      break;
+    case PlumeModelKind::Surrogate: {
+      SurrogatePlumeOptions so;
+      so.model = options.model_path;
+      so.source_cell = options.surrogate_cell;
+      so.threads = options.table_threads;
+      so.cache_dir = options.table_cache;
+      so.scale_lo = options.physics.scale_lo;
+      so.scale_hi = options.physics.scale_hi;
+      auto m = std::make_unique<SurrogatePlume>(map_, so);
+      table_from_cache_ = m->from_cache();
+      model_ = std::move(m);
+      break;
+    }
+  }
+  model_seconds_ = since(t0);
+  planner::PlannerOptions po;
+  po.margin = options.margin;
+  planner_ = planner::make_planner(map_, po);
+  space_ = std::make_unique<planner::FreeSpace>(map_, po.margin, po.arc_segments);
+  if (space_->empty()) throw InputError("map " + map_.name + ": no free space at the margin");
+  bins_ = make_bins(map_, options.bins);
+  navigator_ = std::make_unique<Navigator>(*space_, bins_, options.navigation);
+}
+
+Scenario::~Scenario() = default;
+
+Vec2 Scenario::check_source(Vec2 source) const {
+  if (!map_.in_arena(source))
+    throw InputError("--source " + to_string(source) + " is outside the arena (0..." +
+                     std::to_string(map_.width) + " x 0..." + std::to_string(map_.height) + ")");
+  const int o = map_.obstacle_at(source);
+  if (o >= 0)
+    throw InputError("--source " + to_string(source) + " is inside obstacles[" + std::to_string(o) +
+                     "] of map " + map_.name);
+  return source;
+}
+
+Vec2 Scenario::check_start(Vec2 start) const {
+  if (!map_.in_arena(start))
+    throw InputError("--start " + to_string(start) + " is outside the arena");
+  const int o = map_.obstacle_at(start);
+  if (o >= 0)
+    throw InputError("--start " + to_string(start) + " is inside obstacles[" + std::to_string(o) +
+                     "] of map " + map_.name);
+  return space_->contains(start) ? start : space_->nearest_free(start);
+}
+
+Vec2 Scenario::random_start(Vec2 source, std::uint64_t seed) const {
+  const int region = space_->region_of(space_->nearest_free(source));
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> ux(0.0, map_.width), uy(0.0, map_.height);
+  for (int attempt = 0; attempt < 100000; ++attempt) {
+    const Vec2 p{ux(rng), uy(rng)};
+    if (norm(p - source) < options_.min_start_distance) continue;
+    if (space_->contains(p) && space_->region_of(p) == region) return p;
+  }
+  throw InputError("map " + map_.name + ": no free start found " +
+                   std::to_string(options_.min_start_distance) + " m from the source");
+}
+
+LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {
+  check_source(source);
+  start = check_start(start);
+  std::unique_ptr<Estimator> estimator;
+  if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get()))
+    estimator = std::make_unique<GridEstimator>(*table, options_.likelihood, bins_);
+  else
+    estimator = std::make_unique<MhEstimator>(*model_, map_, options_.likelihood, bins_,
+                                              options_.mh, dataset::splitmix64(seed ^ 0x3C));
+  SimulatedWorld world(map_, wind_, source, options_.world, seed);
+  return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);
+}
+
+Grid<double> Scenario::mean_plume(Vec2 source) const {
+  const dataset::AdvectionDiffusion ad(wind_, options_.physics.advection_diffusion);
+  return ad.solve(source);
+}
+
+}  // namespace plumekit::ste

@@ -1,0 +1,52 @@
+#pragma once
+// The surrogate plume model: the CNN (surrogate/plume_model.hpp) over the
+// source position, tabulated. At construction every allowed source cell's
+// predicted mean plume (64 x 64) is computed, in batches split across
+// threads, so that during a run readings_at(p) is one bilinear lookup per
+// cell and no network runs inside the loop. The table can be cached on disk,
+// keyed by the SHA-256 of the map's geometry, of the model file and of the
+// source grid. The release rate is a scale factor on the table (parameter
+// release_scale), fixed or marginalised by the grid estimator.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "ste/plume_model.hpp"
+
+namespace plumekit::ste {
+
+struct SurrogatePlumeOptions {
+  std::filesystem::path model;  // plumekit-cnn file
+  double source_cell = 0.2;     // m: 50 x 20 candidate sources on the 10 x 4 arena
+  int threads = 2;              // for the table build
+  int batch = 32;
+  std::filesystem::path cache_dir;  // empty: no disk cache
+  double scale_lo = 1.0, scale_hi = 1.0;
+};
+
+class SurrogatePlume final : public SourceTableModel {
+ public:
+  SurrogatePlume(const Map& map, const SurrogatePlumeOptions& options);
+  std::string name() const override { return "surrogate"; }
+  const std::vector<Parameter>& parameters() const override { return parameters_; }
+  const GridShape& sources() const override { return sources_; }
+  const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
+  std::vector<double> readings_at(Vec2 p) const override;
+
+  bool from_cache() const { return from_cache_; }
+  const std::string& key() const { return key_; }  // the cache key (hex)
+  const GridShape& plume_grid() const { return grid_; }
+
+ private:
+  Map map_;
+  std::vector<Parameter> parameters_;
+  GridShape sources_, grid_;
+  std::vector<std::uint8_t> allowed_;
+  std::vector<int> row_;      // source cell -> row of table_, or -1
+  std::vector<float> table_;  // [rows][grid_.ny][grid_.nx]
+  std::string key_;
+  bool from_cache_ = false;
+};
+
+}  // namespace plumekit::ste

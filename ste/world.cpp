@@ -1,0 +1,53 @@
+#include "ste/world.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace plumekit::ste {
+
+SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
+                               const WorldOptions& options, std::uint64_t seed)
+    : source_(source),
+      options_(options),
+      sim_(map, wind, source, options.filament, seed),
+      // An independent stream for the sensor, so noise never shifts the plume.
+      noise_rng_(seed ^ 0x5DEECE66DULL) {
+  if (!(options.speed > 0.0)) throw InputError("robot speed must be positive");
+  if (!(options.sample_seconds > 0.0) || !(options.sample_rate > 0.0))
+    throw InputError("sample duration and rate must be positive");
+  if (options.noise < 0.0) throw InputError("sensor noise must be >= 0");
+  dataset::spin_up(sim_, options.filament);
+  spinup_ = sim_.time();
+}
+
+void SimulatedWorld::advance(double seconds) {
+  debt_ += seconds;
+  const double dt = options_.filament.dt;
+  while (debt_ >= dt - 1e-12) {
+    sim_.step();
+    debt_ -= dt;
+  }
+}
+
+void SimulatedWorld::travel(double metres) {
+  advance(metres / options_.speed);
+}
+
+double SimulatedWorld::sample(Vec2 p) {
+  const int n =
+      std::max(1, static_cast<int>(std::lround(options_.sample_seconds * options_.sample_rate)));
+  std::normal_distribution<double> noise(0.0, options_.noise);
+  double sum = 0.0;
+  for (int k = 0; k < n; ++k) {
+    if (k > 0) advance(1.0 / options_.sample_rate);
+    double c = sim_.concentration_at(p);
+    if (options_.noise > 0.0) c = std::max(0.0, c + noise(noise_rng_));
+    sum += c;
+  }
+  advance(1.0 / options_.sample_rate);  // the last reading's interval
+  return sum / n;
+}
+
+}  // namespace plumekit::ste

@@ -1,0 +1,147 @@
+#include "surrogate/plume_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "dataset/features.hpp"
+
+namespace plumekit::surrogate {
+
+namespace {
+
+double sample(const GridShape& g, const std::vector<float>& v, const Map* map, Vec2 p) {
+  if (map && map->obstacle_at(p) >= 0) return 0.0;
+  const GridShape::Bilinear b = g.bilinear(p);
+  const auto f = [&](int i, int j) { return static_cast<double>(v[g.index(i, j)]); };
+  return (1 - b.tx) * (1 - b.ty) * f(b.i0, b.j0) + b.tx * (1 - b.ty) * f(b.i1, b.j0) +
+         (1 - b.tx) * b.ty * f(b.i0, b.j1) + b.tx * b.ty * f(b.i1, b.j1);
+}
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+bool same_length(double a, double b) {
+  return std::abs(a - b) <= 1e-9 * std::max({1.0, std::abs(a), std::abs(b)});
+}
+
+}  // namespace
+
+double PlumePrediction::mean_at(Vec2 p) const {
+  return sample(grid, mean, map.get(), p);
+}
+double PlumePrediction::std_at(Vec2 p) const {
+  return sample(grid, std, map.get(), p);
+}
+
+PlumeModel::PlumeModel(std::shared_ptr<const Network> network, const Map& map)
+    : network_(std::move(network)), map_(std::make_shared<const Map>(map)) {
+  if (!network_) throw std::invalid_argument("PlumeModel: null network");
+  const ModelFile& f = network_->file();
+  const FeatureContract& c = f.features;
+  const std::string who = "surrogate model feature contract vs map \"" + map.name + "\": ";
+  if (c.rows != dataset::kFeatureGrid || c.cols != dataset::kFeatureGrid) {
+    throw InputError(who + "the model's grid is " + std::to_string(c.rows) + "x" +
+                     std::to_string(c.cols) + ", the dataset's features are " +
+                     std::to_string(dataset::kFeatureGrid) + "x" +
+                     std::to_string(dataset::kFeatureGrid));
+  }
+  if (!same_length(c.width, map.width) || !same_length(c.height, map.height)) {
+    throw InputError(who + "the model was trained on a " + fmt(c.width) + " x " + fmt(c.height) +
+                     " m arena, the map is " + fmt(map.width) + " x " + fmt(map.height) + " m");
+  }
+  const char* names[] = {"region", "signed_distance", "source_distance"};
+  if (f.architecture.in_channels != 3 || c.channels.size() != 3) {
+    throw InputError(who + "the model takes " + std::to_string(f.architecture.in_channels) +
+                     " input channels, the dataset's features are 3 (region, signed_distance, "
+                     "source_distance)");
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (c.channels[i].name != names[i]) {
+      throw InputError(who + "input channel " + std::to_string(i) + " is \"" + c.channels[i].name +
+                       "\", the dataset's is \"" + names[i] + "\"");
+    }
+  }
+  if (c.source_distance_form != "euclidean") {
+    throw InputError(who + "source_distance form \"" + c.source_distance_form +
+                     "\", the dataset's is \"euclidean\"");
+  }
+  mean_channel_ = std_channel_ = -1;
+  for (std::size_t o = 0; o < f.outputs.size(); ++o) {
+    if (f.outputs[o].name == "mean") mean_channel_ = static_cast<int>(o);
+    if (f.outputs[o].name == "std") std_channel_ = static_cast<int>(o);
+  }
+  if (mean_channel_ < 0 || std_channel_ < 0) {
+    throw InputError(who + "the model's outputs must include \"mean\" and \"std\"");
+  }
+
+  grid_ = dataset::feature_grid(map);
+  map_features_ = dataset::map_features(map, grid_);
+  obstacle_cell_.resize(grid_.size());
+  for (std::size_t k = 0; k < grid_.size(); ++k)
+    obstacle_cell_[k] = map_features_[k] == 0.0f;  // region label 0: centre inside an obstacle
+}
+
+void PlumeModel::check_source(Vec2 source) const {
+  if (!is_finite(source) || !map_->in_arena(source)) {
+    throw InputError("source (" + fmt(source.x) + ", " + fmt(source.y) + ") is outside the arena " +
+                     "of map \"" + map_->name + "\" (" + fmt(map_->width) + " x " +
+                     fmt(map_->height) + " m)");
+  }
+  if (const int k = map_->obstacle_at(source); k >= 0) {
+    throw InputError("source (" + fmt(source.x) + ", " + fmt(source.y) + ") is inside obstacle " +
+                     std::to_string(k) + " of map \"" + map_->name + "\"");
+  }
+}
+
+std::vector<float> PlumeModel::features(Vec2 source) const {
+  std::vector<float> x = map_features_;
+  const std::vector<float> d = dataset::source_feature(source, grid_);
+  x.insert(x.end(), d.begin(), d.end());
+  return x;
+}
+
+PlumePrediction PlumeModel::predict(Vec2 source) const {
+  return std::move(predict_batch({source}, 1).front());
+}
+
+std::vector<PlumePrediction> PlumeModel::predict_batch(const std::vector<Vec2>& sources,
+                                                       int batch_size) const {
+  if (batch_size < 1) throw std::invalid_argument("PlumeModel::predict_batch: batch_size < 1");
+  for (Vec2 s : sources)
+    check_source(s);
+  const std::size_t cells = grid_.size();
+  std::vector<PlumePrediction> out;
+  out.reserve(sources.size());
+  for (std::size_t first = 0; first < sources.size(); first += batch_size) {
+    const int n = static_cast<int>(std::min<std::size_t>(batch_size, sources.size() - first));
+    Tensor input(n, 3, grid_.ny, grid_.nx);
+    for (int i = 0; i < n; ++i) {
+      const std::vector<float> x = features(sources[first + i]);
+      std::copy(x.begin(), x.end(), input.sample_data(i));
+    }
+    const Tensor y = network_->predict(input);
+    for (int i = 0; i < n; ++i) {
+      PlumePrediction p;
+      p.grid = grid_;
+      p.map = map_;
+      const float* m = y.sample_data(i) + cells * mean_channel_;
+      const float* s = y.sample_data(i) + cells * std_channel_;
+      p.mean.resize(cells);
+      p.std.resize(cells);
+      for (std::size_t k = 0; k < cells; ++k) {
+        p.mean[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, m[k]);
+        p.std[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, s[k]);
+      }
+      out.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
+}  // namespace plumekit::surrogate

@@ -1,0 +1,110 @@
+// plumekit localize / evaluate / demo from the command line.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.hpp"
+
+namespace plumekit::test {
+namespace {
+
+using nlohmann::json;
+
+const std::string kSmallMap = R"({
+  "format": "plumekit-map/1", "name": "small", "size": [6.0, 3.0],
+  "inlet": {"side": "left", "speed": 1.0}, "outlet": {"side": "right"},
+  "obstacles": [[[2.5, 1.0], [3.0, 1.0], [3.0, 2.0], [2.5, 2.0]]],
+  "sources": [[4.5, 0.5], [1.5, 0.7]]
+})";
+
+class SteCli : public CliTest {
+ protected:
+  std::string write_map() {
+    std::filesystem::create_directories(dir / "maps");
+    const auto p = dir / "maps" / "small.json";
+    std::ofstream(p) << kSmallMap;
+    return p.string();
+  }
+};
+
+TEST_F(SteCli, LocalizeJsonAndPictures) {
+  const std::string map = write_map();
+  const CliResult r = run("localize " + map +
+                          " --source 4.5,0.5 --start 1,2.5 --plume-model physics --seed 3 --out " +
+                          (dir / "run").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  for (const char* key :
+       {"estimate", "error_m", "samples", "distance_m", "compute_s", "stopped_by"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_LT(j["error_m"].get<double>(), 0.5);
+  EXPECT_TRUE(std::filesystem::exists(dir / "run" / "trajectory.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "run" / "posterior.png"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "run" / "run.json"));
+}
+
+TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
+  const std::string map = write_map();
+  CliResult r = run("localize " + map + " --source 2.7,1.5 --plume-model physics");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("inside obstacles[0]"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --start 9,1 --plume-model physics");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--start"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("outside the arena"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model kriging --json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown plume model 'kriging'"), std::string::npos) << r.err;
+  EXPECT_FALSE(json::parse(r.out)["ok"].get<bool>());
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model surrogate --model " +
+          (dir / "missing.pkcnn").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("missing.pkcnn not found"), std::string::npos) << r.err;
+  r = run("evaluate --maps " + (dir / "nowhere").string() + " --plume-model physics");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
+}
+
+TEST_F(SteCli, EvaluateWritesEverythingAndIgnoresThreadCount) {
+  write_map();
+  const std::string maps = (dir / "maps").string();
+  CliResult r =
+      run("evaluate --maps " + maps + " --runs 2 --threads 1 --plume-model physics --json --out " +
+          (dir / "e1").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["overall"]["runs"].get<int>(), 4);
+  for (const char* f : {"runs.csv", "summary.json", "boxplot-error.png", "boxplot-samples.png",
+                        "trajectories/small.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "e1" / f)) << f;
+  r = run("evaluate --maps " + maps + " --runs 2 --threads 2 --plume-model physics --out " +
+          (dir / "e2").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Identical runs apart from the measured compute times (the last columns).
+  auto strip = [](const std::string& csv) {
+    std::istringstream in(csv);
+    std::string line, out;
+    while (std::getline(in, line)) {
+      std::vector<std::string> cells;
+      std::istringstream l(line);
+      std::string c;
+      while (std::getline(l, c, ','))
+        cells.push_back(c);
+      for (std::size_t k = 0; k < cells.size(); ++k)
+        if (k != 13 && k != 14) out += cells[k] + ",";
+      out += "\n";
+    }
+    return out;
+  };
+  EXPECT_EQ(strip(slurp(dir / "e1" / "runs.csv")), strip(slurp(dir / "e2" / "runs.csv")));
+}
+
+TEST_F(SteCli, DemoRunsAndSaysWhereThePicturesAre) {
+  const CliResult r = run("demo --plume-model physics --out " + (dir / "demo").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("pictures:"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "demo" / "trajectory.png"));
+}
+
+}  // namespace
+}  // namespace plumekit::test
