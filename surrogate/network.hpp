@@ -4,6 +4,7 @@
 // be called from several threads at once.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "surrogate/layers.hpp"
@@ -13,14 +14,18 @@
 namespace plumekit::surrogate {
 
 struct EngineOptions {
-  // Threads per predict() call. The samples of a batch are split among them; a batch of one runs
-  // on one thread (the GEMMs of one 64x64 sample are too small to share well). Default 1.
+  // Threads per predict() call. The samples of a batch are split among them; a batch with fewer
+  // samples than threads runs each sample's decoders (one per output) on threads of their own
+  // instead, after its encoder. Results do not depend on the thread count. Default 1.
   int threads = 1;
 };
 
 class Network {
  public:
   explicit Network(ModelFile file, EngineOptions options = {});
+  ~Network();
+  Network(Network&&) noexcept;
+  Network& operator=(Network&&) noexcept;
   // Reads and checks `path`; InputError naming the file and the fault when it is malformed.
   static Network load(const std::filesystem::path& path, EngineOptions options = {});
 
@@ -37,12 +42,18 @@ class Network {
 
  private:
   struct Workspace;
-  void forward_sample(const float* x, float* y, Workspace& ws) const;
+  struct WorkspacePool;
+  // The encoder fills ws.skips, ws.indices and ws.bottom; decode() reads them (from `enc`) and
+  // uses its own `ws` for activations, so the decoders of one sample can run at once.
+  void encode(const float* x, Workspace& ws) const;
+  void decode(int output, const Workspace& enc, Workspace& ws, float* y) const;
 
   ModelFile file_;
   EngineOptions options_;
   std::vector<Conv> encoder_;  // level-major, convs_per_block per level
   std::vector<Conv> decoder_;  // output-major, then level L-1..0, convs_per_block per level
+  // Workspaces outlive predict() calls, so a batch of one allocates (and page-faults) nothing.
+  std::unique_ptr<WorkspacePool> pool_;
 };
 
 }  // namespace plumekit::surrogate
