@@ -116,7 +116,7 @@ double Network::flops_per_sample() const {
   return flops;
 }
 
-void Network::encode(const float* x, Workspace& ws) const {
+void Network::encode(const float* x, Workspace& ws, const std::int32_t* const* forced) const {
   const auto& a = file_.architecture;
   const int levels = static_cast<int>(a.filters.size());
   const int n = a.convs_per_block;
@@ -150,6 +150,15 @@ void Network::encode(const float* x, Workspace& ws) const {
     const int f = a.filters[b];
     ws.indices[b].resize(static_cast<std::size_t>(f) * (h / 2) * (w / 2));
     max_pool2x2(ws.skips[b].data(), f, h, w, ws.a.data(), ws.indices[b].data());
+    if (forced) {
+      const std::size_t pooled = static_cast<std::size_t>(h / 2) * (w / 2);
+      for (int c = 0; c < f; ++c)
+        for (std::size_t p = 0; p < pooled; ++p) {
+          const std::size_t q = c * pooled + p;
+          ws.indices[b][q] = forced[b][q];
+          ws.a[q] = ws.skips[b][static_cast<std::size_t>(c) * h * w + forced[b][q]];
+        }
+    }
     in = ws.a.data();
     h /= 2;
     w /= 2;
@@ -194,7 +203,7 @@ void Network::decode(int o, const Workspace& enc, Workspace& ws, float* y) const
   }
 }
 
-Tensor Network::predict(const Tensor& input) const {
+void Network::check_input(const Tensor& input) const {
   const auto& a = file_.architecture;
   if (input.c != a.in_channels || input.h != file_.features.rows ||
       input.w != file_.features.cols || input.data.size() != input.sample() * input.n) {
@@ -204,6 +213,51 @@ Tensor Network::predict(const Tensor& input) const {
         std::to_string(a.in_channels) + "," + std::to_string(file_.features.rows) + "," +
         std::to_string(file_.features.cols) + "]");
   }
+}
+
+Tensor Network::predict_with_pool_indices(const Tensor& input, const PoolIndices& indices) const {
+  check_input(input);
+  const auto& a = file_.architecture;
+  const int levels = static_cast<int>(a.filters.size());
+  if (static_cast<int>(indices.size()) != levels)
+    throw std::invalid_argument("predict_with_pool_indices: one index array per level needed");
+  std::vector<std::size_t> per_sample(levels);
+  int h = input.h, w = input.w;
+  for (int b = 0; b < levels; ++b) {
+    const int ph = h / 2, pw = w / 2;
+    per_sample[b] = static_cast<std::size_t>(a.filters[b]) * ph * pw;
+    if (indices[b].size() != per_sample[b] * input.n)
+      throw std::invalid_argument("predict_with_pool_indices: level " + std::to_string(b) +
+                                  " has " + std::to_string(indices[b].size()) + " indices, needs " +
+                                  std::to_string(per_sample[b] * input.n));
+    for (std::size_t q = 0; q < indices[b].size(); ++q) {
+      const std::size_t p = q % (static_cast<std::size_t>(ph) * pw);
+      const int py = static_cast<int>(p / pw), px = static_cast<int>(p % pw);
+      const std::int32_t i = indices[b][q];
+      if (i < 0 || i / w / 2 != py || i % w / 2 != px)
+        throw std::invalid_argument("predict_with_pool_indices: level " + std::to_string(b) +
+                                    " index " + std::to_string(q) + " lies outside its window");
+    }
+    h = ph;
+    w = pw;
+  }
+  Tensor out(input.n, a.out_channels, input.h, input.w);
+  const std::size_t plane = static_cast<std::size_t>(input.h) * input.w;
+  Workspace ws;
+  std::vector<const std::int32_t*> forced(levels);
+  for (int i = 0; i < input.n; ++i) {
+    for (int b = 0; b < levels; ++b)
+      forced[b] = indices[b].data() + per_sample[b] * i;
+    encode(input.sample_data(i), ws, forced.data());
+    for (int o = 0; o < a.out_channels; ++o)
+      decode(o, ws, ws, out.sample_data(i) + o * plane);
+  }
+  return out;
+}
+
+Tensor Network::predict(const Tensor& input) const {
+  check_input(input);
+  const auto& a = file_.architecture;
   Tensor out(input.n, a.out_channels, input.h, input.w);
   const std::size_t plane = static_cast<std::size_t>(input.h) * input.w;
   if (options_.threads > input.n && a.out_channels > 1) {

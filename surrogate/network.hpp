@@ -33,6 +33,14 @@ class Network {
   // multiplied by its scale from the file (so in the file's output units).
   Tensor predict(const Tensor& input) const;
 
+  // For tests against PyTorch that must not hinge on max-pool near-ties (surrogate/README.md): the
+  // same forward pass, one thread, with every 2x2 max-pool's argmax taken from `indices` instead
+  // of computed. indices[b] holds level b's, [n][filters[b]][h_b/2][w_b/2], each the flat y*w+x in
+  // that level's input plane (PyTorch's return_indices convention). std::invalid_argument when a
+  // size is wrong or an index lies outside its 2x2 window.
+  using PoolIndices = std::vector<std::vector<std::int32_t>>;
+  Tensor predict_with_pool_indices(const Tensor& input, const PoolIndices& indices) const;
+
   // The file's description (header, layers, contract, outputs). Its raw tensors are released once
   // converted into the layers, so `weights` and `biases` are empty here.
   const ModelFile& file() const { return file_; }
@@ -45,7 +53,9 @@ class Network {
   struct WorkspacePool;
   // The encoder fills ws.skips, ws.indices and ws.bottom; decode() reads them (from `enc`) and
   // uses its own `ws` for activations, so the decoders of one sample can run at once.
-  void encode(const float* x, Workspace& ws) const;
+  // `forced`, when given, holds each level's pool indices for this sample.
+  void encode(const float* x, Workspace& ws, const std::int32_t* const* forced = nullptr) const;
+  void check_input(const Tensor& input) const;
   void decode(int output, const Workspace& enc, Workspace& ws, float* y) const;
 
   ModelFile file_;
