@@ -18,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <string>
 #include <thread>
@@ -34,6 +35,23 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// CPU seconds of the whole process, all threads: on a machine shared with other work, the cost of
+// the code itself, much less disturbed than wall time by how often the scheduler lets it run.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+// Wall and CPU seconds of one call of f.
+template <class F>
+std::pair<double, double> timed(F&& f) {
+  const double c0 = cpu_seconds();
+  const auto t0 = Clock::now();
+  f();
+  return {seconds_since(t0), cpu_seconds() - c0};
 }
 
 double median(std::vector<double> v) {
@@ -124,20 +142,19 @@ struct Gemm {
       c[t].noalias() = a[t] * b[t];  // warm-up
     }
   }
-  double rate() {
-    std::vector<double> secs(threads);
-    auto one = [&](int t) {
-      const auto t0 = Clock::now();
-      c[t].noalias() = a[t] * b[t];
-      secs[t] = seconds_since(t0);
-    };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t)
-      pool.emplace_back(one, t);
-    one(0);
-    for (auto& th : pool)
-      th.join();
-    return 2.0 * n * n * n * threads / *std::max_element(secs.begin(), secs.end()) / 1e9;
+  // GFLOP/s of wall time (all threads) and GFLOP per CPU second (per core).
+  std::pair<double, double> rate() {
+    const auto [wall, cpu] = timed([&] {
+      auto one = [&](int t) { c[t].noalias() = a[t] * b[t]; };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t)
+        pool.emplace_back(one, t);
+      one(0);
+      for (auto& th : pool)
+        th.join();
+    });
+    const double flops = 2.0 * n * n * n * threads;
+    return {flops / wall / 1e9, flops / cpu / 1e9};
   }
 };
 
@@ -153,9 +170,13 @@ int main(int argc, char** argv) {
   std::printf("model %s: %zu parameters; %d repeats, medians\n", path.c_str(),
               parameter_count(file.layers), repeats);
 
-  std::printf(
-      "\nthreads batch | engine ms/sample GFLOP/s %%peak | libtorch ms/sample GFLOP/s | "
-      "speed-up | Eigen GEMM GFLOP/s\n");
+  struct Row {
+    int threads, batch;
+    double flops, diff;
+    std::vector<double> ours, theirs, peak;              // wall: s per sample, GFLOP/s
+    std::vector<double> ours_cpu, theirs_cpu, peak_cpu;  // CPU s per sample, GFLOP per CPU s
+  };
+  std::vector<Row> rows;
   for (int threads : {1, 2}) {
     const Network net(file, EngineOptions{threads});
     Gemm gemm(1024, threads);
@@ -176,37 +197,55 @@ int main(int argc, char** argv) {
         diff = std::max(diff, std::abs(double(ours.data[i]) - theirs.data_ptr<float>()[i]));
         top = std::max(top, std::abs(double(ours.data[i])));
       }
+      Row row{threads, batch, net.flops_per_sample(), top > 0 ? diff / top : diff, {}, {}, {}, {},
+              {},      {}};
       const int runs = batch == 1 ? 10 : 1;
-      std::vector<double> ours_s, theirs_s, peak;
       for (int r = 0; r < repeats; ++r) {
-        peak.push_back(gemm.rate());
-        auto t0 = Clock::now();
-        for (int i = 0; i < runs; ++i)
-          net.predict(x);
-        ours_s.push_back(seconds_since(t0) / runs / batch);
-        t0 = Clock::now();
-        for (int i = 0; i < runs; ++i)
-          torch_net.forward(tx);
-        theirs_s.push_back(seconds_since(t0) / runs / batch);
+        const auto [gw, gc] = gemm.rate();
+        row.peak.push_back(gw);
+        row.peak_cpu.push_back(gc);
+        auto [w, c] = timed([&] {
+          for (int i = 0; i < runs; ++i)
+            net.predict(x);
+        });
+        row.ours.push_back(w / runs / batch);
+        row.ours_cpu.push_back(c / runs / batch);
+        std::tie(w, c) = timed([&] {
+          for (int i = 0; i < runs; ++i)
+            torch_net.forward(tx);
+        });
+        row.theirs.push_back(w / runs / batch);
+        row.theirs_cpu.push_back(c / runs / batch);
       }
-      const double flops = net.flops_per_sample();
+      rows.push_back(row);
+    }
+  }
+  // One table per clock. speed-up and %peak are medians of per-repeat ratios (same load).
+  for (bool cpu : {false, true}) {
+    std::printf(cpu ? "\nCPU time (all threads; GFLOP per CPU second, i.e. per core)\n"
+                    : "\nwall time\n");
+    std::printf(
+        "threads batch | engine ms/sample GFLOP/s %%peak | libtorch ms/sample GFLOP/s | "
+        "speed-up | Eigen GEMM GFLOP/s\n");
+    for (const Row& r : rows) {
+      const auto& a = cpu ? r.ours_cpu : r.ours;
+      const auto& b = cpu ? r.theirs_cpu : r.theirs;
+      const auto& p = cpu ? r.peak_cpu : r.peak;
       std::vector<double> ratio, of_peak;
-      for (int r = 0; r < repeats; ++r) {
-        ratio.push_back(theirs_s[r] / ours_s[r]);
-        of_peak.push_back(flops / ours_s[r] / 1e9 / peak[r]);
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        ratio.push_back(b[i] / a[i]);
+        of_peak.push_back(r.flops / a[i] / 1e9 / p[i]);
       }
-      const double a = median(ours_s), b = median(theirs_s);
       std::printf(
           "   %d    %3d  |   %7.2f    %6.1f   %4.0f%% |   %7.2f    %6.1f  | %5.2fx  |  %6.1f  "
           "(max rel diff %.1e)\n",
-          threads, batch, a * 1e3, flops / a / 1e9, 100 * median(of_peak), b * 1e3, flops / b / 1e9,
-          median(ratio), median(peak), top > 0 ? diff / top : diff);
+          r.threads, r.batch, median(a) * 1e3, r.flops / median(a) / 1e9, 100 * median(of_peak),
+          median(b) * 1e3, r.flops / median(b) / 1e9, median(ratio), median(p), r.diff);
     }
   }
   std::printf(
-      "\nspeed-up = libtorch time / engine time, median over the repeats of the ratio measured "
-      "back to back; %%peak = engine GFLOP/s over Eigen's 1024^3 GEMM on as many threads, measured "
-      "in the same "
-      "repeat, median.\n");
+      "\nspeed-up = libtorch time / engine time; %%peak = engine GFLOP/s over Eigen's 1024^3 "
+      "GEMM on as many threads (wall) or per core (CPU); both the median over the repeats of "
+      "ratios measured back to back in one repeat.\n");
   return 0;
 }
