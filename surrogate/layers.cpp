@@ -126,7 +126,7 @@ void conv_forward(const Conv& conv, const float* x, int h, int w, float* y,
   const int oh = conv.out_size(h), ow = conv.out_size(w);
   const int wp = w + 2 * pad, hp = h + 2 * pad;
   const int mb = conv.block();
-  const int tile = (mb == 1 ? 1 : kVectors) * kLanes;
+  const int tile = kVectors * kLanes;  // conv_blocks<MB, kVectors>'s tile, whatever MB
   const std::size_t span = (static_cast<std::size_t>(oh) * wp + tile - 1) / tile * tile;
   // Each padded plane holds every position a tile can read, zeros beyond the image.
   const std::size_t x_stride = std::max(static_cast<std::size_t>(hp) * wp,
