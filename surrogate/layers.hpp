@@ -16,7 +16,7 @@ struct Conv {
   // The weights as the direct convolution reads them (pack()): [out / block][in][k][k][block].
   std::vector<float> packed;
 
-  int block() const;  // output channels computed together: 8, or 1 for a single channel
+  int block() const;  // output channels computed together: 4, or 1 for a single channel
   void pack();
 
   int out_size(int size) const { return size + 2 * padding - kernel + 1; }
