@@ -1,6 +1,7 @@
 // The engine against libtorch on the same weights, in one process: ms per sample, GFLOP/s and the
 // ratio, at batch 1 and 32 on 1 and 2 threads; and the machine's GEMM peak measured with Eigen, so
-// the engine's GFLOP/s can be read as a fraction of it.
+// the engine's GFLOP/s can be read as a fraction of it (each repeat times the GEMM, the engine and
+// libtorch back to back, so all three see the same machine load).
 //
 // libtorch gets the weights from the same .pkcnn: read_model_file() gives every tensor in PyTorch's
 // own layout, which this program copies into torch::nn::Conv2d / ConvTranspose2d modules wired like
@@ -17,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <random>
 #include <string>
 #include <thread>
@@ -35,11 +37,30 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// CPU seconds of the whole process, all threads: on a machine shared with other work, the cost of
+// the code itself, much less disturbed than wall time by how often the scheduler lets it run.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+// Wall and CPU seconds of one call of f.
+template <class F>
+std::pair<double, double> timed(F&& f) {
+  const double c0 = cpu_seconds();
+  const auto t0 = Clock::now();
+  f();
+  return {seconds_since(t0), cpu_seconds() - c0};
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 // train/model.py's PlumeUNet, built from a model file's layer table and tensors.
 class TorchUNet {
@@ -108,31 +129,34 @@ class TorchUNet {
   std::vector<bool> relu_;
 };
 
-using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
 // Eigen's single-precision GEMM at n^3 on `threads` threads (one independent product each), GFLOP/s
 // summed over threads: the machine's practical peak for the kind of code the engine runs.
-double gemm_peak(int n, int threads, int repeats) {
-  std::vector<double> rates;
-  for (int r = 0; r < repeats; ++r) {
-    std::vector<double> secs(threads);
-    std::vector<std::thread> pool;
+struct Gemm {
+  int n, threads;
+  std::vector<RowMatrix> a, b, c;
+  Gemm(int n_, int threads_) : n(n_), threads(threads_) {
     for (int t = 0; t < threads; ++t) {
-      pool.emplace_back([&, t] {
-        RowMatrix a = RowMatrix::Random(n, n), b = RowMatrix::Random(n, n), c(n, n);
-        c.noalias() = a * b;  // warm-up
-        const auto t0 = Clock::now();
-        c.noalias() = a * b;
-        secs[t] = seconds_since(t0);
-        if (c(0, 0) == 12345.0f) std::printf(" ");  // keep the product
-      });
+      a.push_back(RowMatrix::Random(n, n));
+      b.push_back(RowMatrix::Random(n, n));
+      c.emplace_back(n, n);
+      c[t].noalias() = a[t] * b[t];  // warm-up
     }
-    for (auto& th : pool)
-      th.join();
-    rates.push_back(2.0 * n * n * n * threads / *std::max_element(secs.begin(), secs.end()) / 1e9);
   }
-  return median(rates);
-}
+  // GFLOP/s of wall time (all threads) and GFLOP per CPU second (per core).
+  std::pair<double, double> rate() {
+    const auto [wall, cpu] = timed([&] {
+      auto one = [&](int t) { c[t].noalias() = a[t] * b[t]; };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t)
+        pool.emplace_back(one, t);
+      one(0);
+      for (auto& th : pool)
+        th.join();
+    });
+    const double flops = 2.0 * n * n * n * threads;
+    return {flops / wall / 1e9, flops / cpu / 1e9};
+  }
+};
 
 }  // namespace
 
@@ -146,16 +170,16 @@ int main(int argc, char** argv) {
   std::printf("model %s: %zu parameters; %d repeats, medians\n", path.c_str(),
               parameter_count(file.layers), repeats);
 
-  std::vector<double> peak(3);
-  for (int t : {1, 2}) {
-    peak[t] = gemm_peak(1024, t, repeats);
-    std::printf("Eigen GEMM 1024^3 on %d thread%s: %.1f GFLOP/s\n", t, t > 1 ? "s" : "", peak[t]);
-  }
-  std::printf(
-      "\nthreads batch | engine ms/sample GFLOP/s %%peak | libtorch ms/sample GFLOP/s | "
-      "speed-up\n");
+  struct Row {
+    int threads, batch;
+    double flops, diff;
+    std::vector<double> ours, theirs, peak;              // wall: s per sample, GFLOP/s
+    std::vector<double> ours_cpu, theirs_cpu, peak_cpu;  // CPU s per sample, GFLOP per CPU s
+  };
+  std::vector<Row> rows;
   for (int threads : {1, 2}) {
     const Network net(file, EngineOptions{threads});
+    Gemm gemm(1024, threads);
     torch::set_num_threads(threads);
     for (int batch : {1, 32}) {
       Tensor x(batch, file.architecture.in_channels, f.rows, f.cols);
@@ -173,32 +197,55 @@ int main(int argc, char** argv) {
         diff = std::max(diff, std::abs(double(ours.data[i]) - theirs.data_ptr<float>()[i]));
         top = std::max(top, std::abs(double(ours.data[i])));
       }
+      Row row{threads, batch, net.flops_per_sample(), top > 0 ? diff / top : diff, {}, {}, {}, {},
+              {},      {}};
       const int runs = batch == 1 ? 10 : 1;
-      std::vector<double> ours_s, theirs_s;
       for (int r = 0; r < repeats; ++r) {
-        auto t0 = Clock::now();
-        for (int i = 0; i < runs; ++i)
-          net.predict(x);
-        ours_s.push_back(seconds_since(t0) / runs / batch);
-        t0 = Clock::now();
-        for (int i = 0; i < runs; ++i)
-          torch_net.forward(tx);
-        theirs_s.push_back(seconds_since(t0) / runs / batch);
+        const auto [gw, gc] = gemm.rate();
+        row.peak.push_back(gw);
+        row.peak_cpu.push_back(gc);
+        auto [w, c] = timed([&] {
+          for (int i = 0; i < runs; ++i)
+            net.predict(x);
+        });
+        row.ours.push_back(w / runs / batch);
+        row.ours_cpu.push_back(c / runs / batch);
+        std::tie(w, c) = timed([&] {
+          for (int i = 0; i < runs; ++i)
+            torch_net.forward(tx);
+        });
+        row.theirs.push_back(w / runs / batch);
+        row.theirs_cpu.push_back(c / runs / batch);
       }
-      std::vector<double> ratio;
-      for (int r = 0; r < repeats; ++r)
-        ratio.push_back(theirs_s[r] / ours_s[r]);
-      const double a = median(ours_s), b = median(theirs_s);
-      const double flops = net.flops_per_sample();
+      rows.push_back(row);
+    }
+  }
+  // One table per clock. speed-up and %peak are medians of per-repeat ratios (same load).
+  for (bool cpu : {false, true}) {
+    std::printf(cpu ? "\nCPU time (all threads; GFLOP per CPU second, i.e. per core)\n"
+                    : "\nwall time\n");
+    std::printf(
+        "threads batch | engine ms/sample GFLOP/s %%peak | libtorch ms/sample GFLOP/s | "
+        "speed-up | Eigen GEMM GFLOP/s\n");
+    for (const Row& r : rows) {
+      const auto& a = cpu ? r.ours_cpu : r.ours;
+      const auto& b = cpu ? r.theirs_cpu : r.theirs;
+      const auto& p = cpu ? r.peak_cpu : r.peak;
+      std::vector<double> ratio, of_peak;
+      for (std::size_t i = 0; i < a.size(); ++i) {
+        ratio.push_back(b[i] / a[i]);
+        of_peak.push_back(r.flops / a[i] / 1e9 / p[i]);
+      }
       std::printf(
-          "   %d    %3d  |   %7.2f    %6.1f   %4.0f%% |   %7.2f    %6.1f  | %5.2fx  (max rel "
-          "diff %.1e)\n",
-          threads, batch, a * 1e3, flops / a / 1e9, 100 * flops / a / 1e9 / peak[threads], b * 1e3,
-          flops / b / 1e9, median(ratio), top > 0 ? diff / top : diff);
+          "   %d    %3d  |   %7.2f    %6.1f   %4.0f%% |   %7.2f    %6.1f  | %5.2fx  |  %6.1f  "
+          "(max rel diff %.1e)\n",
+          r.threads, r.batch, median(a) * 1e3, r.flops / median(a) / 1e9, 100 * median(of_peak),
+          median(b) * 1e3, r.flops / median(b) / 1e9, median(ratio), median(p), r.diff);
     }
   }
   std::printf(
-      "\nspeed-up = libtorch time / engine time, median over the repeats of the ratio measured "
-      "back to back; %%peak = engine GFLOP/s over Eigen's GEMM on as many threads.\n");
+      "\nspeed-up = libtorch time / engine time; %%peak = engine GFLOP/s over Eigen's 1024^3 "
+      "GEMM on as many threads (wall) or per core (CPU); both the median over the repeats of "
+      "ratios measured back to back in one repeat.\n");
   return 0;
 }

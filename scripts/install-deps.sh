@@ -25,6 +25,8 @@ packages=(
   # which the training script does.
   python3-torch python3-numpy
 )
+# Optional, never needed by the build: libtorch-dev for bench/surrogate_vs_libtorch
+# (bench/libtorch/run.sh passes it as an argument), openfoam (bench/openfoam/install.sh).
 
 if [[ $# -gt 0 ]]; then
   packages=("$@")

@@ -13,6 +13,11 @@ struct Conv {
   bool relu = false;
   std::vector<float> weight;  // [out][in][k][k]
   std::vector<float> bias;    // [out]
+  // The weights as the direct convolution reads them (pack()): [out / block][in][k][k][block].
+  std::vector<float> packed;
+
+  int block() const;  // output channels computed together: 4, or 1 for a single channel
+  void pack();
 
   int out_size(int size) const { return size + 2 * padding - kernel + 1; }
 };
@@ -24,9 +29,10 @@ Conv make_conv2d(int in, int out, int kernel, int padding, bool relu, const std:
 Conv make_conv_transpose2d(int in, int out, int kernel, int padding, bool relu,
                            const std::vector<float>& w, const std::vector<float>& b);
 
-// y[out, h', w'] = act(W * im2col(x) + b), im2col into `col` (grown as needed), GEMM by Eigen.
+// y[out, h', w'] = act(conv(x, W) + b), a direct convolution; `scratch` (grown as needed) holds
+// the zero-padded input and the unclipped output.
 void conv_forward(const Conv& conv, const float* x, int h, int w, float* y,
-                  std::vector<float>& col);
+                  std::vector<float>& scratch);
 
 // 2x2 stride-2 max-pool (floor of odd sizes, like PyTorch). `index` gets the argmax as y*w+x in the
 // input plane; ties go to the first in row-major window order, as PyTorch's CPU kernel does.

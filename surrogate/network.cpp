@@ -1,6 +1,7 @@
 #include "surrogate/network.hpp"
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -12,11 +13,35 @@ struct Network::Workspace {
   std::vector<std::vector<float>> skips;           // encoder level outputs, [filters[b], h_b, w_b]
   std::vector<std::vector<std::int32_t>> indices;  // argmax of each pool
   std::vector<float> a, b;                         // ping-pong activations
-  std::vector<float> col;
+  std::vector<float> col;                          // conv_forward's scratch
+  std::vector<float> bottom;                       // the encoder's output
+  std::vector<int> hs, ws;                         // each level's plane size
 };
 
+// Free workspaces, taken and given back under a lock; predict() may run on many threads at once.
+struct Network::WorkspacePool {
+  std::mutex mutex;
+  std::vector<std::unique_ptr<Workspace>> free;
+
+  std::unique_ptr<Workspace> take() {
+    std::lock_guard lock(mutex);
+    if (free.empty()) return std::make_unique<Workspace>();
+    auto ws = std::move(free.back());
+    free.pop_back();
+    return ws;
+  }
+  void give(std::unique_ptr<Workspace> ws) {
+    std::lock_guard lock(mutex);
+    free.push_back(std::move(ws));
+  }
+};
+
+Network::~Network() = default;
+Network::Network(Network&&) noexcept = default;
+Network& Network::operator=(Network&&) noexcept = default;
+
 Network::Network(ModelFile file, EngineOptions options)
-    : file_(std::move(file)), options_(options) {
+    : file_(std::move(file)), options_(options), pool_(std::make_unique<WorkspacePool>()) {
   if (options_.threads < 1) throw std::invalid_argument("EngineOptions.threads must be >= 1");
   // A ModelFile from parse_model_file is consistent; one put together by hand must be too.
   const std::vector<LayerSpec> expected = deepcfd_layers(file_.architecture);
@@ -91,7 +116,7 @@ double Network::flops_per_sample() const {
   return flops;
 }
 
-void Network::forward_sample(const float* x, float* y, Workspace& ws) const {
+void Network::encode(const float* x, Workspace& ws, const std::int32_t* const* forced) const {
   const auto& a = file_.architecture;
   const int levels = static_cast<int>(a.filters.size());
   const int n = a.convs_per_block;
@@ -104,14 +129,14 @@ void Network::forward_sample(const float* x, float* y, Workspace& ws) const {
   ws.b.resize(widest);
   ws.skips.resize(levels);
   ws.indices.resize(levels);
-  std::vector<int> hs(levels), wd(levels);
+  ws.hs.resize(levels);
+  ws.ws.resize(levels);
 
-  // Encoder.
   int h = file_.features.rows, w = file_.features.cols;
   const float* in = x;
   for (int b = 0; b < levels; ++b) {
-    hs[b] = h;
-    wd[b] = w;
+    ws.hs[b] = h;
+    ws.ws[b] = w;
     for (int j = 0; j < n; ++j) {
       const Conv& c = encoder_[b * n + j];
       float* out = j == n - 1 ? nullptr : (in == ws.a.data() ? ws.b.data() : ws.a.data());
@@ -125,45 +150,60 @@ void Network::forward_sample(const float* x, float* y, Workspace& ws) const {
     const int f = a.filters[b];
     ws.indices[b].resize(static_cast<std::size_t>(f) * (h / 2) * (w / 2));
     max_pool2x2(ws.skips[b].data(), f, h, w, ws.a.data(), ws.indices[b].data());
+    if (forced) {
+      const std::size_t pooled = static_cast<std::size_t>(h / 2) * (w / 2);
+      for (int c = 0; c < f; ++c)
+        for (std::size_t p = 0; p < pooled; ++p) {
+          const std::size_t q = c * pooled + p;
+          ws.indices[b][q] = forced[b][q];
+          ws.a[q] = ws.skips[b][static_cast<std::size_t>(c) * h * w + forced[b][q]];
+        }
+    }
     in = ws.a.data();
     h /= 2;
     w /= 2;
   }
-  // The bottleneck stays in ws.a's head; copy it out since decoders reuse a and b.
-  const std::vector<float> bottom(
-      ws.a.begin(), ws.a.begin() + static_cast<std::ptrdiff_t>(a.filters.back()) * h * w);
+  ws.bottom.assign(ws.a.begin(),
+                   ws.a.begin() + static_cast<std::ptrdiff_t>(a.filters.back()) * h * w);
+}
 
-  // One decoder per output: unpool into the upper half of the concatenation [skip, unpooled].
-  std::size_t k = 0;
-  for (int o = 0; o < a.out_channels; ++o) {
-    const float* cur = bottom.data();
-    int ph = h, pw = w;
-    for (int b = levels - 1; b >= 0; --b) {
-      const int f = a.filters[b];
-      const std::size_t plane = static_cast<std::size_t>(hs[b]) * wd[b];
-      float* cat = cur == ws.a.data() ? ws.b.data() : ws.a.data();
-      std::copy(ws.skips[b].begin(), ws.skips[b].end(), cat);
-      max_unpool2x2(cur, ws.indices[b].data(), f, ph, pw, hs[b], wd[b], cat + f * plane);
-      cur = cat;
-      for (int j = 0; j < n; ++j) {
-        const Conv& c = decoder_[k++];
-        const bool last = b == 0 && j == n - 1;
-        float* out = last ? y + o * plane : (cur == ws.a.data() ? ws.b.data() : ws.a.data());
-        conv_forward(c, cur, hs[b], wd[b], out, ws.col);
-        cur = out;
-      }
-      ph = hs[b];
-      pw = wd[b];
+void Network::decode(int o, const Workspace& enc, Workspace& ws, float* y) const {
+  const auto& a = file_.architecture;
+  const int levels = static_cast<int>(a.filters.size());
+  const int n = a.convs_per_block;
+  const std::size_t plane0 = static_cast<std::size_t>(file_.features.rows) * file_.features.cols;
+  ws.a.resize(enc.a.size());
+  ws.b.resize(enc.b.size());
+  // Unpool into the upper half of the concatenation [skip, unpooled].
+  std::size_t k = static_cast<std::size_t>(o) * levels * n;
+  const float* cur = enc.bottom.data();
+  int ph = enc.hs[levels - 1] / 2, pw = enc.ws[levels - 1] / 2;
+  for (int b = levels - 1; b >= 0; --b) {
+    const int f = a.filters[b];
+    const int h = enc.hs[b], w = enc.ws[b];
+    const std::size_t plane = static_cast<std::size_t>(h) * w;
+    float* cat = cur == ws.a.data() ? ws.b.data() : ws.a.data();
+    std::copy(enc.skips[b].begin(), enc.skips[b].end(), cat);
+    max_unpool2x2(cur, enc.indices[b].data(), f, ph, pw, h, w, cat + f * plane);
+    cur = cat;
+    for (int j = 0; j < n; ++j) {
+      const Conv& c = decoder_[k++];
+      const bool last = b == 0 && j == n - 1;
+      float* out = last ? y : (cur == ws.a.data() ? ws.b.data() : ws.a.data());
+      conv_forward(c, cur, h, w, out, ws.col);
+      cur = out;
     }
-    const float scale = file_.outputs[o].scale;
-    if (scale != 1.0f) {
-      for (std::size_t p = 0; p < plane0; ++p)
-        y[o * plane0 + p] *= scale;
-    }
+    ph = h;
+    pw = w;
+  }
+  const float scale = file_.outputs[o].scale;
+  if (scale != 1.0f) {
+    for (std::size_t p = 0; p < plane0; ++p)
+      y[p] *= scale;
   }
 }
 
-Tensor Network::predict(const Tensor& input) const {
+void Network::check_input(const Tensor& input) const {
   const auto& a = file_.architecture;
   if (input.c != a.in_channels || input.h != file_.features.rows ||
       input.w != file_.features.cols || input.data.size() != input.sample() * input.n) {
@@ -173,12 +213,85 @@ Tensor Network::predict(const Tensor& input) const {
         std::to_string(a.in_channels) + "," + std::to_string(file_.features.rows) + "," +
         std::to_string(file_.features.cols) + "]");
   }
+}
+
+Tensor Network::predict_with_pool_indices(const Tensor& input, const PoolIndices& indices) const {
+  check_input(input);
+  const auto& a = file_.architecture;
+  const int levels = static_cast<int>(a.filters.size());
+  if (static_cast<int>(indices.size()) != levels)
+    throw std::invalid_argument("predict_with_pool_indices: one index array per level needed");
+  std::vector<std::size_t> per_sample(levels);
+  int h = input.h, w = input.w;
+  for (int b = 0; b < levels; ++b) {
+    const int ph = h / 2, pw = w / 2;
+    per_sample[b] = static_cast<std::size_t>(a.filters[b]) * ph * pw;
+    if (indices[b].size() != per_sample[b] * input.n)
+      throw std::invalid_argument("predict_with_pool_indices: level " + std::to_string(b) +
+                                  " has " + std::to_string(indices[b].size()) + " indices, needs " +
+                                  std::to_string(per_sample[b] * input.n));
+    for (std::size_t q = 0; q < indices[b].size(); ++q) {
+      const std::size_t p = q % (static_cast<std::size_t>(ph) * pw);
+      const int py = static_cast<int>(p / pw), px = static_cast<int>(p % pw);
+      const std::int32_t i = indices[b][q];
+      if (i < 0 || i / w / 2 != py || i % w / 2 != px)
+        throw std::invalid_argument("predict_with_pool_indices: level " + std::to_string(b) +
+                                    " index " + std::to_string(q) + " lies outside its window");
+    }
+    h = ph;
+    w = pw;
+  }
   Tensor out(input.n, a.out_channels, input.h, input.w);
+  const std::size_t plane = static_cast<std::size_t>(input.h) * input.w;
+  Workspace ws;
+  std::vector<const std::int32_t*> forced(levels);
+  for (int i = 0; i < input.n; ++i) {
+    for (int b = 0; b < levels; ++b)
+      forced[b] = indices[b].data() + per_sample[b] * i;
+    encode(input.sample_data(i), ws, forced.data());
+    for (int o = 0; o < a.out_channels; ++o)
+      decode(o, ws, ws, out.sample_data(i) + o * plane);
+  }
+  return out;
+}
+
+Tensor Network::predict(const Tensor& input) const {
+  check_input(input);
+  const auto& a = file_.architecture;
+  Tensor out(input.n, a.out_channels, input.h, input.w);
+  const std::size_t plane = static_cast<std::size_t>(input.h) * input.w;
+  if (options_.threads > input.n && a.out_channels > 1) {
+    // Fewer samples than threads: each sample's encoder, then its decoders side by side.
+    const int threads = std::min(options_.threads, a.out_channels);
+    std::vector<std::unique_ptr<Workspace>> ws;
+    for (int t = 0; t < threads; ++t)
+      ws.push_back(pool_->take());
+    for (int i = 0; i < input.n; ++i) {
+      encode(input.sample_data(i), *ws[0]);
+      auto run = [&](int t) {
+        for (int o = t; o < a.out_channels; o += threads)
+          decode(o, *ws[0], *ws[t], out.sample_data(i) + o * plane);
+      };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t)
+        pool.emplace_back(run, t);
+      run(0);
+      for (auto& th : pool)
+        th.join();
+    }
+    for (auto& w : ws)
+      pool_->give(std::move(w));
+    return out;
+  }
   const int threads = std::max(1, std::min(options_.threads, input.n));
   auto run = [&](int first, int last) {
-    Workspace ws;
-    for (int i = first; i < last; ++i)
-      forward_sample(input.sample_data(i), out.sample_data(i), ws);
+    std::unique_ptr<Workspace> ws = pool_->take();
+    for (int i = first; i < last; ++i) {
+      encode(input.sample_data(i), *ws);
+      for (int o = 0; o < a.out_channels; ++o)
+        decode(o, *ws, *ws, out.sample_data(i) + o * plane);
+    }
+    pool_->give(std::move(ws));
   };
   if (threads == 1) {
     run(0, input.n);

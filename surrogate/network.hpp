@@ -4,6 +4,7 @@
 // be called from several threads at once.
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "surrogate/layers.hpp"
@@ -13,20 +14,32 @@
 namespace plumekit::surrogate {
 
 struct EngineOptions {
-  // Threads per predict() call. The samples of a batch are split among them; a batch of one runs
-  // on one thread (the GEMMs of one 64x64 sample are too small to share well). Default 1.
+  // Threads per predict() call. The samples of a batch are split among them; a batch with fewer
+  // samples than threads runs each sample's decoders (one per output) on threads of their own
+  // instead, after its encoder. Results do not depend on the thread count. Default 1.
   int threads = 1;
 };
 
 class Network {
  public:
   explicit Network(ModelFile file, EngineOptions options = {});
+  ~Network();
+  Network(Network&&) noexcept;
+  Network& operator=(Network&&) noexcept;
   // Reads and checks `path`; InputError naming the file and the fault when it is malformed.
   static Network load(const std::filesystem::path& path, EngineOptions options = {});
 
   // input [n, in_channels, rows, cols] -> [n, out_channels, rows, cols], each output channel
   // multiplied by its scale from the file (so in the file's output units).
   Tensor predict(const Tensor& input) const;
+
+  // For tests against PyTorch that must not hinge on max-pool near-ties (surrogate/README.md): the
+  // same forward pass, one thread, with every 2x2 max-pool's argmax taken from `indices` instead
+  // of computed. indices[b] holds level b's, [n][filters[b]][h_b/2][w_b/2], each the flat y*w+x in
+  // that level's input plane (PyTorch's return_indices convention). std::invalid_argument when a
+  // size is wrong or an index lies outside its 2x2 window.
+  using PoolIndices = std::vector<std::vector<std::int32_t>>;
+  Tensor predict_with_pool_indices(const Tensor& input, const PoolIndices& indices) const;
 
   // The file's description (header, layers, contract, outputs). Its raw tensors are released once
   // converted into the layers, so `weights` and `biases` are empty here.
@@ -37,12 +50,20 @@ class Network {
 
  private:
   struct Workspace;
-  void forward_sample(const float* x, float* y, Workspace& ws) const;
+  struct WorkspacePool;
+  // The encoder fills ws.skips, ws.indices and ws.bottom; decode() reads them (from `enc`) and
+  // uses its own `ws` for activations, so the decoders of one sample can run at once.
+  // `forced`, when given, holds each level's pool indices for this sample.
+  void encode(const float* x, Workspace& ws, const std::int32_t* const* forced = nullptr) const;
+  void check_input(const Tensor& input) const;
+  void decode(int output, const Workspace& enc, Workspace& ws, float* y) const;
 
   ModelFile file_;
   EngineOptions options_;
   std::vector<Conv> encoder_;  // level-major, convs_per_block per level
   std::vector<Conv> decoder_;  // output-major, then level L-1..0, convs_per_block per level
+  // Workspaces outlive predict() calls, so a batch of one allocates (and page-faults) nothing.
+  std::unique_ptr<WorkspacePool> pool_;
 };
 
 }  // namespace plumekit::surrogate

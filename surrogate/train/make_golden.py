@@ -8,6 +8,7 @@ import sys
 
 import numpy as np
 import torch
+import torch.nn.functional as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import REAL_PARAMETERS, PlumeUNet, parameter_count, pool_margin  # noqa: E402
@@ -28,6 +29,50 @@ def features(rng, n, rows, cols, arena):
     return x
 
 
+def smooth_features(n, rows, cols, arena, seed):
+    """An empty arena's features (free cells, walls on the edge, distance to the nearest wall, to
+    a source): smooth fields, so thousands of max-pool windows are near-ties (margins ~1e-8)."""
+    rng = np.random.default_rng(seed)
+    x = np.zeros((n, 3, rows, cols), dtype=np.float32)
+    yy, xx = np.meshgrid((np.arange(rows) + 0.5) * arena[1] / rows,
+                         (np.arange(cols) + 0.5) * arena[0] / cols, indexing="ij")
+    for i in range(n):
+        x[i, 0] = 1.0
+        x[i, 0, [0, -1], :] = 2.0
+        x[i, 0, :, [0, -1]] = 2.0
+        x[i, 1] = np.minimum(np.minimum(xx, arena[0] - xx), np.minimum(yy, arena[1] - yy))
+        sx, sy = rng.uniform(0, arena[0]), rng.uniform(0, arena[1])
+        x[i, 2] = np.hypot(xx - sx, yy - sy)
+    return x
+
+
+def pool_indices(model, x):
+    """PyTorch's argmax of every 2x2 max-pool (the encoder of model.forward), levels concatenated,
+    each [n, c, h/2, w/2] flat y*w+x in its input plane; float64 so core/npy reads it exactly."""
+    out = []
+    h = torch.from_numpy(x)
+    with torch.no_grad():
+        for block in model.encoder:
+            for conv in block:
+                h = F.relu(conv(h))
+            h, ind = F.max_pool2d(h, 2, 2, return_indices=True)
+            out.append(ind.numpy().reshape(-1))
+    return np.concatenate(out).astype(np.float64)
+
+
+def write_pair(out_dir, stem, model, x, outputs_meta):
+    model.eval()
+    with torch.no_grad():
+        y = model(torch.from_numpy(x)).numpy()
+    margin = float(pool_margin(model, x).min())
+    scales = np.array([o["scale"] for o in outputs_meta], dtype=np.float32)
+    y = y * scales[None, :, None, None]
+    np.save(os.path.join(out_dir, stem + "_input.npy"), x)
+    np.save(os.path.join(out_dir, stem + "_output.npy"), y.astype(np.float32))
+    np.save(os.path.join(out_dir, stem + "_pool_indices.npy"), pool_indices(model, x))
+    return y, margin
+
+
 def golden(out_dir, stem, model, batch, features_meta, outputs_meta, seed):
     rows, cols = features_meta["grid"]
     rng = np.random.default_rng(seed)
@@ -43,6 +88,7 @@ def golden(out_dir, stem, model, batch, features_meta, outputs_meta, seed):
                        training={"note": "random initialisation, seed %d; golden test model" % seed})
     np.save(os.path.join(out_dir, stem + "_input.npy"), x)
     np.save(os.path.join(out_dir, stem + "_output.npy"), y.astype(np.float32))
+    np.save(os.path.join(out_dir, stem + "_pool_indices.npy"), pool_indices(model, x))
     print(f"{stem}: {parameter_count(model)} parameters, {size} bytes, input {x.shape}, "
           f"output max |y| {np.abs(y).max():.4g}, smallest max-pool margin {margin:.2g}")
 
@@ -63,6 +109,11 @@ def main():
     if count != REAL_PARAMETERS:
         sys.exit(f"real architecture has {count} parameters, DESIGN.md says {REAL_PARAMETERS}")
     golden(args.out, "real", real, 1, DEFAULT_FEATURES, DEFAULT_OUTPUTS, seed=11)
+    # (a') the same model on smooth, plume-like features: near-ties everywhere. The engine is
+    # compared with PyTorch on these with PyTorch's pool indices forced (tests/surrogate).
+    x = smooth_features(2, 64, 64, DEFAULT_FEATURES["arena"], seed=17)
+    _, margin = write_pair(args.out, "real_smooth", real, x, DEFAULT_OUTPUTS)
+    print(f"real_smooth: input {x.shape}, smallest max-pool margin {margin:.2g}")
 
     # (b) odd channel counts, kernel 3, 2 convolutions a block, a grid that does not halve evenly
     # (max-pool floors, max-unpool pads back) and a non-unit output scale.

@@ -59,6 +59,97 @@ TEST(Golden, BatchSplitAcrossThreadsGivesTheSameOutput) {
   check_golden("odd", 2);
 }
 
+TEST(Golden, ThreadCountsAndRepeatedCallsGiveTheSameBytes) {
+  // Batch 1 on 2 threads runs the two decoders side by side; batch 3 on 2 threads splits the
+  // samples; later calls reuse pooled workspaces. All must give the bytes of one thread.
+  const Tensor input = load_tensor(kDir + "real_input.npy");
+  const Network one = Network::load(kDir + "real.pkcnn", EngineOptions{1});
+  const Network two = Network::load(kDir + "real.pkcnn", EngineOptions{2});
+  const Tensor want = one.predict(input);
+  EXPECT_EQ(two.predict(input).data, want.data);
+  EXPECT_EQ(two.predict(input).data, want.data);
+  EXPECT_EQ(one.predict(input).data, want.data);
+  Tensor three(3, input.c, input.h, input.w);
+  for (int i = 0; i < 3; ++i)
+    std::copy(input.data.begin(), input.data.end(), three.sample_data(i));
+  const Tensor got = two.predict(three);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(std::equal(want.data.begin(), want.data.end(), got.sample_data(i))) << i;
+}
+
+// PyTorch's pool indices for a golden pair, split into the engine's levels.
+Network::PoolIndices load_pool_indices(const std::string& stem, const Network& net, int n) {
+  const NpyArray a = read_npy(kDir + stem + "_pool_indices.npy");
+  const auto& arch = net.file().architecture;
+  Network::PoolIndices out;
+  std::size_t at = 0;
+  int h = net.file().features.rows, w = net.file().features.cols;
+  for (int f : arch.filters) {
+    h /= 2;
+    w /= 2;
+    const std::size_t count = static_cast<std::size_t>(n) * f * h * w;
+    EXPECT_LE(at + count, a.values.size()) << stem;
+    if (at + count > a.values.size()) return out;
+    out.emplace_back(a.values.begin() + at, a.values.begin() + at + count);
+    at += count;
+  }
+  EXPECT_EQ(at, a.values.size()) << stem;
+  return out;
+}
+
+TEST(Golden, EngineMaxPoolPicksPyTorchsArgmax) {
+  // On pairs whose pool decisions have margins (real, 2e-6) or exact ties broken by the same rule
+  // (odd), forcing PyTorch's indices changes not one bit of the engine's output.
+  for (const std::string stem : {"real", "odd"}) {
+    const Network net = Network::load(kDir + stem + ".pkcnn");
+    const Tensor input = load_tensor(kDir + stem + "_input.npy");
+    const Tensor forced =
+        net.predict_with_pool_indices(input, load_pool_indices(stem, net, input.n));
+    EXPECT_EQ(forced.data, net.predict(input).data) << stem;
+  }
+}
+
+TEST(Golden, NearTiesMatchPyTorchWithItsPoolIndices) {
+  // Smooth, plume-like features put max-pool windows within float32 rounding of a tie (margin
+  // 4e-7 here; 1e-8 on real plumes), where two correct engines may pick different argmaxes and
+  // max-unpool then moves a value. With PyTorch's indices forced, the rest must agree to 1e-4.
+  const Network net = Network::load(kDir + "real.pkcnn");
+  const Tensor input = load_tensor(kDir + "real_smooth_input.npy");
+  const Tensor want = load_tensor(kDir + "real_smooth_output.npy");
+  const double forced = relative_error(
+      net.predict_with_pool_indices(input, load_pool_indices("real_smooth", net, input.n)), want);
+  const double free = relative_error(net.predict(input), want);
+  std::printf("real_smooth: max relative error %.3g with PyTorch's pool indices, %.3g without\n",
+              forced, free);
+  EXPECT_LT(forced, 1e-4);
+}
+
+TEST(Golden, ForcedPoolIndicesAreChecked) {
+  const Network net = Network::load(kDir + "odd.pkcnn");
+  const Tensor input = load_tensor(kDir + "odd_input.npy");
+  Network::PoolIndices good = load_pool_indices("odd", net, input.n);
+  Network::PoolIndices bad = good;
+  bad[1][3] += 2;  // the window's neighbour
+  EXPECT_THROW(net.predict_with_pool_indices(input, bad), std::invalid_argument);
+  bad = good;
+  bad[2].pop_back();
+  EXPECT_THROW(net.predict_with_pool_indices(input, bad), std::invalid_argument);
+  bad = good;
+  bad.pop_back();
+  EXPECT_THROW(net.predict_with_pool_indices(input, bad), std::invalid_argument);
+  EXPECT_NO_THROW(net.predict_with_pool_indices(input, good));
+  // And they are used: another pixel of the same window changes the output (for some window).
+  const std::vector<float> base = net.predict_with_pool_indices(input, good).data;
+  int changed = 0;
+  for (std::size_t q = 0; q < 20; ++q) {
+    bad = good;
+    const int w = net.file().features.cols;
+    bad[0][q] += bad[0][q] % w % 2 == 0 ? 1 : -1;  // the other column of the window
+    changed += net.predict_with_pool_indices(input, bad).data != base;
+  }
+  EXPECT_GT(changed, 0);
+}
+
 TEST(Golden, RealArchitectureHas600130Parameters) {
   const Network net = Network::load(kDir + "real.pkcnn");
   EXPECT_EQ(net.parameter_count(), 600130u);
