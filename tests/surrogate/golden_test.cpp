@@ -38,10 +38,10 @@ double relative_error(const Tensor& got, const Tensor& want) {
   return err / scale;
 }
 
-void check_golden(const std::string& stem, int threads) {
-  const Network net = Network::load(kDir + stem + ".pkcnn", EngineOptions{threads});
-  const Tensor input = load_tensor(kDir + stem + "_input.npy");
-  const Tensor want = load_tensor(kDir + stem + "_output.npy");
+void check_golden(const std::string& stem, int threads, const std::string& dir = kDir) {
+  const Network net = Network::load(dir + stem + ".pkcnn", EngineOptions{threads});
+  const Tensor input = load_tensor(dir + stem + "_input.npy");
+  const Tensor want = load_tensor(dir + stem + "_output.npy");
   const double rel = relative_error(net.predict(input), want);
   std::printf("%s, %d thread(s): max relative error %.3g\n", stem.c_str(), threads, rel);
   EXPECT_LT(rel, 1e-4) << stem;
@@ -49,6 +49,15 @@ void check_golden(const std::string& stem, int threads) {
 
 TEST(Golden, RealArchitectureMatchesPyTorch) {
   check_golden("real", 1);
+}
+
+// The shipped model and the golden pair its training run wrote (two held-out samples, in
+// concentration units; train.py picks the samples with the widest max-pool margins).
+TEST(Golden, ShippedModelMatchesPyTorch) {
+  const std::string dir = std::string(PLUMEKIT_TEST_DATA) + "/../../data/models/";
+  check_golden("plume-unet", 1, dir);
+  check_golden("plume-unet", 2, dir);
+  EXPECT_EQ(Network::load(dir + "plume-unet.pkcnn").parameter_count(), 600130u);
 }
 
 TEST(Golden, OddChannelsOddGridMatchesPyTorch) {
