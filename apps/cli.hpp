@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/geometry.hpp"
+
 namespace plumekit::cli {
 
 // $PLUMEKIT_DATA if set, else the data/ folder of the source tree it was built from.
@@ -22,6 +24,11 @@ Output& output();
 
 // Adds --json to a command.
 void add_json_flag(CLI::App* command);
+
+// "X,Y" in metres; InputError naming `flag` when it is not two finite numbers and a comma.
+Vec2 parse_point(const std::string& text, const std::string& flag);
+// [x, y]
+nlohmann::ordered_json point_json(Vec2 p);
 
 // Prints the summary as JSON on stdout with --json, else the human text.
 void report(const nlohmann::ordered_json& summary, const std::string& human);

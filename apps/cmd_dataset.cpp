@@ -29,16 +29,6 @@ using namespace plumekit::dataset;
 
 namespace {
 
-Vec2 parse_point(const std::string& text, const std::string& flag) {
-  double x = 0.0, y = 0.0;
-  char comma = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> x >> comma >> y) || comma != ',' || (in >> extra) || !std::isfinite(x) ||
-      !std::isfinite(y))
-    throw InputError(flag + ": expected X,Y in metres, got '" + text + "'");
-  return {x, y};
-}
-
 std::string format_duration(double s) {
   char buf[32];
   const long t = std::lround(std::max(0.0, s));

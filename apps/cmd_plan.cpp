@@ -20,20 +20,6 @@ namespace {
 using nlohmann::ordered_json;
 namespace pl = plumekit::planner;
 
-// "X,Y" in metres.
-Vec2 parse_point(const std::string& text, const std::string& flag) {
-  std::istringstream in(text);
-  Vec2 p;
-  char comma = 0;
-  if (!(in >> p.x >> comma >> p.y) || comma != ',' || !(in >> std::ws).eof() || !is_finite(p))
-    throw InputError(flag + ": expected a point X,Y in metres (e.g. 1.5,2), got '" + text + "'");
-  return p;
-}
-
-ordered_json to_json(Vec2 p) {
-  return ordered_json::array({p.x, p.y});
-}
-
 cv::Point fixed(const MapCanvas& canvas, Vec2 p) {
   const cv::Point2d q = canvas.to_px(p);
   return {static_cast<int>(std::lround(q.x * 16)), static_cast<int>(std::lround(q.y * 16))};
@@ -163,15 +149,15 @@ void add_plan_commands(CLI::App& app) {
 
     ordered_json path = ordered_json::array();
     for (Vec2 v : r.path)
-      path.push_back(to_json(v));
+      path.push_back(point_json(v));
     ordered_json j{{"ok", true},
                    {"map", a->map},
                    {"planner", pl::to_string(kind)},
                    {"margin", a->margin},
-                   {"from", to_json(from)},
-                   {"to", to_json(to)},
-                   {"start", to_json(r.start)},
-                   {"goal", to_json(r.goal)},
+                   {"from", point_json(from)},
+                   {"to", point_json(to)},
+                   {"start", point_json(r.start)},
+                   {"goal", point_json(r.goal)},
                    {"start_moved", r.start_moved},
                    {"goal_moved", r.goal_moved},
                    {"path", path},

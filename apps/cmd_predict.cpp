@@ -22,16 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using surrogate::PlumePrediction;
 
-Vec2 parse_source(const std::string& text) {
-  double x = 0.0, y = 0.0;
-  char comma = 0, extra = 0;
-  std::istringstream in(text);
-  if (!(in >> x >> comma >> y) || comma != ',' || (in >> extra) || !std::isfinite(x) ||
-      !std::isfinite(y))
-    throw InputError("--source: expected X,Y in metres, got '" + text + "'");
-  return {x, y};
-}
-
 // The files this command writes: an existing --out holding anything else is refused rather than
 // replaced, so a mistyped --out never deletes a user's directory.
 const char* const kOutputs[] = {"mean.npy", "std.npy", "plume.png"};
@@ -101,7 +91,7 @@ void add_predict_commands(CLI::App& app) {
   add_json_flag(cmd);
   cmd->callback([a] {
     const auto start = std::chrono::steady_clock::now();
-    const Vec2 source = parse_source(a->source);
+    const Vec2 source = parse_point(a->source, "--source");
     std::error_code ec;
     if (!fs::exists(a->model, ec)) {
       throw InputError(a->model + ": no such model file" +

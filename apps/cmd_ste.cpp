@@ -25,19 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
-Vec2 parse_xy(const std::string& text, const std::string& flag) {
-  std::istringstream in(text);
-  Vec2 p;
-  char comma = 0;
-  if (!(in >> p.x >> comma >> p.y) || comma != ',' || !(in >> std::ws).eof() || !is_finite(p))
-    throw InputError(flag + ": expected a point X,Y in metres (e.g. 1.5,2), got '" + text + "'");
-  return p;
-}
-
-ordered_json xy(Vec2 p) {
-  return ordered_json::array({p.x, p.y});
-}
-
 std::string fmt(double v, int digits = 2) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(digits) << v;
@@ -135,7 +122,7 @@ ste::SteOptions to_options(const SteArgs& a) {
   o.stop.max_samples = a.max_samples;
   o.table_cache = a.table_cache;
   if (!a.release_scale.empty()) {
-    const Vec2 r = parse_xy(a.release_scale, "--release-scale");
+    const Vec2 r = parse_point(a.release_scale, "--release-scale");
     if (!(r.x > 0.0) || r.y < r.x)
       throw InputError("--release-scale: need 0 < LO <= HI, got '" + a.release_scale + "'");
     o.physics.scale_lo = r.x;
@@ -174,18 +161,18 @@ Pictures draw_run(const ste::Scenario& sc, Vec2 source, const ste::LocalizationR
 ordered_json run_json(const ste::Scenario& sc, Vec2 source, const ste::LocalizationResult& r) {
   ordered_json steps = ordered_json::array();
   for (const ste::Step& s : r.steps)
-    steps.push_back({{"position", xy(s.position)},
+    steps.push_back({{"position", point_json(s.position)},
                      {"value", s.value},
                      {"time_s", s.time_s},
                      {"distance_m", s.distance_m},
-                     {"estimate", xy(s.estimate)},
+                     {"estimate", point_json(s.estimate)},
                      {"entropy", s.entropy},
                      {"compute_s", s.compute_s}});
   ordered_json expected = ordered_json::object();
   const auto& params = sc.model().parameters();
   for (std::size_t k = 0; k < params.size() && k < r.expected.size(); ++k)
     expected[params[k].name] = r.expected[k];
-  return {{"estimate", xy(r.estimate)},
+  return {{"estimate", point_json(r.estimate)},
           {"error_m", norm(r.estimate - source)},
           {"samples", r.samples},
           {"distance_m", r.distance_m},
@@ -193,12 +180,12 @@ ordered_json run_json(const ste::Scenario& sc, Vec2 source, const ste::Localizat
           {"stopped_by", r.stopped_by},
           {"median_step_s", r.median_step_s},
           {"mission_s", r.time_s},
-          {"map_estimate", xy(r.map)},
+          {"map_estimate", point_json(r.map)},
           {"expected_parameters", expected},
           {"entropy", r.posterior.entropy},
           {"max_entropy", r.posterior.max_entropy},
-          {"start", xy(r.start)},
-          {"source", xy(source)},
+          {"start", point_json(r.start)},
+          {"source", point_json(source)},
           {"wind_s", sc.wind_seconds()},
           {"table_build_s", sc.model_seconds()},
           {"steps", steps}};
@@ -260,8 +247,8 @@ void add_ste_commands(CLI::App& app) {
     add_ste_options(cmd, a->ste);
     add_json_flag(cmd);
     cmd->callback([a] {
-      const Vec2 source = parse_xy(a->source, "--source");
-      const Vec2 start_arg = a->start.empty() ? Vec2{} : parse_xy(a->start, "--start");
+      const Vec2 source = parse_point(a->source, "--source");
+      const Vec2 start_arg = a->start.empty() ? Vec2{} : parse_point(a->start, "--start");
       const ste::SteOptions options = to_options(a->ste);
       const Map map = read_map(a->map);
       const ste::Scenario sc(map, options);

@@ -3,6 +3,7 @@
 // directory of the test's own, and captures its exit code and output.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -50,7 +51,9 @@ class CliTest : public ::testing::Test {
  private:
   static std::string test_name() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    return std::string("plumekit_") + info->test_suite_name() + "_" + info->name();
+    // The process id keeps two suites running at once (two build trees) out of each other's way.
+    return std::string("plumekit_") + info->test_suite_name() + "_" + info->name() + "_" +
+           std::to_string(getpid());
   }
 };
 

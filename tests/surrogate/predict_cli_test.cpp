@@ -76,7 +76,7 @@ TEST_F(Predict, BadInputExitsTwoAndWritesNothing) {
   const std::pair<std::string, std::string> cases[] = {
       {predict_args(dir / "out", "4.5,1.6"), "inside obstacle 0"},
       {predict_args(dir / "out", "10.5,1"), "outside the arena"},
-      {predict_args(dir / "out", "1.5:1"), "--source: expected X,Y"},
+      {predict_args(dir / "out", "1.5:1"), "--source: expected a point X,Y"},
       {predict_args(dir / "out", "1.5,1", dir / "truncated.pkcnn"), "truncated"},
       {predict_args(dir / "out", "1.5,1", dir / "missing.pkcnn"), "no such model file"},
       {predict_args(dir / "out", "1.5,1", kOdd), "the model's grid is 21x30"},
