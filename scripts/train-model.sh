@@ -1,23 +1,30 @@
 #!/usr/bin/env bash
 # Reproduces the shipped surrogate data/models/plume-unet.pkcnn and its evaluation, from nothing:
-#   1. the thesis-scale training dataset (180 random maps x 100 sources, filament model, seed 1);
+#   1. the training dataset (MAPS random maps x 100 sources, filament model, seed 1);
 #   2. the ground-truth plumes of the nine test maps;
-#   3. training (AdamW, batch 32, cosine learning rate over 5 epochs; see surrogate/README.md);
+#   3. training (AdamW, batch 32, cosine learning rate over EPOCHS epochs; surrogate/README.md);
 #   4. the evaluation on the held-out maps and the test maps.
 # Every step resumes where it stopped when run again. WORK (default out/train) holds the datasets
-# (about 1.5 GB) and the checkpoints; the model and its evaluation go to data/models/.
-# On this 2-core machine: about 20 min for the data and 7 to 8 min per epoch on the CPU.
+# and the checkpoints; the model and its evaluation go to data/models/.
+# Settings (environment): MAPS (default 180, the thesis's scale), EPOCHS (5), THREADS (nproc),
+# MAX_MINUTES (no limit: stop training after this many minutes; rerun to go on), PYTHON
+# (/usr/bin/python3, Debian's torch; any python3 with torch and numpy works, CUDA is used when
+# present). The shipped model: MAPS=540 EPOCHS=60 on a GPU machine (surrogate/README.md).
+# On the 2-core build machine the 180-map dataset takes about 20 min and an epoch 7 to 8 min.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=${1:-out/train}
+maps=${MAPS:-180}
 epochs=${EPOCHS:-5}
+threads=${THREADS:-$(nproc)}
+python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$work" data/models
 [ -x build/plumekit ] || bash scripts/build.sh
-./build/plumekit dataset generate --maps 180 --sources 100 --seed 1 --threads 2 --out "$work/dataset"
-./build/plumekit dataset generate --from-maps data/test-maps --threads 2 --out "$work/test-truth"
-/usr/bin/python3 surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" \
+./build/plumekit dataset generate --maps "$maps" --sources 100 --seed 1 --threads "$threads" --out "$work/dataset"
+./build/plumekit dataset generate --from-maps data/test-maps --threads "$threads" --out "$work/test-truth"
+"$python" surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" \
   --out data/models/plume-unet.pkcnn --epochs "$epochs" --lr-schedule cosine --batch 32 --seed 1 \
-  ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}
+  --threads "$threads" ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}
 cp "$work/checkpoints/log.csv" data/models/plume-unet.log.csv
-/usr/bin/python3 surrogate/train/evaluate.py --model data/models/plume-unet.pkcnn \
-  --data "$work/dataset" --test "$work/test-truth" --out data/models/plume-unet-eval
+"$python" surrogate/train/evaluate.py --model data/models/plume-unet.pkcnn \
+  --data "$work/dataset" --test "$work/test-truth" --out data/models/plume-unet-eval --threads "$threads"
