@@ -9,7 +9,9 @@
 # Settings (environment): MAPS (default 180, the thesis's scale), EPOCHS (5), THREADS (nproc),
 # MAX_MINUTES (no limit: stop training after this many minutes; rerun to go on), PYTHON
 # (/usr/bin/python3, Debian's torch; any python3 with torch and numpy works, CUDA is used when
-# present). The shipped model: MAPS=540 EPOCHS=60 on a GPU machine (surrogate/README.md).
+# present). The shipped model came from two runs on a GPU machine (surrogate/README.md):
+#   MAPS=360 EPOCHS=8 bash scripts/train-model.sh; MAPS=360 EPOCHS=22 bash scripts/train-model.sh
+# (the second resumes the first and carries the cosine on as planned for 22 epochs).
 # On the 2-core build machine the 180-map dataset takes about 20 min and an epoch 7 to 8 min.
 set -euo pipefail
 cd "$(dirname "$0")/.."
