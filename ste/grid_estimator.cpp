@@ -61,8 +61,10 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
   if (!(scale_lo_ > 0.0) || scale_hi_ < scale_lo_)
     throw InputError("release scale prior: need 0 < lo <= hi");
   if (!(likelihood.variance() > 0.0)) throw InputError("sigma_M^2 + sigma_D^2 must be positive");
-  a_.assign(model.sources().size(), 0.0);
-  b_.assign(model.sources().size(), 0.0);
+  if (!(likelihood.sigma_rel >= 0.0) || !std::isfinite(likelihood.sigma_rel))
+    throw InputError("sigma_rel must be finite and >= 0");
+  for (std::vector<double>* v : {&sums_.a, &sums_.b, &sums_.c, &sums_.h})
+    v->assign(model.sources().size(), 0.0);
   // The largest entropy: every bin holding an allowed cell equally likely.
   Grid<double> uniform(model.sources(), 0.0);
   for (std::size_t k = 0; k < uniform.values.size(); ++k)
@@ -81,30 +83,36 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
   max_entropy_ = std::log(static_cast<double>(n));
 }
 
-void GridEstimator::add(Vec2 p, double value) {
-  const std::vector<double> r = model_.readings_at(p);
+void GridEstimator::accumulate(Sums& sums, const std::vector<double>& r, double value) const {
+  const double s_ref = 0.5 * (scale_lo_ + scale_hi_);
   for (std::size_t k = 0; k < r.size(); ++k) {
-    a_[k] += r[k] * r[k];
-    b_[k] += r[k] * value;
+    const double var = likelihood_.variance(s_ref * r[k]), w = 1.0 / var;
+    sums.a[k] += w * r[k] * r[k];
+    sums.b[k] += w * r[k] * value;
+    sums.c[k] += w * value * value;
+    sums.h[k] += std::log(var);
   }
-  c_ += value * value;
+}
+
+void GridEstimator::add(Vec2 p, double value) {
+  accumulate(sums_, model_.readings_at(p), value);
   ++samples_;
 }
 
-std::vector<double> GridEstimator::log_weights(const std::vector<double>& a,
-                                               const std::vector<double>& b, double c) const {
-  const double var = likelihood_.variance();
+std::vector<double> GridEstimator::log_weights(const Sums& sums) const {
   const std::vector<std::uint8_t>& ok = model_.allowed();
+  const std::vector<double>&a = sums.a, &b = sums.b, &c = sums.c, &h = sums.h;
   std::vector<double> l(a.size(), -kInf);
   double top = -kInf;
   for (std::size_t k = 0; k < a.size(); ++k) {
     if (!ok[k]) continue;
     if (scale_hi_ == scale_lo_) {
       const double s = scale_lo_;
-      l[k] = -(c - 2.0 * s * b[k] + s * s * a[k]) / (2.0 * var);
+      l[k] = -0.5 * (c[k] - 2.0 * s * b[k] + s * s * a[k]);
     } else {
-      l[k] = log_marginal_scale(a[k], b[k], c, var, scale_lo_, scale_hi_);
+      l[k] = log_marginal_scale(a[k], b[k], c[k], 1.0, scale_lo_, scale_hi_);
     }
+    l[k] -= 0.5 * h[k];
     top = std::max(top, l[k]);
   }
   double sum = 0.0;
@@ -117,7 +125,7 @@ std::vector<double> GridEstimator::log_weights(const std::vector<double>& a,
 }
 
 Posterior GridEstimator::posterior() {
-  const std::vector<double> l = log_weights(a_, b_, c_);
+  const std::vector<double> l = log_weights(sums_);
   const GridShape& g = model_.sources();
   Posterior post;
   post.marginal = Grid<double>(g, 0.0);
@@ -133,7 +141,7 @@ Posterior GridEstimator::posterior() {
       ey += w * c.y;
       es += w * (scale_hi_ == scale_lo_
                      ? scale_lo_
-                     : mean_scale(a_[k], b_[k], likelihood_.variance(), scale_lo_, scale_hi_));
+                     : mean_scale(sums_.a[k], sums_.b[k], 1.0, scale_lo_, scale_hi_));
       if (l[k] > best) best = l[k], post.map = c;
     }
   post.expected = {ex, ey, es};
@@ -146,12 +154,9 @@ double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
   const std::vector<double> r = model_.readings_at(p);
   const int at = model_.nearest_allowed(current.expected_source());
   const double predicted = at < 0 ? 0.0 : current.expected.at(2) * r[at];
-  std::vector<double> a = a_, b = b_;
-  for (std::size_t k = 0; k < r.size(); ++k) {
-    a[k] += r[k] * r[k];
-    b[k] += r[k] * predicted;
-  }
-  const std::vector<double> lq = log_weights(a, b, c_ + predicted * predicted);
+  Sums after = sums_;
+  accumulate(after, r, predicted);
+  const std::vector<double> lq = log_weights(after);
   double kl = 0.0;
   for (std::size_t k = 0; k < lq.size(); ++k) {
     const double pk = current.marginal.values[k];
@@ -159,6 +164,48 @@ double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
     kl += pk * (std::log(pk) - lq[k]);
   }
   return std::max(0.0, kl);
+}
+
+double GridEstimator::expected_information_gain(Vec2 p, const Posterior& current) const {
+  const std::vector<double> r = model_.readings_at(p);
+  const std::vector<double>& w = current.marginal.values;
+  const double s = current.expected.at(2);
+  // The hypotheses: the cells at the quantiles (j + 1/2) / J of the cumulative mass; a cell hit
+  // by several quantiles counts that many times.
+  std::vector<std::pair<std::size_t, int>> picks;
+  double cum = 0.0;
+  int j = 0;
+  for (std::size_t k = 0; k < w.size() && j < hypotheses; ++k) {
+    cum += w[k];
+    int hits = 0;
+    while (j < hypotheses && (j + 0.5) / hypotheses <= cum)
+      ++j, ++hits;
+    if (hits > 0) picks.emplace_back(k, hits);
+  }
+  if (picks.empty()) return 0.0;
+  // For a reading z, Q_k = P_k L_k(z) / Z and KL(Q || P) = sum_k Q_k log L_k - log Z.
+  std::vector<double> ll(w.size());
+  double gain = 0.0;
+  int counted = 0;
+  for (const auto& [pick, hits] : picks) {
+    const double z = s * r[pick];
+    double top = -kInf;
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      if (w[k] <= 0.0) continue;
+      ll[k] = likelihood_.log_likelihood(z, s * r[k]);
+      top = std::max(top, ll[k]);
+    }
+    double z_sum = 0.0, q_ll = 0.0;
+    for (std::size_t k = 0; k < w.size(); ++k) {
+      if (w[k] <= 0.0) continue;
+      const double q = w[k] * std::exp(ll[k] - top);
+      z_sum += q;
+      q_ll += q * (ll[k] - top);
+    }
+    gain += hits * std::max(0.0, q_ll / z_sum - std::log(z_sum));
+    counted += hits;
+  }
+  return gain / counted;
 }
 
 }  // namespace plumekit::ste

@@ -3,9 +3,13 @@
 // SourceTableModel: cheap for its two or three parameters, and free of the
 // sampling noise of Metropolis-Hastings.
 //
-// Per cell k it keeps A_k = sum r_ik^2 and B_k = sum r_ik D_i (r_ik: the
-// cell's unit-release reading at sample i) and C = sum D_i^2, so that the
-// log-likelihood of a release scale s is -(C - 2 s B_k + s^2 A_k) / (2 sigma^2).
+// Per cell k it keeps A_k = sum w_ik r_ik^2, B_k = sum w_ik r_ik D_i,
+// C_k = sum w_ik D_i^2 and H_k = sum log(1 / w_ik) (r_ik: the cell's
+// unit-release reading at sample i; w_ik = 1 / variance of that sample, which
+// is the same for every cell unless sigma_rel > 0), so that the log-likelihood
+// of a release scale s is -(C_k - 2 s B_k + s^2 A_k) / 2 - H_k / 2. With
+// sigma_rel, the variance is taken at the prediction for the prior's mean
+// scale, so that the scale still integrates in closed form.
 // The scale is either fixed (the prior's bounds coincide) or marginalised in
 // closed form over its uniform prior [lo, hi] (a Gaussian integral: erf).
 #include <vector>
@@ -23,20 +27,27 @@ class GridEstimator final : public Estimator {
   int samples() const override { return samples_; }
   Posterior posterior() override;
   double information_gain(Vec2 p, const Posterior& current) const override;
+  // Averaged over `hypotheses` sources at evenly spaced quantiles of the posterior's cumulative
+  // mass (deterministic), each reading its noise-free prediction at p at the expected scale.
+  double expected_information_gain(Vec2 p, const Posterior& current) const override;
+  static constexpr int hypotheses = 32;
 
   // The normalised log-likelihood of each cell for given sufficient statistics
   // (-inf where the prior is zero). Exposed for tests.
-  std::vector<double> log_weights(const std::vector<double>& a, const std::vector<double>& b,
-                                  double c) const;
+  struct Sums {
+    std::vector<double> a, b, c, h;
+  };
+  std::vector<double> log_weights(const Sums& sums) const;
 
  private:
   const SourceTableModel& model_;
   LikelihoodOptions likelihood_;
   GridShape bins_;
   double scale_lo_, scale_hi_;
-  std::vector<double> a_, b_;
-  double c_ = 0.0;
+  Sums sums_;
   int samples_ = 0;
+  // Adds a sample reading `value` where the cells read r (unit release).
+  void accumulate(Sums& sums, const std::vector<double>& r, double value) const;
   double max_entropy_ = 0.0;
 };
 

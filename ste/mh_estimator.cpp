@@ -55,12 +55,10 @@ double MhEstimator::log_posterior(const std::vector<double>& m) const {
   for (std::size_t k = 0; k < m.size(); ++k)
     if (m[k] < ps[k].lo || m[k] > ps[k].hi) return -kInf;
   if (!map_.is_free({m[0], m[1]})) return -kInf;
-  double s = 0.0;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    const double d = values_[i] - model_.predict_at(m.data(), points_[i]);
-    s += d * d;
-  }
-  return -s / (2.0 * likelihood_.variance());
+  double l = 0.0;
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    l += likelihood_.log_likelihood(values_[i], model_.predict_at(m.data(), points_[i]));
+  return l;
 }
 
 Posterior MhEstimator::posterior() {
@@ -105,12 +103,10 @@ double MhEstimator::information_gain(Vec2 p, const Posterior& current) const {
   if (chain_.empty()) return 0.0;
   // Reweight the chain's states by the likelihood of the predicted reading.
   const double predicted = model_.predict_at(current.expected.data(), p);
-  const double var = likelihood_.variance();
   std::vector<double> lw(chain_.size());
   double top = -kInf;
   for (std::size_t s = 0; s < chain_.size(); ++s) {
-    const double d = predicted - model_.predict_at(chain_[s].data(), p);
-    lw[s] = -d * d / (2.0 * var);
+    lw[s] = likelihood_.log_likelihood(predicted, model_.predict_at(chain_[s].data(), p));
     top = std::max(top, lw[s]);
   }
   std::vector<double> q(bins_.size(), 0.0);

@@ -33,7 +33,9 @@ Decision Navigator::decide(Vec2 robot, const Estimator& estimator,
       if (di == 0 && dj == 0) continue;
       const Vec2 c{robot.x + di * options_.step, robot.y + dj * options_.step};
       if (!space_.contains(c) || space_.region_of(c) != home) continue;
-      const double g = estimator.information_gain(c, posterior);
+      const double g = options_.reward == NavigationOptions::Reward::Kl
+                           ? estimator.information_gain(c, posterior)
+                           : estimator.expected_information_gain(c, posterior);
       d.candidates.push_back(c);
       d.gains.push_back(g);
       if (g > best) best = g, d.kld_target = c;

@@ -5,7 +5,10 @@
 // code's 3 x 3 lattice of 0.5 m steps, the robot's own cell left out);
 // candidates outside the inflated free space, or in a piece of it the robot
 // cannot reach, are dropped. Each is scored by the KL divergence between the
-// current posterior and the one predicted after sampling there.
+// current posterior and the one predicted after sampling there: for the reading
+// the expected source predicts (the thesis's eq. 7.6), or averaged over the
+// readings of sources drawn from the posterior (the expected information gain,
+// the default).
 //
 //   V = alpha (best candidate - robot) + (1 - alpha) (target - robot)
 //
@@ -22,11 +25,17 @@
 namespace plumekit::ste {
 
 struct NavigationOptions {
-  double step = 0.5;   // m, lattice spacing
-  int lattice = 1;     // moves of up to `lattice` steps per axis: (2 lattice + 1)^2 - 1 candidates
-  double alpha = 0.5;  // weight of the KL move against the source move
-  double beta = 0.75;  // weight of the marginal against the inverse distance
+  double step = 0.5;  // m, lattice spacing
+  // Moves of up to `lattice` steps per axis: (2 lattice + 1)^2 - 1 candidates. The thesis code's
+  // is 1 (3 x 3); 2 (5 x 5) lets the robot leave a region where nothing is read (ste/README.md).
+  int lattice = 2;
+  double alpha = 0.5;    // weight of the KL move against the source move
+  double beta = 0.75;    // weight of the marginal against the inverse distance
   bool enhanced = true;  // section 13.2's combined target; false: the MAP
+  // The candidates' score: the thesis's KL divergence after the reading predicted for the
+  // expected source (eq. 7.6), or the expected information gain over sources drawn from the
+  // posterior (Estimator::expected_information_gain).
+  enum class Reward { Kl, ExpectedGain } reward = Reward::ExpectedGain;
 };
 
 struct Decision {

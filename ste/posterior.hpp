@@ -2,9 +2,13 @@
 // The posterior over a plume model's parameters and what STE reads from it,
 // and the estimator interface the localization loop drives.
 //
-// Likelihood (thesis eq. 7.5): P(D|m) ~ exp(-1/2 sum_i (D_i - C_i(m))^2 / (sigma_M^2 + sigma_D^2)).
+// Likelihood (thesis eq. 7.5): P(D|m) ~ exp(-1/2 sum_i (D_i - C_i(m))^2 / (sigma_M^2 + sigma_D^2)),
+// optionally with a model error that grows with the prediction (sigma_rel): then
+// each sample's variance is sigma_M^2 + sigma_D^2 + (sigma_rel C_i(m))^2, and the
+// Gaussian's normalisation, which then depends on m, enters the likelihood.
 // Prior: uniform inside the parameter bounds, zero where the source would be
 // inside an obstacle.
+#include <cmath>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -16,7 +20,20 @@ namespace plumekit::ste {
 struct LikelihoodOptions {
   double sigma_m = 30.0;  // model error, dataset units (thesis, simulation)
   double sigma_d = 0.0;   // measurement error (thesis: 0 in simulation, 125 in the wind tunnel)
-  double variance() const { return sigma_m * sigma_m + sigma_d * sigma_d; }
+  // Model error relative to the predicted concentration (0: the thesis's constant error). A
+  // plume's 5 s mean scatters, and a CNN errs, in proportion to the concentration itself.
+  double sigma_rel = 0.0;
+  // The variance of a sample whose predicted value is `predicted`.
+  double variance(double predicted = 0.0) const {
+    const double r = sigma_rel * predicted;
+    return sigma_m * sigma_m + sigma_d * sigma_d + r * r;
+  }
+  // -1/2 ((value - predicted)^2 / variance + log variance): one sample's log-likelihood, up to a
+  // constant.
+  double log_likelihood(double value, double predicted) const {
+    const double var = variance(predicted), d = value - predicted;
+    return -0.5 * (d * d / var + std::log(var));
+  }
 };
 
 // The (x, y) bins of the thesis code: 0.5 m in x, 0.2 m in y. The entropy
@@ -52,6 +69,13 @@ class Estimator {
   // posterior and Q the one after a sample at p that reads what the model
   // predicts there for the current expected parameters.
   virtual double information_gain(Vec2 p, const Posterior& current) const = 0;
+  // The expected information gain of a sample at p: the KL divergence from the current
+  // posterior to the one after the sample, averaged over what the sample may read, i.e. over
+  // sources drawn from the current posterior. Estimators that cannot afford it fall back to
+  // information_gain().
+  virtual double expected_information_gain(Vec2 p, const Posterior& current) const {
+    return information_gain(p, current);
+  }
 };
 
 }  // namespace plumekit::ste

@@ -60,6 +60,12 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
           (dir / "missing.pkcnn").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("missing.pkcnn not found"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --reward greedy");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--reward: unknown reward 'greedy'"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --lattice 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--lattice: must be at least 1"), std::string::npos) << r.err;
   r = run("evaluate --maps " + (dir / "nowhere").string() + " --plume-model physics");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;

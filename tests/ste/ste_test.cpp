@@ -135,6 +135,68 @@ TEST(KlReward, PrefersTheInformativeCandidate) {
   EXPECT_GT(informative, 1.0);
 }
 
+TEST(ExpectedGain, IsTheMutualInformationOfATellingSample) {
+  const TwoSources model;
+  GridEstimator est(model, {}, GridShape{2, 1, 2.0, 1.0});
+  const Posterior prior = est.posterior();
+  // At x < 1 the two sources read 200 and 0, 6.7 sigma apart: either reading settles the
+  // question, so the expected gain is the prior's entropy, log 2 nats. At x > 1 both read 50.
+  EXPECT_NEAR(est.expected_information_gain({0.5, 0.5}, prior), std::log(2.0), 1e-6);
+  EXPECT_NEAR(est.expected_information_gain({1.5, 0.5}, prior), 0.0, 1e-12);
+  // Once one source is known, nothing is left to learn anywhere.
+  est.add({0.5, 0.5}, 200.0);
+  const Posterior known = est.posterior();
+  EXPECT_GT(known.marginal.values[0], 1.0 - 1e-9);
+  EXPECT_NEAR(est.expected_information_gain({0.5, 0.5}, known), 0.0, 1e-6);
+}
+
+TEST(ExpectedGain, PartialResolutionHasTheAnalyticGain) {
+  // The sensor tells the two sources apart only partly: they read 200 and 140, sigma 30.
+  class Partial final : public SourceTableModel {
+   public:
+    std::string name() const override { return "partial"; }
+    const std::vector<Parameter>& parameters() const override { return params_; }
+    const GridShape& sources() const override { return grid_; }
+    const std::vector<std::uint8_t>& allowed() const override { return ok_; }
+    std::vector<double> readings_at(Vec2) const override { return {200.0, 140.0}; }
+
+   private:
+    std::vector<Parameter> params_{{"x", 0, 2}, {"y", 0, 1}, {"release_scale", 1, 1}};
+    GridShape grid_{2, 1, 2.0, 1.0};
+    std::vector<std::uint8_t> ok_{1, 1};
+  } model;
+  GridEstimator est(model, {}, GridShape{2, 1, 2.0, 1.0});
+  const Posterior prior = est.posterior();
+  // Reading 200 (or 140): the log-likelihood ratio is 60^2 / (2 30^2) = 2, so the posterior is
+  // Q = (1, e^-2) / (1 + e^-2) (or its mirror), each with half the prior mass, and the expected
+  // gain is KL(Q || P) = sum_k Q_k log(2 Q_k).
+  const double e = std::exp(-2.0), z = 1.0 + e;
+  const double kl = (1.0 / z) * std::log(2.0 / z) + (e / z) * std::log(2.0 * e / z);
+  EXPECT_NEAR(est.expected_information_gain({0.5, 0.5}, prior), kl, 1e-9);
+}
+
+TEST(Likelihood, RelativeErrorWidensTheVarianceWithThePrediction) {
+  LikelihoodOptions l;
+  l.sigma_m = 30.0;
+  l.sigma_rel = 0.5;
+  EXPECT_DOUBLE_EQ(l.variance(0.0), 900.0);
+  EXPECT_DOUBLE_EQ(l.variance(200.0), 900.0 + 10000.0);
+  EXPECT_NEAR(l.log_likelihood(300.0, 200.0), -0.5 * (1e4 / 10900.0 + std::log(10900.0)), 1e-12);
+  // The physics posterior still finds its own source with the wider error.
+  const Map map = default_arena(5.0, 2.0);
+  const cfd::WindField wind = test::uniform_wind(5.0, 2.0, 0.05, 1.0);
+  const PhysicsPlume model(map, wind);
+  GridEstimator est(model, l, make_bins(map, {}));
+  const Vec2 truth{3.05, 1.15};
+  const int k = model.nearest_allowed(truth);
+  for (Vec2 p : lattice(map, 0.5))
+    est.add(p, model.readings_at(p)[k]);
+  EXPECT_LT(norm(est.posterior().expected_source() - truth), 0.05);
+  LikelihoodOptions bad = l;
+  bad.sigma_rel = -1.0;
+  EXPECT_THROW(GridEstimator(model, bad, make_bins(map, {})), InputError);
+}
+
 TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   const Map map = small_map();
   SteOptions o;
