@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "../dataset/uniform_wind.hpp"
 #include "core/error.hpp"
@@ -100,25 +101,28 @@ TEST(GaussianPlume, FollowsTheFormulaAndIsZeroUpwind) {
   EXPECT_NEAR(model.predict_at(m.data(), {5.0, 2.3}), c, 1e-9 * c);
 }
 
-// Two candidate sources; a sensor at x < 1 tells them apart, one at x > 1 does not.
+// Two candidate sources; a sensor at x < 1 reads `near` from them, one at x > 1
+// reads `far` (by default: x < 1 tells them apart, x > 1 does not).
 class TwoSources final : public SourceTableModel {
  public:
-  TwoSources()
+  explicit TwoSources(std::vector<double> near = {200.0, 0.0},
+                      std::vector<double> far = {50.0, 50.0})
       : params_{{"x", 0, 2}, {"y", 0, 1}, {"release_scale", 1, 1}},
         grid_{2, 1, 2.0, 1.0},
-        ok_{1, 1} {}
+        ok_{1, 1},
+        near_(std::move(near)),
+        far_(std::move(far)) {}
   std::string name() const override { return "two"; }
   const std::vector<Parameter>& parameters() const override { return params_; }
   const GridShape& sources() const override { return grid_; }
   const std::vector<std::uint8_t>& allowed() const override { return ok_; }
-  std::vector<double> readings_at(Vec2 p) const override {
-    return p.x < 1.0 ? std::vector<double>{200.0, 0.0} : std::vector<double>{50.0, 50.0};
-  }
+  std::vector<double> readings_at(Vec2 p) const override { return p.x < 1.0 ? near_ : far_; }
 
  private:
   std::vector<Parameter> params_;
   GridShape grid_;
   std::vector<std::uint8_t> ok_;
+  std::vector<double> near_, far_;
 };
 
 TEST(KlReward, PrefersTheInformativeCandidate) {
@@ -152,19 +156,7 @@ TEST(ExpectedGain, IsTheMutualInformationOfATellingSample) {
 
 TEST(ExpectedGain, PartialResolutionHasTheAnalyticGain) {
   // The sensor tells the two sources apart only partly: they read 200 and 140, sigma 30.
-  class Partial final : public SourceTableModel {
-   public:
-    std::string name() const override { return "partial"; }
-    const std::vector<Parameter>& parameters() const override { return params_; }
-    const GridShape& sources() const override { return grid_; }
-    const std::vector<std::uint8_t>& allowed() const override { return ok_; }
-    std::vector<double> readings_at(Vec2) const override { return {200.0, 140.0}; }
-
-   private:
-    std::vector<Parameter> params_{{"x", 0, 2}, {"y", 0, 1}, {"release_scale", 1, 1}};
-    GridShape grid_{2, 1, 2.0, 1.0};
-    std::vector<std::uint8_t> ok_{1, 1};
-  } model;
+  const TwoSources model({200.0, 140.0});
   GridEstimator est(model, {}, GridShape{2, 1, 2.0, 1.0});
   const Posterior prior = est.posterior();
   // Reading 200 (or 140): the log-likelihood ratio is 60^2 / (2 30^2) = 2, so the posterior is
