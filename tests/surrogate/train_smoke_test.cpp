@@ -1,5 +1,6 @@
-// End to end: a small synthetic dataset, a few training steps of surrogate/train/train.py (with
-// Debian's PyTorch), then the engine loads the model file and reproduces the trainer's golden pair.
+// End to end: a small dataset (synthetic, or made by `plumekit dataset generate`), a few training
+// steps of surrogate/train/train.py (with Debian's PyTorch), then the engine loads the model file
+// and reproduces the trainer's golden pair.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -25,32 +26,18 @@ Tensor to_tensor(const NpyArray& a) {
   return t;
 }
 
-TEST(TrainSmoke, TrainsAFewStepsAndTheEngineLoadsTheModel) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("plumekit-train-smoke-" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  const std::string py =
-      std::string(PLUMEKIT_PYTHON) + " " + PLUMEKIT_SOURCE_DIR + "/surrogate/train/";
-  const std::string data = (dir / "data").string(), work = (dir / "work").string();
-  const std::string model = (dir / "model.pkcnn").string();
-  ASSERT_EQ(std::system((py + "synthetic_dataset.py " + data + " --maps 3 --per-map 4").c_str()),
-            0);
-  const std::string train = py + "train.py --data " + data + " --work " + work + " --out " + model +
-                            " --batch 4 --threads 2 --max-steps ";
-  ASSERT_EQ(std::system((train + "4").c_str()), 0);
-  // Rerunning resumes from the checkpoint and goes on to step 6.
-  ASSERT_EQ(std::system((train + "6").c_str()), 0);
-  EXPECT_TRUE(fs::exists(fs::path(work) / "log.csv"));
-
-  const Network net = Network::load(model);
+// The engine reproduces the golden pair train.py wrote beside `model` (STEM_input/output.npy).
+// The strict 1e-4 criterion is the golden tests' (fixed files). Here the model and its pair depend
+// on this machine's PyTorch kernels, and a max-pool near-tie may send one decoder value to another
+// pixel in one engine and not the other (surrogate/README.md, "Max-pool near-ties"); so all but
+// 1 % of the values must agree within 1e-4 of the largest, and the rest stay bounded.
+void expect_engine_reproduces_golden_pair(const fs::path& model) {
+  const Network net = Network::load(model.string());
   EXPECT_EQ(net.parameter_count(), 600130u);
-  const Tensor input = to_tensor(read_npy(dir / "model_input.npy"));
-  const Tensor want = to_tensor(read_npy(dir / "model_output.npy"));
+  const fs::path stem = model.parent_path() / model.stem();
+  const Tensor input = to_tensor(read_npy(stem.string() + "_input.npy"));
+  const Tensor want = to_tensor(read_npy(stem.string() + "_output.npy"));
   const Tensor got = net.predict(input);
-  // The strict 1e-4 criterion is the golden tests' (fixed files). Here the model and its pair
-  // depend on this machine's PyTorch kernels, and a max-pool near-tie may send one decoder value to
-  // another pixel in one engine and not the other (surrogate/README.md, "Max-pool near-ties"); so
-  // all but 1 % of the values must agree within 1e-4 of the largest, and the rest stay bounded.
   double scale = 0, err = 0;
   for (float v : want.data)
     scale = std::max(scale, std::abs(double{v}));
@@ -65,6 +52,53 @@ TEST(TrainSmoke, TrainsAFewStepsAndTheEngineLoadsTheModel) {
               want.data.size());
   EXPECT_LE(off, want.data.size() / 100);
   EXPECT_LT(err, 0.05);
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("plumekit-" + name + "-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+const std::string kTrain =
+    std::string(PLUMEKIT_PYTHON) + " " + PLUMEKIT_SOURCE_DIR + "/surrogate/train/train.py";
+
+TEST(TrainSmoke, TrainsAFewStepsAndTheEngineLoadsTheModel) {
+  const fs::path dir = fresh_dir("train-smoke");
+  const std::string data = (dir / "data").string(), work = (dir / "work").string();
+  const fs::path model = dir / "model.pkcnn";
+  ASSERT_EQ(std::system((std::string(PLUMEKIT_PYTHON) + " " + PLUMEKIT_SOURCE_DIR +
+                         "/surrogate/train/synthetic_dataset.py " + data + " --maps 3 --per-map 4")
+                            .c_str()),
+            0);
+  const std::string train = kTrain + " --data " + data + " --work " + work + " --out " +
+                            model.string() + " --batch 4 --threads 2 --max-steps ";
+  ASSERT_EQ(std::system((train + "4").c_str()), 0);
+  // Rerunning resumes from the checkpoint and goes on to step 6.
+  ASSERT_EQ(std::system((train + "6").c_str()), 0);
+  EXPECT_TRUE(fs::exists(fs::path(work) / "log.csv"));
+  expect_engine_reproduces_golden_pair(model);
+  fs::remove_all(dir);
+}
+
+// The whole offline chain on real data: random maps, their flow and plumes from the generator,
+// then training and the engine.
+TEST(TrainSmoke, TrainsOnADatasetTheGeneratorMade) {
+  const fs::path dir = fresh_dir("train-generated");
+  const std::string data = (dir / "data").string();
+  const fs::path model = dir / "model.pkcnn";
+  ASSERT_EQ(std::system((std::string(PLUMEKIT_EXE) +
+                         " dataset generate --maps 2 --sources 3 --seed 1 --cell 0.1"
+                         " --plume advection-diffusion --out " +
+                         data + " > /dev/null")
+                            .c_str()),
+            0);
+  ASSERT_EQ(std::system((kTrain + " --data " + data + " --work " + (dir / "work").string() +
+                         " --out " + model.string() + " --batch 2 --threads 2 --max-steps 3")
+                            .c_str()),
+            0);
+  expect_engine_reproduces_golden_pair(model);
   fs::remove_all(dir);
 }
 
