@@ -60,9 +60,7 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
   scale_hi_ = p.size() > 2 ? p[2].hi : 1.0;
   if (!(scale_lo_ > 0.0) || scale_hi_ < scale_lo_)
     throw InputError("release scale prior: need 0 < lo <= hi");
-  if (!(likelihood.variance() > 0.0)) throw InputError("sigma_M^2 + sigma_D^2 must be positive");
-  if (!(likelihood.sigma_rel >= 0.0) || !std::isfinite(likelihood.sigma_rel))
-    throw InputError("sigma_rel must be finite and >= 0");
+  likelihood.validate();
   for (std::vector<double>* v : {&sums_.a, &sums_.b, &sums_.c, &sums_.h})
     v->assign(model.sources().size(), 0.0);
   // The largest entropy: every bin holding an allowed cell equally likely.
@@ -183,22 +181,31 @@ double GridEstimator::expected_information_gain(Vec2 p, const Posterior& current
     if (hits > 0) picks.emplace_back(k, hits);
   }
   if (picks.empty()) return 0.0;
-  // For a reading z, Q_k = P_k L_k(z) / Z and KL(Q || P) = sum_k Q_k log L_k - log Z.
-  std::vector<double> ll(w.size());
+  // For a reading z, Q_k = P_k L_k(z) / Z and KL(Q || P) = sum_k Q_k log L_k - log Z. A cell's
+  // prediction and variance do not depend on z: they are computed once, for the cells with mass.
+  struct Cell {
+    double weight, mean, inv_var, log_var;
+  };
+  std::vector<Cell> cells;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    if (w[k] <= 0.0) continue;
+    const double mean = s * r[k], var = likelihood_.variance(mean);
+    cells.push_back({w[k], mean, 1.0 / var, likelihood_.sigma_rel > 0.0 ? std::log(var) : 0.0});
+  }
+  std::vector<double> ll(cells.size());
   double gain = 0.0;
   int counted = 0;
   for (const auto& [pick, hits] : picks) {
     const double z = s * r[pick];
     double top = -kInf;
-    for (std::size_t k = 0; k < w.size(); ++k) {
-      if (w[k] <= 0.0) continue;
-      ll[k] = likelihood_.log_likelihood(z, s * r[k]);
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const double d = z - cells[k].mean;
+      ll[k] = -0.5 * (d * d * cells[k].inv_var + cells[k].log_var);
       top = std::max(top, ll[k]);
     }
     double z_sum = 0.0, q_ll = 0.0;
-    for (std::size_t k = 0; k < w.size(); ++k) {
-      if (w[k] <= 0.0) continue;
-      const double q = w[k] * std::exp(ll[k] - top);
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const double q = cells[k].weight * std::exp(ll[k] - top);
       z_sum += q;
       q_ll += q * (ll[k] - top);
     }

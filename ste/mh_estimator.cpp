@@ -24,7 +24,7 @@ MhEstimator::MhEstimator(const PlumeModel& model, const Map& map,
   if (options.iterations <= options.burn_in || options.burn_in < 0)
     throw InputError("Metropolis-Hastings: need 0 <= burn_in < iterations");
   if (!(options.proposal > 0.0)) throw InputError("Metropolis-Hastings: proposal must be positive");
-  if (!(likelihood.variance() > 0.0)) throw InputError("sigma_M^2 + sigma_D^2 must be positive");
+  likelihood.validate();
   // Start at the middle of every range, moved to a free point for (x, y).
   for (const Parameter& p : model.parameters())
     state_.push_back(0.5 * (p.lo + p.hi));

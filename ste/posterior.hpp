@@ -29,11 +29,14 @@ struct LikelihoodOptions {
     return sigma_m * sigma_m + sigma_d * sigma_d + r * r;
   }
   // -1/2 ((value - predicted)^2 / variance + log variance): one sample's log-likelihood, up to a
-  // constant.
+  // constant. The log term is a constant, and so left out, unless sigma_rel makes the variance
+  // depend on the prediction.
   double log_likelihood(double value, double predicted) const {
     const double var = variance(predicted), d = value - predicted;
-    return -0.5 * (d * d / var + std::log(var));
+    return -0.5 * (d * d / var + (sigma_rel > 0.0 ? std::log(var) : 0.0));
   }
+  // Throws InputError unless the variance is positive and sigma_rel finite and >= 0.
+  void validate() const;
 };
 
 // The (x, y) bins of the thesis code: 0.5 m in x, 0.2 m in y. The entropy
