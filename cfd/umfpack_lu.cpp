@@ -1,11 +1,53 @@
 #include "cfd/umfpack_lu.hpp"
 
+#include <dlfcn.h>
+#include <umfpack.h>
+
+#include <cstring>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
-#include <umfpack.h>
-
 namespace plumekit::cfd {
+namespace {
+
+// UMFPACK's dense kernels call whatever BLAS libblas.so.3 points at. Two facts
+// about OpenBLAS matter for plumekit, which runs one flow per worker thread:
+//  - Its pthread build would split each call over all cores, so results would
+//    depend on how many workers run at once. It is pinned to one thread.
+//  - Its serial build (Debian's libopenblas0-serial, "SINGLE_THREADED") is not
+//    reentrant: two threads in it at once corrupt each other's buffers, and the
+//    same seed gave different winds. With it, BLAS calls take turns.
+// Other BLAS libraries (netlib, BLIS, OpenBLAS pthread/OpenMP) are reentrant.
+struct BlasPolicy {
+  bool serialize = false;
+};
+
+const BlasPolicy& blas_policy() {
+  static const BlasPolicy policy = [] {
+    BlasPolicy p;
+    using SetThreads = void (*)(int);
+    using GetConfig = char* (*)();
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
+      set(1);
+    if (auto get = reinterpret_cast<GetConfig>(dlsym(RTLD_DEFAULT, "openblas_get_config"))) {
+      const char* config = get();
+      p.serialize = config && std::strstr(config, "SINGLE_THREADED");
+    }
+    return p;
+  }();
+  return policy;
+}
+
+std::mutex blas_mutex;
+
+// Holds the BLAS lock for the duration of one UMFPACK call when needed.
+std::unique_lock<std::mutex> blas_turn() {
+  return blas_policy().serialize ? std::unique_lock<std::mutex>(blas_mutex)
+                                 : std::unique_lock<std::mutex>();
+}
+
+}  // namespace
 
 UmfpackLU::UmfpackLU() : control_(UMFPACK_CONTROL), info_(UMFPACK_INFO), solve_info_(UMFPACK_INFO) {
   umfpack_di_defaults(control_.data());
@@ -35,6 +77,7 @@ void UmfpackLU::analyze(const Eigen::SparseMatrix<double>& a) {
 
 bool UmfpackLU::factorize(const Eigen::SparseMatrix<double>& a) {
   free_numeric();
+  const auto turn = blas_turn();
   const int status = umfpack_di_numeric(a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(),
                                         symbolic_, &numeric_, control_.data(), info_.data());
   if (status == UMFPACK_OK) return true;
@@ -45,6 +88,7 @@ bool UmfpackLU::factorize(const Eigen::SparseMatrix<double>& a) {
 }
 
 void UmfpackLU::solve(const Eigen::SparseMatrix<double>& a, const double* b, double* x) {
+  const auto turn = blas_turn();
   umfpack_di_wsolve(UMFPACK_A, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(), x, b, numeric_,
                     control_.data(), solve_info_.data(), wi_.data(), w_.data());
 }

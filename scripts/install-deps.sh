@@ -10,8 +10,9 @@ packages=(
   build-essential cmake pkg-config git
   # numerics and geometry
   libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
-  # an optimised BLAS: UMFPACK's dense kernels run ~2.4x faster than with netlib BLAS
-  libopenblas0-serial
+  # an optimised BLAS: UMFPACK's dense kernels run ~2.4x faster than with netlib BLAS. The pthread
+  # build, which plumekit pins to one thread: the serial build is not reentrant (cfd/README.md).
+  libopenblas0-pthread
   # planning: OMPL links only with these boost components present
   libompl-dev libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   # images, PNG, ROS map_server files (YAML + PGM/PNG)

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <thread>
+#include <vector>
 
 #include "cfd/flow_output.hpp"
 #include "cfd/flow_solver.hpp"
@@ -87,6 +89,23 @@ TEST(FlowMaps, SameInputGivesTheSameBytes) {
   const FlowResult a = solve(map, o), b = solve(map, o);
   EXPECT_EQ(npy_float32(a.wind.u(), {1, a.wind.u().size()}),
             npy_float32(b.wind.u(), {1, b.wind.u().size()}));
+}
+
+// Dataset workers solve flows side by side. The BLAS under UMFPACK must then
+// neither race (Debian's serial OpenBLAS does) nor split its work by thread
+// count: concurrent solves give the bytes of a solve alone.
+TEST(FlowMaps, ConcurrentSolvesGiveTheBytesOfASolveAlone) {
+  const Map map = read_map(kMaps / "cluttered-1.json");
+  const FlowOptions o;  // the default 5 cm grid: large fronts, long BLAS calls
+  const std::vector<double> alone = solve(map, o).wind.face_u();
+  for (int round = 0; round < 3; ++round) {
+    std::vector<double> got[2];
+    std::thread other([&] { got[1] = solve(map, o).wind.face_u(); });
+    got[0] = solve(map, o).wind.face_u();
+    other.join();
+    EXPECT_TRUE(got[0] == alone) << "round " << round;
+    EXPECT_TRUE(got[1] == alone) << "round " << round;
+  }
 }
 
 TEST(FlowMaps, WindSamplingIsBilinearBetweenCellCentres) {
