@@ -75,11 +75,21 @@ void finish_plume_options(PlumeOptions& p, const std::string& model) {
   p.filament.release_rate = p.advection_diffusion.release_rate;
 }
 
+// --families: which random-map families to draw from (default: the thesis's four).
+void add_families_option(CLI::App* cmd, RandomMapOptions& o) {
+  cmd->add_option("--families", o.families,
+                  "Random-map families, comma-separated: rectangle, two-rectangles, l-shape, "
+                  "u-shape (the thesis's, the default), three-rectangles, shape-and-rectangle")
+      ->delimiter(',')
+      ->default_str("rectangle,two-rectangles,l-shape,u-shape");
+}
+
 void add_maps_random(CLI::App& app) {
   auto* group = app.add_subcommand("maps", "Generate maps");
   group->require_subcommand(1);
-  auto* cmd = group->add_subcommand(
-      "random", "Random cluttered maps (rectangle, two rectangles, L, U), one JSON file each");
+  auto* cmd = group->add_subcommand("random",
+                                    "Random cluttered maps (rectangle, two rectangles, L, U; "
+                                    "optionally more), one JSON file each");
   struct Args {
     int count = 10;
     std::uint64_t seed = 0;
@@ -97,6 +107,7 @@ void add_maps_random(CLI::App& app) {
   cmd->add_option("--width", a->o.width, "Arena width, m")->capture_default_str();
   cmd->add_option("--height", a->o.height, "Arena height, m")->capture_default_str();
   cmd->add_option("--min-gap", a->o.min_gap, "Narrowest passage, m")->capture_default_str();
+  add_families_option(cmd, a->o);
   cmd->add_option("--margin", a->o.robot_margin,
                   "Robot radius + safety that must pass from inlet to outlet, m")
       ->capture_default_str();
@@ -214,6 +225,7 @@ void add_generate(CLI::App* group) {
   cmd->add_option("--from-maps", a->maps_dir,
                   "Use the maps in this directory (with their own sources) instead of random "
                   "ones: ground truth for test maps");
+  add_families_option(cmd, a->o.map);
   cmd->add_option("--cell", a->o.flow.cell, "Flow cell size, m")->capture_default_str();
   add_plume_options(cmd, a->o.plume, a->model);
   add_json_flag(cmd);

@@ -30,6 +30,9 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                         {"end_clearance", o.map.end_clearance},
                         {"robot_margin", o.map.robot_margin},
                         {"min_gap", o.map.min_gap}};
+    // Only when not the thesis's four, so that older manifests still match on resume.
+    if (o.map.families != RandomMapOptions::thesis_families())
+      j["random_maps"]["families"] = o.map.families;
   } else {
     j["map_files"] = o.map_files;
     j["sources_per_map"] = "each map's own sources";

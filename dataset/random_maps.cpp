@@ -123,6 +123,13 @@ bool acceptable(const Map& map, const RandomMapOptions& o) {
 
 }  // namespace
 
+std::vector<std::string> RandomMapOptions::known_families() {
+  std::vector<std::string> all = thesis_families();
+  all.push_back("three-rectangles");
+  all.push_back("shape-and-rectangle");
+  return all;
+}
+
 bool robot_can_cross(const Map& map, double margin) {
   const GridShape g = GridShape::with_cell(map.width, map.height, 0.05);
   std::vector<std::uint8_t> ok(g.size(), 0), seen(g.size(), 0);
@@ -151,7 +158,9 @@ bool robot_can_cross(const Map& map, double margin) {
 }
 
 std::string family_of(const std::string& name) {
-  for (const char* f : {"two-rectangles", "rectangle", "l-shape", "u-shape"}) {
+  // Longest first: "rectangle" is also the tail of the others.
+  for (const char* f : {"shape-and-rectangle", "three-rectangles", "two-rectangles", "rectangle",
+                        "l-shape", "u-shape"}) {
     const std::string tail = std::string("-") + f;
     if (name.size() >= tail.size() &&
         name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
@@ -166,17 +175,27 @@ RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_
     throw InputError(
         "random maps: the arena must be wider than 2 * end_clearance + 0.5 m and "
         "higher than 1 m");
-  static const char* const kFamilies[] = {"rectangle", "two-rectangles", "l-shape", "u-shape"};
+  const std::vector<std::string> known = RandomMapOptions::known_families();
+  if (o.families.empty()) throw InputError("random maps: the list of families is empty");
+  for (const std::string& f : o.families)
+    if (std::find(known.begin(), known.end(), f) == known.end())
+      throw InputError("random maps: unknown family '" + f +
+                       "' (rectangle, two-rectangles, l-shape, u-shape, three-rectangles, "
+                       "shape-and-rectangle)");
   Draw d(derive_seed(seed, index, redraw, Stream::MapGeometry));
   RandomMap r;
-  r.family = kFamilies[d.pick(4)];
+  r.family = o.families[d.pick(static_cast<int>(o.families.size()))];
   for (r.attempts = 1; r.attempts <= o.max_attempts; ++r.attempts) {
     Map map = default_arena(o.width, o.height);
     map.inlet.speed = o.inlet_speed;
     map.name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" +
                (redraw > 0 ? "r" + std::to_string(redraw) + "-" : std::string()) + r.family;
-    if (r.family == "two-rectangles") {
-      map.obstacles.push_back(draw_obstacle(d, "rectangle", o));
+    if (r.family == "two-rectangles" || r.family == "three-rectangles") {
+      const int n = r.family == "two-rectangles" ? 2 : 3;
+      for (int k = 0; k < n; ++k)
+        map.obstacles.push_back(draw_obstacle(d, "rectangle", o));
+    } else if (r.family == "shape-and-rectangle") {
+      map.obstacles.push_back(draw_obstacle(d, d.pick(2) == 0 ? "l-shape" : "u-shape", o));
       map.obstacles.push_back(draw_obstacle(d, "rectangle", o));
     } else {
       map.obstacles.push_back(draw_obstacle(d, r.family, o));

@@ -1,7 +1,9 @@
 #pragma once
 // Random cluttered maps in the source thesis's families (Rahbar 2021,
 // Fig. 14.1): one rectangle, two separate rectangles, an L-shape, a U-shape,
-// axis-aligned, at random sizes, positions and orientations. Every map keeps
+// axis-aligned, at random sizes, positions and orientations; on request also
+// two more cluttered families beyond the thesis's: three rectangles, and an L
+// or U with a rectangle. Every map keeps
 // its inlet and outlet open, lets air and a robot through (see the checks in
 // random_map()), and is a pure function of (seed, index).
 #include <cstdint>
@@ -25,11 +27,19 @@ struct RandomMapOptions {
   double robot_margin = 0.15;
   double min_gap = 0.4;
   int max_attempts = 10000;
+  // The families drawn from, each equally likely. The default is the thesis's four; with
+  // them, map i is the same as before the extra families existed.
+  std::vector<std::string> families = thesis_families();
+  static std::vector<std::string> thesis_families() {
+    return {"rectangle", "two-rectangles", "l-shape", "u-shape"};
+  }
+  // Every family random_map() knows: the thesis's and three-rectangles, shape-and-rectangle.
+  static std::vector<std::string> known_families();
 };
 
 struct RandomMap {
   Map map;
-  std::string family;  // rectangle, two-rectangles, l-shape, u-shape
+  std::string family;  // one of RandomMapOptions::known_families()
   int attempts = 0;    // draws rejected by the checks, plus one
 };
 

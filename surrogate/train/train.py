@@ -26,6 +26,7 @@ Runs unchanged on CUDA when a GPU is present.
 """
 import argparse
 import csv
+import hashlib
 import math
 import os
 import sys
@@ -36,7 +37,7 @@ import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: E402
-from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, write_model  # noqa: E402
+from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, read_model, write_model  # noqa: E402
 from shards import batch, open_dataset, split_by_map  # noqa: E402
 
 
@@ -62,6 +63,10 @@ def parse_args(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 1,
                     help="CPU threads (Debian's torch defaults to 1)")
+    ap.add_argument("--init", metavar="MODEL",
+                    help="start from this plumekit-cnn file's weights and target scale (fine-tuning;\n"
+                         "ignored when resuming). Its validation loss is scored first, so the result\n"
+                         "is never worse on the validation maps than the start")
     ap.add_argument("--golden", type=int, default=2, help="samples in the golden pair")
     ap.add_argument("--preload", choices=["auto", "yes", "no"], default="auto",
                     help="copy the whole dataset into the device's memory once instead of reading\n"
@@ -141,7 +146,15 @@ def main(argv=None):
     train_rows, val_rows, val_maps = split_by_map(shards, args.val_fraction, args.seed)
     if not train_rows or not val_rows:
         sys.exit("train.py: need at least two maps (one for validation)")
+    init_model = init_header = None
+    if args.init:
+        try:
+            init_model, init_header = read_model(args.init)
+        except (OSError, ValueError) as e:
+            sys.exit(f"train.py: --init: {e}")
     scale = args.target_scale
+    if scale <= 0 and init_header is not None:  # keep the start's units
+        scale = float(init_header["outputs"][0]["scale"])
     if scale <= 0:  # the largest training mean, read shard by shard from the memory maps
         val_set = set(val_maps)
         scale = 0.0
@@ -156,6 +169,8 @@ def main(argv=None):
 
     torch.manual_seed(args.seed)
     model = PlumeUNet().to(device)
+    if init_model is not None:
+        model.load_state_dict(init_model.state_dict())
     opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)
     # batch: the next batch of the current epoch; running, seen: that epoch's loss sums so far.
     state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale,
@@ -172,6 +187,12 @@ def main(argv=None):
         for key, value in (("batch", 0), ("running", 0.0), ("seen", 0)):
             state.setdefault(key, value)
         print(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
+    elif init_model is not None and not os.path.exists(best_path):
+        # Epoch 0 is the start itself: a fine-tuning that only hurts returns the start.
+        val_loss, val_rmse = evaluate(model, batches, val_rows, scale, args.batch)
+        state["best_val"] = val_loss
+        torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
+        print(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
     print(f"{parameter_count(model)} parameters on {device}; {len(train_rows)} training and "
           f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
 
@@ -257,6 +278,9 @@ def main(argv=None):
                 "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
                 "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay, "batch": args.batch,
                 "seed": args.seed}
+    if args.init:
+        training["init"] = {"model": os.path.basename(args.init),
+                            "sha256": hashlib.sha256(open(args.init, "rb").read()).hexdigest()}
     size = write_model(args.out, final, features, outputs, training)
     x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
     y = y * scale

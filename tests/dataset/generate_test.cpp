@@ -122,6 +122,9 @@ TEST(Generate, RefusesOtherParametersInTheSameDirectory) {
   generate_dataset(d, o, {});
   o.seed = 1;
   EXPECT_THROW(generate_dataset(d, o, {}), InputError);
+  o.seed = 99;
+  o.map.families = {"three-rectangles"};  // other families: another dataset
+  EXPECT_THROW(generate_dataset(d, o, {}), InputError);
   fs::remove_all(d);
 }
 

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <set>
 
+#include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/rasterize.hpp"
 #include "dataset/features.hpp"
@@ -49,6 +50,48 @@ TEST(RandomMaps, AreValidOpenCrossableAndDeterministic) {
   }
   EXPECT_EQ(families.size(), 4u);
   EXPECT_NE(map_to_json(random_map(o, 12, 0).map), map_to_json(random_map(o, 11, 0).map));
+}
+
+TEST(RandomMaps, DefaultFamiliesDrawAsBeforeTheExtraFamiliesExisted) {
+  // Pinned from the code before --families: datasets made then stay reproducible.
+  const RandomMapOptions o;
+  const char* const families[] = {"l-shape",        "u-shape",   "two-rectangles",
+                                  "two-rectangles", "rectangle", "l-shape"};
+  for (int i = 0; i < 6; ++i)
+    EXPECT_EQ(random_map(o, 1, i).family, families[i]) << "map " << i;
+  EXPECT_NEAR(random_map(o, 1, 0).map.obstacles[0][0].x, 2.0624712391424884, 1e-12);
+}
+
+TEST(RandomMaps, ExtraFamiliesAreOptInAndKeepThePromises) {
+  RandomMapOptions o;
+  o.families = {"three-rectangles", "shape-and-rectangle"};
+  std::set<std::string> families;
+  for (int i = 0; i < 16; ++i) {
+    const RandomMap r = random_map(o, 3, i);
+    families.insert(r.family);
+    const Map& m = r.map;
+    EXPECT_EQ(family_of(m.name), r.family);
+    EXPECT_NO_THROW(validate_map(m, m.name));
+    if (r.family == "three-rectangles") {
+      ASSERT_EQ(m.obstacles.size(), 3u);
+      for (const Polygon& p : m.obstacles)
+        EXPECT_EQ(p.size(), 4u);
+    } else {
+      ASSERT_EQ(m.obstacles.size(), 2u);
+      EXPECT_TRUE(m.obstacles[0].size() == 6u || m.obstacles[0].size() == 8u);  // an L or a U
+      EXPECT_EQ(m.obstacles[1].size(), 4u);
+    }
+    EXPECT_TRUE(
+        inlet_reaches_outlet(rasterize_labels(m, GridShape::with_cell(m.width, m.height, 0.05))));
+    EXPECT_TRUE(robot_can_cross(m, o.robot_margin));
+    EXPECT_EQ(map_to_json(random_map(o, 3, i).map), map_to_json(m));
+  }
+  EXPECT_EQ(families.size(), 2u);
+  RandomMapOptions bad;
+  bad.families = {"rectangle", "triangle"};
+  EXPECT_THROW(random_map(bad, 1, 0), InputError);
+  bad.families.clear();
+  EXPECT_THROW(random_map(bad, 1, 0), InputError);
 }
 
 TEST(RandomMaps, RobotCheckRejectsANarrowGap) {
