@@ -187,11 +187,13 @@ def main(argv=None):
         for key, value in (("batch", 0), ("running", 0.0), ("seen", 0)):
             state.setdefault(key, value)
         print(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
-    elif init_model is not None and not os.path.exists(best_path):
+    start_row = None
+    if init_model is not None and not os.path.exists(ckpt_path) and not os.path.exists(best_path):
         # Epoch 0 is the start itself: a fine-tuning that only hurts returns the start.
         val_loss, val_rmse = evaluate(model, batches, val_rows, scale, args.batch)
         state["best_val"] = val_loss
         torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
+        start_row = [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"]
         print(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
     print(f"{parameter_count(model)} parameters on {device}; {len(train_rows)} training and "
           f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
@@ -202,6 +204,8 @@ def main(argv=None):
         log = csv.writer(log_file)
         if new_log:
             log.writerow(["epoch", "step", "train_loss", "val_loss", "val_rmse_mean", "seconds"])
+        if start_row:
+            log.writerow(start_row)
         def save_checkpoint():
             torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(),
                         "state": state, "torch_rng": torch.get_rng_state()}, ckpt_path + ".tmp")

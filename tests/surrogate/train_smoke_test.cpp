@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/npy.hpp"
@@ -54,6 +56,11 @@ void expect_engine_reproduces_golden_pair(const fs::path& model) {
   EXPECT_LT(err, 0.05);
 }
 
+std::string read_text(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir =
       fs::temp_directory_path() / ("plumekit-" + name + "-" + std::to_string(getpid()));
@@ -79,6 +86,48 @@ TEST(TrainSmoke, TrainsAFewStepsAndTheEngineLoadsTheModel) {
   ASSERT_EQ(std::system((train + "6").c_str()), 0);
   EXPECT_TRUE(fs::exists(fs::path(work) / "log.csv"));
   expect_engine_reproduces_golden_pair(model);
+  fs::remove_all(dir);
+}
+
+// --init: a run starts from a model file's weights, logs that start as epoch 0, records the start
+// in the new header, and returns the start when training only makes validation worse.
+TEST(TrainSmoke, FineTuningStartsFromAModelFileAndNeverReturnsWorse) {
+  const fs::path dir = fresh_dir("train-init");
+  const std::string data = (dir / "data").string();
+  const fs::path start = dir / "start.pkcnn", tuned = dir / "tuned.pkcnn";
+  ASSERT_EQ(std::system((std::string(PLUMEKIT_PYTHON) + " " + PLUMEKIT_SOURCE_DIR +
+                         "/surrogate/train/synthetic_dataset.py " + data + " --maps 3 --per-map 4")
+                            .c_str()),
+            0);
+  const std::string common = kTrain + " --data " + data + " --batch 4 --threads 2 ";
+  ASSERT_EQ(std::system((common + "--work " + (dir / "w1").string() + " --out " + start.string() +
+                         " --max-steps 2 > /dev/null")
+                            .c_str()),
+            0);
+  // A learning rate that can only hurt: one epoch, then the start (epoch 0) is still the best.
+  ASSERT_EQ(std::system((common + "--work " + (dir / "w2").string() + " --out " + tuned.string() +
+                         " --init " + start.string() + " --epochs 1 --lr 1000 > /dev/null")
+                            .c_str()),
+            0);
+  const std::string log = read_text((dir / "w2" / "log.csv").string());
+  EXPECT_NE(log.find("\n0,0,,"), std::string::npos) << log;
+  EXPECT_NE(log.find("\n1,"), std::string::npos) << log;
+  EXPECT_NE(read_text(tuned.string()).find("\"init\""), std::string::npos);
+  const Tensor input = to_tensor(read_npy((dir / "start_input.npy").string()));
+  const Tensor a = Network::load(start.string()).predict(input);
+  const Tensor b = Network::load(tuned.string()).predict(input);
+  EXPECT_EQ(a.data, b.data);
+  // A damaged start is refused before anything is trained.
+  {
+    std::string bytes = read_text(start.string());
+    std::ofstream(dir / "cut.pkcnn", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  EXPECT_NE(std::system((common + "--work " + (dir / "w3").string() + " --out " +
+                         (dir / "x.pkcnn").string() + " --init " + (dir / "cut.pkcnn").string() +
+                         " --epochs 1 > /dev/null 2>&1")
+                            .c_str()),
+            0);
+  EXPECT_FALSE(fs::exists(dir / "x.pkcnn"));
   fs::remove_all(dir);
 }
 

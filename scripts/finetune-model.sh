@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Second stage of the shipped surrogate: fine-tunes the base model (data/models/plume-unet-base.pkcnn,
+# made by scripts/train-model.sh on the thesis's four map families) on more cluttered layouts, which
+# gives data/models/plume-unet.pkcnn and its evaluation (surrogate/README.md):
+#   1. MAPS random maps x 50 sources, filament model, seed 2, drawn from all six families (the
+#      thesis's four, three-rectangles, shape-and-rectangle; dataset/README.md);
+#   2. the ground-truth plumes of the nine test maps;
+#   3. train.py --init BASE: EPOCHS epochs, lr 3e-4 with a cosine decay, batch 32;
+#   4. the evaluation on this dataset's validation maps and on the test maps.
+# Every step resumes where it stopped when run again. WORK (default out/finetune) holds the datasets
+# and the checkpoints. Settings (environment): MAPS (200), EPOCHS (4), THREADS (nproc), BASE,
+# MAX_MINUTES, PYTHON (/usr/bin/python3), as in train-model.sh. On the 2-core build machine the
+# data take about 10 min and an epoch about 13 min.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+work=${1:-out/finetune}
+maps=${MAPS:-200}
+epochs=${EPOCHS:-4}
+threads=${THREADS:-$(nproc)}
+python=${PYTHON:-/usr/bin/python3}
+base=${BASE:-data/models/plume-unet-base.pkcnn}
+mkdir -p "$work" data/models
+[ -x build/plumekit ] || bash scripts/build.sh
+./build/plumekit dataset generate --maps "$maps" --sources 50 --seed 2 --threads "$threads" \
+  --families rectangle,two-rectangles,l-shape,u-shape,three-rectangles,shape-and-rectangle \
+  --out "$work/dataset"
+./build/plumekit dataset generate --from-maps data/test-maps --threads "$threads" --out "$work/test-truth"
+"$python" surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" --init "$base" \
+  --out data/models/plume-unet.pkcnn --epochs "$epochs" --lr 3e-4 --lr-schedule cosine --batch 32 \
+  --seed 1 --threads "$threads" ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}
+cp "$work/checkpoints/log.csv" data/models/plume-unet.log.csv
+"$python" surrogate/train/evaluate.py --model data/models/plume-unet.pkcnn \
+  --data "$work/dataset" --test "$work/test-truth" --out data/models/plume-unet-eval --threads "$threads"
