@@ -170,7 +170,10 @@ def main(argv=None):
     torch.manual_seed(args.seed)
     model = PlumeUNet().to(device)
     if init_model is not None:
-        model.load_state_dict(init_model.state_dict())
+        try:
+            model.load_state_dict(init_model.state_dict())
+        except RuntimeError as e:  # another architecture than the one trained here
+            sys.exit(f"train.py: --init {args.init}: {str(e).splitlines()[0]}")
     opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)
     # batch: the next batch of the current epoch; running, seen: that epoch's loss sums so far.
     state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale,
