@@ -9,9 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 
+#include "core/atomic_file.hpp"
 #include "core/npy.hpp"
 #include "surrogate/network.hpp"
 
@@ -54,11 +54,6 @@ void expect_engine_reproduces_golden_pair(const fs::path& model) {
               want.data.size());
   EXPECT_LE(off, want.data.size() / 100);
   EXPECT_LT(err, 0.05);
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), {});
 }
 
 fs::path fresh_dir(const std::string& name) {
@@ -109,17 +104,17 @@ TEST(TrainSmoke, FineTuningStartsFromAModelFileAndNeverReturnsWorse) {
                          " --init " + start.string() + " --epochs 1 --lr 1000 > /dev/null")
                             .c_str()),
             0);
-  const std::string log = read_text((dir / "w2" / "log.csv").string());
+  const std::string log = read_file(dir / "w2" / "log.csv");
   EXPECT_NE(log.find("\n0,0,,"), std::string::npos) << log;
   EXPECT_NE(log.find("\n1,"), std::string::npos) << log;
-  EXPECT_NE(read_text(tuned.string()).find("\"init\""), std::string::npos);
+  EXPECT_NE(read_file(tuned).find("\"init\""), std::string::npos);
   const Tensor input = to_tensor(read_npy((dir / "start_input.npy").string()));
   const Tensor a = Network::load(start.string()).predict(input);
   const Tensor b = Network::load(tuned.string()).predict(input);
   EXPECT_EQ(a.data, b.data);
   // A damaged start is refused before anything is trained.
   {
-    std::string bytes = read_text(start.string());
+    std::string bytes = read_file(start);
     std::ofstream(dir / "cut.pkcnn", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   }
   EXPECT_NE(std::system((common + "--work " + (dir / "w3").string() + " --out " +
