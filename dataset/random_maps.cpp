@@ -178,10 +178,12 @@ RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_
   const std::vector<std::string> known = RandomMapOptions::known_families();
   if (o.families.empty()) throw InputError("random maps: the list of families is empty");
   for (const std::string& f : o.families)
-    if (std::find(known.begin(), known.end(), f) == known.end())
-      throw InputError("random maps: unknown family '" + f +
-                       "' (rectangle, two-rectangles, l-shape, u-shape, three-rectangles, "
-                       "shape-and-rectangle)");
+    if (std::find(known.begin(), known.end(), f) == known.end()) {
+      std::string names;
+      for (const std::string& k : known)
+        names += (names.empty() ? "" : ", ") + k;
+      throw InputError("random maps: unknown family '" + f + "' (" + names + ")");
+    }
   Draw d(derive_seed(seed, index, redraw, Stream::MapGeometry));
   RandomMap r;
   r.family = o.families[d.pick(static_cast<int>(o.families.size()))];
