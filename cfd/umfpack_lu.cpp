@@ -19,32 +19,28 @@ namespace {
 //    reentrant: two threads in it at once corrupt each other's buffers, and the
 //    same seed gave different winds. With it, BLAS calls take turns.
 // Other BLAS libraries (netlib, BLIS, OpenBLAS pthread/OpenMP) are reentrant.
-struct BlasPolicy {
-  bool serialize = false;
-};
-
-const BlasPolicy& blas_policy() {
-  static const BlasPolicy policy = [] {
-    BlasPolicy p;
+//
+// True when BLAS calls must take turns. Decided once, on first use, which also
+// pins OpenBLAS to one thread.
+bool blas_needs_turns() {
+  static const bool needs = [] {
     using SetThreads = void (*)(int);
     using GetConfig = char* (*)();
     if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads")))
       set(1);
-    if (auto get = reinterpret_cast<GetConfig>(dlsym(RTLD_DEFAULT, "openblas_get_config"))) {
-      const char* config = get();
-      p.serialize = config && std::strstr(config, "SINGLE_THREADED");
-    }
-    return p;
+    auto get = reinterpret_cast<GetConfig>(dlsym(RTLD_DEFAULT, "openblas_get_config"));
+    const char* config = get ? get() : nullptr;
+    return config && std::strstr(config, "SINGLE_THREADED");
   }();
-  return policy;
+  return needs;
 }
 
 std::mutex blas_mutex;
 
 // Holds the BLAS lock for the duration of one UMFPACK call when needed.
 std::unique_lock<std::mutex> blas_turn() {
-  return blas_policy().serialize ? std::unique_lock<std::mutex>(blas_mutex)
-                                 : std::unique_lock<std::mutex>();
+  return blas_needs_turns() ? std::unique_lock<std::mutex>(blas_mutex)
+                            : std::unique_lock<std::mutex>();
 }
 
 }  // namespace
