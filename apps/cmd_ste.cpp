@@ -59,6 +59,8 @@ struct SteArgs {
   // posterior settles on the wrong cell.
   double sigma_m = -1.0, sigma_d = 0.0, sigma_rel = 0.0, noise = 0.0, speed = 0.5;
   double alpha = 0.5, beta = 0.75, step = 0.5, margin = 0.15;
+  double source_cell = 0.0;
+  CLI::Option* source_cell_given = nullptr;  // unset: the model's default grid
   int max_samples = 50, lattice = 2;
   std::string reward = "expected";
   std::string table_cache, release_scale;
@@ -102,6 +104,10 @@ void add_ste_options(CLI::App* cmd, SteArgs& a) {
   cmd->add_option("--release-scale", a.release_scale,
                   "LO,HI: estimate the release rate as a scale in [LO, HI] of the nominal 1000, "
                   "marginalised in closed form (surrogate, physics; default: known, 1)");
+  a.source_cell_given = cmd->add_option(
+      "--source-cell", a.source_cell,
+      "Candidate source grid, m (surrogate, physics; default: 0.2 for the surrogate, "
+      "0.1 for physics)");
   cmd->add_option("--table-cache", a.table_cache,
                   "Directory caching surrogate tables (keyed by map and model hashes)");
 }
@@ -146,6 +152,11 @@ ste::SteOptions to_options(const SteArgs& a) {
   o.margin = a.margin;
   o.stop.max_samples = a.max_samples;
   o.table_cache = a.table_cache;
+  if (a.source_cell_given && a.source_cell_given->count() > 0) {
+    positive(a.source_cell, "--source-cell");
+    o.surrogate_cell = a.source_cell;
+    o.physics.source_cell = a.source_cell;
+  }
   if (!a.release_scale.empty()) {
     const Vec2 r = parse_point(a.release_scale, "--release-scale");
     if (!(r.x > 0.0) || r.y < r.x)
@@ -161,6 +172,19 @@ ste::SteOptions to_options(const SteArgs& a) {
                        "physics or gaussian)");
   }
   return o;
+}
+
+// The candidate source grid of a table model; null for the Gaussian plume (MH on the bins).
+ordered_json source_cell_json(const ste::SteOptions& o) {
+  switch (o.model) {
+    case ste::PlumeModelKind::Surrogate:
+      return o.surrogate_cell;
+    case ste::PlumeModelKind::Physics:
+      return o.physics.source_cell;
+    case ste::PlumeModelKind::Gaussian:
+      break;
+  }
+  return nullptr;
 }
 
 struct Pictures {
@@ -206,6 +230,7 @@ ordered_json run_json(const ste::Scenario& sc, Vec2 source, const ste::Localizat
           {"median_step_s", r.median_step_s},
           {"mission_s", r.time_s},
           {"map_estimate", point_json(r.map)},
+          {"source_cell", source_cell_json(sc.options())},
           {"expected_parameters", expected},
           {"entropy", r.posterior.entropy},
           {"max_entropy", r.posterior.max_entropy},
@@ -400,6 +425,7 @@ void add_ste_commands(CLI::App& app) {
           {"threads", eo.threads},
           {"sigma_m", eo.ste.likelihood.sigma_m},
           {"sigma_rel", eo.ste.likelihood.sigma_rel},
+          {"source_cell", source_cell_json(eo.ste)},
           {"noise", eo.ste.world.noise},
           {"overall", stats_json(res.overall)},
           {"maps", per_map},

@@ -38,6 +38,7 @@ TEST_F(SteCli, LocalizeJsonAndPictures) {
        {"estimate", "error_m", "samples", "distance_m", "compute_s", "stopped_by"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_LT(j["error_m"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["source_cell"].get<double>(), 0.1);  // the physics model's default
   EXPECT_TRUE(std::filesystem::exists(dir / "run" / "trajectory.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "run" / "posterior.png"));
   EXPECT_TRUE(std::filesystem::exists(dir / "run" / "run.json"));
@@ -66,6 +67,9 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --lattice 0");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--lattice: must be at least 1"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --source-cell 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--source-cell: must be a positive number"), std::string::npos) << r.err;
   r = run("evaluate --maps " + (dir / "nowhere").string() + " --plume-model physics");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
