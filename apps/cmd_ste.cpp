@@ -154,6 +154,10 @@ ste::SteOptions to_options(const SteArgs& a) {
   o.table_cache = a.table_cache;
   if (a.source_cell_given && a.source_cell_given->count() > 0) {
     positive(a.source_cell, "--source-cell");
+    if (o.model == ste::PlumeModelKind::Gaussian)
+      throw InputError(
+          "--source-cell: only the surrogate and physics models have a source grid (the Gaussian "
+          "plume's MH runs on the bins)");
     o.surrogate_cell = a.source_cell;
     o.physics.source_cell = a.source_cell;
   }

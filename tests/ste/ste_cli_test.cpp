@@ -70,6 +70,10 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --source-cell 0");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--source-cell: must be a positive number"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model gaussian --source-cell 0.2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--source-cell: only the surrogate and physics"), std::string::npos)
+      << r.err;
   r = run("evaluate --maps " + (dir / "nowhere").string() + " --plume-model physics");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
