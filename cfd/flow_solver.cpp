@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "cfd/anderson.hpp"
+#include "cfd/diagonal_pairing.hpp"
 #include "cfd/eddy_viscosity.hpp"
 #include "cfd/grid_check.hpp"
 #include "cfd/navier_stokes.hpp"
@@ -195,7 +196,10 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   // No iterative refinement: Newton's next residual does that job, and each
   // refinement step would cost another pair of triangular solves.
   lu.control(UMFPACK_IRSTEP) = 0;
-  bool analysed = false;
+  // The rows are paired so that the matrix has a full diagonal, which lets
+  // UMFPACK order A + A' and pivot on the diagonal (diagonal_pairing.hpp).
+  lu.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  std::optional<DiagonalPairing> pairing;  // made with the first Jacobian
   // Each step solves (J + I/dtau) dx = -F, dtau = cfl h / U: a huge cfl is
   // Newton, a small one a damped implicit time step. The step is then cut
   // back until the merit falls (backtracking). cfl grows with the merit's
@@ -250,12 +254,12 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
     if (refactor) {
       equations.update_jacobian(x.data());
       if (cfl < 1e15) equations.add_to_momentum_diagonal(scales.speed / (cfl * h));
-      if (!analysed) {
-        lu.analyze(equations.jacobian());
-        analysed = true;
+      if (!pairing) {
+        pairing.emplace(grid, equations.jacobian());
+        lu.analyze(pairing->permuted(equations.jacobian()));
       }
       const auto t_factor = std::chrono::steady_clock::now();
-      const bool factored = lu.factorize(equations.jacobian());
+      const bool factored = lu.factorize(pairing->permuted(equations.jacobian()));
       summary.factor_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t_factor).count();
       ++summary.factorizations;
@@ -266,9 +270,10 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
       }
     }
     const bool fresh = refactor;
-    rhs = -f;
+    pairing->permute(f.data(), rhs.data());
+    rhs = -rhs;
     const auto t_solve = std::chrono::steady_clock::now();
-    lu.solve(equations.jacobian(), rhs.data(), step.data());
+    lu.solve(pairing->permuted_matrix(), rhs.data(), step.data());
     summary.solve_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t_solve).count();
     // Mix the chord step with the previous ones of this factorization.
