@@ -42,8 +42,8 @@ void add_flow_commands(CLI::App& app) {
                   "Stop when both normalised residuals are below this")
       ->capture_default_str();
   cmd->add_option("--max-iter", a->options.max_iterations,
-                  "Give up after this many Newton iterations")
-      ->capture_default_str();
+                  "Give up after this many Newton iterations (default 0: 100, or 300 with "
+                  "mixing-length)");
   cmd->add_flag("--verbose", a->options.verbose,
                 "Print the residuals of every iteration on stderr");
   add_json_flag(cmd);

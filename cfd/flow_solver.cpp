@@ -54,7 +54,7 @@ void check_options(const FlowOptions& o) {
   if (!(std::isfinite(o.nu) && o.nu > 0.0)) bad("--nu: the viscosity must be positive and finite");
   if (!(std::isfinite(o.cell) && o.cell > 0.0)) bad("--cell: the cell size must be positive");
   if (!(o.tolerance > 0.0)) bad("--tol: the tolerance must be positive");
-  if (o.max_iterations < 1) bad("--max-iter: at least one iteration is needed");
+  if (o.max_iterations < 0) bad("--max-iter: must be at least 1 (or 0 for the default)");
   if (!(o.kappa > 0.0)) bad("kappa: must be positive");
 }
 
@@ -156,6 +156,9 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   NavierStokes equations(grid, options.convection);
   const int n = grid.unknowns(), n_mom = grid.velocity_unknowns();
   const Scales scales = reference_scales(map, options);
+  const int max_iterations = options.max_iterations > 0 ? options.max_iterations
+                             : options.turbulence == Turbulence::MixingLength ? 300
+                                                                              : 100;
   EddyViscosity eddy(grid, options);
 
   FlowSummary summary;
@@ -247,7 +250,7 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
       summary.converged = true;
       break;
     }
-    if (it >= options.max_iterations) fail("no convergence");
+    if (it >= max_iterations) fail("no convergence");
 
     // Refactorize unless the last step showed the current factorization
     // still converging fast enough (kChordRatio).

@@ -40,6 +40,7 @@ TEST_F(FlowCli, BadInputExitsTwoAndWritesNothing) {
       {"--nu -0.01", "--nu"},
       {"--cell 3", "at least 3 cells"},
       {"--max-iter 1", "Residual history"},
+      {"--max-iter -1", "--max-iter"},
   };
   for (const Case& c : cases) {
     const auto r = run("flow " + map + " --out " + out.string() + " " + c.args);
