@@ -41,11 +41,6 @@ constexpr const char* kDemoMap = "test-4-l-shape.json";
 constexpr int kDemoSource = 4;  // (2.23, 2.51): upwind of the L, its plume bends over it
 const Vec2 kDemoStart{1.0, 1.0};
 
-// The surrogate's sigma_M: above the shipped model's RMSE of the mean on held-out maps (151) and
-// on the test maps (196), since a CNN errs most near the source and a 5 s sample of a meandering
-// plume scatters too; chosen among 200 to 400 by evaluation (ste/README.md).
-constexpr double kSurrogateSigmaM = 300.0;
-
 fs::path shipped_model() {
   return data_dir() / "models" / "plume-unet.pkcnn";
 }
@@ -54,10 +49,9 @@ fs::path shipped_model() {
 struct SteArgs {
   std::string plume_model = "surrogate";
   std::string model;
-  // sigma_M unset: the thesis's 30 for the Gaussian and physics models; for the surrogate,
-  // kSurrogateSigmaM, since the likelihood must allow for the surrogate's own error or the
-  // posterior settles on the wrong cell.
+  // sigma_M and sigma_std unset (< 0): ste::default_likelihood of the plume model.
   double sigma_m = -1.0, sigma_d = 0.0, sigma_rel = 0.0, noise = 0.0, speed = 0.5;
+  double sigma_std = -1.0;
   double alpha = 0.5, beta = 0.75, step = 0.5, margin = 0.15;
   double source_cell = 0.0;
   CLI::Option* source_cell_given = nullptr;  // unset: the model's default grid
@@ -72,8 +66,8 @@ void add_ste_options(CLI::App* cmd, SteArgs& a) {
   cmd->add_option("--model", a.model,
                   "Surrogate model file (default: data/models/plume-unet.pkcnn)");
   cmd->add_option("--sigma-m", a.sigma_m,
-                  "Model error sigma_M, concentration units (default: 300 for the surrogate, 1.5 "
-                  "times the shipped model's RMSE on the test maps; 30 for gaussian and physics, "
+                  "Model error sigma_M, concentration units (default: 200 for the surrogate, "
+                  "about the shipped model's RMSE on the test maps; 30 for gaussian and physics, "
                   "the thesis's)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--sigma-d", a.sigma_d, "Measurement error sigma_D, concentration units")
@@ -81,6 +75,10 @@ void add_ste_options(CLI::App* cmd, SteArgs& a) {
   cmd->add_option("--sigma-rel", a.sigma_rel,
                   "Model error relative to the predicted concentration, added in quadrature to "
                   "sigma_M (default 0: the thesis's constant error)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--sigma-std", a.sigma_std,
+                  "Model error in units of the surrogate's predicted std of the readings, added "
+                  "in quadrature (default: 2 for the surrogate; the other models predict no std)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--noise", a.noise, "Sensor noise std per 10 Hz reading (simulated)")
       ->capture_default_str();
@@ -121,9 +119,8 @@ ste::SteOptions to_options(const SteArgs& a) {
   };
   positive(a.speed, "--speed");
   positive(a.step, "--step");
-  const double sigma_m = a.sigma_m >= 0.0                            ? a.sigma_m
-                         : o.model == ste::PlumeModelKind::Surrogate ? kSurrogateSigmaM
-                                                                     : 30.0;
+  const ste::LikelihoodOptions defaults = ste::default_likelihood(o.model);
+  const double sigma_m = a.sigma_m >= 0.0 ? a.sigma_m : defaults.sigma_m;
   if (!std::isfinite(a.sigma_m) || a.sigma_d < 0 || !std::isfinite(a.sigma_d) ||
       !(sigma_m + a.sigma_d > 0))
     throw InputError("--sigma-m, --sigma-d: must be >= 0, not both 0");
@@ -136,6 +133,10 @@ ste::SteOptions to_options(const SteArgs& a) {
   o.likelihood.sigma_d = a.sigma_d;
   if (!std::isfinite(a.sigma_rel)) throw InputError("--sigma-rel: must be finite");
   o.likelihood.sigma_rel = a.sigma_rel;
+  if (!std::isfinite(a.sigma_std)) throw InputError("--sigma-std: must be finite");
+  if (a.sigma_std > 0.0 && o.model != ste::PlumeModelKind::Surrogate)
+    throw InputError("--sigma-std: only the surrogate predicts the std of the readings");
+  o.likelihood.sigma_std = a.sigma_std >= 0.0 ? a.sigma_std : defaults.sigma_std;
   o.world.noise = a.noise;
   o.world.speed = a.speed;
   o.navigation.alpha = a.alpha;
@@ -429,6 +430,7 @@ void add_ste_commands(CLI::App& app) {
           {"threads", eo.threads},
           {"sigma_m", eo.ste.likelihood.sigma_m},
           {"sigma_rel", eo.ste.likelihood.sigma_rel},
+          {"sigma_std", eo.ste.likelihood.sigma_std},
           {"source_cell", source_cell_json(eo.ste)},
           {"noise", eo.ste.world.noise},
           {"overall", stats_json(res.overall)},

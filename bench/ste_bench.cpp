@@ -92,6 +92,7 @@ int main(int argc, char** argv) {
                                    ste::PlumeModelKind::Gaussian}) {
     ste::SteOptions o;
     o.model = kind;
+    o.likelihood = ste::default_likelihood(kind);
     o.model_path = model.string();
     o.table_threads = 2;
     const ste::Scenario sc(map, o);
@@ -111,6 +112,7 @@ int main(int argc, char** argv) {
   const double per_pass = (process_cpu() - c0) / batch.size();  // CPU: load-independent
   ste::SteOptions o;
   o.model = ste::PlumeModelKind::Surrogate;
+  o.likelihood = ste::default_likelihood(o.model);
   o.model_path = model.string();
   const ste::Scenario sc(map, o);
   const double with_table = step_median(sc, runs);

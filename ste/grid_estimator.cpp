@@ -61,6 +61,9 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
   if (!(scale_lo_ > 0.0) || scale_hi_ < scale_lo_)
     throw InputError("release scale prior: need 0 < lo <= hi");
   likelihood.validate();
+  if (likelihood.sigma_std > 0.0 && !model.has_spreads())
+    throw InputError("sigma_std: the " + model.name() +
+                     " model predicts no std of the readings (only the surrogate does)");
   for (std::vector<double>* v : {&sums_.a, &sums_.b, &sums_.c, &sums_.h})
     v->assign(model.sources().size(), 0.0);
   // The largest entropy: every bin holding an allowed cell equally likely.
@@ -81,10 +84,16 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
   max_entropy_ = std::log(static_cast<double>(n));
 }
 
-void GridEstimator::accumulate(Sums& sums, const std::vector<double>& r, double value) const {
+std::vector<double> GridEstimator::spreads_at(Vec2 p) const {
+  return likelihood_.sigma_std > 0.0 ? model_.spreads_at(p) : std::vector<double>{};
+}
+
+void GridEstimator::accumulate(Sums& sums, const std::vector<double>& r,
+                               const std::vector<double>& spread, double value) const {
   const double s_ref = 0.5 * (scale_lo_ + scale_hi_);
   for (std::size_t k = 0; k < r.size(); ++k) {
-    const double var = likelihood_.variance(s_ref * r[k]), w = 1.0 / var;
+    const double var = likelihood_.variance(s_ref * r[k], spread.empty() ? 0.0 : s_ref * spread[k]);
+    const double w = 1.0 / var;
     sums.a[k] += w * r[k] * r[k];
     sums.b[k] += w * r[k] * value;
     sums.c[k] += w * value * value;
@@ -93,7 +102,7 @@ void GridEstimator::accumulate(Sums& sums, const std::vector<double>& r, double 
 }
 
 void GridEstimator::add(Vec2 p, double value) {
-  accumulate(sums_, model_.readings_at(p), value);
+  accumulate(sums_, model_.readings_at(p), spreads_at(p), value);
   ++samples_;
 }
 
@@ -153,7 +162,7 @@ double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
   const int at = model_.nearest_allowed(current.expected_source());
   const double predicted = at < 0 ? 0.0 : current.expected.at(2) * r[at];
   Sums after = sums_;
-  accumulate(after, r, predicted);
+  accumulate(after, r, spreads_at(p), predicted);
   const std::vector<double> lq = log_weights(after);
   double kl = 0.0;
   for (std::size_t k = 0; k < lq.size(); ++k) {
@@ -166,6 +175,7 @@ double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
 
 double GridEstimator::expected_information_gain(Vec2 p, const Posterior& current) const {
   const std::vector<double> r = model_.readings_at(p);
+  const std::vector<double> spread = spreads_at(p);
   const std::vector<double>& w = current.marginal.values;
   const double s = current.expected.at(2);
   // The hypotheses: the cells at the quantiles (j + 1/2) / J of the cumulative mass; a cell hit
@@ -189,8 +199,9 @@ double GridEstimator::expected_information_gain(Vec2 p, const Posterior& current
   std::vector<Cell> cells;
   for (std::size_t k = 0; k < w.size(); ++k) {
     if (w[k] <= 0.0) continue;
-    const double mean = s * r[k], var = likelihood_.variance(mean);
-    cells.push_back({w[k], mean, 1.0 / var, likelihood_.sigma_rel > 0.0 ? std::log(var) : 0.0});
+    const double mean = s * r[k];
+    const double var = likelihood_.variance(mean, spread.empty() ? 0.0 : s * spread[k]);
+    cells.push_back({w[k], mean, 1.0 / var, likelihood_.variance_varies() ? std::log(var) : 0.0});
   }
   std::vector<double> ll(cells.size());
   double gain = 0.0;

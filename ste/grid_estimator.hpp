@@ -6,10 +6,10 @@
 // Per cell k it keeps A_k = sum w_ik r_ik^2, B_k = sum w_ik r_ik D_i,
 // C_k = sum w_ik D_i^2 and H_k = sum log(1 / w_ik) (r_ik: the cell's
 // unit-release reading at sample i; w_ik = 1 / variance of that sample, which
-// is the same for every cell unless sigma_rel > 0), so that the log-likelihood
-// of a release scale s is -(C_k - 2 s B_k + s^2 A_k) / 2 - H_k / 2. With
-// sigma_rel, the variance is taken at the prediction for the prior's mean
-// scale, so that the scale still integrates in closed form.
+// is the same for every cell unless sigma_rel or sigma_std > 0), so that the
+// log-likelihood of a release scale s is -(C_k - 2 s B_k + s^2 A_k) / 2 - H_k / 2.
+// With sigma_rel or sigma_std, the variance is taken at the prediction for the
+// prior's mean scale, so that the scale still integrates in closed form.
 // The scale is either fixed (the prior's bounds coincide) or marginalised in
 // closed form over its uniform prior [lo, hi] (a Gaussian integral: erf).
 #include <vector>
@@ -46,8 +46,12 @@ class GridEstimator final : public Estimator {
   double scale_lo_, scale_hi_;
   Sums sums_;
   int samples_ = 0;
-  // Adds a sample reading `value` where the cells read r (unit release).
-  void accumulate(Sums& sums, const std::vector<double>& r, double value) const;
+  // Adds a sample reading `value` where the cells read r and their readings scatter by `spread`
+  // (unit release; spread empty: none).
+  void accumulate(Sums& sums, const std::vector<double>& r, const std::vector<double>& spread,
+                  double value) const;
+  // The model's predicted std of the readings at p, when the likelihood uses it.
+  std::vector<double> spreads_at(Vec2 p) const;
   double max_entropy_ = 0.0;
 };
 

@@ -25,6 +25,8 @@ MhEstimator::MhEstimator(const PlumeModel& model, const Map& map,
     throw InputError("Metropolis-Hastings: need 0 <= burn_in < iterations");
   if (!(options.proposal > 0.0)) throw InputError("Metropolis-Hastings: proposal must be positive");
   likelihood.validate();
+  if (likelihood.sigma_std > 0.0)
+    throw InputError("sigma_std: Metropolis-Hastings models predict no std of the readings");
   // Start at the middle of every range, moved to a free point for (x, y).
   for (const Parameter& p : model.parameters())
     state_.push_back(0.5 * (p.lo + p.hi));

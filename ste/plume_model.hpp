@@ -47,6 +47,10 @@ class SourceTableModel : public PlumeModel {
   // What a sensor at `p` reads, at release scale 1, for a source at each cell
   // of sources() (0 at cells that are not allowed). Thread-safe.
   virtual std::vector<double> readings_at(Vec2 p) const = 0;
+  // Whether the model also predicts how much the readings scatter (their std), and that std at
+  // `p`, at release scale 1, per cell like readings_at (empty when the model has none).
+  virtual bool has_spreads() const { return false; }
+  virtual std::vector<double> spreads_at(Vec2) const { return {}; }
 
   // Generic form: the nearest allowed cell's reading times the scale (slow:
   // one readings_at per point; the estimators use readings_at directly).

@@ -3,8 +3,9 @@
 // and the estimator interface the localization loop drives.
 //
 // Likelihood (thesis eq. 7.5): P(D|m) ~ exp(-1/2 sum_i (D_i - C_i(m))^2 / (sigma_M^2 + sigma_D^2)),
-// optionally with a model error that grows with the prediction (sigma_rel): then
-// each sample's variance is sigma_M^2 + sigma_D^2 + (sigma_rel C_i(m))^2, and the
+// optionally with model errors that grow with the prediction (sigma_rel) and with
+// the predicted std S_i(m) of the readings (sigma_std): then each sample's variance
+// is sigma_M^2 + sigma_D^2 + (sigma_rel C_i(m))^2 + (sigma_std S_i(m))^2, and the
 // Gaussian's normalisation, which then depends on m, enters the likelihood.
 // Prior: uniform inside the parameter bounds, zero where the source would be
 // inside an obstacle.
@@ -23,19 +24,26 @@ struct LikelihoodOptions {
   // Model error relative to the predicted concentration (0: the thesis's constant error). A
   // plume's 5 s mean scatters, and a CNN errs, in proportion to the concentration itself.
   double sigma_rel = 0.0;
-  // The variance of a sample whose predicted value is `predicted`.
-  double variance(double predicted = 0.0) const {
-    const double r = sigma_rel * predicted;
-    return sigma_m * sigma_m + sigma_d * sigma_d + r * r;
+  // Model error in units of the model's own predicted std of the readings at the sample point
+  // (0: none). Only the surrogate predicts that std (its second output). A 5 s mean departs from
+  // the long-run mean most, and the CNN errs most, where the plume is intermittent.
+  double sigma_std = 0.0;
+  // The variance of a sample whose predicted value is `predicted` and whose readings are
+  // predicted to scatter by `spread` (std).
+  double variance(double predicted = 0.0, double spread = 0.0) const {
+    const double r = sigma_rel * predicted, q = sigma_std * spread;
+    return sigma_m * sigma_m + sigma_d * sigma_d + r * r + q * q;
   }
+  // Whether the variance depends on the hypothesis, so that the Gaussian's normalisation enters
+  // the likelihood.
+  bool variance_varies() const { return sigma_rel > 0.0 || sigma_std > 0.0; }
   // -1/2 ((value - predicted)^2 / variance + log variance): one sample's log-likelihood, up to a
-  // constant. The log term is a constant, and so left out, unless sigma_rel makes the variance
-  // depend on the prediction.
-  double log_likelihood(double value, double predicted) const {
-    const double var = variance(predicted), d = value - predicted;
-    return -0.5 * (d * d / var + (sigma_rel > 0.0 ? std::log(var) : 0.0));
+  // constant. The log term is a constant, and so left out, unless the variance varies.
+  double log_likelihood(double value, double predicted, double spread = 0.0) const {
+    const double var = variance(predicted, spread), d = value - predicted;
+    return -0.5 * (d * d / var + (variance_varies() ? std::log(var) : 0.0));
   }
-  // Throws InputError unless the variance is positive and sigma_rel finite and >= 0.
+  // Throws InputError unless the variance is positive and sigma_rel and sigma_std finite, >= 0.
   void validate() const;
 };
 

@@ -43,6 +43,15 @@ const char* to_string(PlumeModelKind kind) {
   return "?";
 }
 
+LikelihoodOptions default_likelihood(PlumeModelKind kind) {
+  LikelihoodOptions l;
+  if (kind == PlumeModelKind::Surrogate) {
+    l.sigma_m = 200.0;
+    l.sigma_std = 2.0;
+  }
+  return l;
+}
+
 PlumeModelKind parse_plume_model_kind(const std::string& name) {
   if (name == "surrogate") return PlumeModelKind::Surrogate;
   if (name == "gaussian") return PlumeModelKind::Gaussian;

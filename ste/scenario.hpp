@@ -24,6 +24,13 @@ const char* to_string(PlumeModelKind kind);
 // "surrogate", "gaussian", "physics"; InputError naming the value otherwise.
 PlumeModelKind parse_plume_model_kind(const std::string& name);
 
+// The sample error each model runs with unless told otherwise: the thesis's sigma_M = 30 for the
+// Gaussian and physics models. For the surrogate, sigma_M = 200 (about the shipped model's RMSE on
+// the test maps) plus twice the CNN's own predicted std of the readings (sigma_std), since a 5 s
+// sample departs from the mean, and the CNN errs, most where the plume is intermittent; chosen on
+// held-out random maps (ste/README.md).
+LikelihoodOptions default_likelihood(PlumeModelKind kind);
+
 struct SteOptions {
   PlumeModelKind model = PlumeModelKind::Physics;
   LikelihoodOptions likelihood;

@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kMagic[8] = {'P', 'K', 'S', 'T', 'B', 'L', '1', '\n'};
+// Version 2 holds the std plumes after the mean plumes.
+constexpr char kMagic[8] = {'P', 'K', 'S', 'T', 'B', 'L', '2', '\n'};
 
 // The map's geometry (not its name or ground-truth sources, which do not change a plume).
 std::string geometry_text(const Map& map) {
@@ -56,7 +57,7 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   const std::size_t per = grid_.size();
 
   Sha256 h;
-  h.update("plumekit-surrogate-table/1\n");
+  h.update("plumekit-surrogate-table/2\n");
   h.update(sha256_hex(geometry_text(map)) + "\n" + sha256_file(o.model) + "\n");
   std::ostringstream g;
   g.precision(17);
@@ -67,38 +68,53 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   const fs::path file = o.cache_dir.empty()
                             ? fs::path()
                             : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");
-  const std::size_t floats = cells.size() * per;
+  const std::size_t floats = cells.size() * per;  // of each table
   const std::size_t header = sizeof(kMagic) + 64;
   if (!file.empty() && fs::exists(file)) {
     const std::string bytes = read_file(file);
-    if (bytes.size() == header + floats * sizeof(float) &&
+    if (bytes.size() == header + 2 * floats * sizeof(float) &&
         std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) == 0 &&
         bytes.compare(sizeof(kMagic), 64, key_) == 0) {
       table_.resize(floats);
+      table_std_.resize(floats);
       std::memcpy(table_.data(), bytes.data() + header, floats * sizeof(float));
+      std::memcpy(table_std_.data(), bytes.data() + header + floats * sizeof(float),
+                  floats * sizeof(float));
       from_cache_ = true;
       return;
     }
     // A stale or damaged file is rebuilt and replaced below.
   }
   table_.resize(floats);
+  table_std_.resize(floats);
   for (std::size_t first = 0; first < cells.size(); first += 256) {
     const std::vector<Vec2> chunk(cells.begin() + first,
                                   cells.begin() + std::min(cells.size(), first + 256));
     const std::vector<surrogate::PlumePrediction> p = plume.predict_batch(chunk, o.batch);
-    for (std::size_t k = 0; k < p.size(); ++k)
+    for (std::size_t k = 0; k < p.size(); ++k) {
       std::memcpy(table_.data() + (first + k) * per, p[k].mean.data(), per * sizeof(float));
+      std::memcpy(table_std_.data() + (first + k) * per, p[k].std.data(), per * sizeof(float));
+    }
   }
   if (!file.empty()) {
     fs::create_directories(o.cache_dir);
     std::string bytes(kMagic, sizeof(kMagic));
     bytes += key_;
     bytes.append(reinterpret_cast<const char*>(table_.data()), floats * sizeof(float));
+    bytes.append(reinterpret_cast<const char*>(table_std_.data()), floats * sizeof(float));
     write_file_atomic(file, bytes);
   }
 }
 
 std::vector<double> SurrogatePlume::readings_at(Vec2 p) const {
+  return lookup(table_, p);
+}
+
+std::vector<double> SurrogatePlume::spreads_at(Vec2 p) const {
+  return lookup(table_std_, p);
+}
+
+std::vector<double> SurrogatePlume::lookup(const std::vector<float>& table, Vec2 p) const {
   std::vector<double> out(sources_.size(), 0.0);
   if (!map_.is_free(p)) return out;  // the surrogate predicts 0 inside obstacles
   const GridShape::Bilinear b = grid_.bilinear(p);
@@ -109,7 +125,7 @@ std::vector<double> SurrogatePlume::readings_at(Vec2 p) const {
                w11 = b.tx * b.ty;
   for (std::size_t c = 0; c < out.size(); ++c) {
     if (row_[c] < 0) continue;
-    const float* t = table_.data() + static_cast<std::size_t>(row_[c]) * per;
+    const float* t = table.data() + static_cast<std::size_t>(row_[c]) * per;
     out[c] = w00 * t[k00] + w10 * t[k10] + w01 * t[k01] + w11 * t[k11];
   }
   return out;

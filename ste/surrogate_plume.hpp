@@ -1,7 +1,7 @@
 #pragma once
 // The surrogate plume model: the CNN (surrogate/plume_model.hpp) over the
 // source position, tabulated. At construction every allowed source cell's
-// predicted mean plume (64 x 64) is computed, in batches split across
+// predicted mean and std plumes (64 x 64) are computed, in batches split across
 // threads, so that during a run readings_at(p) is one bilinear lookup per
 // cell and no network runs inside the loop. The table can be cached on disk,
 // keyed by the SHA-256 of the map's geometry, of the model file and of the
@@ -33,6 +33,8 @@ class SurrogatePlume final : public SourceTableModel {
   const GridShape& sources() const override { return sources_; }
   const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
   std::vector<double> readings_at(Vec2 p) const override;
+  bool has_spreads() const override { return true; }
+  std::vector<double> spreads_at(Vec2 p) const override;
 
   bool from_cache() const { return from_cache_; }
   const std::string& key() const { return key_; }  // the cache key (hex)
@@ -43,8 +45,11 @@ class SurrogatePlume final : public SourceTableModel {
   std::vector<Parameter> parameters_;
   GridShape sources_, grid_;
   std::vector<std::uint8_t> allowed_;
-  std::vector<int> row_;      // source cell -> row of table_, or -1
-  std::vector<float> table_;  // [rows][grid_.ny][grid_.nx]
+  std::vector<int> row_;  // source cell -> row of table_, or -1
+  // Per allowed source cell (row), the predicted mean and std plumes: [rows][grid_.ny][grid_.nx].
+  std::vector<float> table_, table_std_;
+  // Bilinear values at p of every cell's plume in `table`.
+  std::vector<double> lookup(const std::vector<float>& table, Vec2 p) const;
   std::string key_;
   bool from_cache_ = false;
 };

@@ -74,6 +74,9 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--source-cell: only the surrogate and physics"), std::string::npos)
       << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --sigma-std 2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--sigma-std: only the surrogate"), std::string::npos) << r.err;
   r = run("evaluate --maps " + (dir / "nowhere").string() + " --plume-model physics");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;

@@ -102,27 +102,32 @@ TEST(GaussianPlume, FollowsTheFormulaAndIsZeroUpwind) {
 }
 
 // Two candidate sources; a sensor at x < 1 reads `near` from them, one at x > 1
-// reads `far` (by default: x < 1 tells them apart, x > 1 does not).
+// reads `far` (by default: x < 1 tells them apart, x > 1 does not). With
+// `spread`, the model also predicts that the readings scatter by that std (the
+// same at every sensor).
 class TwoSources final : public SourceTableModel {
  public:
   explicit TwoSources(std::vector<double> near = {200.0, 0.0},
-                      std::vector<double> far = {50.0, 50.0})
+                      std::vector<double> far = {50.0, 50.0}, std::vector<double> spread = {})
       : params_{{"x", 0, 2}, {"y", 0, 1}, {"release_scale", 1, 1}},
         grid_{2, 1, 2.0, 1.0},
         ok_{1, 1},
         near_(std::move(near)),
-        far_(std::move(far)) {}
+        far_(std::move(far)),
+        spread_(std::move(spread)) {}
   std::string name() const override { return "two"; }
   const std::vector<Parameter>& parameters() const override { return params_; }
   const GridShape& sources() const override { return grid_; }
   const std::vector<std::uint8_t>& allowed() const override { return ok_; }
   std::vector<double> readings_at(Vec2 p) const override { return p.x < 1.0 ? near_ : far_; }
+  bool has_spreads() const override { return !spread_.empty(); }
+  std::vector<double> spreads_at(Vec2) const override { return spread_; }
 
  private:
   std::vector<Parameter> params_;
   GridShape grid_;
   std::vector<std::uint8_t> ok_;
-  std::vector<double> near_, far_;
+  std::vector<double> near_, far_, spread_;
 };
 
 TEST(KlReward, PrefersTheInformativeCandidate) {
@@ -187,6 +192,47 @@ TEST(Likelihood, RelativeErrorWidensTheVarianceWithThePrediction) {
   LikelihoodOptions bad = l;
   bad.sigma_rel = -1.0;
   EXPECT_THROW(GridEstimator(model, bad, make_bins(map, {})), InputError);
+}
+
+TEST(Likelihood, PredictedScatterWidensTheVarianceOfThatHypothesis) {
+  LikelihoodOptions l;
+  l.sigma_m = 30.0;
+  l.sigma_std = 2.0;
+  EXPECT_DOUBLE_EQ(l.variance(200.0, 40.0), 900.0 + 6400.0);
+  EXPECT_NEAR(l.log_likelihood(300.0, 200.0, 40.0), -0.5 * (1e4 / 7300.0 + std::log(7300.0)),
+              1e-12);
+  // Source 0 reads 200 with a predicted std of 40, source 1 reads 140 with none. A reading of
+  // 200 fits source 0 exactly, but its wide variance costs it the normalisation:
+  // log L0 - log L1 = -log(7300) / 2 + (60^2 / 900 + log 900) / 2.
+  const TwoSources model({200.0, 140.0}, {50.0, 50.0}, {40.0, 0.0});
+  GridEstimator est(model, l, GridShape{2, 1, 2.0, 1.0});
+  est.add({0.5, 0.5}, 200.0);
+  const Posterior post = est.posterior();
+  const double log_ratio = -0.5 * std::log(7300.0) + 0.5 * (4.0 + std::log(900.0));
+  EXPECT_NEAR(post.marginal.values[0] / post.marginal.values[1], std::exp(log_ratio), 1e-9);
+  // The same table without the scatter term: the plain Gaussian ratio exp(2).
+  GridEstimator plain(model, LikelihoodOptions{}, GridShape{2, 1, 2.0, 1.0});
+  plain.add({0.5, 0.5}, 200.0);
+  const Posterior p2 = plain.posterior();
+  EXPECT_NEAR(p2.marginal.values[0] / p2.marginal.values[1], std::exp(2.0), 1e-9);
+  // The expected gain uses the same variances. With a scatter of 400 on source 0, each source's
+  // own reading z gives a posterior Q = softmax(log L) and a gain KL(Q || P) = sum Q_k log 2 Q_k;
+  // the expected gain is their mean over the two equally likely sources.
+  l.sigma_std = 10.0;
+  GridEstimator wide(model, l, GridShape{2, 1, 2.0, 1.0});
+  const double lv0 = std::log(900.0 + 160000.0), lv1 = std::log(900.0);
+  auto kl = [](double ll0, double ll1) {
+    const double q0 = 1.0 / (1.0 + std::exp(ll1 - ll0)), q1 = 1.0 - q0;
+    return q0 * std::log(2.0 * q0) + q1 * std::log(2.0 * q1);
+  };
+  const double gain =
+      0.5 * (kl(-0.5 * lv0, -0.5 * (4.0 + lv1)) + kl(-0.5 * (3600.0 / 160900.0 + lv0), -0.5 * lv1));
+  EXPECT_NEAR(wide.expected_information_gain({0.5, 0.5}, wide.posterior()), gain, 1e-9);
+  // Models that predict no scatter, and bad values, are refused.
+  EXPECT_THROW(GridEstimator(TwoSources(), l, GridShape{2, 1, 2.0, 1.0}), InputError);
+  LikelihoodOptions bad;
+  bad.sigma_std = std::nan("");
+  EXPECT_THROW(bad.validate(), InputError);
 }
 
 TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
@@ -287,10 +333,17 @@ TEST(SurrogatePlume, TableMatchesTheNetworkAndIsCached) {
       direct.predict(built.sources().centre(k % built.sources().nx, k / built.sources().nx))
           .mean_at(p);
   EXPECT_NEAR(built.readings_at(p)[k], expect, 1e-4 * std::max(1.0, std::abs(expect)));
+  // And the std the network predicts for the same readings.
+  const double expect_std =
+      direct.predict(built.sources().centre(k % built.sources().nx, k / built.sources().nx))
+          .std_at(p);
+  EXPECT_TRUE(built.has_spreads());
+  EXPECT_NEAR(built.spreads_at(p)[k], expect_std, 1e-4 * std::max(1.0, std::abs(expect_std)));
 
   const SurrogatePlume cached(map, o);
   EXPECT_TRUE(cached.from_cache());
   EXPECT_EQ(cached.readings_at(p), built.readings_at(p));
+  EXPECT_EQ(cached.spreads_at(p), built.spreads_at(p));
   // Another geometry, another key.
   Map moved = map;
   moved.obstacles[0][0].x -= 0.1;
