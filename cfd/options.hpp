@@ -31,7 +31,7 @@ struct FlowOptions {
   double tolerance = 1e-8;
   // Give up after this many iterations; 0 means 100, or 300 with the
   // mixing-length closure, whose lagged eddy viscosity settles slowly at low
-  // viscosity (130-210 iterations on some cluttered maps at nu = 0.001).
+  // viscosity (130-240 iterations on some cluttered maps at nu = 0.001).
   int max_iterations = 0;
   // Tangential velocity of each wall (left, right, bottom, top), m/s, in the
   // direction of increasing x or y along it: a moving lid. 0 is no-slip.
