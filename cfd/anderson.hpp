@@ -1,10 +1,13 @@
 #pragma once
 // Anderson acceleration (type II, Walker & Ni 2011) of a fixed-point
-// iteration x <- x + s(x), here the chord iteration s = -M^-1 F(x) with a
-// stale Newton matrix M. Mixing the last few steps is, for a linear problem,
-// GMRES preconditioned by M: the few modes where M and the current Jacobian
-// differ most, which set the chord iteration's rate, are removed in a few
-// steps instead of decaying geometrically.
+// iteration x <- x + s(x). Two iterations use it:
+//  - the chord iteration s = -M^-1 F(x) with a stale Newton matrix M. Mixing
+//    the last few steps is, for a linear problem, GMRES preconditioned by M:
+//    the few modes where M and the current Jacobian differ most, which set the
+//    chord iteration's rate, are removed in a few steps instead of decaying
+//    geometrically;
+//  - the lagged mixing-length eddy viscosity (eddy_viscosity.hpp), whose
+//    relaxed updates otherwise settle slowly.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
