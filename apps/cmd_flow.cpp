@@ -22,6 +22,7 @@ void add_flow_commands(CLI::App& app) {
     std::string out;
     std::string turbulence = "none";
     std::string convection = "central";
+    std::string linear_solver = "nullspace";
     cfd::FlowOptions options;
   };
   auto a = std::make_shared<Args>();
@@ -44,6 +45,11 @@ void add_flow_commands(CLI::App& app) {
   cmd->add_option("--max-iter", a->options.max_iterations,
                   "Give up after this many Newton iterations (default 0: 100, or 300 with "
                   "mixing-length)");
+  cmd->add_option("--linear-solver", a->linear_solver,
+                  "Newton systems: nullspace (divergence-free subspace, one unknown per grid "
+                  "node) or coupled (u, v, p); same steps, coupled is slower")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"nullspace", "coupled"}));
   cmd->add_flag("--verbose", a->options.verbose,
                 "Print the residuals of every iteration on stderr");
   add_json_flag(cmd);
@@ -53,6 +59,7 @@ void add_flow_commands(CLI::App& app) {
     o.convection = a->convection == "vanleer"   ? cfd::Convection::VanLeer
                    : a->convection == "central" ? cfd::Convection::Central
                                                 : cfd::Convection::Upwind;
+    o.nullspace = a->linear_solver == "nullspace";
     // Each LU factorization frees and allocates tens of MB. Above glibc's
     // mmap threshold every allocation is fresh pages from the kernel, zeroed
     // and faulted in one by one (a tenth of a 5 cm solve's time); keep freed

@@ -31,6 +31,7 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
   j["converged"] = s.converged;
   j["iterations"] = s.iterations;
   j["factorizations"] = s.factorizations;
+  j["linear_solver"] = s.linear_solver;
   j["final_residuals"] = {{"momentum", s.momentum_residual}, {"continuity", s.continuity_residual}};
   j["inflow_m2_per_s"] = s.inflow;
   j["outflow_m2_per_s"] = s.outflow;

@@ -14,6 +14,7 @@
 #include "cfd/eddy_viscosity.hpp"
 #include "cfd/grid_check.hpp"
 #include "cfd/navier_stokes.hpp"
+#include "cfd/nullspace_solver.hpp"
 #include "cfd/staggered_grid.hpp"
 #include "cfd/umfpack_lu.hpp"
 
@@ -202,7 +203,10 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   // The rows are paired so that the matrix has a full diagonal, which lets
   // UMFPACK order A + A' and pivot on the diagonal (diagonal_pairing.hpp).
   lu.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
-  std::optional<DiagonalPairing> pairing;  // made with the first Jacobian
+  // Made with the first Jacobian: the nullspace solver where it applies,
+  // else the coupled matrix with its rows paired.
+  std::optional<NullSpaceSolver> nullspace;
+  std::optional<DiagonalPairing> pairing;
   // Each step solves (J + I/dtau) dx = -F, dtau = cfl h / U: a huge cfl is
   // Newton, a small one a damped implicit time step. The step is then cut
   // back until the merit falls (backtracking). cfl grows with the merit's
@@ -257,12 +261,18 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
     if (refactor) {
       equations.update_jacobian(x.data());
       if (cfl < 1e15) equations.add_to_momentum_diagonal(scales.speed / (cfl * h));
-      if (!pairing) {
-        pairing.emplace(grid, equations.jacobian());
-        lu.analyze(pairing->permuted(equations.jacobian()));
+      if (!nullspace && !pairing) {
+        if (options.nullspace) nullspace.emplace(grid, equations.jacobian());
+        if (nullspace && !nullspace->applicable()) nullspace.reset();
+        if (!nullspace) {
+          pairing.emplace(grid, equations.jacobian());
+          lu.analyze(pairing->permuted(equations.jacobian()));
+        }
+        summary.linear_solver = nullspace ? "nullspace" : "coupled";
       }
       const auto t_factor = std::chrono::steady_clock::now();
-      const bool factored = lu.factorize(pairing->permuted(equations.jacobian()));
+      const bool factored = nullspace ? nullspace->factorize(equations.jacobian())
+                                      : lu.factorize(pairing->permuted(equations.jacobian()));
       summary.factor_seconds +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t_factor).count();
       ++summary.factorizations;
@@ -273,10 +283,15 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
       }
     }
     const bool fresh = refactor;
-    pairing->permute(f.data(), rhs.data());
-    rhs = -rhs;
     const auto t_solve = std::chrono::steady_clock::now();
-    lu.solve(pairing->permuted_matrix(), rhs.data(), step.data());
+    if (nullspace) {
+      rhs = -f;
+      nullspace->solve(equations.jacobian(), rhs.data(), step.data());
+    } else {
+      pairing->permute(f.data(), rhs.data());
+      rhs = -rhs;
+      lu.solve(pairing->permuted_matrix(), rhs.data(), step.data());
+    }
     summary.solve_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t_solve).count();
     // Mix the chord step with the previous ones of this factorization.

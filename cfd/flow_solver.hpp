@@ -37,6 +37,9 @@ struct FlowSummary {
   bool converged = false;
   int iterations = 0;
   int factorizations = 0;
+  // "nullspace" or "coupled": the linear solver used on this grid (coupled
+  // when asked for, or where the nullspace solver does not apply).
+  std::string linear_solver;
   std::vector<IterationRecord> history;
   double momentum_residual = 0.0;
   double continuity_residual = 0.0;

@@ -43,6 +43,11 @@ struct FlowOptions {
   // to about 50 cells across) and start Newton from that flow. Newton then
   // needs fewer of the expensive fine-grid factorizations.
   bool sequencing = true;
+  // Solve the Newton systems in the divergence-free subspace (one unknown per
+  // grid node, nullspace_solver.hpp); false: the coupled (u, v, p) matrix with
+  // paired rows (diagonal_pairing.hpp). Both give the same steps to round-off;
+  // the coupled one also serves grids the other cannot (a fluid pocket).
+  bool nullspace = true;
   bool verbose = false;  // a line per iteration on stderr
   // Called after each iteration with (iteration, momentum, continuity residual).
   std::function<void(int, double, double)> on_iteration;

@@ -1,0 +1,270 @@
+#include "cfd/nullspace_solver.hpp"
+
+#include <umfpack.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace plumekit::cfd {
+namespace {
+
+// J(row, col), or 0 when the pattern has no such entry.
+double entry(const Eigen::SparseMatrix<double>& a, int row, int col) {
+  const int* begin = a.innerIndexPtr() + a.outerIndexPtr()[col];
+  const int* end = a.innerIndexPtr() + a.outerIndexPtr()[col + 1];
+  const int* at = std::lower_bound(begin, end, row);
+  return at != end && *at == row ? a.valuePtr()[at - a.innerIndexPtr()] : 0.0;
+}
+
+// Largest |value| of a sparse matrix's columns [from, to).
+double max_abs(const Eigen::SparseMatrix<double>& a, int from, int to) {
+  double m = 0.0;
+  for (int k = a.outerIndexPtr()[from]; k < a.outerIndexPtr()[to]; ++k)
+    m = std::max(m, std::abs(a.valuePtr()[k]));
+  return m;
+}
+
+// Union-find over grid nodes, with path halving.
+struct NodeGroups {
+  std::vector<int> parent;
+  explicit NodeGroups(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int a) {
+    while (parent[a] != a)
+      a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
+}  // namespace
+
+NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
+                                 const Eigen::SparseMatrix<double>& jacobian)
+    : n_(static_cast<int>(jacobian.rows())), n_mom_(grid.velocity_unknowns()) {
+  const GridShape& s = grid.shape();
+  const int* outer = jacobian.outerIndexPtr();
+  const int* inner = jacobian.innerIndexPtr();
+  const double* value = jacobian.valuePtr();
+
+  // The continuity rows, read from the velocity columns.
+  continuity_.resize(n_ - n_mom_);
+  for (int col = 0; col < n_mom_; ++col)
+    for (int k = outer[col]; k < outer[col + 1]; ++k)
+      if (inner[k] >= n_mom_) {
+        ContinuityRow& row = continuity_[inner[k] - n_mom_];
+        if (row.count == 4) return;  // not a MAC continuity row
+        row.col[row.count] = col;
+        row.coef[row.count++] = value[k];
+      }
+  auto continuity_coef = [&](int p, int col) {
+    const ContinuityRow& row = continuity_[p - n_mom_];
+    for (int e = 0; e < row.count; ++e)
+      if (row.col[e] == col) return row.coef[e];
+    return 0.0;
+  };
+
+  // Spanning tree of the fluid cells through cell-to-cell faces, breadth
+  // first from the cells beside the outlet (or the pinned cell).
+  std::vector<char> reached(s.size(), 0);
+  auto add_root = [&](int i, int j, int face) {
+    const std::size_t cell = s.index(i, j);
+    const int p = grid.pressure_column(cell);
+    if (p < 0 || reached[cell]) return;
+    reached[cell] = 1;
+    TreeCell t{p, face, -1};
+    if (face >= 0) {
+      t.d_face = continuity_coef(p, face);
+      t.g_own = entry(jacobian, face, p);
+    }
+    tree_.push_back(t);
+  };
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const std::size_t faces[4][2] = {{0, grid.face(0, i + 1, j)},
+                                       {0, grid.face(0, i, j)},
+                                       {1, grid.face(1, j + 1, i)},
+                                       {1, grid.face(1, j, i)}};
+      for (const auto& f : faces)
+        if (grid.kind(static_cast<int>(f[0]), f[1]) == kOutflow) {
+          add_root(i, j, grid.column(static_cast<int>(f[0]), f[1]));
+          break;
+        }
+    }
+  if (tree_.empty())
+    for (std::size_t cell = 0; cell < s.size() && tree_.empty(); ++cell) {
+      const int p = grid.pressure_column(cell);
+      if (p >= 0 && entry(jacobian, p, p) != 0.0)
+        add_root(static_cast<int>(cell % s.nx), static_cast<int>(cell / s.nx), -1);
+    }
+  // The breadth-first search needs the cell of each pressure column.
+  std::vector<int> cell_of(n_ - n_mom_, -1);
+  for (std::size_t cell = 0; cell < s.size(); ++cell)
+    if (const int p = grid.pressure_column(cell); p >= 0)
+      cell_of[p - n_mom_] = static_cast<int>(cell);
+  for (std::size_t q = 0; q < tree_.size(); ++q) {
+    const int cell = cell_of[tree_[q].p - n_mom_];
+    const int i = cell % s.nx, j = cell / s.nx;
+    // (neighbour i, j, component, face along, face across)
+    const int next[4][5] = {
+        {i + 1, j, 0, i + 1, j}, {i - 1, j, 0, i, j}, {i, j + 1, 1, j + 1, i}, {i, j - 1, 1, j, i}};
+    for (const auto& nb : next) {
+      if (nb[0] < 0 || nb[0] >= s.nx || nb[1] < 0 || nb[1] >= s.ny) continue;
+      const std::size_t other = s.index(nb[0], nb[1]);
+      const int face = grid.column(nb[2], grid.face(nb[2], nb[3], nb[4]));
+      const int p_other = grid.pressure_column(other);
+      if (reached[other] || p_other < 0 || face < 0) continue;
+      reached[other] = 1;
+      TreeCell t{p_other, face, tree_[q].p};
+      t.d_face = continuity_coef(p_other, face);
+      t.g_own = entry(jacobian, face, p_other);
+      t.g_parent = entry(jacobian, face, tree_[q].p);
+      tree_.push_back(t);
+    }
+  }
+  if (static_cast<int>(tree_.size()) != n_ - n_mom_) return;  // a pocket: no path to the root
+  for (const TreeCell& t : tree_)
+    if (t.face >= 0 && (t.d_face == 0.0 || t.g_own == 0.0)) return;
+
+  // Node groups: nodes joined by a fixed face share their streamfunction
+  // correction. The group of the bottom-left corner (the walls) is the gauge.
+  const int nodes_x = s.nx + 1;
+  auto node = [&](int i, int j) { return j * nodes_x + i; };
+  NodeGroups groups(static_cast<std::size_t>(nodes_x) * (s.ny + 1));
+  // Nodes at the two ends of face (a, b) of component c, in the order that
+  // makes the face's velocity (psi(second) - psi(first)) * scale.
+  auto ends = [&](int c, int a, int b, int& first, int& second, double& scale) {
+    if (c == 0) {  // u = d psi / dy
+      first = node(a, b), second = node(a, b + 1), scale = 1.0 / s.dy();
+    } else {  // v = -d psi / dx
+      first = node(b + 1, a), second = node(b, a), scale = 1.0 / s.dx();
+    }
+  };
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 0; a <= grid.n_along(c); ++a)
+        if (grid.column(c, grid.face(c, a, b)) < 0) {
+          int first, second;
+          double scale;
+          ends(c, a, b, first, second, scale);
+          groups.unite(first, second);
+        }
+  const int gauge = groups.find(node(0, 0));
+  std::vector<int> group_col(groups.parent.size(), -1);
+  int n_groups = 0;
+  for (std::size_t k = 0; k < groups.parent.size(); ++k) {
+    const int g = groups.find(static_cast<int>(k));
+    if (g != gauge && group_col[g] < 0) group_col[g] = n_groups++;
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 0; a <= grid.n_along(c); ++a) {
+        const int col = grid.column(c, grid.face(c, a, b));
+        if (col < 0) continue;
+        int first, second;
+        double scale;
+        ends(c, a, b, first, second, scale);
+        const int g1 = groups.find(first), g2 = groups.find(second);
+        if (g1 == g2) continue;  // a dead end: no divergence-free flux through it
+        if (group_col[g2] >= 0) triplets.emplace_back(col, group_col[g2], scale);
+        if (group_col[g1] >= 0) triplets.emplace_back(col, group_col[g1], -scale);
+      }
+  curl_.resize(n_, n_groups);
+  curl_.setFromTriplets(triplets.begin(), triplets.end());
+
+  // L' = C' (I - G R): C' plus, for each outlet face, minus the curl
+  // projection of its cell's pressure column over the face's coefficient.
+  const Eigen::SparseMatrix<double> curl_t = curl_.transpose();
+  const Eigen::SparseMatrix<double> projected = curl_t * jacobian;  // groups x n
+  triplets.clear();
+  for (int col = 0; col < n_mom_; ++col)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(curl_t, col); it; ++it)
+      triplets.emplace_back(static_cast<int>(it.row()), col, it.value());
+  for (const TreeCell& t : tree_) {
+    if (t.parent >= 0 || t.face < 0) continue;
+    for (Eigen::SparseMatrix<double>::InnerIterator it(projected, t.p); it; ++it)
+      triplets.emplace_back(static_cast<int>(it.row()), t.face, -it.value() / t.g_own);
+  }
+  left_.resize(n_groups, n_);
+  left_.setFromTriplets(triplets.begin(), triplets.end());
+
+  // Checks: C is divergence-free, and L' removes the pressure.
+  const Eigen::SparseMatrix<double> divergence = jacobian * curl_;
+  double d_max = 0.0;
+  for (int k = 0; k < divergence.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(divergence, k); it; ++it) {
+      const int row = static_cast<int>(it.row());
+      if (row >= n_mom_ && entry(jacobian, row, row) == 0.0)  // not the pinned row
+        d_max = std::max(d_max, std::abs(it.value()));
+    }
+  const Eigen::SparseMatrix<double> left_g = left_ * jacobian;
+  const double scale = max_abs(projected, n_mom_, n_) + 1.0 / (s.dx() * s.dy());
+  applicable_ = d_max < 1e-9 * scale && max_abs(left_g, n_mom_, n_) < 1e-9 * scale;
+}
+
+bool NullSpaceSolver::factorize(const Eigen::SparseMatrix<double>& jacobian) {
+  reduced_ = left_ * (jacobian * curl_);
+  if (!analysed_) {
+    lu_.control(UMFPACK_IRSTEP) = 0;
+    lu_.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+    lu_.analyze(reduced_);
+    analysed_ = true;
+  }
+  return lu_.factorize(reduced_);
+}
+
+void NullSpaceSolver::solve(const Eigen::SparseMatrix<double>& jacobian, const double* b,
+                            double* x) {
+  const int* outer = jacobian.outerIndexPtr();
+  const int* inner = jacobian.innerIndexPtr();
+  const double* value = jacobian.valuePtr();
+  du_.assign(n_, 0.0);
+  // Momentum rows of J du, for du on the velocity columns.
+  auto momentum_of = [&](const std::vector<double>& du, std::vector<double>& out) {
+    out.assign(n_, 0.0);
+    for (int col = 0; col < n_mom_; ++col) {
+      const double d = du[col];
+      if (d == 0.0) continue;
+      for (int k = outer[col]; k < outer[col + 1]; ++k)
+        out[inner[k]] += value[k] * d;
+    }
+  };
+  // A particular velocity that satisfies the continuity rows, carried by
+  // the tree faces, leaves first.
+  for (auto t = tree_.rbegin(); t != tree_.rend(); ++t) {
+    if (t->face < 0) continue;
+    const ContinuityRow& row = continuity_[t->p - n_mom_];
+    double rest = b[t->p];
+    for (int e = 0; e < row.count; ++e)
+      if (row.col[e] != t->face) rest -= row.coef[e] * du_[row.col[e]];
+    du_[t->face] = rest / t->d_face;
+  }
+  // The divergence-free part from the reduced system.
+  momentum_of(du_, t_);
+  r_.assign(n_, 0.0);
+  for (int row = 0; row < n_mom_; ++row)
+    r_[row] = b[row] - t_[row];
+  rz_.resize(curl_.cols());
+  z_.resize(curl_.cols());
+  Eigen::Map<Eigen::VectorXd>(rz_.data(), rz_.size()) =
+      left_ * Eigen::Map<const Eigen::VectorXd>(r_.data(), n_);
+  lu_.solve(reduced_, rz_.data(), z_.data());
+  Eigen::Map<Eigen::VectorXd>(du_.data(), n_) +=
+      curl_ * Eigen::Map<const Eigen::VectorXd>(z_.data(), z_.size());
+  // The pressure from the tree faces' momentum rows, roots first.
+  momentum_of(du_, t_);
+  for (int k = 0; k < n_mom_; ++k)
+    x[k] = du_[k];
+  for (const TreeCell& t : tree_) {
+    if (t.face < 0) {
+      x[t.p] = b[t.p] / entry(jacobian, t.p, t.p);
+      continue;
+    }
+    double rest = b[t.face] - t_[t.face];
+    if (t.parent >= 0) rest -= t.g_parent * x[t.parent];
+    x[t.p] = rest / t.g_own;
+  }
+}
+
+}  // namespace plumekit::cfd

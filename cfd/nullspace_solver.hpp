@@ -1,0 +1,76 @@
+#pragma once
+// Solves the Newton systems J dx = b of the MAC equations (nullspace method):
+// the velocity correction is split into a particular part that satisfies the
+// continuity rows and a discretely divergence-free part C z, where C is the
+// discrete curl of a streamfunction that lives on the grid nodes (one unknown
+// per node group: nodes joined by fixed faces, such as an obstacle's outline
+// or the walls, share one value). Projecting the momentum rows onto C removes
+// the pressure, so UMFPACK factorizes a matrix K = L' A C with one unknown per
+// node instead of three per cell. On the 5 cm benchmark grid, K's LU has 1.5 M
+// entries against the coupled matrix's 5 M, and takes a fifth of the flops.
+//
+// The pressure correction then follows from the momentum rows of a spanning
+// tree of cell-to-cell faces rooted at the outlet, in one sweep. The outlet's
+// fixed pressure keeps the plain curl projection from cancelling the pressure
+// at outlet nodes; L' = C'(I - G R) corrects for it with the outlet faces' own
+// momentum rows (R maps each outlet face's row to its cell's pressure).
+//
+// The step equals the coupled solve's to round-off. It needs every fluid cell
+// to reach the outlet (or, in a closed box, the pinned cell) through fluid;
+// applicable() says whether it does.
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "cfd/staggered_grid.hpp"
+#include "cfd/umfpack_lu.hpp"
+
+namespace plumekit::cfd {
+
+class NullSpaceSolver {
+ public:
+  // `jacobian` holds the values of some Newton matrix of `grid`'s equations
+  // (the continuity and pressure entries, which never change, are read here).
+  NullSpaceSolver(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian);
+
+  bool applicable() const { return applicable_; }
+  // Unknowns of the reduced matrix K (node groups).
+  int reduced_size() const { return static_cast<int>(curl_.cols()); }
+
+  // Factorizes K for this Jacobian (same pattern as the constructor's). False
+  // when K is singular.
+  bool factorize(const Eigen::SparseMatrix<double>& jacobian);
+  // x = J^-1 b with the last factorization, where J is the matrix given to
+  // factorize() (x and b must not alias).
+  void solve(const Eigen::SparseMatrix<double>& jacobian, const double* b, double* x);
+  // UMFPACK's statistics of the last factorization.
+  const UmfpackLU& lu() const { return lu_; }
+
+ private:
+  // One cell of the spanning tree, in breadth-first order from the roots.
+  struct TreeCell {
+    int p;                               // pressure column (= continuity row)
+    int face;                            // velocity column of the tree face; -1 for a pinned root
+    int parent;                          // parent's pressure column; -1 for a root
+    double d_face = 0.0;                 // continuity coefficient of the tree face
+    double g_own = 0.0, g_parent = 0.0;  // pressure coefficients in the face's momentum row
+  };
+  // A continuity row: up to four (velocity column, coefficient) entries.
+  struct ContinuityRow {
+    int count = 0;
+    int col[4];
+    double coef[4];
+  };
+
+  int n_ = 0, n_mom_ = 0;
+  bool applicable_ = false;
+  std::vector<TreeCell> tree_;
+  std::vector<ContinuityRow> continuity_;  // indexed by p - n_mom
+  Eigen::SparseMatrix<double> curl_;       // n x groups: velocity rows only
+  Eigen::SparseMatrix<double> left_;       // groups x n: L' (momentum columns only)
+  Eigen::SparseMatrix<double> reduced_;    // K = L' J C
+  bool analysed_ = false;
+  UmfpackLU lu_;
+  std::vector<double> du_, t_, r_, z_, rz_;
+};
+
+}  // namespace plumekit::cfd
