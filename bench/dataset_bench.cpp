@@ -2,61 +2,106 @@
 // flow solves included, on a slice of the thesis-scale dataset (the first
 // --maps maps of seed 1, 100 sources each), extrapolated to 180 x 100.
 //
-//   ./build/bench/dataset_bench [--maps 10] [--threads 2] [--out DIR]
+//   ./build/bench/dataset_bench [--maps 10] [--threads 2] [--repeats 1] [--out DIR]
 //
 // Extrapolation is linear in the number of maps: maps are independent, each
 // costs one flow solve plus 100 plume samples, and the slice draws its maps
-// from the same distribution as the full dataset.
+// from the same distribution as the full dataset. With --repeats N the two
+// models run alternately N times, so that both see the same machine state,
+// and the table gives medians (the ratio is the median of the N ratios).
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "dataset/generator.hpp"
 
 using namespace plumekit::dataset;
 namespace fs = std::filesystem;
 
+namespace {
+
+struct Run {
+  double rate = 0.0;          // samples per second, flow included
+  double flow_per_map = 0.0;  // thread-seconds
+  double plume = 0.0;         // thread-seconds per sample
+  double wall = 0.0;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+Run run_model(PlumeModel model, int maps, int threads, const fs::path& out) {
+  DatasetOptions o;
+  o.maps = maps;
+  o.sources = 100;
+  o.seed = 1;
+  o.plume.model = model;
+  RunOptions run;
+  run.threads = threads;
+  const fs::path dir = out / to_string(model);
+  fs::remove_all(dir);  // time a cold run: every flow solved
+  const DatasetSummary s = generate_dataset(dir, o, run);
+  fs::remove_all(dir);
+  return {s.samples_per_second(), s.flow_seconds / s.maps, s.plume_seconds / s.samples, s.seconds};
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  int maps = 10, threads = 2;
+  int maps = 10, threads = 2, repeats = 1;
   fs::path out = fs::temp_directory_path() / "plumekit-dataset-bench";
   for (int k = 1; k + 1 < argc; k += 2) {
     if (!std::strcmp(argv[k], "--maps")) maps = std::atoi(argv[k + 1]);
     if (!std::strcmp(argv[k], "--threads")) threads = std::atoi(argv[k + 1]);
+    if (!std::strcmp(argv[k], "--repeats")) repeats = std::max(1, std::atoi(argv[k + 1]));
     if (!std::strcmp(argv[k], "--out")) out = argv[k + 1];
   }
   const int thesis_samples = 180 * 100;
-  std::printf("slice: %d maps x 100 sources, seed 1, %d threads; thesis scale: 180 x 100\n", maps,
-              threads);
-  double filament_rate = 0.0, ad_rate = 0.0, filament_plume = 0.0, ad_plume = 0.0;
-  for (PlumeModel model : {PlumeModel::Filament, PlumeModel::AdvectionDiffusion}) {
-    DatasetOptions o;
-    o.maps = maps;
-    o.sources = 100;
-    o.seed = 1;
-    o.plume.model = model;
-    RunOptions run;
-    run.threads = threads;
-    const fs::path dir = out / to_string(model);
-    fs::remove_all(dir);  // time a cold run: every flow solved
-    const DatasetSummary s = generate_dataset(dir, o, run);
-    const double per_sample_plume = s.plume_seconds / s.samples;  // thread-seconds
+  std::printf(
+      "slice: %d maps x 100 sources, seed 1, %d threads, %d repeat(s); thesis scale: 180 x 100\n",
+      maps, threads, repeats);
+  const PlumeModel models[2] = {PlumeModel::Filament, PlumeModel::AdvectionDiffusion};
+  std::vector<Run> runs[2];
+  std::vector<double> ratios, plume_ratios;
+  for (int r = 0; r < repeats; ++r) {
+    for (int m = 0; m < 2; ++m) {
+      runs[m].push_back(run_model(models[m], maps, threads, out));
+      const Run& x = runs[m].back();
+      if (repeats > 1)
+        std::printf("  repeat %d %-20s %7.1f samples/s | flow %.2f s/map | plume %.2f ms/sample\n",
+                    r + 1, to_string(models[m]), x.rate, x.flow_per_map, 1e3 * x.plume);
+    }
+    ratios.push_back(runs[1].back().rate / runs[0].back().rate);
+    plume_ratios.push_back(runs[0].back().plume / runs[1].back().plume);
+  }
+  for (int m = 0; m < 2; ++m) {
+    std::vector<double> rate, flow, plume, wall;
+    for (const Run& x : runs[m]) {
+      rate.push_back(x.rate);
+      flow.push_back(x.flow_per_map);
+      plume.push_back(x.plume);
+      wall.push_back(x.wall);
+    }
     std::printf(
         "%-20s %7.1f samples/s (flow included) | flow %.2f s/map | plume %.2f ms/sample "
         "(thread time) | wall %.1f s | thesis scale ~%.1f min\n",
-        to_string(model), s.samples_per_second(), s.flow_seconds / s.maps, 1e3 * per_sample_plume,
-        s.seconds, thesis_samples / s.samples_per_second() / 60.0);
-    (model == PlumeModel::Filament ? filament_rate : ad_rate) = s.samples_per_second();
-    (model == PlumeModel::Filament ? filament_plume : ad_plume) = per_sample_plume;
-    fs::remove_all(dir);
+        to_string(models[m]), median(rate), median(flow), 1e3 * median(plume), median(wall),
+        thesis_samples / median(rate) / 60.0);
   }
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
-  std::printf("advection-diffusion vs filament: %.1fx samples/s with the flow, %.1fx per plume\n",
-              ad_rate / filament_rate, filament_plume / ad_plume);
+  std::printf("advection-diffusion vs filament: %.1fx samples/s with the flow, %.1fx per plume%s\n",
+              median(ratios), median(plume_ratios),
+              repeats > 1 ? " (medians of the repeats' ratios)" : "");
   std::printf(
       "peak resident memory: %.0f MB (independent of the number of maps: one map per "
       "thread in memory)\n",

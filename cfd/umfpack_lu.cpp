@@ -89,4 +89,15 @@ void UmfpackLU::solve(const Eigen::SparseMatrix<double>& a, const double* b, dou
                     control_.data(), solve_info_.data(), wi_.data(), w_.data());
 }
 
+void UmfpackLU::solve_shared(const Eigen::SparseMatrix<double>& a, const double* b, double* x,
+                             bool transpose) const {
+  std::vector<int> wi(static_cast<std::size_t>(a.rows()));
+  std::vector<double> w(control_[UMFPACK_IRSTEP] > 0 ? 5 * wi.size() : wi.size());
+  std::vector<double> info(UMFPACK_INFO);
+  const auto turn = blas_turn();
+  umfpack_di_wsolve(transpose ? UMFPACK_At : UMFPACK_A, a.outerIndexPtr(), a.innerIndexPtr(),
+                    a.valuePtr(), x, b, numeric_, control_.data(), info.data(), wi.data(),
+                    w.data());
+}
+
 }  // namespace plumekit::cfd

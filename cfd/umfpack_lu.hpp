@@ -28,6 +28,10 @@ class UmfpackLU {
   bool factorize(const Eigen::SparseMatrix<double>& a);
   // x = A^-1 b with the last factorization (x and b must not alias).
   void solve(const Eigen::SparseMatrix<double>& a, const double* b, double* x);
+  // x = A^-1 b, or A'^-1 b if `transpose`, with workspace of its own: safe to
+  // call from several threads at once on one factorization.
+  void solve_shared(const Eigen::SparseMatrix<double>& a, const double* b, double* x,
+                    bool transpose) const;
 
  private:
   void free_numeric();

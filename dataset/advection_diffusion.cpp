@@ -10,42 +10,26 @@
 
 #include <Eigen/SparseCore>
 
+#include "cfd/umfpack_lu.hpp"
 #include "core/error.hpp"
 
 namespace plumekit::dataset {
 
-// UMFPACK's symbolic and numeric objects for one compressed-column matrix.
-// Called directly (not through Eigen) for the transposed solve.
+// The operator and its LU (cfd::UmfpackLU: one BLAS policy for every UMFPACK
+// call in plumekit). Solves are thread-safe: ste/ shares one model between runs.
 struct AdvectionDiffusion::Lu {
   Eigen::SparseMatrix<double, Eigen::ColMajor, int> a;
-  void* symbolic = nullptr;
-  void* numeric = nullptr;
-  double control[UMFPACK_CONTROL];
+  cfd::UmfpackLU lu;
 
-  ~Lu() {
-    if (numeric) umfpack_di_free_numeric(&numeric);
-    if (symbolic) umfpack_di_free_symbolic(&symbolic);
-  }
   void factor() {
-    umfpack_di_defaults(control);
-    control[UMFPACK_IRSTEP] = 0;  // a direct LU of this operator needs no refinement
-    const int n = static_cast<int>(a.rows());
-    int status = umfpack_di_symbolic(n, n, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(),
-                                     &symbolic, control, nullptr);
-    if (status != UMFPACK_OK)
-      throw std::runtime_error("UMFPACK symbolic analysis failed: " + std::to_string(status));
-    status = umfpack_di_numeric(a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(), symbolic,
-                                &numeric, control, nullptr);
-    if (status != UMFPACK_OK)
-      throw std::runtime_error("UMFPACK factorization failed: " + std::to_string(status));
+    lu.control(UMFPACK_IRSTEP) = 0;  // a direct LU of this operator needs no refinement
+    lu.analyze(a);
+    if (!lu.factorize(a))
+      throw std::runtime_error("UMFPACK: the advection-diffusion operator is singular");
   }
   std::vector<double> solve(const std::vector<double>& b, bool transpose) const {
     std::vector<double> x(b.size(), 0.0);
-    const int status =
-        umfpack_di_solve(transpose ? UMFPACK_At : UMFPACK_A, a.outerIndexPtr(), a.innerIndexPtr(),
-                         a.valuePtr(), x.data(), b.data(), numeric, control, nullptr);
-    if (status != UMFPACK_OK)
-      throw std::runtime_error("UMFPACK solve failed: " + std::to_string(status));
+    lu.solve_shared(a, b.data(), x.data(), transpose);
     return x;
   }
 };
@@ -229,24 +213,39 @@ double AdvectionDiffusion::flux_through_column(const Grid<double>& c, int i) con
   return total;
 }
 
-Grid<double> resample(const AdvectionDiffusion& ad, const Grid<double>& field,
-                      const GridShape& target) {
-  Grid<double> out(target, 0.0);
+Resampler::Resampler(const AdvectionDiffusion& ad, const GridShape& target)
+    : source_(ad.shape()), target_(target), begin_(target.size() + 1, 0) {
   const GridShape& s = ad.shape();
-  if (field.shape.nx != s.nx || field.shape.ny != s.ny)
-    throw std::logic_error("resample: the field is not on the flow grid");
   for (int j = 0; j < target.ny; ++j)
     for (int i = 0; i < target.nx; ++i) {
+      const std::size_t c = target.index(i, j);
       const Vec2 p = target.centre(i, j);
       const int ci = std::min(s.nx - 1, static_cast<int>(p.x / s.dx()));
       const int cj = std::min(s.ny - 1, static_cast<int>(p.y / s.dy()));
-      if (ad.solid(ci, cj)) continue;  // inside an obstacle: 0
-      double v = 0.0;
-      for (const auto& [k, w] : ad.point_weights(p))
-        v += w * field.values[k];
-      out(i, j) = v;
+      if (!ad.solid(ci, cj))  // inside an obstacle: no weights, 0
+        for (const auto& w : ad.point_weights(p))
+          weights_.push_back(w);
+      begin_[c + 1] = static_cast<int>(weights_.size());
     }
+}
+
+Grid<double> Resampler::apply(const Grid<double>& field) const {
+  if (field.shape.nx != source_.nx || field.shape.ny != source_.ny)
+    throw std::logic_error("resample: the field is not on the flow grid");
+  Grid<double> out(target_, 0.0);
+  for (std::size_t c = 0; c < target_.size(); ++c) {
+    if (begin_[c] == begin_[c + 1]) continue;
+    double v = 0.0;
+    for (int e = begin_[c]; e < begin_[c + 1]; ++e)
+      v += weights_[e].second * field.values[weights_[e].first];
+    out.values[c] = v;
+  }
   return out;
+}
+
+Grid<double> resample(const AdvectionDiffusion& ad, const Grid<double>& field,
+                      const GridShape& target) {
+  return Resampler(ad, target).apply(field);
 }
 
 }  // namespace plumekit::dataset

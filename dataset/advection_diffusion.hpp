@@ -91,4 +91,17 @@ class AdvectionDiffusion {
 Grid<double> resample(const AdvectionDiffusion& ad, const Grid<double>& field,
                       const GridShape& target);
 
+// resample() with its weights computed once, for many fields of one map
+// (the weights depend only on the grids and the obstacles). Same values.
+class Resampler {
+ public:
+  Resampler(const AdvectionDiffusion& ad, const GridShape& target);
+  Grid<double> apply(const Grid<double>& field) const;
+
+ private:
+  GridShape source_, target_;
+  std::vector<int> begin_;  // target cell c's weights: [begin_[c], begin_[c + 1])
+  std::vector<std::pair<int, double>> weights_;
+};
+
 }  // namespace plumekit::dataset

@@ -17,8 +17,14 @@ PlumeModel parse_plume_model(const std::string& name) {
 MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape& sensors,
                      const PlumeOptions& options)
     : map_(map), wind_(wind), sensors_(sensors), options_(options) {
-  if (options.model == PlumeModel::AdvectionDiffusion)
+  if (options.model == PlumeModel::AdvectionDiffusion) {
     ad_ = std::make_unique<AdvectionDiffusion>(wind, options.advection_diffusion);
+    resampler_ = std::make_unique<Resampler>(*ad_, sensors_);
+    in_obstacle_.resize(sensors_.size());
+    for (std::size_t k = 0; k < sensors_.size(); ++k)
+      in_obstacle_[k] = map_.obstacle_at(sensors_.centre(static_cast<int>(k % sensors_.nx),
+                                                         static_cast<int>(k / sensors_.nx))) >= 0;
+  }
 }
 
 MapPlumes::~MapPlumes() = default;
@@ -28,11 +34,10 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
     throw InputError("source " + to_string(source) + " is outside the arena or inside an obstacle");
   PlumeTargets t;
   if (ad_) {
-    t.mean = resample(*ad_, ad_->solve(source), sensors_);
+    t.mean = resampler_->apply(ad_->solve(source));
     t.std = Grid<double>(sensors_, 0.0);
-    for (int j = 0; j < sensors_.ny; ++j)
-      for (int i = 0; i < sensors_.nx; ++i)
-        if (map_.obstacle_at(sensors_.centre(i, j)) >= 0) t.mean(i, j) = 0.0;
+    for (std::size_t k = 0; k < sensors_.size(); ++k)
+      if (in_obstacle_[k]) t.mean.values[k] = 0.0;
     return t;
   }
   SensorRecord r = simulate_filaments(map_, wind_, source, sensors_, options_.filament, seed);

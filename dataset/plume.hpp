@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
@@ -45,6 +46,10 @@ class MapPlumes {
   GridShape sensors_;
   PlumeOptions options_;
   std::unique_ptr<AdvectionDiffusion> ad_;
+  // Advection-diffusion only, per map: the sensor weights, and which
+  // sensors lie inside obstacles.
+  std::unique_ptr<Resampler> resampler_;
+  std::vector<char> in_obstacle_;
 };
 
 }  // namespace plumekit::dataset
