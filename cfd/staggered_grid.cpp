@@ -33,6 +33,45 @@ Side high_across_side(int c) {
   return c == 0 ? Side::Top : Side::Right;
 }
 
+// Marks as solid the fluid cells that no path of fluid cells joins to an
+// opening (or, in a closed box, to the first fluid cell): a pocket sealed by
+// obstacles has no flow and no pressure level, and would leave the Newton
+// matrix singular.
+void seal_pockets(const Map& map, const GridShape& s, bool closed,
+                  std::vector<std::uint8_t>& solid) {
+  std::vector<char> reached(s.size(), 0);
+  std::vector<int> queue;
+  auto seed = [&](int i, int j) {
+    const std::size_t k = s.index(i, j);
+    if (!solid[k] && !reached[k]) reached[k] = 1, queue.push_back(static_cast<int>(k));
+  };
+  if (closed) {
+    for (std::size_t k = 0; k < s.size() && queue.empty(); ++k)
+      seed(static_cast<int>(k % s.nx), static_cast<int>(k / s.nx));
+  } else {
+    auto opening = [&](Side side, double at) {
+      return wall_type(map, side, at, false) != WallType::Wall;
+    };
+    for (int j = 0; j < s.ny; ++j) {
+      if (opening(Side::Left, (j + 0.5) * s.dy())) seed(0, j);
+      if (opening(Side::Right, (j + 0.5) * s.dy())) seed(s.nx - 1, j);
+    }
+    for (int i = 0; i < s.nx; ++i) {
+      if (opening(Side::Bottom, (i + 0.5) * s.dx())) seed(i, 0);
+      if (opening(Side::Top, (i + 0.5) * s.dx())) seed(i, s.ny - 1);
+    }
+  }
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const int i = queue[q] % s.nx, j = queue[q] / s.nx;
+    if (i > 0) seed(i - 1, j);
+    if (i + 1 < s.nx) seed(i + 1, j);
+    if (j > 0) seed(i, j - 1);
+    if (j + 1 < s.ny) seed(i, j + 1);
+  }
+  for (std::size_t k = 0; k < s.size(); ++k)
+    if (!reached[k]) solid[k] = 1;
+}
+
 }  // namespace
 
 WallType wall_type(const Map& map, Side side, double s, bool closed) {
@@ -48,6 +87,7 @@ StaggeredGrid::StaggeredGrid(const Map& map, const GridShape& shape, const FlowO
       map_(&map),
       wall_speed_(options.wall_speed),
       closed_(options.closed) {
+  seal_pockets(map, shape, closed_, solid_);
   for (int c = 0; c < 2; ++c) {
     kind_[c].assign(face_count(c), kFixed);
     fixed_[c].assign(face_count(c), 0.0);
