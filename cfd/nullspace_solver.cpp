@@ -205,11 +205,13 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
 
 bool NullSpaceSolver::factorize(const Eigen::SparseMatrix<double>& jacobian) {
   reduced_ = left_ * (jacobian * curl_);
-  if (!analysed_) {
+  // The product keeps explicit zeros, so K's pattern is J's pattern's and
+  // never changes; the check only guards the reuse of the symbolic analysis.
+  if (reduced_.nonZeros() != analysed_nonzeros_) {
     lu_.control(UMFPACK_IRSTEP) = 0;
     lu_.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
     lu_.analyze(reduced_);
-    analysed_ = true;
+    analysed_nonzeros_ = reduced_.nonZeros();
   }
   return lu_.factorize(reduced_);
 }

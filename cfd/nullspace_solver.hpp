@@ -68,7 +68,7 @@ class NullSpaceSolver {
   Eigen::SparseMatrix<double> curl_;       // n x groups: velocity rows only
   Eigen::SparseMatrix<double> left_;       // groups x n: L' (momentum columns only)
   Eigen::SparseMatrix<double> reduced_;    // K = L' J C
-  bool analysed_ = false;
+  Eigen::Index analysed_nonzeros_ = -1;    // K's pattern size at the last analysis
   UmfpackLU lu_;
   std::vector<double> du_, t_, r_, z_, rz_;
 };

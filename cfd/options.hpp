@@ -46,7 +46,7 @@ struct FlowOptions {
   // Solve the Newton systems in the divergence-free subspace (one unknown per
   // grid node, nullspace_solver.hpp); false: the coupled (u, v, p) matrix with
   // paired rows (diagonal_pairing.hpp). Both give the same steps to round-off;
-  // the coupled one also serves grids the other cannot (a fluid pocket).
+  // the coupled one is also the fallback where the nullspace checks fail.
   bool nullspace = true;
   bool verbose = false;  // a line per iteration on stderr
   // Called after each iteration with (iteration, momentum, continuity residual).
