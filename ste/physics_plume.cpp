@@ -21,10 +21,11 @@ PhysicsPlume::PhysicsPlume(const Map& map, const cfd::WindField& wind, const Phy
       const int fj = std::min(f.ny - 1, static_cast<int>(c.y / f.dy()));
       if (ad_->solid(fi, fj)) allowed_[sources_.index(i, j)] = 0;
     }
+  resampler_ = std::make_unique<dataset::Resampler>(*ad_, sources_);
 }
 
 std::vector<double> PhysicsPlume::readings_at(Vec2 p) const {
-  const Grid<double> r = dataset::resample(*ad_, ad_->adjoint(p), sources_);
+  const Grid<double> r = resampler_->apply(ad_->adjoint(p));
   std::vector<double> out(r.values);
   for (std::size_t k = 0; k < out.size(); ++k)
     if (!allowed_[k]) out[k] = 0.0;

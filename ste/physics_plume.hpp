@@ -38,6 +38,7 @@ class PhysicsPlume final : public SourceTableModel {
   GridShape sources_;
   std::vector<std::uint8_t> allowed_;
   std::unique_ptr<dataset::AdvectionDiffusion> ad_;
+  std::unique_ptr<dataset::Resampler> resampler_;  // flow grid -> source cells, built once
 };
 
 }  // namespace plumekit::ste
