@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/median.hpp"
 #include "dataset/generator.hpp"
 
 using namespace plumekit::dataset;
@@ -32,12 +33,6 @@ struct Run {
   double plume = 0.0;         // thread-seconds per sample
   double wall = 0.0;
 };
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 Run run_model(PlumeModel model, int maps, int threads, const fs::path& out) {
   DatasetOptions o;

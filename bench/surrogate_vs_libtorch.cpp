@@ -24,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench/median.hpp"
 #include "surrogate/model_file.hpp"
 #include "surrogate/network.hpp"
 
@@ -52,12 +53,6 @@ std::pair<double, double> timed(F&& f) {
   const auto t0 = Clock::now();
   f();
   return {seconds_since(t0), cpu_seconds() - c0};
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;

@@ -1,5 +1,7 @@
 #include "cfd/diagonal_pairing.hpp"
 
+#include "cfd/sparse_lookup.hpp"
+
 #include <algorithm>
 #include <array>
 #include <numeric>
@@ -9,9 +11,7 @@ namespace plumekit::cfd {
 namespace {
 
 bool has_entry(const Eigen::SparseMatrix<double>& a, int row, int col) {
-  const int* begin = a.innerIndexPtr() + a.outerIndexPtr()[col];
-  const int* end = a.innerIndexPtr() + a.outerIndexPtr()[col + 1];
-  return std::binary_search(begin, end, row);
+  return entry_index(a, row, col) >= 0;
 }
 
 }  // namespace

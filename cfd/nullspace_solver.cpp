@@ -6,15 +6,15 @@
 #include <cmath>
 #include <numeric>
 
+#include "cfd/sparse_lookup.hpp"
+
 namespace plumekit::cfd {
 namespace {
 
 // J(row, col), or 0 when the pattern has no such entry.
 double entry(const Eigen::SparseMatrix<double>& a, int row, int col) {
-  const int* begin = a.innerIndexPtr() + a.outerIndexPtr()[col];
-  const int* end = a.innerIndexPtr() + a.outerIndexPtr()[col + 1];
-  const int* at = std::lower_bound(begin, end, row);
-  return at != end && *at == row ? a.valuePtr()[at - a.innerIndexPtr()] : 0.0;
+  const int k = entry_index(a, row, col);
+  return k >= 0 ? a.valuePtr()[k] : 0.0;
 }
 
 // Largest |value| of a sparse matrix's columns [from, to).
@@ -72,11 +72,10 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
     const int p = grid.pressure_column(cell);
     if (p < 0 || reached[cell]) return;
     reached[cell] = 1;
-    TreeCell t{p, face, -1};
-    if (face >= 0) {
-      t.d_face = continuity_coef(p, face);
-      t.g_own = entry(jacobian, face, p);
-    }
+    TreeCell t{static_cast<int>(cell), p, face, -1};
+    // A pinned root's own row is its pressure alone: g_own is that coefficient.
+    t.g_own = face >= 0 ? entry(jacobian, face, p) : entry(jacobian, p, p);
+    if (face >= 0) t.d_face = continuity_coef(p, face);
     tree_.push_back(t);
   };
   for (int j = 0; j < s.ny; ++j)
@@ -97,14 +96,8 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
       if (p >= 0 && entry(jacobian, p, p) != 0.0)
         add_root(static_cast<int>(cell % s.nx), static_cast<int>(cell / s.nx), -1);
     }
-  // The breadth-first search needs the cell of each pressure column.
-  std::vector<int> cell_of(n_ - n_mom_, -1);
-  for (std::size_t cell = 0; cell < s.size(); ++cell)
-    if (const int p = grid.pressure_column(cell); p >= 0)
-      cell_of[p - n_mom_] = static_cast<int>(cell);
   for (std::size_t q = 0; q < tree_.size(); ++q) {
-    const int cell = cell_of[tree_[q].p - n_mom_];
-    const int i = cell % s.nx, j = cell / s.nx;
+    const int i = tree_[q].cell % s.nx, j = tree_[q].cell / s.nx;
     // (neighbour i, j, component, face along, face across)
     const int next[4][5] = {
         {i + 1, j, 0, i + 1, j}, {i - 1, j, 0, i, j}, {i, j + 1, 1, j + 1, i}, {i, j - 1, 1, j, i}};
@@ -115,7 +108,7 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
       const int p_other = grid.pressure_column(other);
       if (reached[other] || p_other < 0 || face < 0) continue;
       reached[other] = 1;
-      TreeCell t{p_other, face, tree_[q].p};
+      TreeCell t{static_cast<int>(other), p_other, face, tree_[q].p};
       t.d_face = continuity_coef(p_other, face);
       t.g_own = entry(jacobian, face, p_other);
       t.g_parent = entry(jacobian, face, tree_[q].p);
@@ -260,7 +253,7 @@ void NullSpaceSolver::solve(const Eigen::SparseMatrix<double>& jacobian, const d
     x[k] = du_[k];
   for (const TreeCell& t : tree_) {
     if (t.face < 0) {
-      x[t.p] = b[t.p] / entry(jacobian, t.p, t.p);
+      x[t.p] = b[t.p] / t.g_own;
       continue;
     }
     double rest = b[t.face] - t_[t.face];

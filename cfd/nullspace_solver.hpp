@@ -42,17 +42,18 @@ class NullSpaceSolver {
   // x = J^-1 b with the last factorization, where J is the matrix given to
   // factorize() (x and b must not alias).
   void solve(const Eigen::SparseMatrix<double>& jacobian, const double* b, double* x);
-  // UMFPACK's statistics of the last factorization.
-  const UmfpackLU& lu() const { return lu_; }
 
  private:
   // One cell of the spanning tree, in breadth-first order from the roots.
   struct TreeCell {
-    int p;                               // pressure column (= continuity row)
-    int face;                            // velocity column of the tree face; -1 for a pinned root
-    int parent;                          // parent's pressure column; -1 for a root
-    double d_face = 0.0;                 // continuity coefficient of the tree face
-    double g_own = 0.0, g_parent = 0.0;  // pressure coefficients in the face's momentum row
+    int cell;             // grid cell index
+    int p;                // pressure column (= continuity row)
+    int face;             // velocity column of the tree face; -1 for a pinned root
+    int parent;           // parent's pressure column; -1 for a root
+    double d_face = 0.0;  // continuity coefficient of the tree face
+    // Pressure coefficients in the tree face's momentum row; a pinned root's
+    // g_own is the coefficient of its own row (its pressure alone).
+    double g_own = 0.0, g_parent = 0.0;
   };
   // A continuity row: up to four (velocity column, coefficient) entries.
   struct ContinuityRow {

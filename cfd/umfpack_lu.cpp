@@ -83,10 +83,15 @@ bool UmfpackLU::factorize(const Eigen::SparseMatrix<double>& a) {
                            std::to_string(status));
 }
 
-void UmfpackLU::solve(const Eigen::SparseMatrix<double>& a, const double* b, double* x) {
+void UmfpackLU::wsolve(int system, const Eigen::SparseMatrix<double>& a, const double* b, double* x,
+                       double* info, int* wi, double* w) const {
   const auto turn = blas_turn();
-  umfpack_di_wsolve(UMFPACK_A, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(), x, b, numeric_,
-                    control_.data(), solve_info_.data(), wi_.data(), w_.data());
+  umfpack_di_wsolve(system, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(), x, b, numeric_,
+                    control_.data(), info, wi, w);
+}
+
+void UmfpackLU::solve(const Eigen::SparseMatrix<double>& a, const double* b, double* x) {
+  wsolve(UMFPACK_A, a, b, x, solve_info_.data(), wi_.data(), w_.data());
 }
 
 void UmfpackLU::solve_shared(const Eigen::SparseMatrix<double>& a, const double* b, double* x,
@@ -94,10 +99,7 @@ void UmfpackLU::solve_shared(const Eigen::SparseMatrix<double>& a, const double*
   std::vector<int> wi(static_cast<std::size_t>(a.rows()));
   std::vector<double> w(control_[UMFPACK_IRSTEP] > 0 ? 5 * wi.size() : wi.size());
   std::vector<double> info(UMFPACK_INFO);
-  const auto turn = blas_turn();
-  umfpack_di_wsolve(transpose ? UMFPACK_At : UMFPACK_A, a.outerIndexPtr(), a.innerIndexPtr(),
-                    a.valuePtr(), x, b, numeric_, control_.data(), info.data(), wi.data(),
-                    w.data());
+  wsolve(transpose ? UMFPACK_At : UMFPACK_A, a, b, x, info.data(), wi.data(), w.data());
 }
 
 }  // namespace plumekit::cfd

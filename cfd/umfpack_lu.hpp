@@ -35,6 +35,10 @@ class UmfpackLU {
 
  private:
   void free_numeric();
+  // UMFPACK's solve of `system` (UMFPACK_A or UMFPACK_At) with the given
+  // workspace, taking the BLAS turn when needed.
+  void wsolve(int system, const Eigen::SparseMatrix<double>& a, const double* b, double* x,
+              double* info, int* wi, double* w) const;
   std::vector<double> control_, info_, solve_info_;
   std::vector<int> wi_;
   std::vector<double> w_;
