@@ -2,12 +2,12 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/temporary_files.hpp"
 
 namespace plumekit {
 
@@ -16,30 +16,33 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view bytes
   const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
   std::error_code ec;
   if (!fs::is_directory(dir, ec))
-    throw InputError(path.string() + ": output directory " + dir.string() + " does not exist");
-  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
+    throw InputError(path.string() + ": output folder " + dir.string() + " does not exist");
+  if (fs::is_directory(path, ec))
+    throw InputError(path.string() + ": is a folder, but this output is a file; name a file");
+  const fs::path tmp = make_temporary_path(path);
+  struct Forget {
+    const fs::path& p;
+    ~Forget() { forget_temporary(p); }
+  } forget{tmp};
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.close();
     if (!out) {
       fs::remove(tmp, ec);
-      throw InputError(path.string() + ": cannot write (permission or disk full?)");
+      throw InputError(path.string() + ": cannot write (permission, or the disk is full?)");
     }
   }
   fs::rename(tmp, path, ec);
   if (ec) {
+    const std::string why = ec.message();
     fs::remove(tmp, ec);
-    throw InputError(path.string() + ": cannot move the finished file into place: " + ec.message());
+    throw InputError(path.string() + ": cannot move the finished file into place: " + why);
   }
 }
 
-AtomicDirectory::AtomicDirectory(std::filesystem::path target) : target_(std::move(target)) {
-  // Unique per process and object, so parallel writers never share a temporary.
-  static std::atomic<int> counter{0};
-  temporary_ =
-      target_.parent_path() / (target_.filename().string() + ".tmp-" + std::to_string(::getpid()) +
-                               "-" + std::to_string(counter++));
+AtomicDirectory::AtomicDirectory(std::filesystem::path target)
+    : target_(std::move(target)), temporary_(make_temporary_path(target_)) {
   std::filesystem::remove_all(temporary_);
   std::filesystem::create_directories(temporary_);
 }
@@ -47,16 +50,19 @@ AtomicDirectory::AtomicDirectory(std::filesystem::path target) : target_(std::mo
 AtomicDirectory::~AtomicDirectory() {
   std::error_code ec;
   if (!committed_) std::filesystem::remove_all(temporary_, ec);
+  forget_temporary(temporary_);
 }
 
 void AtomicDirectory::commit() {
-  std::filesystem::remove_all(target_);  // an incomplete or corrupt earlier copy
+  std::filesystem::remove_all(target_);  // an incomplete or corrupt earlier copy of our own
   std::filesystem::rename(temporary_, target_);
   committed_ = true;
 }
 
 std::string read_file(const std::filesystem::path& path) {
   std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(path.string() + ": is a folder, expected a file");
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(path.string() + ": no such file");
   std::ifstream in(path, std::ios::binary);

@@ -10,7 +10,10 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view bytes
 
 // A directory whose files appear all at once: they are written into a fresh
 // temporary sibling (path()), which replaces `target` on commit(). If never
-// committed (an exception, an interrupt), the temporary is removed.
+// committed (an exception, an interrupt), the temporary is removed. For a
+// folder inside plumekit's own output (a dataset's shard); a folder the user
+// names goes through OutputDirectory (output_target.hpp), which never removes
+// what plumekit did not write.
 class AtomicDirectory {
  public:
   explicit AtomicDirectory(std::filesystem::path target);

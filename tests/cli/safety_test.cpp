@@ -1,0 +1,290 @@
+// Safe by default, end to end: the output rule on every writing command, the
+// exit-code contract, JSON errors, and interrupted runs that leave nothing.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using Result = plumekit::test::CliResult;
+using plumekit::test::slurp;
+
+const fs::path kData = PLUMEKIT_DATA_DIR;
+
+void put(const fs::path& p, const std::string& bytes) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << bytes;
+}
+
+std::map<std::string, std::string> snapshot(const fs::path& d) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(d))
+    files[fs::relative(e.path(), d).string()] =
+        e.is_regular_file() ? slurp(e.path()) : std::string("<dir>");
+  return files;
+}
+
+class Safety : public plumekit::test::CliTest {
+ protected:
+  // Runs in the test's folder, so that relative paths and "." mean it.
+  Result here(const std::string& args) {
+    const fs::path before = fs::current_path();
+    fs::current_path(dir);
+    const Result r = run(args);
+    fs::current_path(before);
+    return r;
+  }
+  // A folder that must come through a refused command byte for byte.
+  fs::path thesis() {
+    put(dir / "work" / "thesis.tex", "years of work");
+    put(dir / "work" / "data" / "run.csv", "1,2,3\n");
+    return dir / "work";
+  }
+  // One small map for the STE commands: the empty test map, one source.
+  fs::path one_map_dir() {
+    fs::create_directories(dir / "maps");
+    fs::copy_file(kData / "test-maps" / "test-0-empty.json", dir / "maps" / "test-0-empty.json");
+    return dir / "maps";
+  }
+  static std::string quick_ste() {
+    return " --plume-model gaussian --runs 1 --sources 1 --max-samples 2 --threads 1";
+  }
+};
+
+TEST_F(Safety, EvaluateRefusesAFolderWithFilesItDidNotWrite) {
+  const fs::path work = thesis();
+  const auto before = snapshot(work);
+  const Result r = run("evaluate --maps " + one_map_dir().string() + " --out " + work.string() +
+                       quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("holds files plumekit did not write"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("thesis.tex"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(work), before);
+}
+
+TEST_F(Safety, EvaluateRefusesTheCurrentFolderTheInputsAndAFile) {
+  const fs::path maps = one_map_dir();
+  put(dir / "keep.txt", "keep");
+  const auto before = snapshot(dir);
+  Result r = here("evaluate --maps maps --out ." + quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("the current folder"), std::string::npos) << r.err;
+  r = run("evaluate --maps " + maps.string() + " --out " + maps.string() + quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("is also an input"), std::string::npos) << r.err;
+  r = run("evaluate --maps " + maps.string() + " --out " + (dir / "keep.txt").string() +
+          quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("is a file, but this output is a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(dir), before);
+}
+
+TEST_F(Safety, EvaluateNamesPicturesAfterFilesNotMapNamesAndReplacesItsOwnOutput) {
+  fs::create_directories(dir / "maps");
+  std::string text = slurp(kData / "test-maps" / "test-0-empty.json");
+  const std::string name = "\"name\": \"";
+  const std::size_t at = text.find(name);
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t end = text.find('"', at + name.size());
+  text.replace(at + name.size(), end - at - name.size(), "../../escaped");
+  put(dir / "maps" / "a.json", text);
+  put(dir / "maps" / "b.json", text);  // the same name twice
+  const fs::path out = dir / "runs" / "eval";
+  Result r = run("evaluate --maps " + (dir / "maps").string() + " --out " + out.string() +
+                 quick_ste());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "trajectories" / "a.png"));
+  EXPECT_TRUE(fs::exists(out / "trajectories" / "b.png"));
+  EXPECT_FALSE(fs::exists(dir / "escaped.png"));
+  EXPECT_FALSE(fs::exists(dir / "runs" / "escaped.png"));
+  // A second run replaces its own earlier output.
+  r = run("evaluate --maps " + (dir / "maps").string() + " --out " + out.string() + quick_ste());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir / "runs"), fs::directory_iterator{}), 1);
+}
+
+TEST_F(Safety, InterruptedEvaluateLeavesNoTemporary) {
+  const fs::path maps = one_map_dir();
+  const fs::path out = dir / "eval";
+  const std::string exe = PLUMEKIT_EXE;
+  std::vector<std::string> args{exe,       "evaluate",     "--maps",         maps.string(),
+                                "--out",   out.string(),   "--plume-model",  "physics",
+                                "--runs",  "3",            "--threads",      "1"};
+  std::vector<char*> argv;
+  for (std::string& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  // As from a terminal: SIGINT at its default, even if this test runs in the background.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, &attr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  // Wait for the temporary output folder to appear, then press Ctrl-C.
+  bool seen = false;
+  for (int i = 0; i < 600 && !seen; ++i) {
+    for (const auto& e : fs::directory_iterator(dir))
+      seen |= e.path().filename().string().find(".plumekit-tmp-") != std::string::npos;
+    if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_TRUE(seen) << "the run never started writing";
+  ASSERT_EQ(::kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find("plumekit-tmp"), std::string::npos) << e.path();
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(Safety, AStaleTemporaryOfAKilledRunIsRemovedByTheNextRun) {
+  fs::create_directories(dir / "wind.plumekit-tmp-999999999-0");
+  put(dir / "wind.plumekit-tmp-999999999-0" / "u.npy", "half");
+  const Result r = run("flow " + (kData / "maps" / "empty.json").string() + " --cell 0.2 --out " +
+                       (dir / "wind").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "wind.plumekit-tmp-999999999-0"));
+  EXPECT_TRUE(fs::exists(dir / "wind" / "u.npy"));
+}
+
+TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {
+  const fs::path work = thesis();
+  const auto before = snapshot(work);
+  const std::string map = (kData / "maps" / "cluttered-1.json").string();
+  const std::string w = work.string();
+  for (const std::string& cmd : {
+           "flow " + map + " --cell 0.2 --out " + w,
+           "plume " + map + " --source 1,2 --out " + w,
+           "predict --map " + map + " --source 1,2 --out " + w,
+           "localize " + map + " --source 1,2 --plume-model gaussian --out " + w,
+           "demo --plume-model gaussian --out " + w,
+           "maps random --count 1 --out " + w,
+           "dataset generate --maps 1 --sources 1 --out " + w,
+       }) {
+    const Result r = run(cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find("did not write"), std::string::npos) << cmd << "\n" << r.err;
+    EXPECT_EQ(snapshot(work), before) << cmd;
+  }
+  // dataset merge, given a real part to merge
+  const fs::path part = dir / "part";
+  for (const char* k : {"0/2", "1/2"})
+    ASSERT_EQ(run(std::string("dataset generate --maps 2 --sources 1 --model advection-diffusion "
+                              "--shard ") +
+                  k + " --out " + part.string())
+                  .code,
+              0);
+  const Result r = run("dataset merge " + part.string() + " --out " + w);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("did not write"), std::string::npos) << r.err;
+  EXPECT_EQ(snapshot(work), before);
+}
+
+TEST_F(Safety, PicturesAndMapsOverwriteOnlyWhatPlumekitWrote) {
+  const std::string map = (kData / "maps" / "cluttered-1.json").string();
+  put(dir / "photo.png", "my holiday");
+  put(dir / "hand.json", "{\"my\": \"map\"}");
+  for (const std::string& cmd :
+       {"map render " + map + " --out " + (dir / "photo.png").string(),
+        "plan " + map + " --from 1,1 --to 9,3 --out " + (dir / "photo.png").string(),
+        "map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " +
+            (dir / "hand.json").string()}) {
+    const Result r = run(cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find("was not written by plumekit"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(slurp(dir / "photo.png"), "my holiday");
+  EXPECT_EQ(slurp(dir / "hand.json"), "{\"my\": \"map\"}");
+  // plumekit's own pictures and imported maps are rewritten.
+  const fs::path png = dir / "map.png", json = dir / "office.json";
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_EQ(run("map render " + map + " --out " + png.string()).code, 0);
+    EXPECT_EQ(run("map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " +
+                  json.string())
+                  .code,
+              0);
+  }
+  EXPECT_EQ(run("map validate " + json.string()).code, 0);
+  // A folder named as a picture.
+  fs::create_directory(dir / "folder.png");
+  const Result r = run("map render " + map + " --out " + (dir / "folder.png").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
+}
+
+TEST_F(Safety, UserMistakesExitTwoNamingThePath) {
+  const std::string map = (kData / "maps" / "cluttered-1.json").string();
+  put(dir / "file", "x");
+  const std::string under_file = (dir / "file" / "out").string();
+  Result r;
+  for (const std::string& cmd : {
+           "plume " + map + " --source 1,2 --out " + under_file,
+           "localize " + map + " --source 1,2 --plume-model gaussian --out " + under_file,
+           "maps random --count 1 --out " + under_file,
+           "dataset generate --maps 1 --sources 1 --out " + under_file,
+           "demo --plume-model gaussian --out " + under_file,
+       }) {
+    const Result r = run(cmd);
+    EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find((dir / "file").string()), std::string::npos) << cmd << "\n" << r.err;
+  }
+  // A place nobody may write: the kernel's /proc.
+  r = run("maps random --count 1 --out /proc/plumekit-test");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("/proc/plumekit-test"), std::string::npos) << r.err;
+  fs::create_directory(dir / "folder");
+  r = run("map import-ros " + (dir / "folder").string() + " --out " + (dir / "x.json").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
+  r = run("map validate " + dir.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
+}
+
+TEST_F(Safety, JsonReportsParseErrorsAndUnknownCommands) {
+  Result r = run("flow --json --cell abc --out x");
+  EXPECT_EQ(r.code, 2);
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["ok"], false);
+  EXPECT_EQ(j["exit_code"], 2);
+  EXPECT_NE(j["error"].get<std::string>().find("--cell"), std::string::npos) << j.dump();
+  r = run("frobnicate --json");
+  EXPECT_EQ(r.code, 2);
+  j = nlohmann::json::parse(r.out);
+  EXPECT_NE(j["error"].get<std::string>().find("'frobnicate' is not a command"), std::string::npos)
+      << j.dump();
+  r = run("map frobnicate");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("'frobnicate' is not a command of plumekit map"), std::string::npos)
+      << r.err;
+}
+
+}  // namespace
