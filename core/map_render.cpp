@@ -11,6 +11,8 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit {
 
@@ -50,12 +52,45 @@ void put_text(cv::Mat& img, const std::string& text, cv::Point at, double size,
 
 }  // namespace
 
+namespace {
+
+// Margins around the arena, pixels.
+constexpr int kLeft = 56, kTop = 40, kRight = 110, kBottom = 76;
+// Longest side a picture may have: OpenCV draws in int pixel coordinates with
+// 4 fractional bits, and no screen or page needs more.
+constexpr double kMaxSidePx = 30000.0;
+// Bytes per pixel at the peak: the BGR image, a tinted copy and the blend
+// (map render --cells), and the PNG's rows.
+constexpr double kBytesPerPixel = 4 * 3.0;
+
+// The picture's size in pixels, checked: px_per_m in range, each side within
+// kMaxSidePx, its memory within the limit (core/memory_limit.hpp).
+cv::Size checked_size(const Map& map, double px_per_m) {
+  check_positive("render.px_per_m", px_per_m, 1000.0, "pixels per metre", "the default is 100");
+  const double w = std::ceil(map.width * px_per_m) + kLeft + kRight;
+  const double h = std::ceil(map.height * px_per_m) + kTop + kBottom;
+  // The largest px_per_m whose picture meets both bounds, for the advice.
+  const double side = std::max(map.width, map.height);
+  double fit = (kMaxSidePx - kLeft - kRight) / side;
+  fit = std::min(fit, std::sqrt(memory_limit() / kBytesPerPixel / (map.width * map.height)));
+  const std::string advice =
+      "use a smaller render.px_per_m (" + compact(std::floor(fit * 100) / 100) + " fits)";
+  if (std::max(w, h) > kMaxSidePx)
+    throw OptionError("render.px_per_m", compact(px_per_m) + " pixels per metre on the " +
+                                             compact(map.width) + " x " + compact(map.height) +
+                                             " m arena gives a " + compact(w) + " x " + compact(h) +
+                                             " px picture, more than " + compact(kMaxSidePx) +
+                                             " px per side; " + advice);
+  check_memory(w * h * kBytesPerPixel,
+               "a " + compact(w) + " x " + compact(h) + " px picture of the map", advice);
+  return {static_cast<int>(w), static_cast<int>(h)};
+}
+
+}  // namespace
+
 MapCanvas::MapCanvas(const Map& map, double px_per_m)
-    : map_(map), px_per_m_(px_per_m), left_(56), top_(40), right_(110) {
-  const int bottom = 76;
-  const int w = static_cast<int>(std::ceil(map.width * px_per_m)) + left_ + right_;
-  const int h = static_cast<int>(std::ceil(map.height * px_per_m)) + top_ + bottom;
-  image_ = cv::Mat(h, w, CV_8UC3, kBackground);
+    : map_(map), px_per_m_(px_per_m), left_(kLeft), top_(kTop), right_(kRight) {
+  image_ = cv::Mat(checked_size(map, px_per_m), CV_8UC3, kBackground);
 }
 
 cv::Point2d MapCanvas::to_px(Vec2 p) const {

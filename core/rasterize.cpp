@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
+
+#include "core/memory_limit.hpp"
 
 namespace plumekit {
 
@@ -28,7 +31,19 @@ GridShape::Bilinear GridShape::bilinear(Vec2 p) const {
   return b;
 }
 
+namespace {
+
+void check_raster_memory(const GridShape& shape) {
+  check_memory(static_cast<double>(shape.nx) * shape.ny * kRasterBytesPerCell,
+               "rasterizing the map on " + std::to_string(shape.nx) + " x " +
+                   std::to_string(shape.ny) + " cells",
+               "use larger cells");
+}
+
+}  // namespace
+
 Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape) {
+  check_raster_memory(shape);
   Grid<std::uint8_t> grid(shape, 0);
   for (const Polygon& poly : map.obstacles) {
     // Only the cells whose centres fall in the polygon's bounding box can be solid.
@@ -111,6 +126,28 @@ bool inlet_reaches_outlet(const Grid<std::uint8_t>& labels) {
     }
   }
   return false;
+}
+
+MapGridCheck map_grid_check(const Map& map, double cell, double max_cells) {
+  MapGridCheck c;
+  // Cell counts in double: a huge arena at a small cell overflows an int.
+  const double cells = std::round(map.width / cell) * std::round(map.height / cell);
+  if (cells > max_cells) {
+    cell = std::sqrt(map.width * map.height / max_cells);
+    // Round-off in the counts may leave one row or column too many.
+    while (std::round(map.width / cell) * std::round(map.height / cell) > max_cells)
+      cell *= 1.001;
+    c.coarsened = true;
+  }
+  c.shape = GridShape::with_cell(map.width, map.height, cell);
+  c.cell = std::max(c.shape.dx(), c.shape.dy());
+  const Grid<std::uint8_t> labels = rasterize_labels(map, c.shape);
+  std::size_t free = 0;
+  for (auto v : labels.values)
+    free += v != kObstacle;
+  c.free_fraction = static_cast<double>(free) / static_cast<double>(labels.values.size());
+  c.inlet_reaches_outlet = inlet_reaches_outlet(labels);
+  return c;
 }
 
 }  // namespace plumekit

@@ -29,4 +29,25 @@ Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape);
 // (4-neighbours), i.e. whether air can flow through the map at all.
 bool inlet_reaches_outlet(const Grid<std::uint8_t>& labels);
 
+// The rasterizations above hold about this many bytes per cell at their peak
+// (the occupancy, the labels and the search's marks); they refuse grids over
+// the memory limit (core/memory_limit.hpp) with MemoryLimitError.
+inline constexpr double kRasterBytesPerCell = 3.0;
+
+// What `map validate` reports from a grid: the free share of the arena and
+// whether air can pass from the inlet to the outlet. The grid has cells of
+// `cell` metres unless that would exceed `max_cells`: a huge arena is then
+// checked on the coarsest-needed grid (at most max_cells cells), so the check
+// takes bounded time and memory whatever the arena's size; `coarsened` says
+// so, and a passage narrower than the used cell may then be seen closed.
+struct MapGridCheck {
+  GridShape shape;
+  double cell = 0.0;  // the larger side of the cells used, m
+  bool coarsened = false;
+  double free_fraction = 0.0;
+  bool inlet_reaches_outlet = false;
+};
+inline constexpr double kMaxCheckCells = 4e6;
+MapGridCheck map_grid_check(const Map& map, double cell = 0.05, double max_cells = kMaxCheckCells);
+
 }  // namespace plumekit

@@ -1,7 +1,9 @@
 #include "core/ros_import.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -11,6 +13,8 @@
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/map_json.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit {
 
@@ -146,6 +150,34 @@ void region_to_polygons(const cv::Mat& region, cv::Point offset, double resoluti
   }
 }
 
+// Width and height from a PNG's IHDR or a PGM's header, without decoding the
+// pixels; {0, 0} when the header is neither (the reader then says why).
+std::pair<double, double> image_dimensions(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[24] = {};
+  if (!in.read(head, sizeof head)) return {0, 0};
+  auto u8 = [&](int k) { return static_cast<double>(static_cast<unsigned char>(head[k])); };
+  if (std::string(head + 1, 3) == "PNG" && std::string(head + 12, 4) == "IHDR")
+    return {((u8(16) * 256 + u8(17)) * 256 + u8(18)) * 256 + u8(19),
+            ((u8(20) * 256 + u8(21)) * 256 + u8(22)) * 256 + u8(23)};
+  if (head[0] == 'P' && (head[1] == '5' || head[1] == '2')) {
+    in.clear();
+    in.seekg(2);
+    double dims[2] = {0, 0};
+    for (double& d : dims) {
+      for (int c = in.peek(); c == '#' || std::isspace(c); c = in.peek())
+        c == '#' ? static_cast<void>(in.ignore(1 << 16, '\n')) : static_cast<void>(in.get());
+      if (!(in >> d)) return {0, 0};
+    }
+    return {dims[0], dims[1]};
+  }
+  return {0, 0};
+}
+
+// Peak bytes per pixel of an import: the grey image, the occupancy and its
+// mask, the 32-bit component labels, and the per-region copies and outlines.
+constexpr double kImportBytesPerPixel = 24.0;
+
 template <class T>
 T yaml_value(const YAML::Node& doc, const char* key, const std::string& origin) {
   const YAML::Node node = doc[key];
@@ -186,6 +218,8 @@ std::vector<Polygon> occupancy_to_polygons(const cv::Mat& occupied, double resol
 }
 
 RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImportOptions& options) {
+  check_non_negative("ros.simplify_px", options.simplify_px, 10.0, "px", "the default is 0.75");
+  check_non_negative("ros.min_area_px", options.min_area_px, 1e12, "px", "0 keeps every speck");
   const std::string origin = yaml_path.string();
   YAML::Node doc;
   try {
@@ -220,6 +254,10 @@ RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImport
   const cv::Mat image = read_gray_image(image_path);
   if (image.empty())
     throw InputError(origin + ": image: cannot read '" + image_path.string() + "' as PGM/PNG");
+  const auto [cols, rows] = image_dimensions(image_path);
+  check_memory(cols * rows * kImportBytesPerPixel,
+               origin + ": importing the " + compact(cols) + " x " + compact(rows) + " px image",
+               "crop or downsample the image");
 
   // map_server's rule: occupancy probability from the grey level.
   cv::Mat occupied(image.size(), CV_8U);
