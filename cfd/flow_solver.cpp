@@ -17,6 +17,7 @@
 #include "cfd/nullspace_solver.hpp"
 #include "cfd/staggered_grid.hpp"
 #include "cfd/umfpack_lu.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit::cfd {
 
@@ -50,13 +51,19 @@ std::string FlowSummary::history_text() const {
 
 namespace {
 
-void check_options(const FlowOptions& o) {
-  auto bad = [](const std::string& what) { throw InputError(what); };
-  if (!(std::isfinite(o.nu) && o.nu > 0.0)) bad("--nu: the viscosity must be positive and finite");
-  if (!(std::isfinite(o.cell) && o.cell > 0.0)) bad("--cell: the cell size must be positive");
-  if (!(o.tolerance > 0.0)) bad("--tol: the tolerance must be positive");
-  if (o.max_iterations < 0) bad("--max-iter: must be at least 1 (or 0 for the default)");
-  if (!(o.kappa > 0.0)) bad("kappa: must be positive");
+// What to change when Newton does not converge. At a high Reynolds number the
+// flow may have no steady state on this grid (a larger viscosity, a finer
+// cell or upwinding help); at a low one the viscous terms dwarf the residual's
+// scale, so round-off alone keeps it above the tolerance (a smaller viscosity
+// or a looser tolerance help).
+std::string convergence_advice(double reynolds, const FlowOptions& o) {
+  if (reynolds < 1.0)
+    return "The flow is dominated by viscosity: try a smaller flow.nu (the default is 0.01 m^2/s) "
+           "or a larger flow.tolerance (now " +
+           compact(o.tolerance) + ").";
+  std::string advice = "Try a larger flow.nu, a finer flow.cell";
+  if (o.convection != Convection::Upwind) advice += ", or upwind convection (flow.convection)";
+  return advice + ".";
 }
 
 // Reference scales for the normalised residuals.
@@ -149,7 +156,8 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
 
 FlowResult solve(const Map& map, const FlowOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  check_options(options);
+  options.validate();
+  check_grid_size(map, options);  // before any grid is made: the size and the memory
   const GridShape shape = GridShape::with_cell(map.width, map.height, options.cell);
   check_grid(map, shape, options);
 
@@ -215,14 +223,15 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   double cfl = 1e6;
   bool refactor = true;
 
+  const double reynolds = scales.speed * scales.length / options.nu;
   auto fail = [&](const std::string& why) {
     summary.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::ostringstream msg;
     msg << "flow solver: " << why << " after " << summary.iterations << " iterations on a "
         << shape.nx << " x " << shape.ny << " grid (nu " << options.nu << " m^2/s, "
-        << to_string(options.convection) << " convection). Try a larger --nu, a finer --cell, or "
-        << "--convection upwind.\nResidual history:\n"
+        << to_string(options.convection) << " convection, Reynolds number " << compact(reynolds)
+        << "). " << convergence_advice(reynolds, options) << "\nResidual history:\n"
         << summary.history_text();
     throw ConvergenceError(msg.str(), summary);
   };

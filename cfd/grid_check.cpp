@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
 #include "core/rasterize.hpp"
 
 namespace plumekit::cfd {
@@ -41,25 +43,73 @@ double wall_distance(const Map& map, const Polygon& p, Side side) {
 
 [[noreturn]] void narrow_gap(const std::string& what, double gap, double cell) {
   std::ostringstream s;
-  s << "--cell " << cell << ": " << what << " are " << gap << " m apart, less than one cell, "
-    << "so the grid would close a gap that is open in the map. Use --cell " << gap / 2
-    << " or finer, or close the gap in the map.";
-  throw InputError(s.str());
+  s << compact(cell) << " m: " << what << " are " << compact(gap)
+    << " m apart, less than one cell, so the grid would close a gap that is open in the map; "
+    << "use a cell of " << compact(gap / 2) << " m or finer, or close or widen the gap in the map";
+  throw OptionError("flow.cell", s.str());
+}
+
+// The cell size (rounded up to 2 significant digits) that gives at most
+// `cells` cells on the map's arena.
+double cell_for(const Map& map, double cells) {
+  const double exact = std::sqrt(map.width * map.height / cells);
+  const double scale = std::pow(10.0, std::floor(std::log10(exact)) - 1);
+  double cell = std::ceil(exact / scale * (1 + 1e-9)) * scale;
+  // Each side's count is rounded, which may add a row or column: step up until it fits.
+  while (std::round(map.width / cell) * std::round(map.height / cell) > cells)
+    cell += scale;
+  return cell;
 }
 
 }  // namespace
 
-void check_grid(const Map& map, const GridShape& shape, const FlowOptions& options) {
-  if (shape.nx < 3 || shape.ny < 3) {
-    std::ostringstream s;
-    s << "--cell " << options.cell << ": gives a " << shape.nx << " x " << shape.ny
-      << " grid; at least 3 cells per side are needed";
-    throw InputError(s.str());
-  }
-  if (shape.size() > 4'000'000)
-    throw InputError("--cell " + std::to_string(options.cell) +
-                     ": more than 4 million cells; use a coarser cell");
+double flow_memory_estimate(double cells) {
+  // See cfd/README.md, "Memory": bytes per cell grow with log2(cells), as the
+  // LU's fill under nested dissection does, plus the process's own baseline.
+  // Square arenas fill more than elongated ones of as many cells, so the
+  // constants fit the square ones: 40000 cells 301 MB, 160000 1.27 GB; the
+  // 10 x 4 m arena's 16000 cells take 92 MB (estimate 150 MB).
+  constexpr double kBaseline = 40e6, kPerCell = 1000.0, kPerCellLog = 420.0;
+  return kBaseline + cells * (kPerCell + kPerCellLog * std::log2(std::max(cells, 2.0)));
+}
 
+void check_grid_size(const Map& map, const FlowOptions& options) {
+  const double nx = std::round(map.width / options.cell),
+               ny = std::round(map.height / options.cell);
+  if (nx < 3 || ny < 3) {
+    std::ostringstream s;
+    s << compact(options.cell) << " m gives a " << compact(nx) << " x " << compact(ny)
+      << " grid on the " << compact(map.width) << " x " << compact(map.height)
+      << " m arena; at least 3 cells per side are needed: use a cell of at most "
+      << compact(std::min(map.width, map.height) / 3) << " m";
+    throw OptionError("flow.cell", s.str());
+  }
+  const double cells = nx * ny;
+  if (cells > kMaxFlowCells) {
+    std::ostringstream s;
+    s << compact(options.cell) << " m gives " << compact(cells) << " cells on the "
+      << compact(map.width) << " x " << compact(map.height) << " m arena, more than the "
+      << compact(kMaxFlowCells) << " a solve can handle; use a cell of at least "
+      << compact(cell_for(map, kMaxFlowCells)) << " m";
+    throw OptionError("flow.cell", s.str());
+  }
+  const double bytes = flow_memory_estimate(cells);
+  if (!fits_in_memory(bytes)) {
+    // The largest cell count whose estimate fits, by bisection (the estimate grows with cells).
+    double lo = 0.0, hi = cells;
+    for (int k = 0; k < 60; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (fits_in_memory(flow_memory_estimate(mid)) ? lo : hi) = mid;
+    }
+    std::ostringstream what, fix;
+    what << "the flow solve on " << compact(nx) << " x " << compact(ny) << " cells of "
+         << compact(options.cell) << " m";
+    if (lo >= 9.0) fix << "use a larger flow.cell (" << compact(cell_for(map, lo)) << " m fits)";
+    check_memory(bytes, what.str(), fix.str());
+  }
+}
+
+void check_grid(const Map& map, const GridShape& shape, const FlowOptions& options) {
   const double cell = std::max(shape.dx(), shape.dy());
   for (std::size_t i = 0; i < map.obstacles.size(); ++i) {
     for (std::size_t j = i + 1; j < map.obstacles.size(); ++j) {

@@ -51,6 +51,10 @@ struct FlowOptions {
   bool verbose = false;  // a line per iteration on stderr
   // Called after each iteration with (iteration, momentum, continuity residual).
   std::function<void(int, double, double)> on_iteration;
+
+  // Throws OptionError naming the field ("flow.cell", "flow.nu", ...) and its
+  // allowed range (cfd/README.md, "Options"). cfd::solve calls it.
+  void validate() const;
 };
 
 }  // namespace plumekit::cfd

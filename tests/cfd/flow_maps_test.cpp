@@ -170,7 +170,8 @@ TEST(FlowMaps, RefusesBadInput) {
   const Map map = read_map(kMaps / "cluttered-1.json");
   FlowOptions o;
   o.nu = -0.01;
-  EXPECT_NE(error_of(map, o).find("--nu"), std::string::npos);
+  EXPECT_NE(error_of(map, o).find("flow.nu: must be a finite number more than 0"),
+            std::string::npos);
   o = FlowOptions{};
   o.cell = 2.0;  // 5 x 2 cells
   EXPECT_NE(error_of(map, o).find("at least 3 cells"), std::string::npos);
