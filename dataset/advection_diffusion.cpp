@@ -12,6 +12,7 @@
 
 #include "cfd/umfpack_lu.hpp"
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit::dataset {
 
@@ -46,6 +47,12 @@ double hybrid(double F, double D) {
 
 }  // namespace
 
+void AdvectionDiffusionOptions::validate() const {
+  check_positive("plume.diffusivity", diffusivity, 100.0, "m^2/s", "the default is 0.05 m^2/s");
+  check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
+                 "the default is 1000");
+}
+
 AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
                                        const AdvectionDiffusionOptions& options)
     : shape_(wind.shape()),
@@ -54,9 +61,7 @@ AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
       face_v_(wind.face_v()),
       solid_(wind.solid_cells()),
       lu_(std::make_unique<Lu>()) {
-  if (!(options.diffusivity > 0.0))
-    throw InputError("advection-diffusion: diffusivity must be positive, got " +
-                     std::to_string(options.diffusivity));
+  options.validate();
   const auto t0 = std::chrono::steady_clock::now();
   const int nx = shape_.nx, ny = shape_.ny;
   const double dx = shape_.dx(), dy = shape_.dy();

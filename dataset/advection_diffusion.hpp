@@ -28,6 +28,10 @@ struct AdvectionDiffusionOptions {
   // about Q / sqrt(4 pi D x / u) ~ 1300 and fall to ~400 at 10 m: the 0..3000
   // range of the thesis's (unnormalised) dataset.
   double release_rate = 1000.0;
+
+  // Throws OptionError naming "plume.diffusivity" or "plume.release_rate" and
+  // the allowed range. AdvectionDiffusion's constructor calls it.
+  void validate() const;
 };
 
 // What the factorization did.

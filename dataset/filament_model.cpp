@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit::dataset {
 
@@ -18,14 +20,55 @@ bool within(const Opening& o, double s) {
 
 }  // namespace
 
+// Bounds well beyond any useful setting: they catch NaN, signs and unit
+// mistakes (dataset/README.md, "Options").
+void FilamentOptions::validate() const {
+  check_positive("plume.filaments_per_second", release_per_second, 1e5, "per second",
+                 "the default is 200 (more only lowers the sampling noise)");
+  check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
+                 "the default is 1000");
+  check_positive("plume.initial_radius", initial_radius, 10.0, "m", "the default is 0.1 m");
+  check_non_negative("plume.growth", growth, 100.0, "m^2/s", "the default is 0.08 m^2/s");
+  check_non_negative("plume.sigma_walk", sigma_walk, 100.0, "m/sqrt(s)",
+                     "the default is 0.245 m/sqrt(s)");
+  check_non_negative("plume.meander_speed", meander_speed, 100.0, "m/s", "the default is 0.15 m/s");
+  check_positive("plume.meander_time", meander_time, 1e4, "s", "the default is 1 s");
+  check_positive("plume.dt", dt, 10.0, "s", "the default is 0.05 s");
+  check_range("plume.max_radius", max_radius, initial_radius, 1e3, "m",
+              "it must exceed plume.initial_radius; the default is 1.5 m", true);
+  check_positive("plume.steady_window", steady_window, 1e4, "s", "the default is 2 s");
+  check_positive("plume.steady_tolerance", steady_tolerance, 1.0, "", "the default is 0.02");
+  check_non_negative("plume.min_spinup", min_spinup, 1e5, "s", "the default is 4 s");
+  check_range("plume.max_spinup", max_spinup, min_spinup, 1e5, "s",
+              "it must be at least plume.min_spinup; the default is 60 s");
+  check_positive("plume.record_seconds", record_seconds, 1e5, "s", "the default is 5 s");
+  check_positive("plume.sample_rate", sample_rate, 1e3, "Hz", "the default is 10 Hz");
+  check_positive("plume.cutoff", cutoff, 10.0, "filament radii", "the default is 3");
+  // The step count bounds the run time: a tiny dt over a long spin-up never ends.
+  const double steps = (max_spinup + record_seconds) / dt;
+  if (steps > 1e8)
+    throw OptionError("plume.dt", compact(dt) + " s gives " + compact(steps) +
+                                      " steps over the spin-up and the recording, more than "
+                                      "1e+08; use a larger dt or shorter times");
+}
+
+double FilamentOptions::max_filaments() const {
+  return release_per_second * (max_spinup + record_seconds) + 1.0;
+}
+
 FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& wind, Vec2 source,
                                        const FilamentOptions& options, std::uint64_t seed)
     : map_(map), wind_(wind), source_(source), o_(options), rng_(seed) {
-  if (!(o_.dt > 0.0) || !(o_.release_per_second > 0.0) || !(o_.initial_radius > 0.0) ||
-      o_.growth < 0.0 || o_.sigma_walk < 0.0 || o_.meander_speed < 0.0 || !(o_.meander_time > 0.0))
-    throw InputError(
-        "filament model: dt, release_per_second, initial_radius and meander_time "
-        "must be positive; growth, sigma_walk and meander_speed non-negative");
+  o_.validate();
+  // The filament vector at its largest, twice over for its growth by doubling.
+  const double bytes = 2.0 * sizeof(Filament) * o_.max_filaments();
+  if (!fits_in_memory(bytes)) {
+    const double fits =
+        memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_seconds));
+    check_memory(
+        bytes, "the filament model at " + compact(o_.release_per_second) + " filaments per second",
+        "use fewer plume.filaments_per_second (" + compact(std::floor(0.9 * fits)) + " fits)");
+  }
   if (!map.is_free(source))
     throw InputError("filament model: source " + to_string(source) +
                      " is outside the arena or inside an obstacle");

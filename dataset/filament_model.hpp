@@ -55,6 +55,14 @@ struct FilamentOptions {
   double cutoff = 3.0;
 
   double equivalent_diffusivity() const { return 0.5 * sigma_walk * sigma_walk + 0.25 * growth; }
+
+  // Throws OptionError naming the field ("plume.release_rate",
+  // "plume.filaments_per_second", "plume.dt", ...) and its allowed range
+  // (dataset/README.md, "Options"). FilamentSimulation calls it.
+  void validate() const;
+  // Upper bound of the filaments alive at once (all released during the
+  // longest spin-up and the recording, none dropped), for the memory guard.
+  double max_filaments() const;
 };
 
 struct Filament {
@@ -77,6 +85,8 @@ struct FilamentSummary {
 // class is public so tests can check each step.
 class FilamentSimulation {
  public:
+  // Validates the options and checks the filaments' memory against the limit
+  // (core/memory_limit.hpp) before any is released.
   FilamentSimulation(const Map& map, const cfd::WindField& wind, Vec2 source,
                      const FilamentOptions& options, std::uint64_t seed);
 

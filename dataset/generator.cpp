@@ -1,7 +1,9 @@
 #include "dataset/generator.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <set>
@@ -9,9 +11,12 @@
 #include <tuple>
 
 #include "cfd/flow_solver.hpp"
+#include "cfd/grid_check.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/map_json.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
 #include "dataset/features.hpp"
 #include "dataset/seed.hpp"
 #include "core/sha256.hpp"
@@ -57,6 +62,29 @@ cfd::FlowResult solve_flow(const Map& map, cfd::FlowOptions& fo) {
   }
 }
 
+// The run's own options, and the memory of its worker threads: each solves
+// one map's flow at a time.
+void check_run_options(const DatasetOptions& o, const RunOptions& run) {
+  check_count("dataset.threads", run.threads, 1, 1024, "one map per thread");
+  if (run.part_n <= 0 || run.part_k < 0 || run.part_k >= run.part_n)
+    throw OptionError("dataset.shard", "K/N needs 0 <= K < N, got " + std::to_string(run.part_k) +
+                                           "/" + std::to_string(run.part_n));
+  double cells = 0.0;
+  auto grid_cells = [&](const Map& m) {
+    return std::round(m.width / o.flow.cell) * std::round(m.height / o.flow.cell);
+  };
+  if (o.given_maps.empty()) cells = grid_cells(default_arena(o.map.width, o.map.height));
+  for (const Map& m : o.given_maps)
+    cells = std::max(cells, grid_cells(m));
+  const double per_thread = cfd::flow_memory_estimate(cells);
+  if (run.threads > 1 && !fits_in_memory(run.threads * per_thread))
+    check_memory(run.threads * per_thread,
+                 std::to_string(run.threads) + " worker threads, each solving one map's flow",
+                 "use fewer dataset.threads (" +
+                     std::to_string(std::max(1, static_cast<int>(memory_limit() / per_thread))) +
+                     " fit)");
+}
+
 }  // namespace
 
 std::string part_manifest_name(int k, int n) {
@@ -67,14 +95,9 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
                                 const RunOptions& run) {
   const auto t0 = Clock::now();
   const int maps = o.given_maps.empty() ? o.maps : static_cast<int>(o.given_maps.size());
-  if (maps <= 0) throw InputError("--maps must be positive");
-  if (o.given_maps.empty() && o.sources <= 0) throw InputError("--sources must be positive");
-  if (run.threads <= 0) throw InputError("--threads must be positive");
-  if (run.part_n <= 0 || run.part_k < 0 || run.part_k >= run.part_n)
-    throw InputError("--shard K/N needs 0 <= K < N");
-  for (std::size_t i = 0; i < o.given_maps.size(); ++i)
-    if (o.given_maps[i].sources.empty())
-      throw InputError(o.map_files[i] + ": the map has no sources");
+  // Every option is checked before anything is written (dataset/README.md).
+  o.validate();
+  check_run_options(o, run);
 
   // A dataset directory belongs to one set of parameters.
   const nlohmann::ordered_json params = parameters_json(o);

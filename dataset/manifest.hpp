@@ -30,6 +30,10 @@ struct DatasetOptions {
   // maps' ground truth). `map_files` names them in the manifest.
   std::vector<Map> given_maps;
   std::vector<std::string> map_files;
+  // Checks every field (OptionError naming it: "dataset.maps", "flow.cell",
+  // "plume.release_rate", "maps.families", ...) and each map's flow grid size;
+  // dataset_options.cpp. generate_dataset calls it before writing anything.
+  void validate() const;
 };
 
 // Every parameter that changes the bytes of the dataset.

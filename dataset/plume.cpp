@@ -11,12 +11,19 @@ const char* to_string(PlumeModel m) {
 PlumeModel parse_plume_model(const std::string& name) {
   if (name == "filament") return PlumeModel::Filament;
   if (name == "advection-diffusion") return PlumeModel::AdvectionDiffusion;
-  throw InputError("unknown plume model '" + name + "' (filament or advection-diffusion)");
+  throw OptionError("plume.model",
+                    "unknown plume model '" + name + "'; use filament or advection-diffusion");
+}
+
+void PlumeOptions::validate() const {
+  filament.validate();
+  advection_diffusion.validate();
 }
 
 MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape& sensors,
                      const PlumeOptions& options)
     : map_(map), wind_(wind), sensors_(sensors), options_(options) {
+  options.validate();
   if (options.model == PlumeModel::AdvectionDiffusion) {
     ad_ = std::make_unique<AdvectionDiffusion>(wind, options.advection_diffusion);
     resampler_ = std::make_unique<Resampler>(*ad_, sensors_);

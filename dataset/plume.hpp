@@ -23,6 +23,9 @@ struct PlumeOptions {
   PlumeModel model = PlumeModel::Filament;
   FilamentOptions filament;
   AdvectionDiffusionOptions advection_diffusion;
+  // Validates both models' options (the unused model's too: a dataset's
+  // parameters.json records them all). OptionError naming the field.
+  void validate() const;
 };
 
 struct PlumeTargets {
@@ -33,6 +36,7 @@ struct PlumeTargets {
 
 class MapPlumes {
  public:
+  // Validates the options first.
   MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape& sensors,
             const PlumeOptions& options);
   ~MapPlumes();

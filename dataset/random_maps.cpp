@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/map_json.hpp"
+#include "core/option_check.hpp"
 #include "core/rasterize.hpp"
 #include "dataset/features.hpp"
 #include "dataset/seed.hpp"
@@ -169,21 +170,34 @@ std::string family_of(const std::string& name) {
   return "";
 }
 
+void RandomMapOptions::validate() const {
+  // At most 100 m: the robot check rasterizes the arena at 5 cm.
+  check_positive("maps.width", width, 100.0, "m", "the default is 10 m");
+  check_positive("maps.height", height, 100.0, "m", "the default is 4 m");
+  check_positive("maps.inlet_speed", inlet_speed, 100.0, "m/s", "the default is 1 m/s");
+  check_non_negative("maps.end_clearance", end_clearance, 100.0, "m", "the default is 1 m");
+  check_non_negative("maps.robot_margin", robot_margin, 10.0, "m", "the default is 0.15 m");
+  check_positive("maps.min_gap", min_gap, 100.0, "m", "the default is 0.4 m");
+  check_count("maps.max_attempts", max_attempts, 1, 10'000'000, "the default is 10000");
+  if (!(width > 2 * end_clearance + 0.5))
+    throw OptionError(
+        "maps.width",
+        compact(width) +
+            " m leaves no room for obstacles: it must exceed twice maps.end_clearance (" +
+            compact(end_clearance) + " m) plus 0.5 m");
+  if (!(height > 1.0))
+    throw OptionError("maps.height", "must be more than 1 m, got " + compact(height));
+  if (families.empty())
+    throw OptionError("maps.families",
+                      "the list is empty; give one or more families (the default is the "
+                      "thesis's rectangle, two-rectangles, l-shape, u-shape)");
+  for (const std::string& f : families)
+    check_name("maps.families", f, known_families());
+}
+
 RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_t index,
                      std::uint64_t redraw) {
-  if (!(o.width > 2 * o.end_clearance + 0.5) || !(o.height > 1.0))
-    throw InputError(
-        "random maps: the arena must be wider than 2 * end_clearance + 0.5 m and "
-        "higher than 1 m");
-  const std::vector<std::string> known = RandomMapOptions::known_families();
-  if (o.families.empty()) throw InputError("random maps: the list of families is empty");
-  for (const std::string& f : o.families)
-    if (std::find(known.begin(), known.end(), f) == known.end()) {
-      std::string names;
-      for (const std::string& k : known)
-        names += (names.empty() ? "" : ", ") + k;
-      throw InputError("random maps: unknown family '" + f + "' (" + names + ")");
-    }
+  o.validate();
   Draw d(derive_seed(seed, index, redraw, Stream::MapGeometry));
   RandomMap r;
   r.family = o.families[d.pick(static_cast<int>(o.families.size()))];

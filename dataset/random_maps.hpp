@@ -35,6 +35,10 @@ struct RandomMapOptions {
   }
   // Every family random_map() knows: the thesis's and three-rectangles, shape-and-rectangle.
   static std::vector<std::string> known_families();
+
+  // Throws OptionError naming the field ("maps.width", "maps.families", ...):
+  // an unknown family names it and lists the known ones. random_map() calls it.
+  void validate() const;
 };
 
 struct RandomMap {
