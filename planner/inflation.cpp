@@ -12,6 +12,7 @@
 #include <CGAL/minkowski_sum_2.h>
 
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit::planner {
 
@@ -89,11 +90,9 @@ double inflation_error_bound(double margin, int n) {
 }
 
 std::vector<Region> inflate_free_space(const Map& map, double margin, int arc_segments) {
-  if (!(margin >= 0.0) || !std::isfinite(margin))
-    throw InputError("planner: margin must be a finite number >= 0, not " + std::to_string(margin));
-  if (arc_segments < 4)
-    throw InputError("planner: arc_segments must be at least 4, not " +
-                     std::to_string(arc_segments));
+  check_non_negative("planner.margin", margin, 10.0, "m",
+                     "the robot's radius plus a safety distance; the thesis used 0.15 m");
+  check_count("planner.arc_segments", arc_segments, 4, 1024, "the default is 16");
   std::vector<Region> regions;
   const double x0 = margin, y0 = margin, x1 = map.width - margin, y1 = map.height - margin;
   if (!(x1 > x0) || !(y1 > y0)) return regions;  // the arena is narrower than two margins

@@ -42,6 +42,10 @@ struct PlannerOptions {
   double ompl_target_length = 0.0;
   // Shortcut and smooth the OMPL path (OMPL's PathSimplifier) before returning it.
   bool ompl_simplify = true;
+
+  // OptionError naming the field ("planner.margin", ...) and its range
+  // (planner/README.md); make_planner() calls it.
+  void validate() const;
 };
 
 struct PlanResult {

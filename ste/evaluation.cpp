@@ -54,9 +54,7 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
 EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions& o,
                           const std::function<void(int, int)>& progress,
                           const AfterMap& after_map) {
-  if (o.runs < 1) throw InputError("--runs must be at least 1");
-  if (o.threads < 1) throw InputError("--threads must be at least 1");
-  if (o.sources < 0) throw InputError("--sources must be >= 0");
+  o.validate();
   using Clock = std::chrono::steady_clock;
   const auto t_all = Clock::now();
   EvaluationResult result;

@@ -20,6 +20,8 @@ struct EvaluationOptions {
   std::uint64_t seed = 1;
   int threads = 2;
   int sources = 0;  // 0: all of each map's sources; K: the first K (a labelled subset)
+  // The run counts and ste.validate(); evaluate() calls it before any work.
+  void validate() const;
 };
 
 struct RunRecord {

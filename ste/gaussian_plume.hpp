@@ -17,6 +17,8 @@ struct GaussianPlumeBounds {
   double q_max = 10000.0;
   double a_min = 0.01, a_max = 1.0;  // sigma_y growth per metre downwind
   double b_min = 0.02, b_max = 1.0;  // sigma_y at the source, m
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 
 class GaussianPlume final : public PlumeModel {

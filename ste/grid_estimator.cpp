@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit::ste {
 
@@ -59,11 +60,14 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
   scale_lo_ = p.size() > 2 ? p[2].lo : 1.0;
   scale_hi_ = p.size() > 2 ? p[2].hi : 1.0;
   if (!(scale_lo_ > 0.0) || scale_hi_ < scale_lo_)
-    throw InputError("release scale prior: need 0 < lo <= hi");
+    throw OptionError("ste.physics.scale_lo", "the release scale prior needs 0 < lo <= hi, got " +
+                                                  compact(scale_lo_) + " and " +
+                                                  compact(scale_hi_));
   likelihood.validate();
   if (likelihood.sigma_std > 0.0 && !model.has_spreads())
-    throw InputError("sigma_std: the " + model.name() +
-                     " model predicts no std of the readings (only the surrogate does)");
+    throw OptionError("ste.likelihood.sigma_std",
+                      "must be 0 here: the " + model.name() +
+                          " model predicts no std of the readings (only the surrogate does)");
   for (std::vector<double>* v : {&sums_.a, &sums_.b, &sums_.c, &sums_.h})
     v->assign(model.sources().size(), 0.0);
   // The largest entropy: every bin holding an allowed cell equally likely.

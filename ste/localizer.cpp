@@ -22,7 +22,7 @@ double thread_cpu_seconds() {
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,
                             const StopOptions& stop) {
-  if (stop.max_samples < 1) throw InputError("max_samples must be at least 1");
+  stop.validate();
   LocalizationResult r;
   r.start = start;
   const double t_start = world.time();

@@ -17,6 +17,8 @@ namespace plumekit::ste {
 struct StopOptions {
   double entropy_fraction = 0.02;  // stop below 2 % of the maximum entropy
   int max_samples = 50;
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 
 struct Step {

@@ -21,12 +21,12 @@ MhEstimator::MhEstimator(const PlumeModel& model, const Map& map,
       bins_(bins),
       options_(options),
       rng_(seed) {
-  if (options.iterations <= options.burn_in || options.burn_in < 0)
-    throw InputError("Metropolis-Hastings: need 0 <= burn_in < iterations");
-  if (!(options.proposal > 0.0)) throw InputError("Metropolis-Hastings: proposal must be positive");
+  options.validate();
   likelihood.validate();
   if (likelihood.sigma_std > 0.0)
-    throw InputError("sigma_std: Metropolis-Hastings models predict no std of the readings");
+    throw OptionError("ste.likelihood.sigma_std",
+                      "must be 0 here: Metropolis-Hastings models predict no std of the readings "
+                      "(only the surrogate does)");
   // Start at the middle of every range, moved to a free point for (x, y).
   for (const Parameter& p : model.parameters())
     state_.push_back(0.5 * (p.lo + p.hi));

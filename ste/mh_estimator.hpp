@@ -19,6 +19,8 @@ struct MhOptions {
   int burn_in = 1000;     // of those, not summarised
   // Proposal std per parameter, as a fraction of its prior range.
   double proposal = 0.05;
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 
 class MhEstimator final : public Estimator {

@@ -11,10 +11,7 @@ namespace plumekit::ste {
 Navigator::Navigator(const planner::FreeSpace& space, const GridShape& bins,
                      const NavigationOptions& options)
     : space_(space), bins_(bins), options_(options), region_(bins.size(), -1) {
-  if (!(options.step > 0.0) || options.lattice < 1)
-    throw InputError("navigation: step must be positive and lattice at least 1");
-  if (options.alpha < 0.0 || options.alpha > 1.0 || options.beta < 0.0 || options.beta > 1.0)
-    throw InputError("navigation: alpha and beta must lie in [0, 1]");
+  options.validate();
   for (int j = 0; j < bins.ny; ++j)
     for (int i = 0; i < bins.nx; ++i)
       region_[bins.index(i, j)] = space.region_of(bins.centre(i, j));

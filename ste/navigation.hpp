@@ -36,6 +36,8 @@ struct NavigationOptions {
   // expected source (eq. 7.6), or the expected information gain over sources drawn from the
   // posterior (Estimator::expected_information_gain).
   enum class Reward { Kl, ExpectedGain } reward = Reward::ExpectedGain;
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 
 struct Decision {

@@ -8,10 +8,10 @@ PhysicsPlume::PhysicsPlume(const Map& map, const cfd::WindField& wind, const Phy
     : parameters_{{"x", 0.0, map.width},
                   {"y", 0.0, map.height},
                   {"release_scale", o.scale_lo, o.scale_hi}},
-      sources_(GridShape::with_cell(map.width, map.height, o.source_cell)),
+      // Validated before the source grid is sized by o.source_cell.
+      sources_((o.validate(), GridShape::with_cell(map.width, map.height, o.source_cell))),
       allowed_(free_cells(map, sources_, 0.0)),
       ad_(std::make_unique<dataset::AdvectionDiffusion>(wind, o.advection_diffusion)) {
-  if (!(o.source_cell > 0.0)) throw InputError("physics plume model: source_cell must be positive");
   // A cell whose centre is free but falls in a solid flow cell cannot hold a source.
   for (int j = 0; j < sources_.ny; ++j)
     for (int i = 0; i < sources_.nx; ++i) {

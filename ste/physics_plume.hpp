@@ -21,6 +21,8 @@ struct PhysicsPlumeOptions {
   dataset::AdvectionDiffusionOptions advection_diffusion;
   // Prior bounds of the release scale (1 = the dataset's release rate).
   double scale_lo = 1.0, scale_hi = 1.0;
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 
 class PhysicsPlume final : public SourceTableModel {

@@ -7,16 +7,8 @@
 
 namespace plumekit::ste {
 
-void LikelihoodOptions::validate() const {
-  if (!(variance() > 0.0)) throw InputError("sigma_M^2 + sigma_D^2 must be positive");
-  if (!(sigma_rel >= 0.0) || !std::isfinite(sigma_rel))
-    throw InputError("sigma_rel must be finite and >= 0");
-  if (!(sigma_std >= 0.0) || !std::isfinite(sigma_std))
-    throw InputError("sigma_std must be finite and >= 0");
-}
-
 GridShape make_bins(const Map& map, const BinOptions& b) {
-  if (!(b.x > 0.0) || !(b.y > 0.0)) throw InputError("posterior bins must be positive");
+  b.validate();
   return GridShape{std::max(1, static_cast<int>(std::lround(map.width / b.x))),
                    std::max(1, static_cast<int>(std::lround(map.height / b.y))), map.width,
                    map.height};

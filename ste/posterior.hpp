@@ -43,7 +43,8 @@ struct LikelihoodOptions {
     const double var = variance(predicted, spread), d = value - predicted;
     return -0.5 * (d * d / var + (variance_varies() ? std::log(var) : 0.0));
   }
-  // Throws InputError unless the variance is positive and sigma_rel and sigma_std finite, >= 0.
+  // OptionError naming the field ("ste.likelihood.sigma_m", ...) unless every sigma is finite,
+  // >= 0 and within its bound, and sigma_m and sigma_d are not both 0; ste/options.cpp.
   void validate() const;
 };
 
@@ -52,6 +53,8 @@ struct LikelihoodOptions {
 // resolution, so the 2 % threshold means the same for every plume model.
 struct BinOptions {
   double x = 0.5, y = 0.2;
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 GridShape make_bins(const Map& map, const BinOptions& bins);
 

@@ -3,9 +3,12 @@
 #include <chrono>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "cfd/flow_solver.hpp"
 #include "core/error.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
 #include "dataset/seed.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/surrogate_plume.hpp"
@@ -19,14 +22,46 @@ double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-cfd::WindField solve_wind(const Map& map) {
-  cfd::FlowOptions fo;
+cfd::WindField solve_upwind_on_stall(const Map& map, cfd::FlowOptions fo) {
   try {
     return cfd::solve(map, fo).wind;
   } catch (const cfd::ConvergenceError&) {
     fo.convection = cfd::Convection::Upwind;
     return cfd::solve(map, fo).wind;
   }
+}
+
+// STE solves the wind at the flow defaults, which no STE option changes, so a
+// fault of the flow's cell size is the map's: say so instead of naming a
+// setting the STE commands do not have.
+cfd::WindField solve_wind(const Map& map) {
+  const cfd::FlowOptions fo;
+  try {
+    return solve_upwind_on_stall(map, fo);
+  } catch (const OptionError& e) {
+    if (e.field() != "flow.cell") throw;
+    throw InputError("map " + map.name + ": STE solves the wind on cells of " + compact(fo.cell) +
+                     " m, and on that grid " + e.message() +
+                     " (STE cannot change its flow cell: edit the map, or check it with the flow "
+                     "command at a finer cell)");
+  }
+}
+
+// Bytes per candidate source cell: the estimators' sums and likelihoods and
+// one table column, a few doubles each.
+constexpr double kBytesPerSourceCell = 128.0;
+
+void check_source_grid(const Map& map, double cell, const std::string& field) {
+  const double cells = std::round(map.width / cell) * std::round(map.height / cell);
+  const double most = std::min(1e8, memory_limit() / kBytesPerSourceCell);
+  const std::string fit = compact(1.01 * std::sqrt(map.width * map.height / most));
+  if (cells > 1e8)
+    throw OptionError(field, compact(cell) + " m gives " + compact(cells) +
+                                 " candidate source cells, more than 1e+08; use at least " + fit +
+                                 " m");
+  check_memory(cells * kBytesPerSourceCell,
+               "the source grid of " + compact(cells) + " cells of " + compact(cell) + " m",
+               "use a larger " + field + " (" + fit + " m fits)");
 }
 
 }  // namespace
@@ -56,8 +91,8 @@ PlumeModelKind parse_plume_model_kind(const std::string& name) {
   if (name == "surrogate") return PlumeModelKind::Surrogate;
   if (name == "gaussian") return PlumeModelKind::Gaussian;
   if (name == "physics") return PlumeModelKind::Physics;
-  throw InputError("--plume-model: unknown plume model '" + name +
-                   "' (use surrogate, gaussian or physics)");
+  throw OptionError("ste.model",
+                    "unknown plume model '" + name + "'; use surrogate, gaussian or physics");
 }
 
 std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t source,
@@ -67,6 +102,11 @@ std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t sour
 }
 
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
+  options.validate();
+  if (options.model == PlumeModelKind::Physics)
+    check_source_grid(map_, options.physics.source_cell, "ste.physics.source_cell");
+  if (options.model == PlumeModelKind::Surrogate)
+    check_source_grid(map_, options.surrogate_cell, "ste.surrogate_cell");
   auto t0 = Clock::now();
   wind_ = solve_wind(map_);
   wind_seconds_ = since(t0);
@@ -106,22 +146,25 @@ Scenario::~Scenario() = default;
 
 Vec2 Scenario::check_source(Vec2 source) const {
   if (!map_.in_arena(source))
-    throw InputError("--source " + to_string(source) + " is outside the arena (0..." +
-                     std::to_string(map_.width) + " x 0..." + std::to_string(map_.height) + ")");
+    throw OptionError("ste.source", to_string(source) + " is outside the arena (0..." +
+                                        compact(map_.width) + " x 0..." + compact(map_.height) +
+                                        ")");
   const int o = map_.obstacle_at(source);
   if (o >= 0)
-    throw InputError("--source " + to_string(source) + " is inside obstacles[" + std::to_string(o) +
-                     "] of map " + map_.name);
+    throw OptionError("ste.source", to_string(source) + " is inside obstacles[" +
+                                        std::to_string(o) + "] of map " + map_.name);
   return source;
 }
 
 Vec2 Scenario::check_start(Vec2 start) const {
   if (!map_.in_arena(start))
-    throw InputError("--start " + to_string(start) + " is outside the arena");
+    throw OptionError("ste.start", to_string(start) + " is outside the arena (0..." +
+                                       compact(map_.width) + " x 0..." + compact(map_.height) +
+                                       ")");
   const int o = map_.obstacle_at(start);
   if (o >= 0)
-    throw InputError("--start " + to_string(start) + " is inside obstacles[" + std::to_string(o) +
-                     "] of map " + map_.name);
+    throw OptionError("ste.start", to_string(start) + " is inside obstacles[" + std::to_string(o) +
+                                       "] of map " + map_.name);
   return space_->contains(start) ? start : space_->nearest_free(start);
 }
 

@@ -50,6 +50,9 @@ struct SteOptions {
   std::string table_cache;
   int table_threads = 2;
   double min_start_distance = 1.0;  // m, random starts are at least this far from the source
+  // Every field, the nested options' too (OptionError naming it: "ste.world.noise", ...).
+  // Scenario's constructor calls it.
+  void validate() const;
 };
 
 class Scenario {

@@ -14,10 +14,7 @@ SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 
       sim_(map, wind, source, options.filament, seed),
       // An independent stream for the sensor, so noise never shifts the plume.
       noise_rng_(seed ^ 0x5DEECE66DULL) {
-  if (!(options.speed > 0.0)) throw InputError("robot speed must be positive");
-  if (!(options.sample_seconds > 0.0) || !(options.sample_rate > 0.0))
-    throw InputError("sample duration and rate must be positive");
-  if (options.noise < 0.0) throw InputError("sensor noise must be >= 0");
+  options.validate();  // the filament simulation (sim_) has checked its own options already
   dataset::spin_up(sim_, options.filament);
   spinup_ = sim_.time();
 }

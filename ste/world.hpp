@@ -20,6 +20,8 @@ struct WorldOptions {
   double sample_seconds = 5.0;        // thesis: 5 s ...
   double sample_rate = 10.0;          // ... at 10 Hz
   double noise = 0.0;                 // std of each reading's sensor noise, dataset units
+  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  void validate() const;
 };
 
 class SimulatedWorld {

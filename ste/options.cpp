@@ -1,0 +1,100 @@
+// The range checks of STE's options structs (ste/README.md, "Options"). Field
+// names are the options' dotted paths under "ste."; the filament plume of the
+// simulated world and the physics model's advection-diffusion check their own
+// fields ("plume.*", dataset/).
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/option_check.hpp"
+#include "ste/evaluation.hpp"
+#include "ste/scenario.hpp"
+
+namespace plumekit::ste {
+
+void LikelihoodOptions::validate() const {
+  check_non_negative("ste.likelihood.sigma_m", sigma_m, 1e9, "concentration units",
+                     "the thesis uses 30");
+  check_non_negative("ste.likelihood.sigma_d", sigma_d, 1e9, "concentration units",
+                     "0 in simulation, 125 in the thesis's wind tunnel");
+  if (!(variance() > 0.0))
+    throw OptionError("ste.likelihood.sigma_m",
+                      "sigma_m and sigma_d are both 0, so no reading could differ from the "
+                      "model; give either a positive value (the thesis uses sigma_m 30)");
+  check_non_negative("ste.likelihood.sigma_rel", sigma_rel, 100.0, "", "0 means none");
+  check_non_negative("ste.likelihood.sigma_std", sigma_std, 100.0, "", "0 means none");
+}
+
+void BinOptions::validate() const {
+  check_positive("ste.bins.x", x, 100.0, "m", "the thesis's bins are 0.5 m");
+  check_positive("ste.bins.y", y, 100.0, "m", "the thesis's bins are 0.2 m");
+}
+
+void MhOptions::validate() const {
+  check_count("ste.mh.iterations", iterations, 1, 100'000'000, "the default is 4000");
+  check_count("ste.mh.burn_in", burn_in, 0, iterations - 1LL,
+              "it must be less than ste.mh.iterations; the default is 1000");
+  check_positive("ste.mh.proposal", proposal, 1.0, "of each parameter's range",
+                 "the default is 0.05");
+}
+
+void NavigationOptions::validate() const {
+  check_positive("ste.navigation.step", step, 100.0, "m", "the default is 0.5 m");
+  check_count("ste.navigation.lattice", lattice, 1, 20, "the default is 2 (5 x 5 candidates)");
+  check_non_negative("ste.navigation.alpha", alpha, 1.0, "", "the default is 0.5");
+  check_non_negative("ste.navigation.beta", beta, 1.0, "", "the default is 0.75");
+}
+
+void StopOptions::validate() const {
+  check_non_negative("ste.stop.entropy_fraction", entropy_fraction, 1.0, "", "the default is 0.02");
+  check_count("ste.stop.max_samples", max_samples, 1, 100'000, "the default is 50");
+}
+
+void WorldOptions::validate() const {
+  filament.validate();
+  check_positive("ste.world.speed", speed, 100.0, "m/s", "the default is 0.5 m/s");
+  check_positive("ste.world.sample_seconds", sample_seconds, 3600.0, "s", "the thesis uses 5 s");
+  check_positive("ste.world.sample_rate", sample_rate, 1000.0, "Hz", "the thesis uses 10 Hz");
+  check_non_negative("ste.world.noise", noise, 1e9, "concentration units",
+                     "0 means a noise-free sensor");
+}
+
+void PhysicsPlumeOptions::validate() const {
+  check_positive("ste.physics.source_cell", source_cell, 10.0, "m", "the default is 0.1 m");
+  advection_diffusion.validate();
+  check_positive("ste.physics.scale_lo", scale_lo, 1e6, "", "1 is the dataset's release rate");
+  check_range("ste.physics.scale_hi", scale_hi, scale_lo, 1e6, "",
+              "it must be at least ste.physics.scale_lo");
+}
+
+void GaussianPlumeBounds::validate() const {
+  check_positive("ste.gaussian.q_max", q_max, 1e12, "", "the default is 10000");
+  check_positive("ste.gaussian.a_min", a_min, 10.0, "", "the default is 0.01");
+  check_range("ste.gaussian.a_max", a_max, a_min, 10.0, "", "it must be at least a_min");
+  check_positive("ste.gaussian.b_min", b_min, 100.0, "m", "the default is 0.02 m");
+  check_range("ste.gaussian.b_max", b_max, b_min, 100.0, "m", "it must be at least b_min");
+}
+
+void SteOptions::validate() const {
+  likelihood.validate();
+  bins.validate();
+  mh.validate();
+  navigation.validate();
+  stop.validate();
+  world.validate();
+  physics.validate();
+  gaussian.validate();
+  check_non_negative("ste.margin", margin, 10.0, "m", "the thesis's clearance is 0.15 m");
+  check_positive("ste.surrogate_cell", surrogate_cell, 10.0, "m", "the default is 0.2 m");
+  check_count("ste.table_threads", table_threads, 1, 1024);
+  check_non_negative("ste.min_start_distance", min_start_distance, 1000.0, "m",
+                     "the default is 1 m");
+}
+
+void EvaluationOptions::validate() const {
+  check_count("evaluation.runs", runs, 1, 1'000'000, "the default is 3");
+  check_count("evaluation.threads", threads, 1, 1024);
+  check_count("evaluation.sources", sources, 0, 1'000'000, "0 means all of each map's sources");
+  ste.validate();
+}
+
+}  // namespace plumekit::ste

@@ -1,0 +1,112 @@
+// STE's options checks: each field is refused by the library with its name and
+// range (before the wind is solved), the flow's cell faults are reported as the
+// map's, and oversized source grids are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/memory_limit.hpp"
+#include "ste/evaluation.hpp"
+#include "ste/scenario.hpp"
+
+namespace plumekit::ste {
+namespace {
+
+void expect_has(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+template <class F>
+void expect_option_error(F&& f, const std::string& field, const std::string& part) {
+  try {
+    f();
+    ADD_FAILURE() << field << ": no OptionError";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), field);
+    expect_has(e.message(), part);
+    EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SteOptions, EveryDefectNamesTheFieldAndTheRange) {
+  struct Case {
+    const char* field;
+    void (*set)(SteOptions&);
+    const char* says;
+  } cases[] = {
+      {"ste.world.noise", [](SteOptions& o) { o.world.noise = NAN; }, "got nan"},
+      {"ste.world.noise", [](SteOptions& o) { o.world.noise = -1.0; }, "got -1"},
+      {"ste.world.speed", [](SteOptions& o) { o.world.speed = 0.0; }, "more than 0"},
+      {"ste.likelihood.sigma_m", [](SteOptions& o) { o.likelihood.sigma_m = INFINITY; }, "got inf"},
+      {"ste.likelihood.sigma_m",
+       [](SteOptions& o) {
+         o.likelihood.sigma_m = 0.0;
+         o.likelihood.sigma_d = 0.0;
+       },
+       "both 0"},
+      {"ste.navigation.alpha", [](SteOptions& o) { o.navigation.alpha = 1.5; }, "from 0 to 1"},
+      {"ste.navigation.lattice", [](SteOptions& o) { o.navigation.lattice = 0; }, "from 1 to 20"},
+      {"ste.stop.max_samples", [](SteOptions& o) { o.stop.max_samples = 0; }, "from 1"},
+      {"ste.mh.burn_in", [](SteOptions& o) { o.mh.burn_in = 5000; }, "from 0 to 3999"},
+      {"ste.physics.source_cell", [](SteOptions& o) { o.physics.source_cell = NAN; }, "got nan"},
+      {"ste.physics.scale_hi", [](SteOptions& o) { o.physics.scale_hi = 0.5; }, "from 1 to"},
+      {"plume.release_rate", [](SteOptions& o) { o.world.filament.release_rate = NAN; }, "got nan"},
+      {"plume.diffusivity", [](SteOptions& o) { o.physics.advection_diffusion.diffusivity = -1.0; },
+       "got -1"},
+      {"ste.margin", [](SteOptions& o) { o.margin = 1e300; }, "got 1e+300"},
+  };
+  const Map map = default_arena();
+  for (const Case& c : cases) {
+    SteOptions o;
+    c.set(o);
+    expect_option_error([&] { Scenario s(map, o); }, c.field, c.says);
+  }
+  EXPECT_NO_THROW(SteOptions().validate());
+}
+
+TEST(EvaluationOptions, CountsAreCheckedBeforeAnyWork) {
+  EvaluationOptions o;
+  o.runs = 0;
+  expect_option_error([&] { evaluate({default_arena()}, o); }, "evaluation.runs", "from 1");
+  o = EvaluationOptions{};
+  o.ste.world.noise = NAN;
+  expect_option_error([&] { evaluate({default_arena()}, o); }, "ste.world.noise", "got nan");
+}
+
+TEST(Scenario, FlowCellFaultIsReportedAsTheMapsWithoutAFlag) {
+  // Two blocks 3 cm apart: the flow's 5 cm grid would close the gap.
+  Map map = default_arena();
+  map.name = "narrow";
+  map.obstacles.push_back({{3.0, 0.0}, {4.0, 0.0}, {4.0, 1.9}, {3.0, 1.9}});
+  map.obstacles.push_back({{3.0, 1.93}, {4.0, 1.93}, {4.0, 4.0}, {3.0, 4.0}});
+  try {
+    Scenario s(map, SteOptions{});
+    FAIL() << "no InputError";
+  } catch (const OptionError& e) {
+    FAIL() << "an OptionError names a field STE has no setting for: " << e.what();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    expect_has(m, "map narrow: STE solves the wind on cells of 0.05 m");
+    expect_has(m, "0.03 m apart");
+    EXPECT_EQ(m.find("--"), std::string::npos) << m;
+  }
+}
+
+TEST(Scenario, OversizedSourceGridIsRefused) {
+  SteOptions o;
+  o.physics.source_cell = 1e-4;  // 100000 x 40000 candidate cells
+  expect_option_error([&] { Scenario s(default_arena(), o); }, "ste.physics.source_cell",
+                      "more than 1e+08");
+  set_memory_limit(parse_memory_size("64M"));
+  o.physics.source_cell = 0.005;  // 1.6 million cells, 205 MB
+  try {
+    Scenario s(default_arena(), o);
+    ADD_FAILURE() << "no MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    expect_has(e.what(), "use a larger ste.physics.source_cell (");
+  }
+  set_memory_limit(default_memory_limit());
+}
+
+}  // namespace
+}  // namespace plumekit::ste
