@@ -222,7 +222,8 @@ RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_
     }
   }
   throw InputError("random maps: no acceptable " + r.family + " map in " +
-                   std::to_string(o.max_attempts) + " draws; relax min_gap or robot_margin");
+                   std::to_string(o.max_attempts) +
+                   " draws; use a smaller maps.min_gap or maps.robot_margin, or a larger arena");
 }
 
 std::vector<Vec2> random_sources(const Map& map, int count, double clearance, std::uint64_t seed,
@@ -233,7 +234,8 @@ std::vector<Vec2> random_sources(const Map& map, int count, double clearance, st
   while (static_cast<int>(out.size()) < count) {
     if (++tries > 1000 * (count + 1))
       throw InputError("random sources: map " + map.name + " has too little free space at " +
-                       std::to_string(clearance) + " m clearance");
+                       compact(clearance) +
+                       " m clearance; use a smaller dataset.source_clearance or fewer sources");
     const Vec2 p{d.uniform(clearance, map.width - clearance),
                  d.uniform(clearance, map.height - clearance)};
     if (signed_distance(map, p) >= clearance) out.push_back(p);

@@ -178,7 +178,7 @@ Vec2 Scenario::random_start(Vec2 source, std::uint64_t seed) const {
     if (space_->contains(p) && space_->region_of(p) == region) return p;
   }
   throw InputError("map " + map_.name + ": no free start found " +
-                   std::to_string(options_.min_start_distance) + " m from the source");
+                   compact(options_.min_start_distance) + " m from the source");
 }
 
 LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {

@@ -3,16 +3,20 @@
 // the bounded grid check of huge arenas.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cfloat>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 
 #include "core/error.hpp"
 #include "core/map_render.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/rasterize.hpp"
+#include "core/ros_import.hpp"
 
 namespace plumekit {
 namespace {
@@ -162,6 +166,32 @@ TEST(MapRender, HugeArenaPictureIsRefusedWithTheScaleThatFits) {
   } catch (const MemoryLimitError& e) {
     EXPECT_NE(std::string(e.what()).find("render.px_per_m"), std::string::npos) << e.what();
   }
+}
+
+TEST(RosImport, ImageTooBigForTheLimitIsRefusedFromItsHeader) {
+  // Headers that claim 100000 x 100000 pixels (240 GB to import) and carry no
+  // pixels: refused before any pixel is read, naming the image's size.
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("plumekit_ros_limit_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string png_header("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\x01\x86\xa0\0\x01\x86\xa0", 24);
+  for (const auto& [name, header] :
+       {std::pair<std::string, std::string>{"big.pgm", "P5\n# a comment\n100000 100000\n255\n"},
+        {"big.png", png_header}}) {
+    std::ofstream(dir / name, std::ios::binary) << header;
+    std::ofstream(dir / "big.yaml") << "image: " << name
+                                    << "\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+                                       "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    try {
+      import_ros_map(dir / "big.yaml", {});
+      ADD_FAILURE() << name << ": no MemoryLimitError";
+    } catch (const MemoryLimitError& e) {
+      EXPECT_NE(std::string(e.what()).find("importing the 1e+05 x 1e+05 px image"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
