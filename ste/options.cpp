@@ -45,7 +45,9 @@ void NavigationOptions::validate() const {
 }
 
 void StopOptions::validate() const {
-  check_non_negative("ste.stop.entropy_fraction", entropy_fraction, 1.0, "", "the default is 0.02");
+  // 1 or more stops after the first sample (a test uses it).
+  check_non_negative("ste.stop.entropy_fraction", entropy_fraction, 100.0, "",
+                     "the default is 0.02; 1 or more stops after the first sample");
   check_count("ste.stop.max_samples", max_samples, 1, 100'000, "the default is 50");
 }
 
