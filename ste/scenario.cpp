@@ -48,18 +48,21 @@ cfd::WindField solve_wind(const Map& map) {
 }
 
 // Bytes per candidate source cell: the estimators' sums and likelihoods and
-// one table column, a few doubles each.
+// one table column, a few doubles each. The surrogate also keeps, per cell,
+// its predicted mean and std plumes on the 64 x 64 grid as float32.
 constexpr double kBytesPerSourceCell = 128.0;
+constexpr double kSurrogateBytesPerSourceCell = kBytesPerSourceCell + 2 * 4 * 64 * 64;
 
-void check_source_grid(const Map& map, double cell, const std::string& field) {
+void check_source_grid(const Map& map, double cell, const std::string& field,
+                       double bytes_per_cell) {
   const double cells = std::round(map.width / cell) * std::round(map.height / cell);
-  const double most = std::min(1e8, memory_limit() / kBytesPerSourceCell);
+  const double most = std::min(1e8, memory_limit() / bytes_per_cell);
   const std::string fit = compact(1.01 * std::sqrt(map.width * map.height / most));
   if (cells > 1e8)
     throw OptionError(field, compact(cell) + " m gives " + compact(cells) +
                                  " candidate source cells, more than 1e+08; use at least " + fit +
                                  " m");
-  check_memory(cells * kBytesPerSourceCell,
+  check_memory(cells * bytes_per_cell,
                "the source grid of " + compact(cells) + " cells of " + compact(cell) + " m",
                "use a larger " + field + " (" + fit + " m fits)");
 }
@@ -104,9 +107,11 @@ std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t sour
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
   options.validate();
   if (options.model == PlumeModelKind::Physics)
-    check_source_grid(map_, options.physics.source_cell, "ste.physics.source_cell");
+    check_source_grid(map_, options.physics.source_cell, "ste.physics.source_cell",
+                      kBytesPerSourceCell);
   if (options.model == PlumeModelKind::Surrogate)
-    check_source_grid(map_, options.surrogate_cell, "ste.surrogate_cell");
+    check_source_grid(map_, options.surrogate_cell, "ste.surrogate_cell",
+                      kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
   wind_ = solve_wind(map_);
   wind_seconds_ = since(t0);

@@ -105,6 +105,18 @@ TEST(Scenario, OversizedSourceGridIsRefused) {
   } catch (const MemoryLimitError& e) {
     expect_has(e.what(), "use a larger ste.physics.source_cell (");
   }
+  // The surrogate keeps two 64 x 64 plumes per cell: 2 cm cells on 10 x 4 m are 3.3 GB.
+  set_memory_limit(parse_memory_size("1G"));
+  SteOptions surrogate;
+  surrogate.model = PlumeModelKind::Surrogate;
+  surrogate.surrogate_cell = 0.02;
+  try {
+    Scenario s(default_arena(), surrogate);
+    ADD_FAILURE() << "no MemoryLimitError";
+  } catch (const MemoryLimitError& e) {
+    expect_has(e.what(), "the source grid of 1e+05 cells of 0.02 m");
+    expect_has(e.what(), "use a larger ste.surrogate_cell (");
+  }
   set_memory_limit(default_memory_limit());
 }
 
