@@ -1,6 +1,12 @@
 #include "ste/surrogate_plume.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iostream>
 #include <memory>
 #include <sstream>
 
@@ -17,8 +23,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Version 2 holds the std plumes after the mean plumes.
-constexpr char kMagic[8] = {'P', 'K', 'S', 'T', 'B', 'L', '2', '\n'};
+// Version 3: a key, the table's sizes, the mean then the std plumes, and a SHA-256 of all of it.
+constexpr char kMagic[8] = {'P', 'K', 'S', 'T', 'B', 'L', '3', '\n'};
+constexpr std::size_t kKeyChars = 64;
+constexpr std::size_t kHeader = sizeof(kMagic) + kKeyChars + 8;  // + rows, per (u32 each)
+constexpr std::size_t kDigest = 32;
 
 // The map's geometry (not its name or ground-truth sources, which do not change a plume).
 std::string geometry_text(const Map& map) {
@@ -28,7 +37,118 @@ std::string geometry_text(const Map& map) {
   return map_to_json(m).dump();
 }
 
+std::uint32_t read_u32_le(const char* p) {
+  const auto* b = reinterpret_cast<const unsigned char*>(p);
+  return std::uint32_t{b[0]} | (std::uint32_t{b[1]} << 8) | (std::uint32_t{b[2]} << 16) |
+         (std::uint32_t{b[3]} << 24);
+}
+
+void append_u32_le(std::string& out, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i)
+    out.push_back(static_cast<char>((v >> (8 * i)) & 0xFF));
+}
+
+bool is_lower_hex(std::string_view s) {
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+// Reads `count` floats at `p`, each finite and >= 0 (the model clamps negative plumes to 0).
+std::vector<float> read_plumes(const char* p, std::size_t count, const char* which,
+                               std::uint32_t per, const std::string& name) {
+  std::vector<float> v(count);
+  std::memcpy(v.data(), p, count * sizeof(float));
+  for (std::size_t k = 0; k < count; ++k)
+    if (!std::isfinite(v[k]) || v[k] < 0.0f) {
+      std::ostringstream os;
+      os << name << ": " << which << " plume " << k / per << " cell " << k % per << " holds "
+         << v[k] << ", not a finite concentration >= 0 (the file is damaged)";
+      throw InputError(os.str());
+    }
+  return v;
+}
+
+// Before the (long) table build: the cache folder exists or is made, and a file can be written
+// in it. Only a file of the cache's own name (and its probe) is ever created there.
+void prepare_cache_dir(const fs::path& dir, const fs::path& file) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (fs::exists(st) && !fs::is_directory(st))
+    throw InputError("table cache " + dir.string() +
+                     ": exists and is not a folder; name a folder for the surrogate tables (it is "
+                     "created if missing)");
+  if (!fs::exists(st)) {
+    fs::create_directories(dir, ec);
+    if (ec)
+      throw InputError("table cache " + dir.string() + ": cannot create the folder (" +
+                       ec.message() + "); name a folder you can write");
+  }
+  const fs::file_status fst = fs::symlink_status(file, ec);
+  if (fs::exists(fst) && !fs::is_regular_file(fs::status(file, ec)))
+    throw InputError("table cache " + file.string() +
+                     ": exists and is not a table file; move it away or name another folder");
+  const fs::path probe = file.string() + ".probe-" + std::to_string(::getpid());
+  bool writable = false;
+  {
+    std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+    out << "probe";
+    out.close();
+    writable = static_cast<bool>(out);
+  }
+  fs::remove(probe, ec);
+  if (!writable)
+    throw InputError("table cache " + dir.string() +
+                     ": cannot write in this folder (permission or a full disk?); name a folder "
+                     "you can write, or run without a table cache");
+}
+
+void print_note(const std::string& note) {
+  std::cerr << "plumekit: note: " << note << "\n";
+}
+
 }  // namespace
+
+SurrogateTable parse_table_cache(std::string_view bytes, const std::string& name) {
+  const auto fail = [&](const std::string& what) { return InputError(name + ": " + what); };
+  if (bytes.size() < sizeof(kMagic) || bytes.compare(0, 6, "PKSTBL") != 0)
+    throw fail("not a surrogate table cache (wrong magic)");
+  if (bytes.compare(0, sizeof(kMagic), std::string_view(kMagic, sizeof(kMagic))) != 0)
+    throw fail("an older or unknown table cache format (this plumekit reads PKSTBL3)");
+  if (bytes.size() < kHeader + kDigest)
+    throw fail("truncated: " + std::to_string(bytes.size()) +
+               " bytes, shorter than the header and checksum");
+  const std::string_view body = bytes.substr(0, bytes.size() - kDigest);
+  const Sha256Digest digest = sha256(body);
+  if (bytes.compare(body.size(), kDigest,
+                    std::string_view(reinterpret_cast<const char*>(digest.data()), kDigest)) != 0)
+    throw fail("checksum mismatch (the file is truncated or damaged)");
+  SurrogateTable t;
+  t.key = std::string(bytes.substr(sizeof(kMagic), kKeyChars));
+  if (!is_lower_hex(t.key)) throw fail("the key is not 64 hex digits");
+  t.rows = read_u32_le(bytes.data() + sizeof(kMagic) + kKeyChars);
+  t.per = read_u32_le(bytes.data() + sizeof(kMagic) + kKeyChars + 4);
+  const std::uint64_t cells = std::uint64_t{t.rows} * t.per;  // < 2^64: both are u32
+  const std::uint64_t data = body.size() - kHeader;
+  if (t.per == 0 || cells > data / (2 * sizeof(float)) || 2 * sizeof(float) * cells != data)
+    throw fail(std::to_string(data) + " bytes of plumes do not hold 2 x " + std::to_string(t.rows) +
+               " rows x " + std::to_string(t.per) + " float32 cells");
+  const char* p = bytes.data() + kHeader;
+  t.mean = read_plumes(p, cells, "mean", t.per, name);
+  t.std = read_plumes(p + cells * sizeof(float), cells, "std", t.per, name);
+  return t;
+}
+
+std::string table_cache_bytes(const SurrogateTable& t) {
+  std::string bytes(kMagic, sizeof(kMagic));
+  bytes += t.key;
+  append_u32_le(bytes, t.rows);
+  append_u32_le(bytes, t.per);
+  bytes.append(reinterpret_cast<const char*>(t.mean.data()), t.mean.size() * sizeof(float));
+  bytes.append(reinterpret_cast<const char*>(t.std.data()), t.std.size() * sizeof(float));
+  const Sha256Digest digest = sha256(bytes);
+  bytes.append(reinterpret_cast<const char*>(digest.data()), digest.size());
+  return bytes;
+}
 
 SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
     : map_(map),
@@ -57,7 +177,7 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   const std::size_t per = grid_.size();
 
   Sha256 h;
-  h.update("plumekit-surrogate-table/2\n");
+  h.update("plumekit-surrogate-table/2\n");  // the key's own version; the file's is kMagic
   h.update(sha256_hex(geometry_text(map)) + "\n" + sha256_file(o.model) + "\n");
   std::ostringstream g;
   g.precision(17);
@@ -65,25 +185,28 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   h.update(g.str());
   key_ = h.hex_digest();
 
-  const fs::path file = o.cache_dir.empty()
-                            ? fs::path()
-                            : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");
+  cache_file_ = o.cache_dir.empty()
+                    ? fs::path()
+                    : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");
   const std::size_t floats = cells.size() * per;  // of each table
-  const std::size_t header = sizeof(kMagic) + 64;
-  if (!file.empty() && fs::exists(file)) {
-    const std::string bytes = read_file(file);
-    if (bytes.size() == header + 2 * floats * sizeof(float) &&
-        std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) == 0 &&
-        bytes.compare(sizeof(kMagic), 64, key_) == 0) {
-      table_.resize(floats);
-      table_std_.resize(floats);
-      std::memcpy(table_.data(), bytes.data() + header, floats * sizeof(float));
-      std::memcpy(table_std_.data(), bytes.data() + header + floats * sizeof(float),
-                  floats * sizeof(float));
-      from_cache_ = true;
-      return;
+  const auto note = [&](const std::string& text) { (o.on_note ? o.on_note : print_note)(text); };
+  if (!cache_file_.empty()) {
+    prepare_cache_dir(o.cache_dir, cache_file_);
+    if (fs::exists(cache_file_)) {
+      try {
+        SurrogateTable t = parse_table_cache(read_file(cache_file_), cache_file_.string());
+        if (t.key != key_ || t.rows != cells.size() || t.per != per)
+          throw InputError(cache_file_.string() +
+                           ": made for another map, model or source grid (its key differs)");
+        table_ = std::move(t.mean);
+        table_std_ = std::move(t.std);
+        from_cache_ = true;
+        return;
+      } catch (const InputError& e) {
+        rebuilt_because_ = e.what();
+        note("table cache " + rebuilt_because_ + "; rebuilding the table");
+      }
     }
-    // A stale or damaged file is rebuilt and replaced below.
   }
   table_.resize(floats);
   table_std_.resize(floats);
@@ -96,13 +219,19 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
       std::memcpy(table_std_.data() + (first + k) * per, p[k].std.data(), per * sizeof(float));
     }
   }
-  if (!file.empty()) {
-    fs::create_directories(o.cache_dir);
-    std::string bytes(kMagic, sizeof(kMagic));
-    bytes += key_;
-    bytes.append(reinterpret_cast<const char*>(table_.data()), floats * sizeof(float));
-    bytes.append(reinterpret_cast<const char*>(table_std_.data()), floats * sizeof(float));
-    write_file_atomic(file, bytes);
+  if (!cache_file_.empty()) {
+    SurrogateTable t;
+    t.key = key_;
+    t.rows = static_cast<std::uint32_t>(cells.size());
+    t.per = static_cast<std::uint32_t>(per);
+    t.mean = table_;
+    t.std = table_std_;
+    try {
+      write_file_atomic(cache_file_, table_cache_bytes(t));
+    } catch (const InputError& e) {
+      // The table is built and correct: losing only its cache is not worth failing the run.
+      note("table cache " + std::string(e.what()) + "; the table is used without being cached");
+    }
   }
 }
 

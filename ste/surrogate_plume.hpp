@@ -5,11 +5,15 @@
 // threads, so that during a run readings_at(p) is one bilinear lookup per
 // cell and no network runs inside the loop. The table can be cached on disk,
 // keyed by the SHA-256 of the map's geometry, of the model file and of the
-// source grid. The release rate is a scale factor on the table (parameter
-// release_scale), fixed or marginalised by the grid estimator.
+// source grid, and carries a SHA-256 of its own bytes: a damaged or stale
+// file is rebuilt (with a note), never trusted. The release rate is a scale
+// factor on the table (parameter release_scale), fixed or marginalised by the
+// grid estimator.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "ste/plume_model.hpp"
@@ -21,9 +25,28 @@ struct SurrogatePlumeOptions {
   double source_cell = 0.2;     // m: 50 x 20 candidate sources on the 10 x 4 arena
   int threads = 2;              // for the table build
   int batch = 32;
-  std::filesystem::path cache_dir;  // empty: no disk cache
+  // Empty: no disk cache. Created if missing; it must be a writable folder, checked before the
+  // table is built. Only files named surrogate-table-*.bin (and their temporaries) are written.
+  std::filesystem::path cache_dir;
   double scale_lo = 1.0, scale_hi = 1.0;
+  // Told why a cache file was not used and is rebuilt (damaged, stale, older format). Null: a
+  // "plumekit: note: ..." line on stderr.
+  std::function<void(const std::string&)> on_note;
 };
+
+// A table cache file's contents (format in ste/README.md, "Table cache").
+struct SurrogateTable {
+  std::string key;               // 64 hex digits: map geometry, model file, source grid
+  std::uint32_t rows = 0;        // allowed source cells
+  std::uint32_t per = 0;         // plume cells of one row (grid ny * nx)
+  std::vector<float> mean, std;  // [rows][per] each; finite, >= 0
+};
+
+// Parses table cache bytes (`name` names them in messages): magic and version, sizes, the SHA-256
+// of the content, finite non-negative values. InputError naming `name` and the fault otherwise.
+SurrogateTable parse_table_cache(std::string_view bytes, const std::string& name);
+// The bytes parse_table_cache reads back.
+std::string table_cache_bytes(const SurrogateTable& table);
 
 class SurrogatePlume final : public SourceTableModel {
  public:
@@ -37,7 +60,10 @@ class SurrogatePlume final : public SourceTableModel {
   std::vector<double> spreads_at(Vec2 p) const override;
 
   bool from_cache() const { return from_cache_; }
-  const std::string& key() const { return key_; }  // the cache key (hex)
+  // Why an existing cache file was rebuilt; empty when it was used or there was none.
+  const std::string& cache_rebuilt_because() const { return rebuilt_because_; }
+  const std::filesystem::path& cache_file() const { return cache_file_; }  // empty: no cache
+  const std::string& key() const { return key_; }                          // the cache key (hex)
   const GridShape& plume_grid() const { return grid_; }
 
  private:
@@ -52,6 +78,8 @@ class SurrogatePlume final : public SourceTableModel {
   std::vector<double> lookup(const std::vector<float>& table, Vec2 p) const;
   std::string key_;
   bool from_cache_ = false;
+  std::string rebuilt_because_;
+  std::filesystem::path cache_file_;
 };
 
 }  // namespace plumekit::ste
