@@ -17,6 +17,7 @@
 #include "core/map_render.hpp"
 #include "core/npy.hpp"
 #include "core/progress.hpp"
+#include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/plume.hpp"
@@ -332,27 +333,29 @@ void add_show(CLI::App* group) {
   add_json_flag(cmd);
   cmd->callback([a] {
     const fs::path dir = a->dir;
-    const auto m = nlohmann::ordered_json::parse(read_file(dir / "manifest.json"));
+    // The one validating reader: the manifest, then the drawn shard against its checksums.
+    const Manifest m = read_manifest(dir / "manifest.json");
     long long start = 0;
-    for (const auto& s : m.at("shards")) {
-      const long long n = s.at("samples").get<long long>();
+    for (const ManifestShard& s : m.shards) {
+      const long long n = s.samples;
       if (a->index < start || a->index >= start + n) {
         start += n;
         continue;
       }
       const int k = static_cast<int>(a->index - start);
-      const fs::path sd = dir / "shards" / s.at("name").get<std::string>();
-      const NpyArray in = read_npy(sd / "inputs.npy"), tg = read_npy(sd / "targets.npy");
-      const NpyArray src = read_npy(sd / "sources.npy");
-      const Map map = read_map(dir / s.at("map").get<std::string>());
+      const ShardArrays arrays = read_shard(dir, s);
+      const Map map = read_map(dir / s.map);
       const GridShape g = feature_grid(map);
-      auto channel = [&](const NpyArray& arr, int channels, int c) {
+      if (g.size() != static_cast<std::size_t>(arrays.nx) * arrays.ny)
+        throw InputError((dir / s.map).string() + ": its feature grid is not the shard's");
+      auto channel = [&](const std::vector<float>& arr, int channels, int c) {
         Grid<double> f(g, 0.0);
         const std::size_t off = (static_cast<std::size_t>(k) * channels + c) * g.size();
-        std::copy(arr.values.begin() + off, arr.values.begin() + off + g.size(), f.values.begin());
+        std::copy(arr.begin() + off, arr.begin() + off + g.size(), f.values.begin());
         return f;
       };
-      const Vec2 source{src.values[2 * k], src.values[2 * k + 1]};
+      const Vec2 source{arrays.sources[2 * k], arrays.sources[2 * k + 1]};
+      const std::vector<float>&in = arrays.inputs, &tg = arrays.targets;
       std::vector<cv::Mat> panels{
           panel(map, channel(in, 3, 0), "input 0: region label", "label", source),
           panel(map, channel(in, 3, 1), "input 1: signed distance to surfaces", "m", source),
@@ -362,12 +365,12 @@ void add_show(CLI::App* group) {
       cv::Mat img;
       cv::vconcat(panels, img);
       write_png(img, a->out);
-      nlohmann::ordered_json j{{"ok", true},         {"out", a->out},
-                               {"index", a->index},  {"shard", s.at("name")},
-                               {"map", s.at("map")}, {"source", {source.x, source.y}}};
+      nlohmann::ordered_json j{{"ok", true},        {"out", a->out},
+                               {"index", a->index}, {"shard", s.name},
+                               {"map", s.map},      {"source", {source.x, source.y}}};
       std::ostringstream human;
-      human << "wrote " << a->out << ": sample " << a->index << " ("
-            << s.at("name").get<std::string>() << ", source " << to_string(source) << ")";
+      human << "wrote " << a->out << ": sample " << a->index << " (" << s.name << ", source "
+            << to_string(source) << ")";
       report(j, human.str());
       return;
     }

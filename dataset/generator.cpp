@@ -17,6 +17,7 @@
 #include "core/map_json.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
+#include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
 #include "dataset/seed.hpp"
 #include "core/sha256.hpp"
@@ -100,19 +101,25 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
   check_run_options(o, run);
 
   // A dataset directory belongs to one set of parameters.
+  // Checked before anything is written, naming each parameter that differs.
   const nlohmann::ordered_json params = parameters_json(o);
+  const fs::path pfile = out / "parameters.json";
+  const bool resumed = fs::exists(pfile);
+  if (resumed) {
+    const std::vector<std::string> diff = parameter_differences(params, read_parameters(pfile));
+    if (!diff.empty()) {
+      std::string list;
+      for (const std::string& d : diff)
+        list += "\n  " + d;
+      throw InputError(out.string() + " holds a dataset made with other parameters (" +
+                       pfile.string() + "):" + list +
+                       "\nuse another --out, or the dataset's parameters to resume it");
+    }
+  }
   fs::create_directories(out / "maps");
   fs::create_directories(out / "wind");
   fs::create_directories(out / "shards");
-  const fs::path pfile = out / "parameters.json";
-  if (fs::exists(pfile)) {
-    if (nlohmann::ordered_json::parse(read_file(pfile)) != params)
-      throw InputError(out.string() +
-                       " holds a dataset made with other parameters (parameters.json); use "
-                       "another --out or the same parameters");
-  } else {
-    write_file_atomic(pfile, params.dump(2) + "\n");
-  }
+  if (!resumed) write_file_atomic(pfile, params.dump(2) + "\n");
   remove_temporaries(out / "maps");
   remove_temporaries(out / "wind");
   remove_temporaries(out / "shards");
@@ -164,10 +171,12 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
         Map map;
         std::string family;
         std::optional<cfd::WindField> wind;
-        if (fs::exists(map_file)) wind = read_wind_cache(wind_dir);
+        if (fs::exists(map_file)) {
+          map = read_map(map_file);
+          wind = read_wind_cache(wind_dir, map);  // nullopt when damaged: solved again
+        }
         const bool cached = wind.has_value();
         if (cached) {
-          map = read_map(map_file);
           family = family_from_file();
         } else {
           // A map with no steady flow (vortex shedding behind a bluff body
@@ -258,7 +267,7 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
 
 MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& parts) {
   if (parts.empty()) throw InputError("dataset merge: name at least one part directory");
-  std::vector<std::pair<fs::path, nlohmann::ordered_json>> manifests;
+  std::vector<std::pair<fs::path, Manifest>> manifests;
   std::set<fs::path> seen_dirs;
   for (const fs::path& dir : parts) {
     const fs::path canon = fs::weakly_canonical(dir);
@@ -268,45 +277,47 @@ MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& pa
     for (const auto& e : fs::directory_iterator(dir)) {
       const std::string f = e.path().filename().string();
       if (f.rfind("manifest.part-", 0) == 0 && e.path().extension() == ".json") {
-        manifests.emplace_back(dir, nlohmann::ordered_json::parse(read_file(e.path())));
+        manifests.emplace_back(dir, read_manifest(e.path()));
         any = true;
       }
     }
     if (!any) throw InputError(dir.string() + ": no manifest.part-K-of-N.json in it");
   }
-  const nlohmann::ordered_json& params = manifests.front().second.at("generator");
-  const int n = manifests.front().second.at("part").at("n").get<int>();
-  const int maps = params.at("maps").get<int>();
+  const nlohmann::ordered_json& params = manifests.front().second.generator;
+  const int n = manifests.front().second.part_n;
+  const int maps = manifests.front().second.maps;
   std::set<int> parts_seen;
   std::vector<ShardEntry> entries(maps);
   std::vector<fs::path> from(maps);
   std::vector<bool> have(maps, false);
   MergeSummary summary;
   for (const auto& [dir, m] : manifests) {
-    if (m.at("generator") != params)
+    if (m.generator != params)
       throw InputError(dir.string() + ": its parts were made with other parameters");
-    if (m.at("part").at("n").get<int>() != n)
-      throw InputError(dir.string() + ": parts of different splits (N differs)");
-    parts_seen.insert(m.at("part").at("k").get<int>());
-    for (const auto& s : m.at("shards")) {
-      const int i = s.at("map_index").get<int>();
-      if (i < 0 || i >= maps) throw InputError(dir.string() + ": map index out of range");
+    if (m.part_n != n) throw InputError(dir.string() + ": parts of different splits (N differs)");
+    parts_seen.insert(m.part_k);
+    for (const ManifestShard& s : m.shards) {
+      const int i = s.map_index;  // in 0..maps-1: the generators are equal
       if (have[i]) throw InputError(dir.string() + ": map " + std::to_string(i) + " twice");
       have[i] = true;
       ShardEntry& e = entries[i];
       e.map_index = i;
-      e.family = s.at("family").get<std::string>();
-      e.samples = s.at("samples").get<int>();
-      for (const auto& [name, hex] : s.at("sha256").items())
-        e.checksums[name] = hex.get<std::string>();
+      e.family = s.family;
+      e.samples = s.samples;
+      e.checksums = s.sha256;
       from[i] = dir;
-      const fs::path sd = dir / "shards" / shard_name(i);
-      for (const auto& [name, hex] : e.checksums)
-        if (sha256_file(sd / name) != hex)
-          throw InputError((sd / name).string() + ": checksum does not match its manifest");
+      check_shard(dir / "shards" / s.name, s.sha256);
       ++summary.shards;
       summary.samples += e.samples;
     }
+  }
+  {
+    // The parameters.json copied into `out` must be the parameters of the parts it joins.
+    const fs::path pfile = manifests.front().first / "parameters.json";
+    if (read_parameters(pfile) != params)
+      throw InputError(pfile.string() +
+                       ": differs from the \"generator\" of the part manifests beside it; "
+                       "restore it from one of them");
   }
   for (int k = 0; k < n; ++k)
     if (!parts_seen.count(k))

@@ -31,10 +31,12 @@ inline const char* const kShardFiles[] = {"inputs.npy", "targets.npy", "sources.
 Checksums write_shard(const std::filesystem::path& dir, const ShardArrays& a);
 
 // The checksums of a complete shard whose files all match its checksums.json;
-// nullopt when it is missing, incomplete or corrupt.
+// nullopt when it is missing, incomplete or corrupt (then it is redone). To report
+// the fault instead: check_shard (dataset_reader.hpp).
 std::optional<Checksums> verify_shard(const std::filesystem::path& dir);
 
-// Removes leftovers of interrupted writes (*.tmp-* and *.tmp.* entries) in `dir`.
+// Removes leftovers of interrupted writes in `dir`: *.tmp-* and *.tmp.* entries, and
+// *.plumekit-tmp-PID-N entries whose process is gone.
 void remove_temporaries(const std::filesystem::path& dir);
 
 }  // namespace plumekit::dataset

@@ -1,0 +1,259 @@
+#include "dataset/dataset_reader.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/npy.hpp"
+#include "core/sha256.hpp"
+#include "dataset/manifest.hpp"
+
+namespace plumekit::dataset {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+namespace {
+
+// What to do about a damaged manifest or parameters file: both are rewritten by a resumed run.
+constexpr const char* kRewrite =
+    "; run the same `plumekit dataset generate` again to rewrite it (it keeps complete shards)";
+
+// More maps than any dataset has: a bound that keeps a damaged count from allocating gigabytes.
+constexpr int kMaxMaps = 10'000'000;
+
+[[noreturn]] void fail(const std::string& name, const std::string& key, const std::string& what,
+                       const char* advice = kRewrite) {
+  throw InputError(name + ": " + (key.empty() ? "" : key + ": ") + what + advice);
+}
+
+std::string clip(std::string s) {
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+ordered_json parse_json(std::string_view bytes, const std::string& name,
+                        const char* advice = kRewrite) {
+  try {
+    return ordered_json::parse(bytes.begin(), bytes.end());
+  } catch (const json::parse_error& e) {
+    std::string why = e.what();
+    if (const auto p = why.find("] "); p != std::string::npos) why = why.substr(p + 2);
+    fail(name, "", "not valid JSON (the file is truncated or damaged): " + why, advice);
+  }
+}
+
+const ordered_json& member(const ordered_json& j, const char* key, const std::string& name,
+                           const std::string& where) {
+  if (!j.is_object() || !j.contains(key))
+    fail(name, where.empty() ? key : where + "." + key, "missing");
+  return j.at(key);
+}
+
+long long integer(const ordered_json& j, const char* key, const std::string& name,
+                  const std::string& where, long long lo, long long hi) {
+  const ordered_json& v = member(j, key, name, where);
+  const std::string dotted = where.empty() ? key : where + "." + key;
+  if (!v.is_number_integer()) fail(name, dotted, "expected an integer, found " + clip(v.dump()));
+  const long long x = v.is_number_unsigned() && v.get<unsigned long long>() > 1ull << 62
+                          ? hi + 1
+                          : v.get<long long>();
+  if (x < lo || x > hi)
+    fail(name, dotted,
+         std::to_string(x) + " is outside " + std::to_string(lo) + ".." + std::to_string(hi));
+  return x;
+}
+
+std::string text(const ordered_json& j, const char* key, const std::string& name,
+                 const std::string& where) {
+  const ordered_json& v = member(j, key, name, where);
+  if (!v.is_string())
+    fail(name, where.empty() ? key : where + "." + key,
+         "expected a string, found " + clip(v.dump()));
+  return v.get<std::string>();
+}
+
+bool is_sha256_hex(const std::string& s) {
+  return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) {
+           return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+         });
+}
+
+// An object holding exactly the shard files, each a SHA-256; `where` is its key in `name`.
+Checksums checksums_of(const ordered_json& j, const std::string& name, const std::string& where,
+                       const char* advice) {
+  if (!j.is_object()) fail(name, where, "expected an object of file checksums", advice);
+  Checksums sums;
+  for (const char* file : kShardFiles) {
+    const std::string key = where.empty() ? file : where + "." + file;
+    if (!j.contains(file)) fail(name, key, "missing", advice);
+    const ordered_json& v = j.at(file);
+    if (!v.is_string() || !is_sha256_hex(v.get<std::string>()))
+      fail(name, key, "expected 64 lowercase hex digits (a SHA-256), found " + clip(v.dump()),
+           advice);
+    sums[file] = v.get<std::string>();
+  }
+  if (j.size() != sums.size())
+    for (const auto& [file, v] : j.items())
+      if (!sums.count(file)) fail(name, where, "unexpected file \"" + clip(file) + "\"", advice);
+  return sums;
+}
+
+std::string shown(const json& v) {
+  return v.is_null() ? std::string("none") : clip(v.dump());
+}
+
+void differences(const json& a, const json& b, const std::string& path,
+                 std::vector<std::string>& out) {
+  if (a.is_object() && b.is_object()) {
+    const auto key = [&](const std::string& k) { return path.empty() ? k : path + "." + k; };
+    for (const auto& [k, v] : a.items())
+      differences(v, b.contains(k) ? b.at(k) : json(), key(k), out);
+    for (const auto& [k, v] : b.items())
+      if (!a.contains(k)) differences(json(), v, key(k), out);
+    return;
+  }
+  if (a != b) out.push_back(path + ": this run " + shown(a) + ", the dataset " + shown(b));
+}
+
+}  // namespace
+
+Manifest parse_manifest(std::string_view bytes, const std::string& name) {
+  const ordered_json j = parse_json(bytes, name);
+  if (!j.is_object()) fail(name, "", "expected a JSON object");
+  const std::string format = text(j, "format", name, "");
+  if (format != kDatasetFormat)
+    fail(name, "format", "\"" + clip(format) + "\", this plumekit reads \"" + kDatasetFormat + "\"",
+         "; make the dataset again with this plumekit");
+  Manifest m;
+  m.generator = member(j, "generator", name, "");
+  if (!m.generator.is_object()) fail(name, "generator", "expected an object of parameters");
+  m.maps = static_cast<int>(integer(m.generator, "maps", name, "generator", 1, kMaxMaps));
+  if (j.contains("part")) {
+    m.part_n = static_cast<int>(integer(j.at("part"), "n", name, "part", 1, kMaxMaps));
+    m.part_k = static_cast<int>(integer(j.at("part"), "k", name, "part", 0, m.part_n - 1));
+  }
+  const ordered_json& shards = member(j, "shards", name, "");
+  if (!shards.is_array()) fail(name, "shards", "expected an array");
+  std::set<int> seen;
+  long long sum = 0;
+  for (std::size_t i = 0; i < shards.size(); ++i) {
+    const ordered_json& s = shards[i];
+    const std::string where = "shards[" + std::to_string(i) + "]";
+    if (!s.is_object()) fail(name, where, "expected an object");
+    ManifestShard e;
+    e.map_index = static_cast<int>(integer(s, "map_index", name, where, 0, m.maps - 1));
+    if (e.map_index % m.part_n != m.part_k)
+      fail(name, where + ".map_index",
+           std::to_string(e.map_index) + " does not belong to part " + std::to_string(m.part_k) +
+               " of " + std::to_string(m.part_n));
+    if (!seen.insert(e.map_index).second)
+      fail(name, where + ".map_index", "map " + std::to_string(e.map_index) + " is listed twice");
+    // Names become paths: only the names the generator writes are accepted.
+    e.name = text(s, "name", name, where);
+    if (e.name != shard_name(e.map_index))
+      fail(name, where + ".name",
+           "\"" + clip(e.name) + "\", expected \"" + shard_name(e.map_index) + "\"");
+    e.map = text(s, "map", name, where);
+    const std::string map = "maps/map-" + shard_name(e.map_index).substr(6) + ".json";
+    if (e.map != map)
+      fail(name, where + ".map", "\"" + clip(e.map) + "\", expected \"" + map + "\"");
+    e.family = text(s, "family", name, where);
+    e.samples = static_cast<int>(integer(s, "samples", name, where, 0, 1'000'000'000));
+    e.sha256 = checksums_of(member(s, "sha256", name, where), name, where + ".sha256", kRewrite);
+    sum += e.samples;
+    m.shards.push_back(std::move(e));
+  }
+  if (m.part_n == 1 && static_cast<int>(m.shards.size()) != m.maps)
+    fail(name, "shards",
+         "lists " + std::to_string(m.shards.size()) + " shards for " + std::to_string(m.maps) +
+             " maps");
+  m.samples = integer(j, "samples", name, "", 0, 1ll << 62);
+  if (m.samples != sum)
+    fail(name, "samples",
+         std::to_string(m.samples) + ", but the shards hold " + std::to_string(sum));
+  return m;
+}
+
+Manifest read_manifest(const fs::path& file) {
+  std::error_code ec;
+  if (!fs::exists(file, ec))
+    fail(file.string(), "", "not found: the folder holds no finished dataset",
+         "; name a dataset folder written by `plumekit dataset generate` or `dataset merge`");
+  return parse_manifest(read_file(file), file.string());
+}
+
+ordered_json parse_parameters(std::string_view bytes, const std::string& name) {
+  constexpr const char* advice =
+      "; restore it from the \"generator\" object of the dataset's manifest.json, or use "
+      "another --out";
+  const ordered_json j = parse_json(bytes, name, advice);
+  if (!j.is_object()) fail(name, "", "expected a JSON object of parameters", advice);
+  for (const char* key : {"seed", "maps"})
+    if (!j.contains(key) || !j.at(key).is_number_integer())
+      fail(name, key, j.contains(key) ? "expected an integer" : "missing", advice);
+  return j;
+}
+
+ordered_json read_parameters(const fs::path& file) {
+  return parse_parameters(read_file(file), file.string());
+}
+
+std::vector<std::string> parameter_differences(const json& this_run, const json& dataset) {
+  std::vector<std::string> out;
+  differences(this_run, dataset, "", out);
+  return out;
+}
+
+Checksums parse_checksums(std::string_view bytes, const std::string& name) {
+  constexpr const char* advice =
+      "; the shard is damaged: run the same `plumekit dataset generate` again to redo it";
+  return checksums_of(parse_json(bytes, name, advice), name, "", advice);
+}
+
+void check_shard(const fs::path& dir, const Checksums& expected) {
+  constexpr const char* advice =
+      "; the shard is damaged or was changed: run the same `plumekit dataset generate` again to "
+      "redo it";
+  const fs::path sums_file = dir / "checksums.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(sums_file, ec))
+    fail(sums_file.string(), "", "missing (the shard is incomplete)", advice);
+  const Checksums sums = parse_checksums(read_file(sums_file), sums_file.string());
+  for (const auto& [file, hex] : sums) {
+    if (!expected.empty() && expected.at(file) != hex)
+      fail(sums_file.string(), file, "differs from the dataset's manifest", advice);
+    const fs::path p = dir / file;
+    if (!fs::is_regular_file(p, ec)) fail(p.string(), "", "missing", advice);
+    if (sha256_file(p) != hex) fail(p.string(), "", "checksum mismatch", advice);
+  }
+}
+
+ShardArrays read_shard(const fs::path& dataset_dir, const ManifestShard& entry) {
+  const fs::path dir = dataset_dir / "shards" / entry.name;
+  check_shard(dir, entry.sha256);
+  const auto load = [&](const char* file, std::vector<std::size_t> shape) {
+    NpyArray a = read_npy(dir / file);
+    if (a.shape != shape) {
+      std::string want, got;
+      for (std::size_t d : shape)
+        want += (want.empty() ? "" : ", ") + std::to_string(d);
+      for (std::size_t d : a.shape)
+        got += (got.empty() ? "" : ", ") + std::to_string(d);
+      fail((dir / file).string(), "", "shape (" + got + "), the manifest needs (" + want + ")",
+           "; the dataset is inconsistent: make it again");
+    }
+    return std::vector<float>(a.values.begin(), a.values.end());
+  };
+  ShardArrays a;
+  a.samples = entry.samples;
+  const std::size_t n = entry.samples, ny = a.ny, nx = a.nx;
+  a.inputs = load("inputs.npy", {n, 3, ny, nx});
+  a.targets = load("targets.npy", {n, 2, ny, nx});
+  a.sources = load("sources.npy", {n, 2});
+  return a;
+}
+
+}  // namespace plumekit::dataset

@@ -1,0 +1,59 @@
+#pragma once
+// The one reader of a dataset's own files: manifest.json (and its parts),
+// parameters.json and each shard's checksums.json and arrays. Everything is
+// validated before use; a fault throws InputError naming the file, the key and
+// the fault, and says what to do, so `dataset show`, `dataset merge` and a
+// resumed `dataset generate` never act on a damaged file.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "dataset/shard.hpp"
+
+namespace plumekit::dataset {
+
+struct ManifestShard {
+  std::string name;  // shard-00007 (always shard_name(map_index))
+  int map_index = 0;
+  std::string map;  // maps/map-00007.json (always that form)
+  std::string family;
+  int samples = 0;
+  Checksums sha256;  // exactly the files of kShardFiles
+};
+
+struct Manifest {
+  nlohmann::ordered_json generator;  // the parameters (parameters.json's content)
+  int maps = 0;                      // generator.maps
+  int part_k = 0, part_n = 1;        // part_n 1: a whole dataset, every map once
+  long long samples = 0;             // the sum over the shards
+  std::vector<ManifestShard> shards;
+};
+
+// manifest.json or manifest.part-K-of-N.json from its bytes (`name` names them in messages).
+Manifest parse_manifest(std::string_view bytes, const std::string& name);
+Manifest read_manifest(const std::filesystem::path& file);
+
+// parameters.json: a JSON object with at least "seed" and "maps".
+nlohmann::ordered_json parse_parameters(std::string_view bytes, const std::string& name);
+nlohmann::ordered_json read_parameters(const std::filesystem::path& file);
+
+// One line per parameter that differs, by its dotted key and both values:
+// `filament.release_rate: this run 1000.0, the dataset 500.0`.
+std::vector<std::string> parameter_differences(const nlohmann::json& this_run,
+                                               const nlohmann::json& dataset);
+
+// A shard's checksums.json: exactly the files of kShardFiles, each a 64-digit SHA-256.
+Checksums parse_checksums(std::string_view bytes, const std::string& name);
+
+// Checks a shard folder: its checksums.json against its files and, when `expected` is not empty,
+// against the manifest's checksums. InputError naming the first file that does not match.
+void check_shard(const std::filesystem::path& dir, const Checksums& expected);
+
+// The checked arrays of `entry` in the dataset `dataset_dir` (map_ids left empty: they equal
+// entry.map_index, which the checksum covers): shapes as manifest.json's contract says.
+ShardArrays read_shard(const std::filesystem::path& dataset_dir, const ManifestShard& entry);
+
+}  // namespace plumekit::dataset

@@ -1,0 +1,257 @@
+// The dataset's own files are read back through one validating reader: a damaged manifest.json,
+// parameters.json, checksums.json or shard is exit 2 naming the file, the key and the fault, and
+// leaves the dataset as it was; a resumed run with other parameters names each one and both
+// values; a damaged wind cache is solved again; no provenance field holds an absolute path.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/sha256.hpp"
+#include "dataset/dataset_reader.hpp"
+#include "dataset/generator.hpp"
+#include "support/cli_runner.hpp"
+
+namespace plumekit::dataset {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CliResult;
+
+// Every file under `dir` (relative path -> bytes).
+std::map<std::string, std::string> tree(const fs::path& dir) {
+  std::map<std::string, std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) out[fs::relative(e.path(), dir).string()] = read_file(e.path());
+  return out;
+}
+
+void overwrite(const fs::path& file, const std::string& bytes) {
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+const std::string kGenerate =
+    "dataset generate --maps 1 --sources 2 --seed 7 --cell 0.1 --plume advection-diffusion ";
+
+class DatasetReader : public test::CliTest {
+ protected:
+  // One small dataset made once, copied for each test.
+  static fs::path made() {
+    static const fs::path d = [] {
+      const fs::path p =
+          fs::temp_directory_path() / ("plumekit-dataset-reader-" + std::to_string(::getpid()));
+      fs::remove_all(p);
+      const std::string cmd =
+          std::string(PLUMEKIT_EXE) + " " + kGenerate + "--out " + p.string() + " > /dev/null";
+      EXPECT_EQ(std::system(cmd.c_str()), 0);
+      return p;
+    }();
+    return d;
+  }
+  static void TearDownTestSuite() { fs::remove_all(made()); }
+
+  fs::path data;
+  void SetUp() override {
+    CliTest::SetUp();
+    data = dir / "data";
+    fs::copy(made(), data, fs::copy_options::recursive);
+  }
+
+  std::string expect_refused(const std::string& args, const std::string& needle) {
+    const auto before = tree(data);
+    const CliResult r = run(args);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+    EXPECT_EQ(tree(data), before) << "the dataset changed";
+    return r.err;
+  }
+  std::string show() {
+    return "dataset show " + data.string() + " --index 1 --out " + (dir / "s.png").string();
+  }
+};
+
+std::string refusal(const std::string& bytes) {
+  try {
+    parse_manifest(bytes, "d/manifest.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST_F(DatasetReader, ManifestFaultsNameTheFileTheKeyAndTheFault) {
+  const std::string good = read_file(data / "manifest.json");
+  const Manifest m = parse_manifest(good, "d/manifest.json");
+  EXPECT_EQ(m.maps, 1);
+  EXPECT_EQ(m.samples, 2);
+  ASSERT_EQ(m.shards.size(), 1u);
+  EXPECT_EQ(m.shards[0].name, "shard-00000");
+
+  EXPECT_NE(refusal(good.substr(0, good.size() / 2)).find("d/manifest.json: not valid JSON"),
+            std::string::npos);
+  const auto with = [&](const std::function<void(nlohmann::ordered_json&)>& change) {
+    auto j = nlohmann::ordered_json::parse(good);
+    change(j);
+    return refusal(j.dump());
+  };
+  EXPECT_NE(with([](auto& j) {
+              j["shards"][0]["samples"] = "2";
+            }).find("d/manifest.json: shards[0].samples: expected an integer, found \"2\""),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) {
+              j["shards"][0]["name"] = "../../etc";
+            }).find("shards[0].name: \"../../etc\", expected \"shard-00000\""),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) { j["shards"][0]["map"] = "/etc/passwd"; }).find("shards[0].map"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) {
+              j["shards"][0]["map_index"] = 5;
+            }).find("shards[0].map_index: 5 is outside 0..0"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) {
+              j["shards"][0]["sha256"]["targets.npy"] = "xyz";
+            }).find("shards[0].sha256.targets.npy: expected 64 lowercase hex digits"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) { j["samples"] = 3; }).find("samples: 3, but the shards hold 2"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) { j["format"] = "plumekit-dataset/9"; }).find("format"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) { j["generator"].erase("maps"); }).find("generator.maps: missing"),
+            std::string::npos);
+  EXPECT_NE(with([](auto& j) {
+              j["generator"]["maps"] = 2000000000;
+            }).find("generator.maps: 2000000000 is outside"),
+            std::string::npos);
+  EXPECT_NE(refusal("[]").find("expected a JSON object"), std::string::npos);
+  EXPECT_NE(refusal("").find("not valid JSON"), std::string::npos);
+}
+
+TEST_F(DatasetReader, TruncatedManifestIsExitTwoNamingIt) {
+  const std::string m = read_file(data / "manifest.json");
+  overwrite(data / "manifest.json", m.substr(0, m.size() / 2));
+  expect_refused(show(), (data / "manifest.json").string() + ": not valid JSON");
+  EXPECT_FALSE(fs::exists(dir / "s.png"));
+}
+
+TEST_F(DatasetReader, TruncatedParametersIsExitTwoNamingItAndTheDatasetStaysAsItWas) {
+  const std::string p = read_file(data / "parameters.json");
+  overwrite(data / "parameters.json", p.substr(0, p.size() - 40));
+  const std::string err = expect_refused(kGenerate + "--out " + data.string(),
+                                         (data / "parameters.json").string() + ": not valid JSON");
+  EXPECT_NE(err.find("manifest.json"), std::string::npos) << err;  // says how to restore it
+}
+
+TEST_F(DatasetReader, ShowVerifiesTheShardItDraws) {
+  const fs::path shard = data / "shards" / "shard-00000";
+  const std::string targets = read_file(shard / "targets.npy");
+  std::string flipped = targets;
+  flipped[flipped.size() - 5] ^= 0x01;
+  overwrite(shard / "targets.npy", flipped);
+  expect_refused(show(), (shard / "targets.npy").string() + ": checksum mismatch");
+  EXPECT_FALSE(fs::exists(dir / "s.png"));
+
+  // checksums.json rewritten to match the changed file: the manifest's checksum still catches it.
+  auto sums = nlohmann::ordered_json::parse(read_file(shard / "checksums.json"));
+  sums["targets.npy"] = sha256_hex(flipped);
+  overwrite(shard / "checksums.json", sums.dump(2));
+  expect_refused(show(), (shard / "checksums.json").string() +
+                             ": targets.npy: differs from the dataset's manifest");
+  overwrite(shard / "checksums.json", "{");
+  expect_refused(show(), (shard / "checksums.json").string() + ": not valid JSON");
+
+  // Restored, it draws.
+  fs::remove_all(data);
+  fs::copy(made(), data, fs::copy_options::recursive);
+  const CliResult r = run(show());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "s.png"));
+}
+
+TEST_F(DatasetReader, ResumeWithOtherParametersNamesEachWithBothValues) {
+  std::string err = expect_refused(
+      "dataset generate --maps 1 --sources 2 --seed 7 --cell 0.1 --plume advection-diffusion "
+      "--release-rate 500 --out " +
+          data.string(),
+      "advection_diffusion.release_rate: this run 500.0, the dataset 1000.0");
+  EXPECT_EQ(err.find("seed:"), std::string::npos) << err;  // only what differs
+  err = expect_refused(
+      "dataset generate --maps 1 --sources 3 --seed 8 --cell 0.1 --plume advection-diffusion "
+      "--out " +
+          data.string(),
+      "seed: this run 8, the dataset 7");
+  EXPECT_NE(err.find("sources_per_map: this run 3, the dataset 2"), std::string::npos) << err;
+  // The same parameters resume (nothing to redo).
+  const CliResult r = run(kGenerate + "--out " + data.string() + " --json");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"maps_resumed\": 1"), std::string::npos) << r.out;
+}
+
+TEST_F(DatasetReader, ParameterDifferencesListAddedAndRemovedKeys) {
+  const nlohmann::json a = {{"seed", 1}, {"flow", {{"cell", 0.05}, {"nu", 0.01}}}, {"x", true}};
+  const nlohmann::json b = {{"seed", 1}, {"flow", {{"cell", 0.1}, {"nu", 0.01}}}, {"y", "u"}};
+  const std::vector<std::string> d = parameter_differences(a, b);
+  ASSERT_EQ(d.size(), 3u);
+  EXPECT_EQ(d[0], "flow.cell: this run 0.05, the dataset 0.1");
+  EXPECT_EQ(d[1], "x: this run true, the dataset none");
+  EXPECT_EQ(d[2], "y: this run none, the dataset \"u\"");
+  EXPECT_TRUE(parameter_differences(a, a).empty());
+}
+
+TEST_F(DatasetReader, ADamagedWindCacheIsSolvedAgain) {
+  const auto whole = tree(data);
+  const fs::path face_u = data / "wind" / "map-00000" / "face_u.npy";
+  std::string bytes = read_file(face_u);
+  bytes[bytes.size() - 3] ^= 0x7f;  // a wrong wind, not a broken file
+  overwrite(face_u, bytes);
+  fs::remove_all(data / "shards" / "shard-00000");
+  CliResult r = run(kGenerate + "--out " + data.string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"winds_cached\": 0"), std::string::npos) << r.out;
+  EXPECT_EQ(tree(data), whole);
+  // An intact cache is used.
+  fs::remove_all(data / "shards" / "shard-00000");
+  r = run(kGenerate + "--out " + data.string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"winds_cached\": 1"), std::string::npos) << r.out;
+  EXPECT_EQ(tree(data), whole);
+}
+
+// Every string in a JSON document.
+void strings(const nlohmann::json& j, std::vector<std::string>& out) {
+  if (j.is_string()) out.push_back(j.get<std::string>());
+  if (j.is_structured())
+    for (const auto& v : j)
+      strings(v, out);
+}
+
+TEST_F(DatasetReader, ProvenanceHoldsNoAbsolutePaths) {
+  const fs::path maps = dir / "maps-in";
+  fs::create_directories(maps);
+  std::ofstream(maps / "one.json") << R"({
+  "format": "plumekit-map/1", "name": "one", "size": [10.0, 4.0],
+  "inlet": {"side": "left", "speed": 1.0}, "outlet": {"side": "right"},
+  "obstacles": [[[4.0, 1.0], [5.0, 1.0], [5.0, 2.0], [4.0, 2.0]]],
+  "sources": [[7.0, 2.5]]})";
+  const fs::path out = dir / "given";
+  const CliResult r = run("dataset generate --cell 0.1 --plume advection-diffusion --from-maps " +
+                          fs::absolute(maps).string() + " --out " + fs::absolute(out).string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const fs::path& f :
+       {out / "manifest.json", out / "parameters.json", out / "wind" / "map-00000" / "wind.json",
+        data / "manifest.json", data / "wind" / "map-00000" / "wind.json"}) {
+    std::vector<std::string> all;
+    strings(nlohmann::json::parse(read_file(f)), all);
+    for (const std::string& s : all)
+      EXPECT_TRUE(s.empty() || s[0] != '/') << f << " holds " << s;
+  }
+  EXPECT_NE(read_file(out / "manifest.json").find("\"one.json\""), std::string::npos);
+}
+
+}  // namespace
+}  // namespace plumekit::dataset
