@@ -7,6 +7,7 @@ The C++ reader is surrogate/model_file.cpp.
 """
 import hashlib
 import json
+import os
 import struct
 
 import numpy as np
@@ -33,6 +34,26 @@ DEFAULT_OUTPUTS = [
     {"name": "mean", "unit": "concentration (dataset units)", "scale": 1.0},
     {"name": "std", "unit": "concentration (dataset units)", "scale": 1.0},
 ]
+
+
+def provenance_path(path, cwd=None):
+    """How a provenance field names a file or folder: relative to the current folder when it lies
+    inside it, else only its final name. Never absolute: a model file must not carry the layout of
+    the machine that made it."""
+    full = os.path.abspath(path)
+    here = os.path.abspath(cwd or os.getcwd())
+    if os.path.commonpath([full, here]) == here and full != here:
+        return os.path.relpath(full, here)
+    return os.path.basename(full.rstrip(os.sep)) or "."
+
+
+def absolute_paths(value, where="training"):
+    """The keys of `value` (a provenance dict) whose string is an absolute path."""
+    if isinstance(value, dict):
+        return [k for key, v in value.items() for k in absolute_paths(v, f"{where}.{key}")]
+    if isinstance(value, list):
+        return [k for i, v in enumerate(value) for k in absolute_paths(v, f"{where}[{i}]")]
+    return [where] if isinstance(value, str) and os.path.isabs(value) else []
 
 
 def header_for(model, features=None, outputs=None, training=None):
@@ -65,6 +86,10 @@ def header_for(model, features=None, outputs=None, training=None):
         "outputs": outputs,
     }
     if training is not None:
+        bad = absolute_paths(training)
+        if bad:
+            raise ValueError(f"provenance holds absolute paths ({', '.join(bad)}): "
+                             "name them with provenance_path()")
         header["training"] = training
     return header
 
@@ -85,7 +110,6 @@ def model_bytes(model, features=None, outputs=None, training=None):
 
 def write_model(path, model, features=None, outputs=None, training=None):
     """Writes atomically: a temporary file renamed over `path` once complete."""
-    import os
     data = model_bytes(model, features, outputs, training)
     tmp = f"{path}.tmp{os.getpid()}"
     with open(tmp, "wb") as f:

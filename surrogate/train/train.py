@@ -37,7 +37,8 @@ import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: E402
-from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, read_model, write_model  # noqa: E402
+from model_file import (DEFAULT_FEATURES, DEFAULT_OUTPUTS, provenance_path, read_model,  # noqa: E402
+                        write_model)
 from shards import batch, open_dataset, split_by_map  # noqa: E402
 
 
@@ -278,7 +279,7 @@ def main(argv=None):
     final.eval()
     outputs = [dict(o, scale=scale) for o in DEFAULT_OUTPUTS]
     features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
-    training = {"dataset": os.path.abspath(args.data), "dataset_format": manifest.get("format"),
+    training = {"dataset": provenance_path(args.data), "dataset_format": manifest.get("format"),
                 "train_samples": len(train_rows), "val_samples": len(val_rows),
                 "val_maps": val_maps, "epochs": best["state"]["epoch"],
                 "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],

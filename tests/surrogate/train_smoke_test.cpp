@@ -80,6 +80,10 @@ TEST(TrainSmoke, TrainsAFewStepsAndTheEngineLoadsTheModel) {
   // Rerunning resumes from the checkpoint and goes on to step 6.
   ASSERT_EQ(std::system((train + "6").c_str()), 0);
   EXPECT_TRUE(fs::exists(fs::path(work) / "log.csv"));
+  // Provenance names the dataset by its folder (it lies outside the current one), never by the
+  // trainer's absolute path.
+  EXPECT_NE(read_file(model).find("\"dataset\": \"data\""), std::string::npos);
+  EXPECT_EQ(read_file(model).find(data), std::string::npos);
   expect_engine_reproduces_golden_pair(model);
   fs::remove_all(dir);
 }
