@@ -9,6 +9,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <string>
 
 #include "core/atomic_file.hpp"
@@ -130,6 +131,40 @@ TEST_F(DatasetReader, ManifestFaultsNameTheFileTheKeyAndTheFault) {
             std::string::npos);
   EXPECT_NE(refusal("[]").find("expected a JSON object"), std::string::npos);
   EXPECT_NE(refusal("").find("not valid JSON"), std::string::npos);
+}
+
+// Random damage anywhere in a manifest is InputError or a manifest, never another exception or a
+// crash (what the fuzz target checks at length).
+TEST_F(DatasetReader, DamagedManifestBytesAreRefusedCleanly) {
+  const std::string good = read_file(data / "manifest.json");
+  std::mt19937 rng(5);
+  int refused = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::string bytes = good;
+    const int edits = 1 + static_cast<int>(rng() % 4);
+    for (int e = 0; e < edits; ++e) {
+      const std::size_t at = rng() % bytes.size();
+      switch (rng() % 3) {
+        case 0:
+          bytes[at] = static_cast<char>(rng());
+          break;
+        case 1:
+          bytes.erase(at, 1 + rng() % 8);
+          break;
+        default:
+          bytes.insert(at, 1, "0123456789-.e\"{}[],:"[rng() % 20]);
+          break;
+      }
+      if (bytes.empty()) bytes = "x";
+    }
+    try {
+      parse_manifest(bytes, "m.json");
+    } catch (const InputError& e) {
+      ++refused;
+      EXPECT_EQ(std::string(e.what()).rfind("m.json: ", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_GT(refused, 2000);
 }
 
 TEST_F(DatasetReader, TruncatedManifestIsExitTwoNamingIt) {

@@ -10,12 +10,14 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/map_json.hpp"
+#include "core/sha256.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
@@ -133,6 +135,39 @@ TEST_F(TableCache, ParseRefusesNonFiniteValuesAndInconsistentSizesEvenWithAGoodC
   EXPECT_NE(message(huge).find("do not hold"), std::string::npos);
   EXPECT_THROW(parse_table_cache("", "x"), InputError);
   EXPECT_THROW(parse_table_cache(std::string(100, 'P'), "x"), InputError);
+}
+
+// Damage with a recomputed checksum (what a fuzz target reaches): any byte of the header or the
+// plumes, or a cut, is InputError or a table whose sizes fit its bytes, never a crash.
+TEST_F(TableCache, ParseSurvivesDamageBehindAGoodChecksum) {
+  SurrogateTable t;
+  t.key = std::string(64, 'b');
+  t.rows = 3;
+  t.per = 4;
+  t.mean.assign(12, 1.5f);
+  t.std.assign(12, 0.5f);
+  const std::string good = table_cache_bytes(t);
+  std::mt19937 rng(9);
+  int refused = 0;
+  for (int trial = 0; trial < 5000; ++trial) {
+    std::string body = good.substr(0, good.size() - 32);
+    const std::size_t at = rng() % body.size();
+    if (trial % 5 == 0)
+      body.resize(at);
+    else
+      body[at] = static_cast<char>(rng());
+    const Sha256Digest d = sha256(body);
+    const std::string bytes = body + std::string(reinterpret_cast<const char*>(d.data()), 32);
+    try {
+      const SurrogateTable back = parse_table_cache(bytes, "t.bin");
+      EXPECT_EQ(back.mean.size(), std::size_t{back.rows} * back.per);
+      EXPECT_EQ(back.std.size(), back.mean.size());
+    } catch (const InputError& e) {
+      ++refused;
+      EXPECT_EQ(std::string(e.what()).rfind("t.bin: ", 0), 0u) << e.what();
+    }
+  }
+  EXPECT_GT(refused, 1000);
 }
 
 TEST_F(TableCache, AFileAsTheCacheFolderIsRefusedAndLeftAlone) {
