@@ -8,6 +8,11 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake pkg-config git
+  # fuzzing (scripts/fuzz.sh): clang and its sanitizer runtimes. -fsanitize=fuzzer links
+  # libclang_rt.fuzzer from libclang-rt-14-dev, which clang-14 only recommends; libfuzzer-14-dev
+  # (a standalone libFuzzer.a) is not needed. GCC's ThreadSanitizer runtime, libtsan2, comes
+  # with build-essential.
+  clang-14 libclang-rt-14-dev
   # numerics and geometry
   libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
   # an optimised BLAS: UMFPACK's dense kernels run ~2.4x faster than with netlib BLAS. The pthread
