@@ -1,10 +1,14 @@
 #include "apps/cli.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <map>
 #include <sstream>
+#include <vector>
 
 #include "core/error.hpp"
+#include "core/memory_limit.hpp"
 
 namespace plumekit::cli {
 
@@ -22,8 +26,54 @@ Output& output() {
   return out;
 }
 
-void add_json_flag(CLI::App* command) {
+void add_common_flags(CLI::App* command) {
   command->add_flag("--json", output().json, "Print a machine-readable JSON summary on stdout");
+  bind_field(command,
+             command->add_option_function<std::string>(
+                 "--max-memory",
+                 [](const std::string& size) {
+                   set_memory_limit(parse_memory_size(size, "memory.limit"));
+                 },
+                 "Refuse work whose memory estimate exceeds SIZE (\"8G\", \"512M\"; default: "
+                 "half the machine's memory, or $PLUMEKIT_MAX_MEMORY)"),
+             "memory.limit");
+}
+
+int usage_error(const std::string& message) {
+  std::cerr << "plumekit: usage error: " << message << "\nRun with --help for more information.\n";
+  if (output().json) {
+    nlohmann::ordered_json j{{"ok", false}, {"exit_code", 2}, {"error", message}};
+    std::cout << j.dump(2) << '\n';
+  }
+  return 2;
+}
+
+namespace {
+std::map<const CLI::App*, std::map<std::string, std::string>>& bound_fields() {
+  static std::map<const CLI::App*, std::map<std::string, std::string>> fields;
+  return fields;
+}
+}  // namespace
+
+CLI::Option* bind_field(CLI::App* command, CLI::Option* option, const std::string& field) {
+  bound_fields()[command][field] = option->get_name();
+  return option;
+}
+
+std::string with_flag_names(const CLI::App& command, std::string message) {
+  std::map<std::string, std::string> fields;  // the nearest binding wins
+  for (const CLI::App* app = &command; app; app = app->get_parent())
+    if (const auto f = bound_fields().find(app); f != bound_fields().end())
+      fields.insert(f->second.begin(), f->second.end());
+  // Longest first, so that no field is replaced inside a longer one.
+  std::vector<std::pair<std::string, std::string>> order(fields.begin(), fields.end());
+  std::sort(order.begin(), order.end(),
+            [](const auto& a, const auto& b) { return a.first.size() > b.first.size(); });
+  for (const auto& [field, flag] : order)
+    for (std::size_t at = message.find(field); at != std::string::npos;
+         at = message.find(field, at + flag.size()))
+      message.replace(at, field.size(), flag);
+  return message;
 }
 
 Vec2 parse_point(const std::string& text, const std::string& flag) {

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "core/error.hpp"
 #include "core/geometry.hpp"
 
 namespace plumekit::cli {
@@ -22,8 +23,21 @@ struct Output {
 };
 Output& output();
 
-// Adds --json to a command.
-void add_json_flag(CLI::App* command);
+// Adds the flags every command has: --json, and --max-memory SIZE (the
+// process's memory limit, core/memory_limit.hpp: "8G", "512M").
+void add_common_flags(CLI::App* command);
+
+// Prints a command-line mistake (an unknown flag, a malformed value) to stderr,
+// and as the JSON error object with --json; returns exit code 2.
+int usage_error(const std::string& message);
+
+// Binds an options field (the name an OptionError carries, "flow.cell") to the
+// flag `option` of `command`, so that errors name the flag. Returns `option`.
+CLI::Option* bind_field(CLI::App* command, CLI::Option* option, const std::string& field);
+// `message` with every options field bound in `command` (or a parent of it)
+// replaced by its flag: library messages name fields ("flow.cell"), a
+// command's user knows flags ("--cell").
+std::string with_flag_names(const CLI::App& command, std::string message);
 
 // "X,Y" in metres; InputError naming `flag` when it is not two finite numbers and a comma.
 Vec2 parse_point(const std::string& text, const std::string& flag);

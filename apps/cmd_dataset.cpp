@@ -16,6 +16,7 @@
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
 #include "core/npy.hpp"
+#include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
@@ -60,14 +61,21 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p, std::string& model) {
   cmd->add_option("--model,--plume", model, "Plume model")
       ->capture_default_str()
       ->check(CLI::IsMember({"filament", "advection-diffusion"}));
-  cmd->add_option("--diffusivity", p.advection_diffusion.diffusivity,
-                  "advection-diffusion: eddy diffusivity, m^2/s")
+  bind_field(cmd,
+             cmd->add_option("--diffusivity", p.advection_diffusion.diffusivity,
+                             "advection-diffusion: eddy diffusivity, m^2/s"),
+             "plume.diffusivity")
       ->capture_default_str();
-  cmd->add_option("--release-rate", p.advection_diffusion.release_rate,
-                  "Release rate per metre of depth (concentration units * m^2/s), both models")
+  bind_field(
+      cmd,
+      cmd->add_option("--release-rate", p.advection_diffusion.release_rate,
+                      "Release rate per metre of depth (concentration units * m^2/s), both models"),
+      "plume.release_rate")
       ->capture_default_str();
-  cmd->add_option("--filaments-per-second", p.filament.release_per_second,
-                  "filament: filaments released per second")
+  bind_field(cmd,
+             cmd->add_option("--filaments-per-second", p.filament.release_per_second,
+                             "filament: filaments released per second"),
+             "plume.filaments_per_second")
       ->capture_default_str();
 }
 
@@ -78,9 +86,12 @@ void finish_plume_options(PlumeOptions& p, const std::string& model) {
 
 // --families: which random-map families to draw from (default: the thesis's four).
 void add_families_option(CLI::App* cmd, RandomMapOptions& o) {
-  cmd->add_option("--families", o.families,
-                  "Random-map families, comma-separated: rectangle, two-rectangles, l-shape, "
-                  "u-shape (the thesis's, the default), three-rectangles, shape-and-rectangle")
+  bind_field(
+      cmd,
+      cmd->add_option("--families", o.families,
+                      "Random-map families, comma-separated: rectangle, two-rectangles, l-shape, "
+                      "u-shape (the thesis's, the default), three-rectangles, shape-and-rectangle"),
+      "maps.families")
       ->delimiter(',')
       ->default_str("rectangle,two-rectangles,l-shape,u-shape");
 }
@@ -102,35 +113,46 @@ void add_maps_random(CLI::App& app) {
   cmd->add_option("--count,-n", a->count, "Number of maps")->capture_default_str();
   cmd->add_option("--seed", a->seed, "Seed; map i is the same whatever --count")
       ->capture_default_str();
-  cmd->add_option("--out,-o", a->out, "Output directory (created if missing)")->required();
+  cmd->add_option("--out,-o", a->out,
+                  "Output folder: new, empty, or an earlier `maps random` output")
+      ->required();
   cmd->add_option("--sources", a->sources, "Random sources to store in each map")
       ->capture_default_str();
-  cmd->add_option("--width", a->o.width, "Arena width, m")->capture_default_str();
-  cmd->add_option("--height", a->o.height, "Arena height, m")->capture_default_str();
-  cmd->add_option("--min-gap", a->o.min_gap, "Narrowest passage, m")->capture_default_str();
-  add_families_option(cmd, a->o);
-  cmd->add_option("--margin", a->o.robot_margin,
-                  "Robot radius + safety that must pass from inlet to outlet, m")
+  bind_field(cmd, cmd->add_option("--width", a->o.width, "Arena width, m"), "maps.width")
       ->capture_default_str();
-  add_json_flag(cmd);
+  bind_field(cmd, cmd->add_option("--height", a->o.height, "Arena height, m"), "maps.height")
+      ->capture_default_str();
+  bind_field(cmd, cmd->add_option("--min-gap", a->o.min_gap, "Narrowest passage, m"),
+             "maps.min_gap")
+      ->capture_default_str();
+  add_families_option(cmd, a->o);
+  bind_field(cmd,
+             cmd->add_option("--margin", a->o.robot_margin,
+                             "Robot radius + safety that must pass from inlet to outlet, m"),
+             "maps.robot_margin")
+      ->capture_default_str();
+  add_common_flags(cmd);
   cmd->callback([a] {
     if (a->count <= 0) throw InputError("--count must be positive");
     if (a->sources < 0) throw InputError("--sources must not be negative");
+    OutputDirectory out(a->out, "maps random");
     std::vector<RandomMap> maps;
     for (int i = 0; i < a->count; ++i) {
       maps.push_back(random_map(a->o, a->seed, i));
       maps.back().map.sources = random_sources(maps.back().map, a->sources, 0.1, a->seed, i);
     }
-    fs::create_directories(a->out);
+    const fs::path& dir = out.open();
     std::map<std::string, int> families;
     nlohmann::ordered_json files = nlohmann::ordered_json::array();
     for (int i = 0; i < a->count; ++i) {
       char name[32];
       std::snprintf(name, sizeof name, "map-%05d.json", i);
-      write_map(maps[i].map, fs::path(a->out) / name);
+      maps[i].map.generated_by = "plumekit maps random";
+      write_map(maps[i].map, dir / name);
       ++families[maps[i].family];
       files.push_back({{"file", name}, {"family", maps[i].family}});
     }
+    out.commit();
     nlohmann::ordered_json j{{"ok", true}, {"out", a->out}, {"seed", a->seed}, {"maps", files}};
     std::ostringstream human;
     human << "wrote " << a->count << " maps to " << a->out << ":";
@@ -153,11 +175,13 @@ void add_plume(CLI::App& app) {
   auto a = std::make_shared<Args>();
   cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
   cmd->add_option("--source", a->source, "Source position X,Y in metres")->required();
-  cmd->add_option("--out,-o", a->out, "Output directory (created if missing)")->required();
+  cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `plume` output")
+      ->required();
   cmd->add_option("--seed", a->seed, "Seed of the filament model")->capture_default_str();
-  cmd->add_option("--cell", a->flow.cell, "Flow cell size, m")->capture_default_str();
+  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, "Flow cell size, m"), "flow.cell")
+      ->capture_default_str();
   add_plume_options(cmd, a->p, a->model);
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     finish_plume_options(a->p, a->model);
     const Map map = read_map(a->map);
@@ -165,6 +189,7 @@ void add_plume(CLI::App& app) {
     if (!map.is_free(src))
       throw InputError("--source " + to_string(src) +
                        " is outside the arena or inside an obstacle");
+    OutputDirectory out(a->out, "plume", {a->map});
     const auto t0 = std::chrono::steady_clock::now();
     const cfd::FlowResult flow = cfd::solve(map, a->flow);
     const auto t1 = std::chrono::steady_clock::now();
@@ -178,10 +203,11 @@ void add_plume(CLI::App& app) {
                   panel(map, t.std, "std of concentration", "conc.", src), out);
       return out;
     }();
-    fs::create_directories(a->out);
-    write_file_atomic(fs::path(a->out) / "mean.npy", npy_float32(t.mean.values, {64, 64}));
-    write_file_atomic(fs::path(a->out) / "std.npy", npy_float32(t.std.values, {64, 64}));
-    write_png(img, fs::path(a->out) / "plume.png");
+    const fs::path& dir = out.open();
+    write_file_atomic(dir / "mean.npy", npy_float32(t.mean.values, {64, 64}));
+    write_file_atomic(dir / "std.npy", npy_float32(t.std.values, {64, 64}));
+    write_png(img, dir / "plume.png");
+    out.commit();
     const double peak = *std::max_element(t.mean.values.begin(), t.mean.values.end());
     const double flow_s = std::chrono::duration<double>(t1 - t0).count();
     const double plume_s = std::chrono::duration<double>(t2 - t1).count();
@@ -216,20 +242,26 @@ void add_generate(CLI::App* group) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--out,-o", a->out, "Dataset directory (created if missing)")->required();
-  cmd->add_option("--maps", a->o.maps, "Number of random maps")->capture_default_str();
-  cmd->add_option("--sources", a->o.sources, "Sources per map")->capture_default_str();
-  cmd->add_option("--seed", a->o.seed, "Seed of everything random")->capture_default_str();
-  cmd->add_option("--threads,-j", a->run.threads, "Worker threads (one map each)")
+  bind_field(cmd, cmd->add_option("--maps", a->o.maps, "Number of random maps"), "dataset.maps")
       ->capture_default_str();
-  cmd->add_option("--shard", a->shard,
-                  "K/N: do only the maps with index % N == K (then `dataset merge`)");
+  bind_field(cmd, cmd->add_option("--sources", a->o.sources, "Sources per map"), "dataset.sources")
+      ->capture_default_str();
+  cmd->add_option("--seed", a->o.seed, "Seed of everything random")->capture_default_str();
+  bind_field(cmd, cmd->add_option("--threads,-j", a->run.threads, "Worker threads (one map each)"),
+             "dataset.threads")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--shard", a->shard,
+                             "K/N: do only the maps with index % N == K (then `dataset merge`)"),
+             "dataset.shard");
   cmd->add_option("--from-maps", a->maps_dir,
                   "Use the maps in this directory (with their own sources) instead of random "
                   "ones: ground truth for test maps");
   add_families_option(cmd, a->o.map);
-  cmd->add_option("--cell", a->o.flow.cell, "Flow cell size, m")->capture_default_str();
+  bind_field(cmd, cmd->add_option("--cell", a->o.flow.cell, "Flow cell size, m"), "flow.cell")
+      ->capture_default_str();
   add_plume_options(cmd, a->o.plume, a->model);
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     finish_plume_options(a->o.plume, a->model);
     if (!a->shard.empty()) {
@@ -302,7 +334,7 @@ void add_merge(CLI::App* group) {
   cmd->add_option("PARTS", a->parts, "Part directories (the same one may hold several parts)")
       ->required();
   cmd->add_option("--out,-o", a->out, "Merged dataset directory (may be a part's)")->required();
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     std::vector<fs::path> parts(a->parts.begin(), a->parts.end());
     const MergeSummary s = merge_datasets(a->out, parts);
@@ -329,10 +361,11 @@ void add_show(CLI::App* group) {
   cmd->add_option("DIR", a->dir, "Dataset directory")->required();
   cmd->add_option("--index,-i", a->index, "Sample index over the whole dataset")
       ->capture_default_str();
-  cmd->add_option("--out,-o", a->out, "PNG file")->required();
-  add_json_flag(cmd);
+  cmd->add_option("--out,-o", a->out, "PNG file (new, or a picture plumekit drew)")->required();
+  add_common_flags(cmd);
   cmd->callback([a] {
     const fs::path dir = a->dir;
+    check_output_file(a->out, {dir});
     // The one validating reader: the manifest, then the drawn shard against its checksums.
     const Manifest m = read_manifest(dir / "manifest.json");
     long long start = 0;

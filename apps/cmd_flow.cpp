@@ -9,6 +9,7 @@
 #include "cfd/flow_output.hpp"
 #include "cfd/flow_solver.hpp"
 #include "core/map_json.hpp"
+#include "core/output_target.hpp"
 #include "core/progress.hpp"
 
 namespace plumekit::cli {
@@ -27,9 +28,12 @@ void add_flow_commands(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
-  cmd->add_option("--out,-o", a->out, "Output directory (created if missing)")->required();
-  cmd->add_option("--cell", a->options.cell, "Cell size in metres")->capture_default_str();
-  cmd->add_option("--nu", a->options.nu, "Kinematic (effective) viscosity, m^2/s")
+  cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `flow` output")
+      ->required();
+  bind_field(cmd, cmd->add_option("--cell", a->options.cell, "Cell size in metres"), "flow.cell")
+      ->capture_default_str();
+  bind_field(cmd, cmd->add_option("--nu", a->options.nu, "Kinematic (effective) viscosity, m^2/s"),
+             "flow.nu")
       ->capture_default_str();
   cmd->add_option("--turbulence", a->turbulence, "Turbulence closure")
       ->capture_default_str()
@@ -39,12 +43,17 @@ void add_flow_commands(CLI::App& app) {
          "Convection scheme: vanleer (bounded, 2nd order), central (2nd order), upwind (1st)")
       ->capture_default_str()
       ->check(CLI::IsMember({"vanleer", "central", "upwind"}));
-  cmd->add_option("--tol", a->options.tolerance,
-                  "Stop when both normalised residuals are below this")
+  bind_field(cmd,
+             cmd->add_option("--tol", a->options.tolerance,
+                             "Stop when both normalised residuals are below this"),
+             "flow.tolerance")
       ->capture_default_str();
-  cmd->add_option("--max-iter", a->options.max_iterations,
-                  "Give up after this many Newton iterations (default 0: 100, or 300 with "
-                  "mixing-length)");
+  bind_field(
+      cmd,
+      cmd->add_option("--max-iter", a->options.max_iterations,
+                      "Give up after this many Newton iterations (default 0: 100, or 300 with "
+                      "mixing-length)"),
+      "flow.max_iterations");
   cmd->add_option("--linear-solver", a->linear_solver,
                   "Newton systems: nullspace (divergence-free subspace, one unknown per grid "
                   "node) or coupled (u, v, p); same steps, coupled is slower")
@@ -52,7 +61,7 @@ void add_flow_commands(CLI::App& app) {
       ->check(CLI::IsMember({"nullspace", "coupled"}));
   cmd->add_flag("--verbose", a->options.verbose,
                 "Print the residuals of every iteration on stderr");
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     cfd::FlowOptions& o = a->options;
     o.turbulence = a->turbulence == "none" ? cfd::Turbulence::None : cfd::Turbulence::MixingLength;
@@ -67,6 +76,7 @@ void add_flow_commands(CLI::App& app) {
     mallopt(M_MMAP_THRESHOLD, 1 << 30);
     mallopt(M_TRIM_THRESHOLD, 1 << 30);
     const Map map = read_map(a->map);
+    OutputDirectory out(a->out, "flow", {a->map});
     ProgressBar bar("flow");
     double first = 0.0;
     o.on_iteration = [&](int it, double mom, double cont) {
@@ -82,7 +92,8 @@ void add_flow_commands(CLI::App& app) {
     };
     cfd::FlowResult result = cfd::solve(map, o);
     bar.finish();
-    cfd::write_flow(a->out, map, result, o);
+    cfd::write_flow(out.open(), map, result, o);
+    out.commit();
     nlohmann::ordered_json j{{"ok", true}, {"map", a->map}, {"out", a->out}};
     j.update(cfd::summary_json(result.summary, result.wind, o));
     j.erase("residual_history");

@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
+#include "core/output_target.hpp"
 #include "core/rasterize.hpp"
 #include "core/ros_import.hpp"
 
@@ -40,16 +41,19 @@ ordered_json map_summary(const Map& map, const std::string& file) {
   out["obstacles"] = map.obstacles.size();
   out["obstacle_vertices"] = vertex_count(map);
   out["sources"] = map.sources.size();
-  const auto labels =
-      rasterize_labels(map, GridShape::with_cell(map.width, map.height, kCheckCell));
-  std::size_t free = 0;
-  for (auto v : labels.values)
-    free += v != kObstacle;
-  out["free_fraction"] = static_cast<double>(free) / labels.values.size();
+  // A huge arena is checked on a coarser grid, so that validation stays quick and small.
+  const MapGridCheck check = map_grid_check(map, kCheckCell);
+  out["free_fraction"] = check.free_fraction;
+  out["check_cell_m"] = check.cell;
   out["warnings"] = ordered_json::array();
-  if (!inlet_reaches_outlet(labels))
-    out["warnings"].push_back(
-        "no free path from the inlet to the outlet at 5 cm cells: the map cannot carry a flow");
+  std::ostringstream cell;
+  cell << check.cell * 100 << " cm";
+  if (check.coarsened)
+    out["warnings"].push_back("the arena is too large to check at 5 cm cells; checked at " +
+                              cell.str() + ", where passages narrower than that may look closed");
+  if (!check.inlet_reaches_outlet)
+    out["warnings"].push_back("no free path from the inlet to the outlet at " + cell.str() +
+                              " cells: the map cannot carry a flow");
   return out;
 }
 
@@ -58,7 +62,7 @@ void add_validate(CLI::App& map_cmd) {
       map_cmd.add_subcommand("validate", "Check a plumekit-map/1 file; exit 2 naming the fault");
   auto path = std::make_shared<std::string>(default_map().string());
   cmd->add_option("MAP", *path, "Map file (JSON)")->capture_default_str();
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([path] {
     const Map map = read_map(*path);
     const ordered_json summary = map_summary(map, *path);
@@ -101,16 +105,18 @@ void add_render(CLI::App& map_cmd) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
-  cmd->add_option("--out,-o", a->out, "PNG file to write")->required();
-  cmd->add_option("--px-per-m", a->px_per_m, "Pixels per metre")
+  cmd->add_option("--out,-o", a->out, "PNG file to write (new, or a picture plumekit drew)")
+      ->required();
+  bind_field(cmd, cmd->add_option("--px-per-m", a->px_per_m, "Pixels per metre"), "render.px_per_m")
       ->capture_default_str()
       ->check(CLI::Range(5.0, 1000.0));
   cmd->add_option("--cells", a->cells,
                   "Also show the grid at this cell size (m), tinting the cells that count as solid")
       ->check(CLI::PositiveNumber);
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     const Map map = read_map(a->map);
+    check_output_file(a->out, {a->map});
     MapCanvas canvas(map, a->px_per_m);
     canvas.draw_map();
     if (a->cells > 0.0) {
@@ -142,23 +148,30 @@ void add_import_ros(CLI::App& map_cmd) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MAP_YAML", a->yaml, "map_server YAML file")->required();
-  cmd->add_option("--out,-o", a->out, "plumekit map file to write")->required();
-  cmd->add_option("--simplify", a->options.simplify_px,
-                  "Douglas-Peucker tolerance for obstacle outlines, in pixels")
+  cmd->add_option("--out,-o", a->out, "plumekit map file to write (new, or one plumekit wrote)")
+      ->required();
+  bind_field(cmd,
+             cmd->add_option("--simplify", a->options.simplify_px,
+                             "Douglas-Peucker tolerance for obstacle outlines, in pixels"),
+             "ros.simplify_px")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 10.0));
   cmd->add_option("--unknown", a->unknown, "How to treat unknown (unexplored) pixels")
       ->capture_default_str()
       ->check(CLI::IsMember({"occupied", "free"}));
-  cmd->add_option("--min-area", a->options.min_area_px,
-                  "Drop occupied specks with fewer pixels than this")
+  bind_field(cmd,
+             cmd->add_option("--min-area", a->options.min_area_px,
+                             "Drop occupied specks with fewer pixels than this"),
+             "ros.min_area_px")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--name", a->options.name, "Map name (default: the YAML file's stem)");
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     a->options.unknown_is_occupied = a->unknown == "occupied";
-    const RosImport in = import_ros_map(a->yaml, a->options);
+    check_output_file(a->out, {a->yaml});
+    RosImport in = import_ros_map(a->yaml, a->options);
+    in.map.generated_by = "plumekit map import-ros";
 
     // Check the result: rasterize the polygons back at the image's resolution.
     const GridShape shape{in.cols, in.rows, in.map.width, in.map.height};

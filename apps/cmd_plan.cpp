@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
+#include "core/output_target.hpp"
 #include "planner/free_space.hpp"
 #include "planner/planner.hpp"
 
@@ -105,14 +106,17 @@ void add_plan_commands(CLI::App& app) {
   cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
   cmd->add_option("--from", a->from, "Start point X,Y in metres")->required();
   cmd->add_option("--to", a->to, "Goal point X,Y in metres")->required();
-  cmd->add_option("--margin", a->margin,
-                  "Clearance from obstacles and walls in metres (robot radius + safety)")
+  bind_field(
+      cmd,
+      cmd->add_option("--margin", a->margin,
+                      "Clearance from obstacles and walls in metres (robot radius + safety)"),
+      "planner.margin")
       ->capture_default_str();
   cmd->add_option("--planner", a->planner,
                   "vg (visibility graph + A*, exact), rrtstar or prmstar (OMPL)")
       ->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Also draw the path over the map to this PNG");
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     const Vec2 from = parse_point(a->from, "--from"), to = parse_point(a->to, "--to");
     if (!std::isfinite(a->margin) || a->margin < 0.0)
@@ -126,6 +130,7 @@ void add_plan_commands(CLI::App& app) {
                        "' (use vg, rrtstar or prmstar)");
     }
     const Map map = read_map(a->map);
+    if (!a->out.empty()) check_output_file(a->out, {a->map});
     pl::PlannerOptions options;
     options.margin = a->margin;
 

@@ -13,6 +13,7 @@
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
 #include "core/npy.hpp"
+#include "core/output_target.hpp"
 #include "surrogate/plume_model.hpp"
 
 namespace plumekit::cli {
@@ -21,23 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using surrogate::PlumePrediction;
-
-// The files this command writes: an existing --out holding anything else is refused rather than
-// replaced, so a mistyped --out never deletes a user's directory.
-const char* const kOutputs[] = {"mean.npy", "std.npy", "plume.png"};
-
-void check_out_dir(const fs::path& out) {
-  std::error_code ec;
-  if (!fs::exists(out, ec)) return;
-  if (!fs::is_directory(out, ec))
-    throw InputError(out.string() + ": exists and is not a directory");
-  for (const auto& e : fs::directory_iterator(out)) {
-    const std::string name = e.path().filename().string();
-    if (std::find(std::begin(kOutputs), std::end(kOutputs), name) == std::end(kOutputs))
-      throw InputError(out.string() + ": not empty (holds " + name +
-                       "); give a new or an earlier `plumekit predict` directory");
-  }
-}
 
 // One panel: a field over the map (obstacle cells unpainted), the obstacles and the source.
 cv::Mat panel(const Map& map, const GridShape& g, const std::vector<float>& values,
@@ -81,14 +65,12 @@ void add_predict_commands(CLI::App& app) {
   cmd->add_option("--model", a->model, "Model file (plumekit-cnn/1)")->capture_default_str();
   cmd->add_option("--map", a->map, "Map file (JSON)")->capture_default_str();
   cmd->add_option("--source", a->source, "Source position X,Y in metres")->required();
-  cmd->add_option("--out,-o", a->out,
-                  "Output directory (created; replaced if it holds only "
-                  "an earlier prediction)")
+  cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `predict` output")
       ->required();
   cmd->add_option("--threads", a->threads, "Engine threads")
       ->capture_default_str()
       ->check(CLI::Range(1, 256));
-  add_json_flag(cmd);
+  add_common_flags(cmd);
   cmd->callback([a] {
     const auto start = std::chrono::steady_clock::now();
     const Vec2 source = parse_point(a->source, "--source");
@@ -101,7 +83,7 @@ void add_predict_commands(CLI::App& app) {
                                        : ""));
     }
     const Map map = read_map(a->map);
-    check_out_dir(a->out);
+    OutputDirectory out(a->out, "predict", {a->map, a->model});
     auto network = std::make_shared<const surrogate::Network>(
         surrogate::Network::load(a->model, surrogate::EngineOptions{a->threads}));
     std::unique_ptr<surrogate::PlumeModel> model;
@@ -135,10 +117,10 @@ void add_predict_commands(CLI::App& app) {
     cv::vconcat(panel(map, g, p.mean, mean_title, "mean", source),
                 panel(map, g, p.std, "surrogate std of the concentration", "std", source), image);
 
-    AtomicDirectory out(a->out);
-    write_file_atomic(out.path() / "mean.npy", npy_float32(p.mean, shape));
-    write_file_atomic(out.path() / "std.npy", npy_float32(p.std, shape));
-    write_png(image, out.path() / "plume.png");
+    const fs::path& dir = out.open();
+    write_file_atomic(dir / "mean.npy", npy_float32(p.mean, shape));
+    write_file_atomic(dir / "std.npy", npy_float32(p.std, shape));
+    write_png(image, dir / "plume.png");
     out.commit();
 
     const double seconds =

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "apps/cli.hpp"
@@ -13,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
+#include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "ste/evaluation.hpp"
 #include "ste/render.hpp"
@@ -61,88 +63,109 @@ struct SteArgs {
 };
 
 void add_ste_options(CLI::App* cmd, SteArgs& a) {
-  cmd->add_option("--plume-model", a.plume_model, "surrogate (the CNN), gaussian or physics")
+  bind_field(
+      cmd,
+      cmd->add_option("--plume-model", a.plume_model, "surrogate (the CNN), gaussian or physics"),
+      "ste.model")
       ->capture_default_str();
   cmd->add_option("--model", a.model,
                   "Surrogate model file (default: data/models/plume-unet.pkcnn)");
-  cmd->add_option("--sigma-m", a.sigma_m,
-                  "Model error sigma_M, concentration units (default: 200 for the surrogate, "
-                  "about the shipped model's RMSE on the test maps; 30 for gaussian and physics, "
-                  "the thesis's)")
+  bind_field(cmd,
+             cmd->add_option(
+                 "--sigma-m", a.sigma_m,
+                 "Model error sigma_M, concentration units (default: 200 for the surrogate, "
+                 "about the shipped model's RMSE on the test maps; 30 for gaussian and physics, "
+                 "the thesis's)"),
+             "ste.likelihood.sigma_m")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--sigma-d", a.sigma_d, "Measurement error sigma_D, concentration units")
+  bind_field(
+      cmd,
+      cmd->add_option("--sigma-d", a.sigma_d, "Measurement error sigma_D, concentration units"),
+      "ste.likelihood.sigma_d")
       ->capture_default_str();
-  cmd->add_option("--sigma-rel", a.sigma_rel,
-                  "Model error relative to the predicted concentration, added in quadrature to "
-                  "sigma_M (default 0: the thesis's constant error)")
+  bind_field(
+      cmd,
+      cmd->add_option("--sigma-rel", a.sigma_rel,
+                      "Model error relative to the predicted concentration, added in quadrature to "
+                      "sigma_M (default 0: the thesis's constant error)"),
+      "ste.likelihood.sigma_rel")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--sigma-std", a.sigma_std,
-                  "Model error in units of the surrogate's predicted std of the readings, added "
-                  "in quadrature (default: 2 for the surrogate; the other models predict no std)")
+  bind_field(cmd,
+             cmd->add_option(
+                 "--sigma-std", a.sigma_std,
+                 "Model error in units of the surrogate's predicted std of the readings, added "
+                 "in quadrature (default: 2 for the surrogate; the other models predict no std)"),
+             "ste.likelihood.sigma_std")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--noise", a.noise, "Sensor noise std per 10 Hz reading (simulated)")
+  bind_field(cmd,
+             cmd->add_option("--noise", a.noise, "Sensor noise std per 10 Hz reading (simulated)"),
+             "ste.world.noise")
       ->capture_default_str();
-  cmd->add_option("--speed", a.speed, "Robot speed, m/s")->capture_default_str();
-  cmd->add_option("--alpha", a.alpha, "Weight of the KL move against the source move")
+  bind_field(cmd, cmd->add_option("--speed", a.speed, "Robot speed, m/s"), "ste.world.speed")
       ->capture_default_str();
-  cmd->add_option("--beta", a.beta, "Weight of the posterior against the inverse distance")
+  bind_field(cmd,
+             cmd->add_option("--alpha", a.alpha, "Weight of the KL move against the source move"),
+             "ste.navigation.alpha")
       ->capture_default_str();
-  cmd->add_option("--step", a.step, "Candidate lattice spacing, m")->capture_default_str();
-  cmd->add_option("--lattice", a.lattice,
-                  "Candidates up to this many steps per axis: (2 L + 1)^2 - 1 of them")
+  bind_field(
+      cmd,
+      cmd->add_option("--beta", a.beta, "Weight of the posterior against the inverse distance"),
+      "ste.navigation.beta")
+      ->capture_default_str();
+  bind_field(cmd, cmd->add_option("--step", a.step, "Candidate lattice spacing, m"),
+             "ste.navigation.step")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--lattice", a.lattice,
+                             "Candidates up to this many steps per axis: (2 L + 1)^2 - 1 of them"),
+             "ste.navigation.lattice")
       ->capture_default_str();
   cmd->add_option("--reward", a.reward,
                   "Candidate score: kl (the thesis's, at the expected source) or expected (the "
                   "expected information gain over the posterior's sources)")
       ->capture_default_str();
-  cmd->add_option("--margin", a.margin, "Planner clearance from obstacles, m")
+  bind_field(cmd, cmd->add_option("--margin", a.margin, "Planner clearance from obstacles, m"),
+             "ste.margin")
       ->capture_default_str();
-  cmd->add_option("--max-samples", a.max_samples, "Stop after this many samples")
+  bind_field(cmd, cmd->add_option("--max-samples", a.max_samples, "Stop after this many samples"),
+             "ste.stop.max_samples")
       ->capture_default_str();
-  cmd->add_option("--release-scale", a.release_scale,
-                  "LO,HI: estimate the release rate as a scale in [LO, HI] of the nominal 1000, "
-                  "marginalised in closed form (surrogate, physics; default: known, 1)");
+  bind_field(
+      cmd,
+      bind_field(cmd,
+                 cmd->add_option(
+                     "--release-scale", a.release_scale,
+                     "LO,HI: estimate the release rate as a scale in [LO, HI] of the nominal 1000, "
+                     "marginalised in closed form (surrogate, physics; default: known, 1)"),
+                 "ste.physics.scale_lo"),
+      "ste.physics.scale_hi");
   a.source_cell_given = cmd->add_option(
       "--source-cell", a.source_cell,
       "Candidate source grid, m (surrogate, physics; default: 0.2 for the surrogate, "
       "0.1 for physics)");
+  bind_field(cmd, a.source_cell_given, "ste.surrogate_cell");
+  bind_field(cmd, a.source_cell_given, "ste.physics.source_cell");
   cmd->add_option("--table-cache", a.table_cache,
                   "Directory caching surrogate tables (keyed by map and model hashes)");
 }
 
+// Binds the flags to the options; the library checks every value (SteOptions::validate).
 ste::SteOptions to_options(const SteArgs& a) {
   ste::SteOptions o;
   o.model = ste::parse_plume_model_kind(a.plume_model);
-  auto positive = [](double v, const char* flag) {
-    if (!(v > 0.0) || !std::isfinite(v))
-      throw InputError(std::string(flag) + ": must be a positive number, got " + std::to_string(v));
-  };
-  positive(a.speed, "--speed");
-  positive(a.step, "--step");
   const ste::LikelihoodOptions defaults = ste::default_likelihood(o.model);
-  const double sigma_m = a.sigma_m >= 0.0 ? a.sigma_m : defaults.sigma_m;
-  if (!std::isfinite(a.sigma_m) || a.sigma_d < 0 || !std::isfinite(a.sigma_d) ||
-      !(sigma_m + a.sigma_d > 0))
-    throw InputError("--sigma-m, --sigma-d: must be >= 0, not both 0");
-  if (a.noise < 0) throw InputError("--noise: must be >= 0");
-  if (a.margin < 0) throw InputError("--margin: must be >= 0");
-  if (a.max_samples < 1) throw InputError("--max-samples: must be at least 1");
-  if (a.alpha < 0 || a.alpha > 1) throw InputError("--alpha: must lie in [0, 1]");
-  if (a.beta < 0 || a.beta > 1) throw InputError("--beta: must lie in [0, 1]");
-  o.likelihood.sigma_m = sigma_m;
+  // -1: not given (a NaN given is kept, for validate() to refuse).
+  o.likelihood.sigma_m = a.sigma_m == -1.0 ? defaults.sigma_m : a.sigma_m;
   o.likelihood.sigma_d = a.sigma_d;
-  if (!std::isfinite(a.sigma_rel)) throw InputError("--sigma-rel: must be finite");
   o.likelihood.sigma_rel = a.sigma_rel;
-  if (!std::isfinite(a.sigma_std)) throw InputError("--sigma-std: must be finite");
   if (a.sigma_std > 0.0 && o.model != ste::PlumeModelKind::Surrogate)
     throw InputError("--sigma-std: only the surrogate predicts the std of the readings");
-  o.likelihood.sigma_std = a.sigma_std >= 0.0 ? a.sigma_std : defaults.sigma_std;
+  o.likelihood.sigma_std = a.sigma_std == -1.0 ? defaults.sigma_std : a.sigma_std;
   o.world.noise = a.noise;
   o.world.speed = a.speed;
   o.navigation.alpha = a.alpha;
   o.navigation.beta = a.beta;
   o.navigation.step = a.step;
-  if (a.lattice < 1) throw InputError("--lattice: must be at least 1");
   o.navigation.lattice = a.lattice;
   if (a.reward == "kl")
     o.navigation.reward = ste::NavigationOptions::Reward::Kl;
@@ -154,7 +177,6 @@ ste::SteOptions to_options(const SteArgs& a) {
   o.stop.max_samples = a.max_samples;
   o.table_cache = a.table_cache;
   if (a.source_cell_given && a.source_cell_given->count() > 0) {
-    positive(a.source_cell, "--source-cell");
     if (o.model == ste::PlumeModelKind::Gaussian)
       throw InputError(
           "--source-cell: only the surrogate and physics models have a source grid (the Gaussian "
@@ -164,8 +186,6 @@ ste::SteOptions to_options(const SteArgs& a) {
   }
   if (!a.release_scale.empty()) {
     const Vec2 r = parse_point(a.release_scale, "--release-scale");
-    if (!(r.x > 0.0) || r.y < r.x)
-      throw InputError("--release-scale: need 0 < LO <= HI, got '" + a.release_scale + "'");
     o.physics.scale_lo = r.x;
     o.physics.scale_hi = r.y;
   }
@@ -176,6 +196,7 @@ ste::SteOptions to_options(const SteArgs& a) {
                        " not found (train one, see surrogate/README.md, or use --plume-model "
                        "physics or gaussian)");
   }
+  o.validate();
   return o;
 }
 
@@ -199,7 +220,6 @@ struct Pictures {
 // Writes trajectory.png and posterior.png for one run into dir.
 Pictures draw_run(const ste::Scenario& sc, Vec2 source, const ste::LocalizationResult& r,
                   const fs::path& dir, const std::string& label) {
-  fs::create_directories(dir);
   Pictures p{dir / "trajectory.png", dir / "posterior.png"};
   const double err = norm(r.estimate - source);
   std::string title = sc.map().name + ": " + label + ", " + std::to_string(r.samples) +
@@ -294,18 +314,25 @@ void add_ste_commands(CLI::App& app) {
     };
     auto a = std::make_shared<Args>();
     cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
-    cmd->add_option("--source", a->source, "True source X,Y in metres (simulated)")->required();
-    cmd->add_option("--start", a->start, "Robot start X,Y (default: a random free point)");
+    bind_field(cmd, cmd->add_option("--source", a->source, "True source X,Y in metres (simulated)"),
+               "ste.source")
+        ->required();
+    bind_field(
+        cmd, cmd->add_option("--start", a->start, "Robot start X,Y (default: a random free point)"),
+        "ste.start");
     cmd->add_option("--seed", a->seed, "Seed of the plume, noise and random start")
         ->capture_default_str();
     cmd->add_option("--out,-o", a->out, "Write run.json, trajectory.png, posterior.png here");
     add_ste_options(cmd, a->ste);
-    add_json_flag(cmd);
+    add_common_flags(cmd);
     cmd->callback([a] {
       const Vec2 source = parse_point(a->source, "--source");
       const Vec2 start_arg = a->start.empty() ? Vec2{} : parse_point(a->start, "--start");
       const ste::SteOptions options = to_options(a->ste);
       const Map map = read_map(a->map);
+      std::optional<OutputDirectory> out;
+      if (!a->out.empty())
+        out.emplace(a->out, "localize", std::vector<fs::path>{a->map, a->ste.table_cache});
       const ste::Scenario sc(map, options);
       sc.check_source(source);
       const std::uint64_t seed = ste::run_seed(a->seed, 0, 0, 0);
@@ -318,14 +345,17 @@ void add_ste_commands(CLI::App& app) {
                      {"seed", a->seed}};
       j.update(run_json(sc, source, r));
       std::string human = run_text(sc, source, r);
-      if (!a->out.empty()) {
-        const Pictures p = draw_run(sc, source, r, a->out, ste::to_string(options.model));
-        write_file_atomic(fs::path(a->out) / "run.json", j.dump(2) + "\n");
-        j["out"] = {{"run", (fs::path(a->out) / "run.json").string()},
-                    {"trajectory", p.trajectory.string()},
-                    {"posterior", p.posterior.string()}};
-        human += "\nwrote " + p.trajectory.string() + ", " + p.posterior.string() + ", " +
-                 (fs::path(a->out) / "run.json").string();
+      if (out) {
+        const fs::path& dir = out->open();
+        draw_run(sc, source, r, dir, ste::to_string(options.model));
+        write_file_atomic(dir / "run.json", j.dump(2) + "\n");
+        out->commit();
+        const fs::path o = a->out;
+        j["out"] = {{"run", (o / "run.json").string()},
+                    {"trajectory", (o / "trajectory.png").string()},
+                    {"posterior", (o / "posterior.png").string()}};
+        human += "\nwrote " + (o / "trajectory.png").string() + ", " +
+                 (o / "posterior.png").string() + ", " + (o / "run.json").string();
       }
       report(j, human);
     });
@@ -344,19 +374,25 @@ void add_ste_commands(CLI::App& app) {
     auto a = std::make_shared<Args>();
     cmd->add_option("--maps", a->maps, "Directory of map files with \"sources\" (*.json)")
         ->required();
-    cmd->add_option("--runs", a->runs, "Runs per source, from seeded random free starts")
+    bind_field(
+        cmd, cmd->add_option("--runs", a->runs, "Runs per source, from seeded random free starts"),
+        "evaluation.runs")
         ->capture_default_str();
-    cmd->add_option("--threads", a->threads, "Runs in parallel")->capture_default_str();
-    cmd->add_option("--sources", a->sources,
-                    "Only the first K sources of each map (0: all; a labelled subset)")
+    bind_field(cmd, cmd->add_option("--threads", a->threads, "Runs in parallel"),
+               "evaluation.threads")
+        ->capture_default_str();
+    bind_field(cmd,
+               cmd->add_option("--sources", a->sources,
+                               "Only the first K sources of each map (0: all; a labelled subset)"),
+               "evaluation.sources")
         ->capture_default_str();
     cmd->add_option("--seed", a->seed, "Seed of plumes, noise and starts")->capture_default_str();
     cmd->add_option("--out,-o", a->out,
-                    "Output directory (replaced whole): runs.csv, summary.json, box plots, "
-                    "trajectories/")
+                    "Output folder (new, empty, or an earlier `evaluate` output, which is "
+                    "replaced): runs.csv, summary.json, box plots, trajectories/")
         ->capture_default_str();
     add_ste_options(cmd, a->ste);
-    add_json_flag(cmd);
+    add_common_flags(cmd);
     cmd->callback([a] {
       ste::EvaluationOptions eo;
       eo.ste = to_options(a->ste);
@@ -364,9 +400,7 @@ void add_ste_commands(CLI::App& app) {
       eo.threads = a->threads;
       eo.sources = a->sources;
       eo.seed = a->seed;
-      if (eo.runs < 1) throw InputError("--runs: must be at least 1");
-      if (eo.threads < 1) throw InputError("--threads: must be at least 1");
-      if (eo.sources < 0) throw InputError("--sources: must be >= 0");
+      eo.validate();
       if (!fs::is_directory(a->maps))
         throw InputError("--maps: " + a->maps + " is not a directory");
       std::vector<fs::path> files;
@@ -377,9 +411,13 @@ void add_ste_commands(CLI::App& app) {
       std::vector<Map> maps;
       for (const fs::path& f : files)
         maps.push_back(read_map(f));
+      // Pictures are named after the map files, never after the names inside them.
+      std::vector<std::string> taken, picture_names;
+      for (const fs::path& f : files)
+        picture_names.push_back(safe_file_name(f.stem().string(), taken) + ".png");
 
-      AtomicDirectory dir(a->out);
-      fs::create_directories(dir.path() / "trajectories");
+      OutputDirectory dir(a->out, "evaluate", {a->maps, a->ste.table_cache, a->ste.model});
+      fs::create_directories(dir.open() / "trajectories");
       ProgressBar bar("evaluate");
       const std::string label = ste::to_string(eo.ste.model);
       const ste::EvaluationResult res = ste::evaluate(
@@ -396,7 +434,7 @@ void add_ste_commands(CLI::App& app) {
                                       " m, " + std::to_string(r.samples) + " samples)";
             write_png(
                 ste::draw_trajectory(sc.map(), sc.mean_plume(r.source), r.result, r.source, title),
-                dir.path() / "trajectories" / (sc.map().name + ".png"));
+                dir.open() / "trajectories" / picture_names.at(r.map_index));
           });
       bar.finish();
 
@@ -436,14 +474,14 @@ void add_ste_commands(CLI::App& app) {
           {"overall", stats_json(res.overall)},
           {"maps", per_map},
           {"wall_s", res.wall_s}};
-      write_file_atomic(dir.path() / "runs.csv", ste::runs_csv(res));
-      write_file_atomic(dir.path() / "summary.json", summary.dump(2) + "\n");
+      write_file_atomic(dir.open() / "runs.csv", ste::runs_csv(res));
+      write_file_atomic(dir.open() / "summary.json", summary.dump(2) + "\n");
       write_png(ste::draw_box_plot(errors, labels, "error [m]",
                                    "STE (" + label + ") localization error per test map", 0.5),
-                dir.path() / "boxplot-error.png");
+                dir.open() / "boxplot-error.png");
       write_png(ste::draw_box_plot(samples, labels, "samples",
                                    "STE (" + label + ") samples per test map"),
-                dir.path() / "boxplot-samples.png");
+                dir.open() / "boxplot-samples.png");
       dir.commit();
 
       std::ostringstream h;
@@ -477,11 +515,16 @@ void add_ste_commands(CLI::App& app) {
       std::string out = "out/demo", plume_model;
     };
     auto a = std::make_shared<Args>();
-    cmd->add_option("--out,-o", a->out, "Where the pictures go")->capture_default_str();
-    cmd->add_option("--plume-model", a->plume_model,
-                    "surrogate, gaussian or physics (default: surrogate with the shipped model, "
-                    "else physics)");
-    add_json_flag(cmd);
+    cmd->add_option("--out,-o", a->out,
+                    "Where the pictures go: a new, empty, or earlier `demo` output folder")
+        ->capture_default_str();
+    bind_field(cmd,
+               cmd->add_option(
+                   "--plume-model", a->plume_model,
+                   "surrogate, gaussian or physics (default: surrogate with the shipped model, "
+                   "else physics)"),
+               "ste.model");
+    add_common_flags(cmd);
     cmd->callback([a] {
       const fs::path map_file = data_dir() / "test-maps" / kDemoMap;
       SteArgs args;
@@ -499,11 +542,14 @@ void add_ste_commands(CLI::App& app) {
       if (!note.empty() && !output().json) std::cerr << note << "\n";
       const ste::SteOptions options = to_options(args);
       const Map map = read_map(map_file);
+      OutputDirectory out(a->out, "demo", {map_file});
       const ste::Scenario sc(map, options);
       const Vec2 source = map.sources.at(kDemoSource);
       const Vec2 start = sc.check_start(kDemoStart);
       const ste::LocalizationResult r = sc.run(source, start, ste::run_seed(1, 0, 0, 0));
-      const Pictures p = draw_run(sc, source, r, a->out, args.plume_model);
+      draw_run(sc, source, r, out.open(), args.plume_model);
+      out.commit();
+      const Pictures p{fs::path(a->out) / "trajectory.png", fs::path(a->out) / "posterior.png"};
       ordered_json j{{"ok", true}, {"map", map_file.string()}, {"plume_model", args.plume_model}};
       if (!note.empty()) j["note"] = note;
       j.update(run_json(sc, source, r));

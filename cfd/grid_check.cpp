@@ -89,8 +89,13 @@ void check_grid_size(const Map& map, const FlowOptions& options) {
     std::ostringstream s;
     s << compact(options.cell) << " m gives " << compact(cells) << " cells on the "
       << compact(map.width) << " x " << compact(map.height) << " m arena, more than the "
-      << compact(kMaxFlowCells) << " a solve can handle; use a cell of at least "
-      << compact(cell_for(map, kMaxFlowCells)) << " m";
+      << compact(kMaxFlowCells) << " a solve can handle; ";
+    const double fits = cell_for(map, kMaxFlowCells);
+    if (fits <= kMaxCell)
+      s << "use a cell of at least " << compact(fits) << " m";
+    else
+      s << "even the largest cell, " << compact(kMaxCell)
+        << " m, is too fine for an arena this size: split the map into smaller ones";
     throw OptionError("flow.cell", s.str());
   }
   const double bytes = flow_memory_estimate(cells);

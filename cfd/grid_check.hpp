@@ -13,6 +13,8 @@ namespace plumekit::cfd {
 
 // Most cells a flow grid may have: a solve on 4 million cells takes hours.
 inline constexpr double kMaxFlowCells = 4e6;
+// The largest cell FlowOptions::validate accepts, m.
+inline constexpr double kMaxCell = 10.0;
 
 // Estimated peak memory (bytes) of cfd::solve on a grid of `cells` cells: the
 // sparse LU's fill grows a little faster than the cell count. Calibrated on

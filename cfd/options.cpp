@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "cfd/grid_check.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::cfd {
@@ -10,7 +11,7 @@ namespace plumekit::cfd {
 // mistakes and typos (a cell of 50 m, a viscosity of 1e9) before a solve that
 // cannot succeed. cfd/README.md lists them.
 void FlowOptions::validate() const {
-  check_positive("flow.cell", cell, 10.0, "m", "the default is 0.05 m");
+  check_positive("flow.cell", cell, kMaxCell, "m", "the default is 0.05 m");
   check_positive("flow.nu", nu, 10.0, "m^2/s",
                  "the default is 0.01 m^2/s (air's molecular value is 1.5e-05)");
   check_range("flow.tolerance", tolerance, 1e-14, 0.1, "", "the default is 1e-08");

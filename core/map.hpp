@@ -30,6 +30,9 @@ struct Inlet : Opening {
 
 struct Map {
   std::string name;
+  // The plumekit command that wrote the file ("plumekit map import-ros"), empty
+  // for a map a person wrote: only a generated map file may be overwritten.
+  std::string generated_by;
   double width = 0.0;   // m, along x
   double height = 0.0;  // m, along y
   Inlet inlet;

@@ -229,13 +229,15 @@ Map parse_map(std::string_view text, const std::string& origin) {
   }
 
   r.object(doc, "");
-  r.only_keys(doc, "", {"format", "name", "size", "inlet", "outlet", "obstacles", "sources"});
+  r.only_keys(doc, "",
+              {"format", "name", "generated_by", "size", "inlet", "outlet", "obstacles", "sources"});
   const std::string format = r.string(r.required(doc, "", "format"), "format");
   if (format != kMapFormat)
     r.fail("format", "'" + format + "' is not supported; this plumekit reads " + kMapFormat);
 
   Map map;
   if (doc.contains("name")) map.name = r.string(doc["name"], "name");
+  if (doc.contains("generated_by")) map.generated_by = r.string(doc["generated_by"], "generated_by");
   const Vec2 size = r.point(r.required(doc, "", "size"), "size");
   map.width = size.x;
   map.height = size.y;
@@ -290,6 +292,7 @@ nlohmann::ordered_json map_to_json(const Map& map) {
   ordered_json j;
   j["format"] = kMapFormat;
   j["name"] = map.name;
+  if (!map.generated_by.empty()) j["generated_by"] = map.generated_by;
   j["size"] = {map.width, map.height};
   j["inlet"] = {{"side", to_string(map.inlet.side)},
                 {"from", map.inlet.from},
@@ -317,9 +320,9 @@ void write_map(const Map& map, const std::filesystem::path& path) {
   const ordered_json j = map_to_json(map);
   std::ostringstream out;
   out << "{\n";
-  const char* const order[] = {"format", "name", "size", "inlet", "outlet"};
+  const char* const order[] = {"format", "name", "generated_by", "size", "inlet", "outlet"};
   for (const char* key : order)
-    out << "  \"" << key << "\": " << j[key].dump() << ",\n";
+    if (j.contains(key)) out << "  \"" << key << "\": " << j[key].dump() << ",\n";
   for (const char* key : {"obstacles", "sources"}) {
     out << "  \"" << key << "\": [";
     const ordered_json& list = j[key];

@@ -23,7 +23,9 @@ Map read_map(const std::filesystem::path& path);
 void validate_map(const Map& map, const std::string& origin);
 
 nlohmann::ordered_json map_to_json(const Map& map);
-// Validates, then writes atomically (no partial file on failure).
+// Validates, then writes atomically (no partial file on failure). Replaces an
+// existing file: a command writing where the user said checks the output rule
+// first (check_output_file in output_target.hpp).
 void write_map(const Map& map, const std::filesystem::path& path);
 
 }  // namespace plumekit

@@ -13,6 +13,7 @@
 #include "core/image_io.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
+#include "core/output_target.hpp"
 
 namespace plumekit {
 
@@ -265,7 +266,7 @@ void MapCanvas::draw_path(const std::vector<Vec2>& path, const cv::Scalar& colou
 }
 
 void write_png(const cv::Mat& image, const std::filesystem::path& path) {
-  write_file_atomic(path, encode_png(image));
+  write_output_file(path, mark_png(encode_png(image)));
 }
 
 }  // namespace plumekit

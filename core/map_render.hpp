@@ -54,7 +54,8 @@ class MapCanvas {
   cv::Mat image_;
 };
 
-// PNG-encode and write atomically; InputError when the path is not writable.
+// PNG-encode, mark as plumekit's, and write atomically under the output rule
+// (output_target.hpp); InputError when the path may not or cannot be written.
 void write_png(const cv::Mat& image, const std::filesystem::path& path);
 
 }  // namespace plumekit

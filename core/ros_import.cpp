@@ -221,6 +221,9 @@ RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImport
   check_non_negative("ros.simplify_px", options.simplify_px, 10.0, "px", "the default is 0.75");
   check_non_negative("ros.min_area_px", options.min_area_px, 1e12, "px", "0 keeps every speck");
   const std::string origin = yaml_path.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(yaml_path, ec))
+    throw InputError(origin + ": is a folder; name the map_server YAML file inside it");
   YAML::Node doc;
   try {
     doc = YAML::LoadFile(origin);
@@ -251,13 +254,13 @@ RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImport
 
   std::filesystem::path image_path(image_name);
   if (image_path.is_relative()) image_path = yaml_path.parent_path() / image_path;
-  const cv::Mat image = read_gray_image(image_path);
-  if (image.empty())
-    throw InputError(origin + ": image: cannot read '" + image_path.string() + "' as PGM/PNG");
   const auto [cols, rows] = image_dimensions(image_path);
   check_memory(cols * rows * kImportBytesPerPixel,
                origin + ": importing the " + compact(cols) + " x " + compact(rows) + " px image",
                "crop or downsample the image");
+  const cv::Mat image = read_gray_image(image_path);
+  if (image.empty())
+    throw InputError(origin + ": image: cannot read '" + image_path.string() + "' as PGM/PNG");
 
   // map_server's rule: occupancy probability from the grey level.
   cv::Mat occupied(image.size(), CV_8U);

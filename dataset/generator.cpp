@@ -17,6 +17,7 @@
 #include "core/map_json.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
+#include "core/output_target.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
 #include "dataset/seed.hpp"
@@ -28,6 +29,20 @@ namespace plumekit::dataset {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The output rule for a dataset folder, which grows in place over resumable
+// runs: new, empty, or holding only what generate and merge write. Both mark
+// it as a "dataset" folder, so that a merged dataset is byte for byte an
+// unsplit one.
+void claim_dataset_folder(const fs::path& out) {
+  const auto own = [](const std::string& name) {
+    return name == "maps" || name == "wind" || name == "shards" || name == "parameters.json" ||
+           name == "manifest.json" ||
+           (name.rfind("manifest.part-", 0) == 0 && fs::path(name).extension() == ".json") ||
+           name.find(".plumekit-tmp-") != std::string::npos;
+  };
+  claim_output_directory(out, "dataset", {"dataset"}, own, "parameters.json");
+}
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
@@ -116,6 +131,7 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
                        "\nuse another --out, or the dataset's parameters to resume it");
     }
   }
+  claim_dataset_folder(out);
   fs::create_directories(out / "maps");
   fs::create_directories(out / "wind");
   fs::create_directories(out / "shards");
@@ -327,6 +343,7 @@ MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& pa
     if (!have[i]) throw InputError("dataset merge: no part holds map " + std::to_string(i));
   summary.parts = static_cast<int>(parts_seen.size());
 
+  claim_dataset_folder(out);
   fs::create_directories(out / "shards");
   fs::create_directories(out / "maps");
   fs::create_directories(out / "wind");

@@ -71,8 +71,8 @@ class Safety : public plumekit::test::CliTest {
 TEST_F(Safety, EvaluateRefusesAFolderWithFilesItDidNotWrite) {
   const fs::path work = thesis();
   const auto before = snapshot(work);
-  const Result r = run("evaluate --maps " + one_map_dir().string() + " --out " + work.string() +
-                       quick_ste());
+  const Result r =
+      run("evaluate --maps " + one_map_dir().string() + " --out " + work.string() + quick_ste());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("holds files plumekit did not write"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("thesis.tex"), std::string::npos) << r.err;
@@ -107,8 +107,8 @@ TEST_F(Safety, EvaluateNamesPicturesAfterFilesNotMapNamesAndReplacesItsOwnOutput
   put(dir / "maps" / "a.json", text);
   put(dir / "maps" / "b.json", text);  // the same name twice
   const fs::path out = dir / "runs" / "eval";
-  Result r = run("evaluate --maps " + (dir / "maps").string() + " --out " + out.string() +
-                 quick_ste());
+  Result r =
+      run("evaluate --maps " + (dir / "maps").string() + " --out " + out.string() + quick_ste());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out / "trajectories" / "a.png"));
   EXPECT_TRUE(fs::exists(out / "trajectories" / "b.png"));
@@ -124,9 +124,9 @@ TEST_F(Safety, InterruptedEvaluateLeavesNoTemporary) {
   const fs::path maps = one_map_dir();
   const fs::path out = dir / "eval";
   const std::string exe = PLUMEKIT_EXE;
-  std::vector<std::string> args{exe,       "evaluate",     "--maps",         maps.string(),
-                                "--out",   out.string(),   "--plume-model",  "physics",
-                                "--runs",  "3",            "--threads",      "1"};
+  std::vector<std::string> args{exe,      "evaluate",   "--maps",        maps.string(),
+                                "--out",  out.string(), "--plume-model", "physics",
+                                "--runs", "3",          "--threads",     "1"};
   std::vector<char*> argv;
   for (std::string& a : args)
     argv.push_back(a.data());
@@ -285,6 +285,35 @@ TEST_F(Safety, JsonReportsParseErrorsAndUnknownCommands) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("'frobnicate' is not a command of plumekit map"), std::string::npos)
       << r.err;
+}
+
+TEST_F(Safety, LibraryRangeErrorsNameTheFlagAndWriteNothing) {
+  const std::string map = (kData / "maps" / "cluttered-1.json").string();
+  const fs::path out = dir / "never";
+  const struct {
+    std::string args, flag;
+  } cases[] = {
+      {"flow " + map + " --cell 0 --out " + out.string(), "--cell"},
+      {"flow " + map + " --nu 1e9 --out " + out.string(), "--nu"},
+      {"dataset generate --maps 1 --sources 1 --cell nan --out " + out.string(), "--cell"},
+      {"dataset generate --maps 1 --sources 1 --families l-shape,U --out " + out.string(),
+       "--families"},
+      {"dataset generate --maps 1 --sources 1 --filaments-per-second 0 --out " + out.string(),
+       "--filaments-per-second"},
+      {"plume " + map + " --source 1,2 --release-rate nan --out " + out.string(), "--release-rate"},
+      {"plume " + map + " --source 1,2 --release-rate -5 --out " + out.string(), "--release-rate"},
+      {"localize " + map + " --source 1,2 --plume-model gaussian --noise nan --out " + out.string(),
+       "--noise"},
+      {"map render " + map + " --px-per-m nan --out " + (dir / "never.png").string(), "--px-per-m"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(c.args + " --json");
+    EXPECT_EQ(r.code, 2) << c.args << "\n" << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["error"].get<std::string>().rfind(c.flag + ": ", 0), 0u) << c.args << "\n" << r.out;
+    for (const auto& e : fs::directory_iterator(dir))
+      ADD_FAILURE() << c.args << " left " << e.path();
+  }
 }
 
 }  // namespace

@@ -66,10 +66,10 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   EXPECT_NE(r.err.find("--reward: unknown reward 'greedy'"), std::string::npos) << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --lattice 0");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--lattice: must be at least 1"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--lattice: must be a whole number from 1 to 20, got 0"), std::string::npos) << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --source-cell 0");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--source-cell: must be a positive number"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--source-cell: must be a finite number more than 0"), std::string::npos) << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model gaussian --source-cell 0.2");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--source-cell: only the surrogate and physics"), std::string::npos)

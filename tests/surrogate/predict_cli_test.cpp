@@ -100,7 +100,7 @@ TEST_F(Predict, RefusesToReplaceADirectoryHoldingOtherFiles) {
   std::ofstream(dir / "mine" / "notes.txt") << "keep me";
   const Result r = run(predict_args(dir / "mine", "1.5,1"));
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("not empty (holds notes.txt)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("holds files plumekit did not write (notes.txt)"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(dir / "mine" / "notes.txt"));
   EXPECT_FALSE(fs::exists(dir / "mine" / "mean.npy"));
 }
