@@ -340,7 +340,7 @@ void add_ste_commands(CLI::App& app) {
           a->start.empty() ? sc.random_start(source, seed ^ 0xA5A5) : sc.check_start(start_arg);
       const ste::LocalizationResult r = sc.run(source, start, seed);
       ordered_json j{{"ok", true},
-                     {"map", a->map},
+                     {"map", provenance_path(a->map)},
                      {"plume_model", ste::to_string(options.model)},
                      {"seed", a->seed}};
       j.update(run_json(sc, source, r));
@@ -460,7 +460,7 @@ void add_ste_commands(CLI::App& app) {
       }
       ordered_json summary{
           {"ok", true},
-          {"maps_dir", a->maps},
+          {"maps_dir", provenance_path(a->maps)},
           {"plume_model", label},
           {"runs_per_source", eo.runs},
           {"sources_per_map", eo.sources > 0 ? ordered_json(eo.sources) : ordered_json("all")},

@@ -4,10 +4,10 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <fcntl.h>
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <fcntl.h>
 #include <fstream>
 #include <set>
 
@@ -53,10 +53,10 @@ void check_placement(const fs::path& target, const std::vector<fs::path>& inputs
   const fs::path t = resolved(target);
   const fs::path cwd = resolved(fs::current_path());
   if (within(cwd, t))
-    throw InputError(quoted(target) + ": is " +
-                     (t == cwd ? std::string("the current folder")
-                               : "a folder holding the current folder") +
-                     "; name a new or empty folder for the output");
+    throw InputError(
+        quoted(target) + ": is " +
+        (t == cwd ? std::string("the current folder") : "a folder holding the current folder") +
+        "; name a new or empty folder for the output");
   for (const fs::path& input : inputs) {
     if (input.empty()) continue;
     const fs::path in = resolved(input);
@@ -150,8 +150,7 @@ void check_existing_folder(const fs::path& target, const std::string& command) {
     std::vector<std::string> all = other;
     all.insert(all.end(), files.begin(), files.end());
     std::sort(all.begin(), all.end());
-    throw InputError(quoted(target) + ": holds files plumekit did not write (" +
-                     some_entries(all) +
+    throw InputError(quoted(target) + ": holds files plumekit did not write (" + some_entries(all) +
                      "); name a new or empty folder, plumekit never deletes them");
   }
   if (m.command != command)
@@ -161,9 +160,8 @@ void check_existing_folder(const fs::path& target, const std::string& command) {
   for (const std::string& f : files)
     if (f != kOutputMarker && !m.files.count(f)) foreign.push_back(f);
   if (!foreign.empty())
-    throw InputError(quoted(target) + ": holds the output of an earlier `" +
-                     command_name(command) + "` and files it did not write (" +
-                     some_entries(foreign) +
+    throw InputError(quoted(target) + ": holds the output of an earlier `" + command_name(command) +
+                     "` and files it did not write (" + some_entries(foreign) +
                      "); move them away or name another folder, plumekit never deletes them");
 }
 
@@ -252,8 +250,7 @@ bool png_has_mark(const std::string& bytes) {
 
 // ---- OutputDirectory ---------------------------------------------------------
 
-OutputDirectory::OutputDirectory(fs::path target, std::string command,
-                                 std::vector<fs::path> inputs)
+OutputDirectory::OutputDirectory(fs::path target, std::string command, std::vector<fs::path> inputs)
     : target_(std::move(target)), command_(std::move(command)) {
   check_folder_target(target_, command_, inputs);
 }
@@ -278,8 +275,7 @@ const fs::path& OutputDirectory::open() {
   temporary_ = make_temporary_path(abs);
   std::error_code ec;
   fs::create_directory(temporary_, ec);
-  if (ec)
-    throw InputError(quoted(target_) + ": cannot create a folder beside it: " + ec.message());
+  if (ec) throw InputError(quoted(target_) + ": cannot create a folder beside it: " + ec.message());
   return temporary_;
 }
 
@@ -293,7 +289,8 @@ void OutputDirectory::commit() {
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(abs, ec))) {
     fs::rename(temporary_, abs, ec);
-    if (ec) throw InputError(quoted(target_) + ": cannot move the output into place: " + ec.message());
+    if (ec)
+      throw InputError(quoted(target_) + ": cannot move the output into place: " + ec.message());
   } else {
     // It was checked to be empty or our own output; check again (another run
     // may have written since), then swap the two folders in one step.
@@ -406,12 +403,18 @@ std::string mark_png(std::string png) {
   put_be32(chunk, static_cast<std::uint32_t>(data.size()));
   const std::string typed = "tEXt" + data;
   chunk += typed;
-  put_be32(chunk, static_cast<std::uint32_t>(
-                      crc32(0L, reinterpret_cast<const Bytef*>(typed.data()),
-                            static_cast<uInt>(typed.size()))));
+  put_be32(chunk, static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(typed.data()),
+                                                   static_cast<uInt>(typed.size()))));
   // After the signature (8) and the IHDR chunk (4 + 4 + 13 + 4).
   png.insert(33, chunk);
   return png;
+}
+
+std::string provenance_path(const fs::path& input) {
+  if (input.empty()) return "";
+  const fs::path in = resolved(input), cwd = resolved(fs::current_path());
+  if (within(in, cwd)) return in.lexically_relative(cwd).generic_string();
+  return in.filename().empty() ? in.parent_path().filename().string() : in.filename().string();
 }
 
 std::string safe_file_name(const std::string& text, std::vector<std::string>& taken) {

@@ -75,6 +75,11 @@ bool written_by_plumekit(const std::filesystem::path& file);
 // PNG bytes with a "Software: plumekit" text chunk after the header chunk.
 std::string mark_png(std::string png);
 
+// How an input is named in a file plumekit writes (provenance): relative to
+// the current folder when inside it, else its last component, so that no
+// output records an absolute path of the machine that made it.
+std::string provenance_path(const std::filesystem::path& input);
+
 // A file name made from text that came from a file (a map's name): letters,
 // digits, '-', '_' and '.' kept, anything else '_', no leading '.', at most 80
 // characters, never empty. Names already in `taken` get "-2", "-3", ...; the

@@ -316,4 +316,17 @@ TEST_F(Safety, LibraryRangeErrorsNameTheFlagAndWriteNothing) {
   }
 }
 
+TEST_F(Safety, WrittenFilesRecordNoAbsolutePath) {
+  const fs::path maps = one_map_dir();
+  const fs::path map = maps / "test-0-empty.json";
+  Result r =
+      run("localize " + map.string() + " --source 5,2 --plume-model gaussian --max-samples 2 " +
+          "--out " + (dir / "loc").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(dir / "loc" / "run.json").find(dir.string()), std::string::npos);
+  r = run("evaluate --maps " + maps.string() + " --out " + (dir / "ev").string() + quick_ste());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(dir / "ev" / "summary.json").find(dir.string()), std::string::npos);
+}
+
 }  // namespace

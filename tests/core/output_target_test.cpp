@@ -212,6 +212,15 @@ TEST_F(OutputTargetTest, SafeFileNamesFromFileContents) {
   EXPECT_EQ(safe_file_name(std::string(300, 'x'), taken).size(), 80u);
 }
 
+TEST_F(OutputTargetTest, ProvenanceNeverRecordsAnAbsolutePath) {
+  put("maps/a.json", "{}");
+  EXPECT_EQ(provenance_path("maps/a.json"), "maps/a.json");
+  EXPECT_EQ(provenance_path(dir / "maps" / "a.json"), "maps/a.json");
+  EXPECT_EQ(provenance_path(dir / "maps"), "maps");
+  EXPECT_EQ(provenance_path("/usr/share/somewhere/b.json"), "b.json");
+  EXPECT_EQ(provenance_path("/usr/share/somewhere/"), "somewhere");
+}
+
 TEST_F(OutputTargetTest, InPlaceClaimAcceptsOwnLayoutOnly) {
   auto own = [](const std::string& n) { return n == "shards" || n == "parameters.json"; };
   EXPECT_FALSE(claim_output_directory("ds", "dataset generate", {"dataset generate"}, own,
