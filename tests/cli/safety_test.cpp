@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.hpp"
+#include "support/files.hpp"
 
 extern char** environ;
 
@@ -28,18 +29,8 @@ using plumekit::test::slurp;
 
 const fs::path kData = PLUMEKIT_DATA_DIR;
 
-void put(const fs::path& p, const std::string& bytes) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << bytes;
-}
-
-std::map<std::string, std::string> snapshot(const fs::path& d) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(d))
-    files[fs::relative(e.path(), d).string()] =
-        e.is_regular_file() ? slurp(e.path()) : std::string("<dir>");
-  return files;
-}
+const auto& put = plumekit::test::put_file;
+using plumekit::test::snapshot;
 
 class Safety : public plumekit::test::CliTest {
  protected:

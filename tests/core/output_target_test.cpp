@@ -12,32 +12,16 @@
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/temporary_files.hpp"
+#include "support/files.hpp"
 
 namespace plumekit {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-void put(const fs::path& p, const std::string& bytes) {
-  if (p.has_parent_path()) fs::create_directories(p.parent_path());
-  std::ofstream(p, std::ios::binary) << bytes;
-}
-
-// Every file under `dir` with its bytes, to compare a folder before and after.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    files[fs::relative(e.path(), dir).string()] =
-        e.is_regular_file() ? slurp(e.path()) : std::string("<dir>");
-  return files;
-}
+const auto& slurp = test::file_bytes;
+const auto& put = test::put_file;
+using test::snapshot;
 
 template <class F>
 std::string input_error(F&& f) {
@@ -51,9 +35,9 @@ std::string input_error(F&& f) {
 
 class OutputTargetTest : public ::testing::Test {
  protected:
-  fs::path dir = fs::temp_directory_path() /
-                 ("plumekit-output-" + std::to_string(::getpid()) + "-" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::path dir =
+      fs::temp_directory_path() / ("plumekit-output-" + std::to_string(::getpid()) + "-" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
   fs::path old_cwd = fs::current_path();
   void SetUp() override {
     fs::remove_all(dir);
@@ -122,8 +106,9 @@ TEST_F(OutputTargetTest, CurrentFolderAndItsParentsAreRefused) {
   put("keep.txt", "x");
   EXPECT_NE(input_error([&] { OutputDirectory out(".", "evaluate"); }).find("the current folder"),
             std::string::npos);
-  EXPECT_NE(input_error([&] { OutputDirectory out("..", "evaluate"); })
-                .find("a folder holding the current folder"),
+  EXPECT_NE(input_error([&] {
+              OutputDirectory out("..", "evaluate");
+            }).find("a folder holding the current folder"),
             std::string::npos);
   EXPECT_NE(input_error([&] { OutputDirectory out(dir, "evaluate"); }).find("current folder"),
             std::string::npos);
@@ -132,15 +117,18 @@ TEST_F(OutputTargetTest, CurrentFolderAndItsParentsAreRefused) {
 
 TEST_F(OutputTargetTest, InputsAreRefusedEitherWay) {
   put("maps/a.json", "{}");
-  EXPECT_NE(input_error([&] { OutputDirectory out("maps", "evaluate", {"maps"}); })
-                .find("is also an input"),
+  EXPECT_NE(input_error([&] {
+              OutputDirectory out("maps", "evaluate", {"maps"});
+            }).find("is also an input"),
             std::string::npos);
-  EXPECT_NE(input_error([&] { OutputDirectory out("maps/out", "evaluate", {"maps"}); })
-                .find("lies inside the input maps"),
+  EXPECT_NE(input_error([&] {
+              OutputDirectory out("maps/out", "evaluate", {"maps"});
+            }).find("lies inside the input maps"),
             std::string::npos);
   EXPECT_NE(input_error([&] { OutputDirectory out(".", "evaluate", {"maps/a.json"}); }).size(), 0u);
-  EXPECT_NE(input_error([&] { check_output_file("maps/a.json", {"maps/a.json"}); })
-                .find("is also an input"),
+  EXPECT_NE(input_error([&] {
+              check_output_file("maps/a.json", {"maps/a.json"});
+            }).find("is also an input"),
             std::string::npos);
   EXPECT_EQ(slurp("maps/a.json"), "{}");
 }
@@ -180,7 +168,8 @@ TEST_F(OutputTargetTest, FilesAreOverwrittenOnlyWhenPlumekitWroteThem) {
   const cv::Mat back = read_gray_image("ours.png");
   ASSERT_EQ(back.rows, 4);
 
-  put("map.json", "{\"format\": \"plumekit-map/1\", \"generated_by\": \"plumekit map import-ros\"}");
+  put("map.json",
+      "{\"format\": \"plumekit-map/1\", \"generated_by\": \"plumekit map import-ros\"}");
   EXPECT_TRUE(written_by_plumekit("map.json"));
   put("hand.json", "{\"format\": \"plumekit-map/1\"}");
   EXPECT_FALSE(written_by_plumekit("hand.json"));
