@@ -1,5 +1,6 @@
 // plumekit map validate | render | import-ros
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
@@ -46,8 +47,12 @@ ordered_json map_summary(const Map& map, const std::string& file) {
   out["free_fraction"] = check.free_fraction;
   out["check_cell_m"] = check.cell;
   out["warnings"] = ordered_json::array();
-  std::ostringstream cell;
-  cell << check.cell * 100 << " cm";
+  std::ostringstream cell;  // 2 significant digits: cells are extent / n, "5 cm", not "5.002 cm"
+  cell << std::setprecision(2);
+  if (check.cell < 1.0)
+    cell << check.cell * 100 << " cm";
+  else
+    cell << check.cell << " m";
   if (check.coarsened)
     out["warnings"].push_back("the arena is too large to check at 5 cm cells; checked at " +
                               cell.str() + ", where passages narrower than that may look closed");
@@ -181,7 +186,7 @@ void add_import_ros(CLI::App& map_cmd) {
       for (int c = 0; c < in.cols; ++c)
         mismatched += (solid(c, in.rows - 1 - r) != 0) != (in.occupied.at<uchar>(r, c) != 0);
 
-    write_map(in.map, a->out);
+    write_output_file(a->out, map_file_text(in.map, a->out));
     ordered_json j{{"ok", true},
                    {"yaml", a->yaml},
                    {"out", a->out},

@@ -314,8 +314,8 @@ nlohmann::ordered_json map_to_json(const Map& map) {
   return j;
 }
 
-void write_map(const Map& map, const std::filesystem::path& path) {
-  validate_map(map, path.string());
+std::string map_file_text(const Map& map, const std::string& origin) {
+  validate_map(map, origin);
   // Hand-laid so that a file stays readable: one line per key, polygon or source.
   const ordered_json j = map_to_json(map);
   std::ostringstream out;
@@ -331,7 +331,11 @@ void write_map(const Map& map, const std::filesystem::path& path) {
     out << (list.empty() ? "]" : "\n  ]") << (std::string(key) == "obstacles" ? ",\n" : "\n");
   }
   out << "}\n";
-  write_file_atomic(path, out.str());
+  return out.str();
+}
+
+void write_map(const Map& map, const std::filesystem::path& path) {
+  write_file_atomic(path, map_file_text(map, path.string()));
 }
 
 }  // namespace plumekit

@@ -23,6 +23,9 @@ Map read_map(const std::filesystem::path& path);
 void validate_map(const Map& map, const std::string& origin);
 
 nlohmann::ordered_json map_to_json(const Map& map);
+// The file's text, one line per key, polygon or source; validates first
+// (InputError naming `origin`).
+std::string map_file_text(const Map& map, const std::string& origin);
 // Validates, then writes atomically (no partial file on failure). Replaces an
 // existing file: a command writing where the user said checks the output rule
 // first (check_output_file in output_target.hpp).
