@@ -17,7 +17,7 @@ seconds=${1:-60}
 all_targets=(fuzz_map_json fuzz_ros_import fuzz_model_file fuzz_manifest fuzz_table_cache)
 targets=("$@")
 [[ ${#targets[@]} -gt 0 ]] || targets=("${all_targets[@]}")
-build=build-fuzz
+build="build-fuzz"
 jobs=${FUZZ_JOBS:-$(nproc)}
 
 # Largest input each target tries: above its biggest seed (the office map, the 49 kB model).
@@ -34,10 +34,12 @@ fi
 [[ -n "$cxx" ]] || { echo "fuzz.sh: needs clang++ with libFuzzer (scripts/install-deps.sh)" >&2; exit 2; }
 
 if [[ ! -f $build/CMakeCache.txt ]]; then
+  launcher=()
+  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   # -O1, no NDEBUG (asserts stay on), line tables only: stacks with line numbers, faster builds.
   CXX=$cxx cmake -S . -B $build -DPLUMEKIT_FUZZ=ON -DBUILD_TESTING=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-    -DPLUMEKIT_NATIVE=OFF $(command -v ccache >/dev/null && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+    -DPLUMEKIT_NATIVE=OFF "${launcher[@]}"
 fi
 cmake --build $build -j "$(nproc)" --target "${targets[@]}"
 
