@@ -38,7 +38,7 @@ ordered_json parse_json(std::string_view bytes, const std::string& name,
                         const char* advice = kRewrite) {
   try {
     return ordered_json::parse(bytes.begin(), bytes.end());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for a number like 1e400
     std::string why = e.what();
     if (const auto p = why.find("] "); p != std::string::npos) why = why.substr(p + 2);
     fail(name, "", "not valid JSON (the file is truncated or damaged): " + why, advice);

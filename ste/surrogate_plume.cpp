@@ -57,7 +57,7 @@ bool is_lower_hex(std::string_view s) {
 std::vector<float> read_plumes(const char* p, std::size_t count, const char* which,
                                std::uint32_t per, const std::string& name) {
   std::vector<float> v(count);
-  std::memcpy(v.data(), p, count * sizeof(float));
+  if (count > 0) std::memcpy(v.data(), p, count * sizeof(float));  // data() may be null when empty
   for (std::size_t k = 0; k < count; ++k)
     if (!std::isfinite(v[k]) || v[k] < 0.0f) {
       std::ostringstream os;

@@ -135,6 +135,19 @@ TEST_F(DatasetReader, ManifestFaultsNameTheFileTheKeyAndTheFault) {
 
 // Random damage anywhere in a manifest is InputError or a manifest, never another exception or a
 // crash (what the fuzz target checks at length).
+// Found by fuzz_manifest: a number beyond a double escaped as nlohmann's out_of_range (exit 1).
+TEST_F(DatasetReader, ANumberTooLargeForADoubleIsInputError) {
+  for (const char* text : {R"({"samples": 1e400})", R"([1e400])"}) {
+    try {
+      parse_manifest(text, "d/manifest.json");
+      ADD_FAILURE() << text << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("d/manifest.json"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(parse_parameters(text, "d/parameters.json"), InputError);
+  }
+}
+
 TEST_F(DatasetReader, DamagedManifestBytesAreRefusedCleanly) {
   const std::string good = read_file(data / "manifest.json");
   std::mt19937 rng(5);

@@ -139,6 +139,17 @@ TEST_F(TableCache, ParseRefusesNonFiniteValuesAndInconsistentSizesEvenWithAGoodC
 
 // Damage with a recomputed checksum (what a fuzz target reaches): any byte of the header or the
 // plumes, or a cut, is InputError or a table whose sizes fit its bytes, never a crash.
+// Found by fuzz_table_cache: copying the plumes of an empty table was undefined behaviour.
+TEST_F(TableCache, AnEmptyTableReadsBack) {
+  SurrogateTable t;
+  t.key = std::string(64, 'b');
+  t.per = 4;
+  const SurrogateTable back = parse_table_cache(table_cache_bytes(t), "empty.bin");
+  EXPECT_EQ(back.rows, 0u);
+  EXPECT_TRUE(back.mean.empty());
+  EXPECT_TRUE(back.std.empty());
+}
+
 TEST_F(TableCache, ParseSurvivesDamageBehindAGoodChecksum) {
   SurrogateTable t;
   t.key = std::string(64, 'b');
