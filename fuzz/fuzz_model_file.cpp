@@ -14,7 +14,7 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "core/sha256.hpp"
+#include "fuzz/reseal.hpp"
 #include "surrogate/model_file.hpp"
 
 namespace {
@@ -37,11 +37,6 @@ void read_and_check(std::string_view bytes) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
   read_and_check(bytes);
-  constexpr std::size_t kDigest = 32;
-  if (size < kDigest) return 0;
-  std::string resealed(bytes);
-  const plumekit::Sha256Digest digest = plumekit::sha256(bytes.substr(0, size - kDigest));
-  resealed.replace(size - kDigest, kDigest, reinterpret_cast<const char*>(digest.data()), kDigest);
-  read_and_check(resealed);
+  if (const auto again = plumekit::fuzz::resealed(bytes)) read_and_check(*again);
   return 0;
 }
