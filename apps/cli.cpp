@@ -9,6 +9,8 @@
 
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
+#include "core/seed.hpp"
+#include "core/thread_pool.hpp"
 
 namespace plumekit::cli {
 
@@ -74,6 +76,37 @@ std::string with_flag_names(const CLI::App& command, std::string message) {
          at = message.find(field, at + flag.size()))
       message.replace(at, field.size(), flag);
   return message;
+}
+
+CLI::Option* add_map_argument(CLI::App* command, std::string& map) {
+  if (map.empty()) map = default_map().string();
+  return command->add_option("MAP", map, "Map file (plumekit-map/1 JSON)")->capture_default_str();
+}
+
+CLI::Option* add_seed_flag(CLI::App* command, std::uint64_t& seed, const std::string& what) {
+  return command->add_option("--seed", seed, what)->capture_default_str();
+}
+
+CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string& field,
+                              const std::string& what) {
+  return bind_field(command, command->add_option("--threads,-j", threads, what), field)
+      ->capture_default_str();
+}
+
+void warn_deprecated(const std::string& old_flag, const std::string& new_flag) {
+  std::cerr << "plumekit: warning: " << old_flag
+            << " is deprecated and goes in the next release; use " << new_flag << '\n';
+}
+
+void add_moved_start(nlohmann::ordered_json& summary, Vec2 requested, Vec2 used) {
+  summary["start_moved"] = {{"requested", point_json(requested)}, {"used", point_json(used)}};
+}
+
+std::string moved_start_text(Vec2 requested, Vec2 used) {
+  std::ostringstream s;
+  s << "start moved from (" << requested.x << ", " << requested.y << ") to (" << used.x << ", "
+    << used.y << "): closer than the margin to an obstacle";
+  return s.str();
 }
 
 Vec2 parse_point(const std::string& text, const std::string& flag) {

@@ -1,7 +1,9 @@
 #pragma once
 // What every plumekit command shares: where the shipped data is, the --json
 // switch, and how results and errors are printed.
+#include <cstdint>
 #include <filesystem>
+#include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -38,6 +40,45 @@ CLI::Option* bind_field(CLI::App* command, CLI::Option* option, const std::strin
 // replaced by its flag: library messages name fields ("flow.cell"), a
 // command's user knows flags ("--cell").
 std::string with_flag_names(const CLI::App& command, std::string message);
+
+// The flags that mean the same on every command (README, "Flags"). Each binds
+// to a library field, so the --help default is the library's.
+
+// The positional MAP of every command that takes one map (default: the shipped
+// map, filled in when `map` is empty).
+CLI::Option* add_map_argument(CLI::App* command, std::string& map);
+// --seed S (core/seed.hpp: kDefaultSeed unless the field says otherwise).
+CLI::Option* add_seed_flag(CLI::App* command, std::uint64_t& seed,
+                           const std::string& what = "Seed of everything random");
+// --threads,-j N (0: one per core; core/thread_pool.hpp), bound to `field`.
+CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string& field,
+                              const std::string& what = "Worker threads (0: one per core)");
+
+// A spelling kept for one release: `old_flag` sets the same value as
+// `new_flag` (already added), is hidden from --help, warns on stderr when
+// used, and may not be given together with `new_flag`.
+void warn_deprecated(const std::string& old_flag, const std::string& new_flag);
+template <typename T>
+CLI::Option* add_deprecated_alias(CLI::App* command, const std::string& old_flag,
+                                  const std::string& new_flag, T& target) {
+  CLI::Option* replacement = command->get_option(new_flag);
+  CLI::Option* alias = command->add_option_function<T>(
+      old_flag,
+      [&target, old_flag, new_flag](const T& value) {
+        warn_deprecated(old_flag, new_flag);
+        target = value;
+      },
+      "Deprecated: use " + new_flag);
+  alias->group("");
+  alias->excludes(replacement);
+  return alias;
+}
+
+// A start point moved off an obstacle, reported alike by every command that
+// moves one (plan, localize): the JSON key "start_moved" {"requested", "used"}
+// and one human line.
+void add_moved_start(nlohmann::ordered_json& summary, Vec2 requested, Vec2 used);
+std::string moved_start_text(Vec2 requested, Vec2 used);
 
 // "X,Y" in metres; InputError naming `flag` when it is not two finite numbers and a comma.
 Vec2 parse_point(const std::string& text, const std::string& flag);
