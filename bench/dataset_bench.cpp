@@ -19,10 +19,11 @@
 #include <string>
 #include <vector>
 
-#include "bench/median.hpp"
+#include "core/statistics.hpp"
 #include "dataset/generator.hpp"
 
 using namespace plumekit::dataset;
+using plumekit::median;
 namespace fs = std::filesystem;
 
 namespace {
@@ -34,7 +35,7 @@ struct Run {
   double wall = 0.0;
 };
 
-Run run_model(PlumeModel model, int maps, int threads, const fs::path& out) {
+Run run_model(PlumeSimulator model, int maps, int threads, const fs::path& out) {
   DatasetOptions o;
   o.maps = maps;
   o.sources = 100;
@@ -46,7 +47,7 @@ Run run_model(PlumeModel model, int maps, int threads, const fs::path& out) {
   fs::remove_all(dir);  // time a cold run: every flow solved
   const DatasetSummary s = generate_dataset(dir, o, run);
   fs::remove_all(dir);
-  return {s.samples_per_second(), s.flow_seconds / s.maps, s.plume_seconds / s.samples, s.seconds};
+  return {s.samples_per_second(), s.flow_s / s.maps, s.plume_s / s.samples, s.seconds};
 }
 
 }  // namespace
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
   std::printf(
       "slice: %d maps x 100 sources, seed 1, %d threads, %d repeat(s); thesis scale: 180 x 100\n",
       maps, threads, repeats);
-  const PlumeModel models[2] = {PlumeModel::Filament, PlumeModel::AdvectionDiffusion};
+  const PlumeSimulator models[2] = {PlumeSimulator::Filament, PlumeSimulator::AdvectionDiffusion};
   std::vector<Run> runs[2];
   std::vector<double> ratios, plume_ratios;
   for (int r = 0; r < repeats; ++r) {

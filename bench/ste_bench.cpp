@@ -15,10 +15,11 @@
 #include <vector>
 
 #include "core/map_json.hpp"
+#include "core/statistics.hpp"
 #include "ste/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/network.hpp"
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
 
 using namespace plumekit;
 namespace fs = std::filesystem;
@@ -35,11 +36,6 @@ double process_cpu() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 // Median compute per decision step over runs from a few sources.
@@ -104,7 +100,7 @@ int main(int argc, char** argv) {
   // (the thesis code's approach, minus its model reloading). One forward pass
   // timed at batch 32 on one thread, times the cells.
   auto net = std::make_shared<const surrogate::Network>(surrogate::Network::load(model));
-  const surrogate::PlumeModel plume(net, map);
+  const surrogate::PlumeNetwork plume(net, map);
   std::vector<Vec2> batch(32, map.sources[0]);
   plume.predict_batch(batch);  // warm-up
   const double c0 = process_cpu();

@@ -24,11 +24,12 @@
 #include <thread>
 #include <vector>
 
-#include "bench/median.hpp"
+#include "core/statistics.hpp"
 #include "surrogate/model_file.hpp"
 #include "surrogate/network.hpp"
 
 using namespace plumekit::surrogate;
+using plumekit::median;
 
 namespace {
 

@@ -2,6 +2,8 @@
 # Prints the functions of the given C++ files that are at least $MIN lines long (default 80):
 # "LINES FILE FIRST_LINE", longest first. Brace matching on comment- and string-stripped text;
 # lambdas count toward the function that holds them.
+#   function_lengths.py --max 100   # no files: every C++ file of the project; exit 1 if any
+#                                   # function is longer than 100 lines (a ctest test)
 import re,sys,glob
 def strip(src):
     out=[];i=0;n=len(src)
@@ -20,8 +22,18 @@ def strip(src):
             out.append(c+' '*(j-i-1)+c); i=j+1
         else: out.append(c); i+=1
     return ''.join(out)
+args=sys.argv[1:]
+limit=None
+if args[:1]==['--max']:
+    limit=int(args[1]); args=args[2:]
+if not args:
+    import os
+    root=os.path.join(os.path.dirname(os.path.abspath(__file__)),'..')
+    for d in ['core','cfd','dataset','surrogate','ste','planner','apps','tests','bench','fuzz']:
+        for dp,_,fs in os.walk(os.path.join(root,d)):
+            args+=[os.path.relpath(os.path.join(dp,f)) for f in sorted(fs) if f.endswith(('.cpp','.hpp'))]
 res=[]
-for f in sys.argv[1:]:
+for f in args:
     s=strip(open(f).read())
     stack=[]; # (kind,startline)
     line=1; last=0
@@ -40,5 +52,10 @@ for f in sys.argv[1:]:
                 res.append((line-st+1,f,st))
         elif c==';': last=i+1
 res.sort(reverse=True)
+if limit is not None:
+    long=[r for r in res if r[0]>limit]
+    for r in long: print('%d lines (over %d): %s:%d' % (r[0],limit,r[1],r[2]))
+    print('%d functions, %d over %d lines' % (len(res),len(long),limit))
+    sys.exit(1 if long else 0)
 for r in res:
     if r[0]>=int(__import__('os').environ.get('MIN','80')): print(*r)
