@@ -14,19 +14,18 @@ bool has_entry(const Eigen::SparseMatrix<double>& a, int row, int col) {
   return entry_index(a, row, col) >= 0;
 }
 
-}  // namespace
-
-DiagonalPairing::DiagonalPairing(const StaggeredGrid& grid,
-                                 const Eigen::SparseMatrix<double>& jacobian) {
-  const int n = static_cast<int>(jacobian.rows());
+// Each cell's candidate faces, in order of preference: east, north, west,
+// south. A face qualifies when the pair of swapped rows both have a diagonal:
+// the cell's continuity row holds the face, and the face's momentum row holds
+// the cell's pressure. A pinned pressure (closed box) has a diagonal already
+// and takes no face.
+struct Candidates {
+  std::vector<int> cells;                 // pressure columns to pair
+  std::vector<std::array<int, 4>> faces;  // their faces' columns, -1: none
+};
+Candidates candidate_faces(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian) {
   const GridShape& s = grid.shape();
-  // Each cell's candidate faces, in order of preference: east, north, west,
-  // south. A face qualifies when the pair of swapped rows both have a
-  // diagonal: the cell's continuity row holds the face, and the face's
-  // momentum row holds the cell's pressure. A pinned pressure (closed box)
-  // has a diagonal already and takes no face.
-  std::vector<int> cells;                      // pressure columns to pair
-  std::vector<std::array<int, 4>> candidates;  // their faces' columns, -1: none
+  Candidates out;
   for (int j = 0; j < s.ny; ++j)
     for (int i = 0; i < s.nx; ++i) {
       const int p = grid.pressure_column(s.index(i, j));
@@ -38,13 +37,18 @@ DiagonalPairing::DiagonalPairing(const StaggeredGrid& grid,
       int m = 0;
       for (int f : faces)
         if (f >= 0 && has_entry(jacobian, p, f) && has_entry(jacobian, f, p)) ok[m++] = f;
-      cells.push_back(p);
-      candidates.push_back(ok);
+      out.cells.push_back(p);
+      out.faces.push_back(ok);
     }
+  return out;
+}
 
-  // Maximum matching of cells to faces: greedy, then augmenting paths found
-  // breadth-first (no recursion, so no depth limit on large grids).
-  const int nc = static_cast<int>(cells.size());
+// Maximum matching of cells to faces (n columns): greedy, then augmenting
+// paths found breadth-first (no recursion, so no depth limit on large grids).
+// Each cell's face, -1 where none is free; `unpaired` counts those.
+std::vector<int> match_faces(const std::vector<std::array<int, 4>>& candidates, int n,
+                             int& unpaired) {
+  const int nc = static_cast<int>(candidates.size());
   std::vector<int> face_owner(n, -1), cell_face(nc, -1);
   for (int c = 0; c < nc; ++c)
     for (int f : candidates[c])
@@ -71,7 +75,7 @@ DiagonalPairing::DiagonalPairing(const StaggeredGrid& grid,
       }
     }
     if (free_face < 0) {
-      ++unpaired_;
+      ++unpaired;
       continue;
     }
     // Flip the path: each cell on it takes the face that led to it.
@@ -82,14 +86,28 @@ DiagonalPairing::DiagonalPairing(const StaggeredGrid& grid,
       f = previous;
     }
   }
+  return cell_face;
+}
 
+}  // namespace
+
+DiagonalPairing::DiagonalPairing(const StaggeredGrid& grid,
+                                 const Eigen::SparseMatrix<double>& jacobian) {
+  const int n = static_cast<int>(jacobian.rows());
+  const Candidates candidates = candidate_faces(grid, jacobian);
+  const std::vector<int> cell_face = match_faces(candidates.faces, n, unpaired_);
   source_row_.resize(n);
   std::iota(source_row_.begin(), source_row_.end(), 0);
-  for (int c = 0; c < nc; ++c)
-    if (const int f = cell_face[c]; f >= 0) std::swap(source_row_[cells[c]], source_row_[f]);
+  for (std::size_t c = 0; c < cell_face.size(); ++c)
+    if (const int f = cell_face[c]; f >= 0)
+      std::swap(source_row_[candidates.cells[c]], source_row_[f]);
+  build_permuted_pattern(jacobian);
+}
 
-  // The permuted pattern, built straight into compressed columns. The
-  // permutation is a set of swaps, so old row r moves to row source_row_[r].
+void DiagonalPairing::build_permuted_pattern(const Eigen::SparseMatrix<double>& jacobian) {
+  // Built straight into compressed columns. The permutation is a set of
+  // swaps, so old row r moves to row source_row_[r].
+  const int n = static_cast<int>(jacobian.rows());
   permuted_.resize(n, n);
   permuted_.resizeNonZeros(jacobian.nonZeros());
   value_map_.resize(jacobian.nonZeros());

@@ -32,6 +32,9 @@ class DiagonalPairing {
   int unpaired() const { return unpaired_; }
 
  private:
+  // The pattern of P J and the map of J's values into it.
+  void build_permuted_pattern(const Eigen::SparseMatrix<double>& jacobian);
+
   std::vector<int> source_row_;  // row r of P J is row source_row_[r] of J
   std::vector<int> value_map_;   // value k of J goes to value value_map_[k] of P J
   Eigen::SparseMatrix<double> permuted_;

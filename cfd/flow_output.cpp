@@ -49,6 +49,28 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
   return j;
 }
 
+nlohmann::ordered_json flow_report_json(const WindResult& w, const FlowOptions& options) {
+  nlohmann::ordered_json j = summary_json(w.flow.summary, w.flow.wind, options);
+  j.erase("residual_history");
+  j["convection_requested"] = to_string(w.requested);
+  j["fell_back_to_upwind"] = w.fell_back();
+  return j;
+}
+
+std::string flow_report_text(const WindResult& w) {
+  const FlowSummary& s = w.flow.summary;
+  std::ostringstream text;
+  text.precision(3);
+  text << s.nx << " x " << s.ny << " cells, " << to_string(w.scheme()) << " convection";
+  if (w.fell_back())
+    text << " (" << to_string(w.requested) << " did not converge: fell back to upwind)";
+  text << ", " << s.iterations << " Newton iterations (" << s.factorizations
+       << " factorizations), residuals " << std::scientific << s.momentum_residual << " / "
+       << s.continuity_residual << ", mass imbalance " << s.mass_imbalance << std::defaultfloat
+       << ", max speed " << s.max_speed << " m/s, " << s.seconds << " s";
+  return text.str();
+}
+
 std::string wind_vti(const WindField& wind) {
   const GridShape& g = wind.shape();
   VtiArray velocity{"velocity", 3, {}}, pressure{"pressure", 1, {}}, speed{"speed", 1, {}},

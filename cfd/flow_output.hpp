@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cfd/flow_policy.hpp"
 #include "cfd/flow_solver.hpp"
 #include "core/map.hpp"
 
@@ -13,6 +14,13 @@ namespace plumekit::cfd {
 
 nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
                                     const FlowOptions& options);
+
+// The flow command's report of a solve: summary_json without the residual
+// history, plus "convection_requested" and "fell_back_to_upwind" (the flow
+// policy, flow_policy.hpp; "convection" is the scheme used).
+nlohmann::ordered_json flow_report_json(const WindResult& w, const FlowOptions& options);
+// The same in one line of text: grid, scheme, iterations, residuals, speed, time.
+std::string flow_report_text(const WindResult& w);
 
 // VTK XML ImageData with cell data: velocity (3 components), pressure, speed, solid.
 std::string wind_vti(const WindField& wind);

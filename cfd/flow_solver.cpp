@@ -1,7 +1,5 @@
 #include "cfd/flow_solver.hpp"
 
-#include <umfpack.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,33 +7,12 @@
 #include <optional>
 #include <sstream>
 
-#include "cfd/anderson.hpp"
-#include "cfd/diagonal_pairing.hpp"
-#include "cfd/eddy_viscosity.hpp"
 #include "cfd/grid_check.hpp"
-#include "cfd/navier_stokes.hpp"
-#include "cfd/nullspace_solver.hpp"
+#include "cfd/newton.hpp"
 #include "cfd/staggered_grid.hpp"
-#include "cfd/umfpack_lu.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::cfd {
-
-const char* to_string(Turbulence t) {
-  return t == Turbulence::None ? "none" : "mixing-length";
-}
-
-const char* to_string(Convection c) {
-  switch (c) {
-    case Convection::Upwind:
-      return "upwind";
-    case Convection::Central:
-      return "central";
-    case Convection::VanLeer:
-      return "vanleer";
-  }
-  return "?";
-}
 
 std::string FlowSummary::history_text() const {
   std::ostringstream s;
@@ -48,41 +25,6 @@ std::string FlowSummary::history_text() const {
   }
   return s.str();
 }
-
-namespace {
-
-// What to change when Newton does not converge. At a high Reynolds number the
-// flow may have no steady state on this grid (a larger viscosity, a finer
-// cell or upwinding help); at a low one the viscous terms dwarf the residual's
-// scale, so round-off alone keeps it above the tolerance (a smaller viscosity
-// or a looser tolerance help).
-std::string convergence_advice(double reynolds, const FlowOptions& o) {
-  if (reynolds < 1.0)
-    return "The flow is dominated by viscosity: try a smaller flow.nu (the default is 0.01 m^2/s) "
-           "or a larger flow.tolerance (now " +
-           compact(o.tolerance) + ").";
-  std::string advice = "Try a larger flow.nu, a finer flow.cell";
-  if (o.convection != Convection::Upwind) advice += ", or upwind convection (flow.convection)";
-  return advice + ".";
-}
-
-// Reference scales for the normalised residuals.
-struct Scales {
-  double speed = 1.0;
-  double length = 1.0;
-};
-
-Scales reference_scales(const Map& map, const FlowOptions& o) {
-  Scales s;
-  s.length = std::min(map.width, map.height);
-  double u = o.closed ? 0.0 : map.inlet.speed;
-  for (double w : o.wall_speed)
-    u = std::max(u, std::abs(w));
-  s.speed = u > 0.0 ? u : 1.0;
-  return s;
-}
-
-}  // namespace
 
 namespace {
 
@@ -116,17 +58,6 @@ Eigen::VectorXd interpolate(const StaggeredGrid& grid, const WindField& coarse) 
 
 // Grids with fewer cells than this across are solved from rest.
 constexpr int kMinSequencedCells = 25;
-// A factorization is kept for further (chord) steps while each step still
-// cuts the merit by this factor; a chord step costs one pair of triangular
-// solves, a fresh factorization 25 of them on the 5 cm benchmark grid, so
-// even slow chord steps are worth taking.
-constexpr double kChordRatio = 0.8;
-// With the mixing-length closure the equations change at every iteration (the
-// lagged eddy viscosity), so the history is dropped and plain chord steps
-// must halve the merit, or the run needs far more iterations.
-constexpr double kChordRatioLagged = 0.5;
-// Chord steps are Anderson-accelerated over this many previous steps.
-constexpr int kAndersonDepth = 4;
 // Coarse grids only provide a start; their own discretisation error is far
 // above this.
 constexpr double kCoarseTolerance = 1e-4;
@@ -152,24 +83,8 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
   }
 }
 
-}  // namespace
-
-FlowResult solve(const Map& map, const FlowOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  options.validate();
-  check_grid_size(map, options);  // before any grid is made: the size and the memory
-  const GridShape shape = GridShape::with_cell(map.width, map.height, options.cell);
-  check_grid(map, shape, options);
-
-  const StaggeredGrid grid(map, shape, options);
-  NavierStokes equations(grid, options.convection);
-  const int n = grid.unknowns(), n_mom = grid.velocity_unknowns();
-  const Scales scales = reference_scales(map, options);
-  const int max_iterations = options.max_iterations > 0 ? options.max_iterations
-                             : options.turbulence == Turbulence::MixingLength ? 300
-                                                                              : 100;
-  EddyViscosity eddy(grid, options);
-
+// The summary's description of the grid and the options.
+FlowSummary initial_summary(const GridShape& shape, const FlowOptions& options) {
   FlowSummary summary;
   summary.nx = shape.nx;
   summary.ny = shape.ny;
@@ -179,184 +94,32 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   summary.turbulence = options.turbulence;
   summary.convection = options.convection;
   summary.tolerance = options.tolerance;
+  return summary;
+}
 
-  const auto t_coarse = std::chrono::steady_clock::now();
-  const std::optional<WindField> coarse = coarse_start(map, options, shape);
-  summary.coarse_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_coarse).count();
-  Eigen::VectorXd x = coarse ? interpolate(grid, *coarse) : Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd f(n), f_trial(n), step(n), rhs(n);
-  std::vector<double> nu_cell(shape.size(), options.nu);
-  equations.set_viscosity(nu_cell);
-
-  auto norms = [&](const Eigen::VectorXd& r) {
-    IterationRecord rec;
-    rec.momentum =
-        r.head(n_mom).lpNorm<Eigen::Infinity>() * scales.length / (scales.speed * scales.speed);
-    rec.continuity = r.tail(n - n_mom).lpNorm<Eigen::Infinity>() * scales.length / scales.speed;
-    return rec;
-  };
-  // Merit for globalisation: the RMS of the residual scaled like the norms.
-  Eigen::VectorXd weight(n);
-  weight.head(n_mom).setConstant(scales.length / (scales.speed * scales.speed));
-  weight.tail(n - n_mom).setConstant(scales.length / scales.speed);
-  auto merit = [&](const Eigen::VectorXd& r) {
-    return std::sqrt(r.cwiseProduct(weight).squaredNorm() / n);
-  };
-
-  UmfpackLU lu;
-  // No iterative refinement: Newton's next residual does that job, and each
-  // refinement step would cost another pair of triangular solves.
-  lu.control(UMFPACK_IRSTEP) = 0;
-  // The rows are paired so that the matrix has a full diagonal, which lets
-  // UMFPACK order A + A' and pivot on the diagonal (diagonal_pairing.hpp).
-  lu.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
-  // Made with the first Jacobian: the nullspace solver where it applies,
-  // else the coupled matrix with its rows paired.
-  std::optional<NullSpaceSolver> nullspace;
-  std::optional<DiagonalPairing> pairing;
-  // Each step solves (J + I/dtau) dx = -F, dtau = cfl h / U: a huge cfl is
-  // Newton, a small one a damped implicit time step. The step is then cut
-  // back until the merit falls (backtracking). cfl grows with the merit's
-  // fall after each success (SER) and shrinks when no cut-back helps.
-  const double h = std::min(shape.dx(), shape.dy());
-  double cfl = 1e6;
-  bool refactor = true;
-
-  const double reynolds = scales.speed * scales.length / options.nu;
-  auto fail = [&](const std::string& why) {
-    summary.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::ostringstream msg;
-    msg << "flow solver: " << why << " after " << summary.iterations << " iterations on a "
-        << shape.nx << " x " << shape.ny << " grid (nu " << options.nu << " m^2/s, "
-        << to_string(options.convection) << " convection, Reynolds number " << compact(reynolds)
-        << "). " << convergence_advice(reynolds, options) << "\nResidual history:\n"
-        << summary.history_text();
-    throw ConvergenceError(msg.str(), summary);
-  };
-
-  equations.residual(x.data(), f.data());
-  IterationRecord current = norms(f);
-  double current_merit = merit(f);
-  Eigen::VectorXd trial(n), plain(n);
-  AndersonMixing anderson(kAndersonDepth);
-  for (int it = 0;; ++it) {
-    if (options.turbulence == Turbulence::MixingLength && it > 0) {
-      eddy.update(x.data(), nu_cell);
-      equations.set_viscosity(nu_cell);
-      anderson.reset();  // the equations changed: the history no longer applies
-      equations.residual(x.data(), f.data());
-      current = norms(f);
-      current_merit = merit(f);
-    }
-    current.cfl = cfl;
-    summary.history.push_back(current);
-    summary.iterations = it;
-    if (options.verbose)
-      std::fprintf(stderr, "flow: iter %3d  momentum %.3e  continuity %.3e  cfl %.1e\n", it,
-                   current.momentum, current.continuity, cfl);
-    if (options.on_iteration) options.on_iteration(it, current.momentum, current.continuity);
-    if (!std::isfinite(current_merit)) fail("the residual became NaN");
-    if (current.momentum < options.tolerance && current.continuity < options.tolerance &&
-        (options.turbulence == Turbulence::None || eddy.settled())) {
-      summary.converged = true;
-      break;
-    }
-    if (it >= max_iterations) fail("no convergence");
-
-    // Refactorize unless the last step showed the current factorization
-    // still converging fast enough (kChordRatio).
-    if (refactor) {
-      equations.update_jacobian(x.data());
-      if (cfl < 1e15) equations.add_to_momentum_diagonal(scales.speed / (cfl * h));
-      if (!nullspace && !pairing) {
-        if (options.nullspace) nullspace.emplace(grid, equations.jacobian());
-        if (nullspace && !nullspace->applicable()) nullspace.reset();
-        if (!nullspace) {
-          pairing.emplace(grid, equations.jacobian());
-          lu.analyze(pairing->permuted(equations.jacobian()));
-        }
-        summary.linear_solver = nullspace ? "nullspace" : "coupled";
-      }
-      const auto t_factor = std::chrono::steady_clock::now();
-      const bool factored = nullspace ? nullspace->factorize(equations.jacobian())
-                                      : lu.factorize(pairing->permuted(equations.jacobian()));
-      summary.factor_seconds +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t_factor).count();
-      ++summary.factorizations;
-      if (!factored) {
-        cfl /= 10.0;
-        if (cfl < 1e-3) fail("the Newton matrix is singular");
-        continue;
-      }
-    }
-    const bool fresh = refactor;
-    const auto t_solve = std::chrono::steady_clock::now();
-    if (nullspace) {
-      rhs = -f;
-      nullspace->solve(equations.jacobian(), rhs.data(), step.data());
-    } else {
-      pairing->permute(f.data(), rhs.data());
-      rhs = -rhs;
-      lu.solve(pairing->permuted_matrix(), rhs.data(), step.data());
-    }
-    summary.solve_seconds +=
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t_solve).count();
-    // Mix the chord step with the previous ones of this factorization.
-    if (fresh) anderson.reset();
-    plain = step;
-    bool mixed = anderson.mix(x, step);
-    double lambda = 1.0, trial_merit = HUGE_VAL;
-    for (;;) {
-      for (lambda = 1.0; lambda >= 1.0 / 16; lambda *= 0.5) {
-        trial = x + lambda * step;
-        equations.residual(trial.data(), f_trial.data());
-        trial_merit = merit(f_trial);
-        if (std::isfinite(trial_merit) && trial_merit < (1.0 - 1e-4 * lambda) * current_merit)
-          break;
-        // The first step goes from rest to a flow that satisfies continuity (a
-        // Stokes-like solve); it is taken whole even if momentum grows.
-        if (it == 0 && !coarse && std::isfinite(trial_merit)) break;
-      }
-      if (lambda >= 1.0 / 16 || !mixed) break;
-      // The mixed step failed: forget the history and try the plain one.
-      anderson.reset();
-      step = plain;
-      mixed = false;
-    }
-    if (lambda < 1.0 / 16) {
-      // No cut-back helped. Renew a stale factorization first; with a fresh
-      // one, take a shorter pseudo-time step from the same point.
-      if (fresh) cfl = std::min(cfl, 1e3) / 10.0;
-      if (cfl < 1e-3) fail("the pseudo-time step collapsed");
-      refactor = true;
-      anderson.reset();
-      continue;
-    }
-    const double ratio = trial_merit / current_merit;
-    refactor = ratio > (options.turbulence == Turbulence::None ? kChordRatio : kChordRatioLagged);
-    if (fresh && lambda == 1.0) cfl = std::min(cfl / std::max(ratio, 0.1), 1e15);
-    x.swap(trial);
-    f.swap(f_trial);
-    current = norms(f);
-    current_merit = trial_merit;
-  }
-
-  // Unpack the unknowns into full face arrays.
+// The face velocities (fixed faces included) and cell pressures of the unknowns.
+struct Unpacked {
   std::vector<double> face[2];
+  std::vector<double> pressure;
+};
+Unpacked unpack(const StaggeredGrid& grid, const Eigen::VectorXd& x) {
+  Unpacked out;
   for (int c = 0; c < 2; ++c) {
-    face[c].resize(grid.face_count(c));
-    for (std::size_t k = 0; k < face[c].size(); ++k) {
+    out.face[c].resize(grid.face_count(c));
+    for (std::size_t k = 0; k < out.face[c].size(); ++k) {
       const int col = grid.column(c, k);
-      face[c][k] = col >= 0 ? x[col] : grid.fixed_value(c, k);
+      out.face[c][k] = col >= 0 ? x[col] : grid.fixed_value(c, k);
     }
   }
-  std::vector<double> pressure(shape.size(), 0.0);
-  for (std::size_t k = 0; k < shape.size(); ++k)
-    if (const int col = grid.pressure_column(k); col >= 0) pressure[k] = x[col];
+  out.pressure.assign(grid.shape().size(), 0.0);
+  for (std::size_t k = 0; k < grid.shape().size(); ++k)
+    if (const int col = grid.pressure_column(k); col >= 0) out.pressure[k] = x[col];
+  return out;
+}
 
-  // Mass balance through the openings (per metre of depth).
+// Mass balance through the openings (per metre of depth).
+void mass_balance(const StaggeredGrid& grid, const std::vector<double> (&face)[2],
+                  FlowSummary& summary) {
   for (int c = 0; c < 2; ++c) {
     for (int b = 0; b < grid.n_across(c); ++b) {
       for (int a : {0, grid.n_along(c)}) {
@@ -371,16 +134,42 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   }
   summary.mass_imbalance =
       summary.inflow > 0.0 ? std::abs(summary.inflow - summary.outflow) / summary.inflow : 0.0;
-  summary.momentum_residual = current.momentum;
-  summary.continuity_residual = current.continuity;
-  summary.max_eddy_viscosity = eddy.max_eddy_viscosity();
+}
 
-  FlowResult result{WindField(shape, std::move(face[0]), std::move(face[1]), std::move(pressure),
-                              grid.solid_cells()),
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+FlowResult solve(const Map& map, const FlowOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  options.validate();
+  check_grid_size(map, options);  // before any grid is made: the size and the memory
+  const GridShape shape = GridShape::with_cell(map.width, map.height, options.cell);
+  check_grid(map, shape, options);
+  const StaggeredGrid grid(map, shape, options);
+  FlowSummary summary = initial_summary(shape, options);
+
+  const auto t_coarse = std::chrono::steady_clock::now();
+  const std::optional<WindField> coarse = coarse_start(map, options, shape);
+  summary.coarse_seconds = since(t_coarse);
+  Eigen::VectorXd x =
+      coarse ? interpolate(grid, *coarse) : Eigen::VectorXd::Zero(grid.unknowns()).eval();
+  Newton newton(grid, options, reference_scales(map, options), summary, start);
+  newton.run(x, coarse.has_value());
+
+  Unpacked fields = unpack(grid, x);
+  mass_balance(grid, fields.face, summary);
+  summary.momentum_residual = newton.residuals().momentum;
+  summary.continuity_residual = newton.residuals().continuity;
+  summary.max_eddy_viscosity = newton.eddy_viscosity().max_eddy_viscosity();
+
+  FlowResult result{WindField(shape, std::move(fields.face[0]), std::move(fields.face[1]),
+                              std::move(fields.pressure), grid.solid_cells()),
                     std::move(summary)};
   result.summary.max_speed = result.wind.max_speed();
-  result.summary.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.summary.seconds = since(start);
   return result;
 }
 

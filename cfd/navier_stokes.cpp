@@ -47,60 +47,63 @@ void assign_slots(Ref* (&refs)[N], int* cols, int& count) {
 
 NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
     : grid_(grid), convection_(convection) {
-  const int nx = grid.nx(), ny = grid.ny();
-  const int n = grid.unknowns();
-  slot_begin_.assign(n + 1, 0);
-  // Row r's distinct unknowns: cols_of_row[r * kMaxLocal + k], k < count_of_row[r].
-  std::vector<int> cols_of_row(static_cast<std::size_t>(n) * kMaxLocal), count_of_row(n, 0);
   momentum_.reserve(grid.velocity_unknowns());
-  continuity_.reserve(n - grid.velocity_unknowns());
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 0; a <= grid.n_along(c); ++a)
+        if (grid.kind(c, grid.face(c, a, b)) != kFixed) momentum_.push_back(momentum_row(c, a, b));
+  add_continuity_rows();
+  build_pattern();
+  nu_cell_.assign(grid.shape().size(), 0.0);
+  nu_corner_.assign(static_cast<std::size_t>(grid.nx() + 1) * (grid.ny() + 1), 0.0);
+}
 
-  for (int c = 0; c < 2; ++c) {
-    for (int b = 0; b < grid.n_across(c); ++b) {
-      for (int a = 0; a <= grid.n_along(c); ++a) {
-        const std::size_t f = grid.face(c, a, b);
-        if (grid.kind(c, f) == kFixed) continue;
-        MomentumRow m;
-        m.row = grid.column(c, f);
-        for (int k = -2; k <= 2; ++k)
-          m.w[k + 2] = k == 0 ? grid.real_face(c, f) : grid.along(c, a, b, k);
-        m.wb[1] = grid.across(c, a, b, -1);
-        m.wb[2] = grid.across(c, a, b, 1);
-        // Only the limited scheme reads two faces upwind; the others keep a
-        // compact stencil, which makes the factorization cheaper.
-        const bool wide = convection == Convection::VanLeer;
-        m.wb[0] = wide ? grid.across(c, a, b, -2) : m.wb[1];
-        m.wb[3] = wide ? grid.across(c, a, b, 2) : m.wb[2];
-        if (!wide) {
-          m.w[0] = m.w[1];
-          m.w[4] = m.w[3];
-        }
-        // The other component's faces at the CV's north (b+1) and south (b)
-        // sides, in the cells a-1 and a beside it.
-        m.o[0] = grid.other(c, b + 1, a - 1);
-        m.o[1] = grid.other(c, b + 1, a);
-        m.o[2] = grid.other(c, b, a - 1);
-        m.o[3] = grid.other(c, b, a);
-        m.p[0] = grid.pressure(c, b, a - 1);
-        m.p[1] = grid.pressure(c, b, a);
-        m.cell_w = static_cast<int>(grid.cell(c, std::max(a - 1, 0), b));
-        m.cell_e = static_cast<int>(grid.cell(c, std::min(a, grid.n_along(c) - 1), b));
-        // Corners of the cell grid, (nx+1) x (ny+1), at along a, across b / b+1.
-        auto corner = [&](int along, int across) {
-          const int i = c == 0 ? along : across, j = c == 0 ? across : along;
-          return j * (nx + 1) + i;
-        };
-        m.corner_s = corner(a, b);
-        m.corner_n = corner(a, b + 1);
-        m.inv_ha = 1.0 / grid.h_along(c);
-        m.inv_hb = 1.0 / grid.h_across(c);
-        momentum_.push_back(m);
-      }
-    }
+NavierStokes::MomentumRow NavierStokes::momentum_row(int c, int a, int b) const {
+  const StaggeredGrid& grid = grid_;
+  const std::size_t f = grid.face(c, a, b);
+  MomentumRow m;
+  m.row = grid.column(c, f);
+  for (int k = -2; k <= 2; ++k)
+    m.w[k + 2] = k == 0 ? grid.real_face(c, f) : grid.along(c, a, b, k);
+  m.wb[1] = grid.across(c, a, b, -1);
+  m.wb[2] = grid.across(c, a, b, 1);
+  // Only the limited scheme reads two faces upwind; the others keep a
+  // compact stencil, which makes the factorization cheaper.
+  const bool wide = convection_ == Convection::VanLeer;
+  m.wb[0] = wide ? grid.across(c, a, b, -2) : m.wb[1];
+  m.wb[3] = wide ? grid.across(c, a, b, 2) : m.wb[2];
+  if (!wide) {
+    m.w[0] = m.w[1];
+    m.w[4] = m.w[3];
   }
+  // The other component's faces at the CV's north (b+1) and south (b)
+  // sides, in the cells a-1 and a beside it.
+  m.o[0] = grid.other(c, b + 1, a - 1);
+  m.o[1] = grid.other(c, b + 1, a);
+  m.o[2] = grid.other(c, b, a - 1);
+  m.o[3] = grid.other(c, b, a);
+  m.p[0] = grid.pressure(c, b, a - 1);
+  m.p[1] = grid.pressure(c, b, a);
+  m.cell_w = static_cast<int>(grid.cell(c, std::max(a - 1, 0), b));
+  m.cell_e = static_cast<int>(grid.cell(c, std::min(a, grid.n_along(c) - 1), b));
+  // Corners of the cell grid, (nx+1) x (ny+1), at along a, across b / b+1.
+  auto corner = [&](int along, int across) {
+    const int i = c == 0 ? along : across, j = c == 0 ? across : along;
+    return j * (grid.nx() + 1) + i;
+  };
+  m.corner_s = corner(a, b);
+  m.corner_n = corner(a, b + 1);
+  m.inv_ha = 1.0 / grid.h_along(c);
+  m.inv_hb = 1.0 / grid.h_across(c);
+  return m;
+}
+
+void NavierStokes::add_continuity_rows() {
+  const StaggeredGrid& grid = grid_;
+  continuity_.reserve(grid.unknowns() - grid.velocity_unknowns());
   bool pinned = false;
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
+  for (int j = 0; j < grid.ny(); ++j) {
+    for (int i = 0; i < grid.nx(); ++i) {
       const std::size_t cell = grid.shape().index(i, j);
       if (grid.solid(cell)) continue;
       ContinuityRow r;
@@ -117,8 +120,12 @@ NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
       continuity_.push_back(r);
     }
   }
+}
 
-  // Distinct unknowns per row, and the sparsity pattern they make.
+void NavierStokes::build_pattern() {
+  const int n = grid_.unknowns();
+  // Row r's distinct unknowns: cols_of_row[r * kMaxLocal + k], k < count_of_row[r].
+  std::vector<int> cols_of_row(static_cast<std::size_t>(n) * kMaxLocal), count_of_row(n, 0);
   for (MomentumRow& m : momentum_) {
     Ref* refs[] = {&m.w[0],  &m.w[1], &m.w[2], &m.w[3], &m.w[4], &m.wb[0], &m.wb[1], &m.wb[2],
                    &m.wb[3], &m.o[0], &m.o[1], &m.o[2], &m.o[3], &m.p[0],  &m.p[1]};
@@ -133,6 +140,7 @@ NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
   // The compressed-column pattern, built directly: count the entries of each
   // column, then place rows in increasing order, which keeps every column's
   // row indices sorted. Each (row, slot) remembers where its value lives.
+  slot_begin_.assign(n + 1, 0);
   for (int row = 0; row < n; ++row)
     slot_begin_[row + 1] = slot_begin_[row] + count_of_row[row];
   const int nnz = slot_begin_[n];
@@ -157,8 +165,6 @@ NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
       slot_cols_[slot_begin_[row] + k] = col;
       slot_value_[slot_begin_[row] + k] = at;
     }
-  nu_cell_.assign(grid.shape().size(), 0.0);
-  nu_corner_.assign(static_cast<std::size_t>(nx + 1) * (ny + 1), 0.0);
 }
 
 void NavierStokes::set_viscosity(const std::vector<double>& nu_cell) {

@@ -53,6 +53,12 @@ class NavierStokes {
     bool pinned;  // closed box: p = 0 here instead of (redundant) continuity
   };
 
+  // The constructor's steps: one face's momentum row, the cells' continuity
+  // rows, and the Jacobian's fixed pattern with each row's slots in it.
+  MomentumRow momentum_row(int c, int a, int b) const;
+  void add_continuity_rows();
+  void build_pattern();
+
   template <class T>
   T momentum(const MomentumRow& row, const double* x) const;
   template <class T>

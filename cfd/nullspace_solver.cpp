@@ -37,47 +37,87 @@ struct NodeGroups {
   void unite(int a, int b) { parent[find(a)] = find(b); }
 };
 
+// Nodes at the two ends of face (a, b) of component c, in the order that
+// makes the face's velocity (psi(second) - psi(first)) * scale.
+struct FaceEnds {
+  int first, second;
+  double scale;
+};
+FaceEnds face_ends(const GridShape& s, int c, int a, int b) {
+  const int nodes_x = s.nx + 1;
+  auto node = [&](int i, int j) { return j * nodes_x + i; };
+  if (c == 0) return {node(a, b), node(a, b + 1), 1.0 / s.dy()};  // u = d psi / dy
+  return {node(b + 1, a), node(b, a), 1.0 / s.dx()};              // v = -d psi / dx
+}
+
+// Node groups: nodes joined by a fixed face share their streamfunction
+// correction.
+NodeGroups fixed_face_groups(const StaggeredGrid& grid) {
+  const GridShape& s = grid.shape();
+  NodeGroups groups(static_cast<std::size_t>(s.nx + 1) * (s.ny + 1));
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 0; a <= grid.n_along(c); ++a)
+        if (grid.column(c, grid.face(c, a, b)) < 0) {
+          const FaceEnds e = face_ends(s, c, a, b);
+          groups.unite(e.first, e.second);
+        }
+  return groups;
+}
+
 }  // namespace
 
 NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
                                  const Eigen::SparseMatrix<double>& jacobian)
     : n_(static_cast<int>(jacobian.rows())), n_mom_(grid.velocity_unknowns()) {
-  const GridShape& s = grid.shape();
+  if (!read_continuity_rows(jacobian) || !build_tree(grid, jacobian)) return;
+  build_curl(grid);
+  const Eigen::SparseMatrix<double> projected = build_projection(jacobian);
+  applicable_ = operators_check(grid.shape(), jacobian, projected);
+}
+
+bool NullSpaceSolver::read_continuity_rows(const Eigen::SparseMatrix<double>& jacobian) {
   const int* outer = jacobian.outerIndexPtr();
   const int* inner = jacobian.innerIndexPtr();
   const double* value = jacobian.valuePtr();
-
   // The continuity rows, read from the velocity columns.
   continuity_.resize(n_ - n_mom_);
   for (int col = 0; col < n_mom_; ++col)
     for (int k = outer[col]; k < outer[col + 1]; ++k)
       if (inner[k] >= n_mom_) {
         ContinuityRow& row = continuity_[inner[k] - n_mom_];
-        if (row.count == 4) return;  // not a MAC continuity row
+        if (row.count == 4) return false;  // not a MAC continuity row
         row.col[row.count] = col;
         row.coef[row.count++] = value[k];
       }
-  auto continuity_coef = [&](int p, int col) {
-    const ContinuityRow& row = continuity_[p - n_mom_];
-    for (int e = 0; e < row.count; ++e)
-      if (row.col[e] == col) return row.coef[e];
-    return 0.0;
-  };
+  return true;
+}
 
-  // Spanning tree of the fluid cells through cell-to-cell faces, breadth
-  // first from the cells beside the outlet (or the pinned cell).
-  std::vector<char> reached(s.size(), 0);
-  auto add_root = [&](int i, int j, int face) {
-    const std::size_t cell = s.index(i, j);
-    const int p = grid.pressure_column(cell);
-    if (p < 0 || reached[cell]) return;
-    reached[cell] = 1;
-    TreeCell t{static_cast<int>(cell), p, face, -1};
-    // A pinned root's own row is its pressure alone: g_own is that coefficient.
-    t.g_own = face >= 0 ? entry(jacobian, face, p) : entry(jacobian, p, p);
-    if (face >= 0) t.d_face = continuity_coef(p, face);
-    tree_.push_back(t);
-  };
+double NullSpaceSolver::continuity_coef(int p, int col) const {
+  const ContinuityRow& row = continuity_[p - n_mom_];
+  for (int e = 0; e < row.count; ++e)
+    if (row.col[e] == col) return row.coef[e];
+  return 0.0;
+}
+
+void NullSpaceSolver::add_root(const StaggeredGrid& grid,
+                               const Eigen::SparseMatrix<double>& jacobian,
+                               std::vector<char>& reached, std::size_t cell, int face) {
+  const int p = grid.pressure_column(cell);
+  if (p < 0 || reached[cell]) return;
+  reached[cell] = 1;
+  TreeCell t{static_cast<int>(cell), p, face, -1};
+  // A pinned root's own row is its pressure alone: g_own is that coefficient.
+  t.g_own = face >= 0 ? entry(jacobian, face, p) : entry(jacobian, p, p);
+  if (face >= 0) t.d_face = continuity_coef(p, face);
+  tree_.push_back(t);
+}
+
+void NullSpaceSolver::add_roots(const StaggeredGrid& grid,
+                                const Eigen::SparseMatrix<double>& jacobian,
+                                std::vector<char>& reached) {
+  const GridShape& s = grid.shape();
+  // The cells beside the outlet, through their outlet face.
   for (int j = 0; j < s.ny; ++j)
     for (int i = 0; i < s.nx; ++i) {
       const std::size_t faces[4][2] = {{0, grid.face(0, i + 1, j)},
@@ -86,16 +126,26 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
                                        {1, grid.face(1, j, i)}};
       for (const auto& f : faces)
         if (grid.kind(static_cast<int>(f[0]), f[1]) == kOutflow) {
-          add_root(i, j, grid.column(static_cast<int>(f[0]), f[1]));
+          add_root(grid, jacobian, reached, s.index(i, j),
+                   grid.column(static_cast<int>(f[0]), f[1]));
           break;
         }
     }
+  // A closed box: its pinned cell.
   if (tree_.empty())
     for (std::size_t cell = 0; cell < s.size() && tree_.empty(); ++cell) {
       const int p = grid.pressure_column(cell);
-      if (p >= 0 && entry(jacobian, p, p) != 0.0)
-        add_root(static_cast<int>(cell % s.nx), static_cast<int>(cell / s.nx), -1);
+      if (p >= 0 && entry(jacobian, p, p) != 0.0) add_root(grid, jacobian, reached, cell, -1);
     }
+}
+
+bool NullSpaceSolver::build_tree(const StaggeredGrid& grid,
+                                 const Eigen::SparseMatrix<double>& jacobian) {
+  // Spanning tree of the fluid cells through cell-to-cell faces, breadth
+  // first from the cells beside the outlet (or the pinned cell).
+  const GridShape& s = grid.shape();
+  std::vector<char> reached(s.size(), 0);
+  add_roots(grid, jacobian, reached);
   for (std::size_t q = 0; q < tree_.size(); ++q) {
     const int i = tree_[q].cell % s.nx, j = tree_[q].cell / s.nx;
     // (neighbour i, j, component, face along, face across)
@@ -115,34 +165,17 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
       tree_.push_back(t);
     }
   }
-  if (static_cast<int>(tree_.size()) != n_ - n_mom_) return;  // a pocket: no path to the root
+  if (static_cast<int>(tree_.size()) != n_ - n_mom_) return false;  // a pocket: no path to the root
   for (const TreeCell& t : tree_)
-    if (t.face >= 0 && (t.d_face == 0.0 || t.g_own == 0.0)) return;
+    if (t.face >= 0 && (t.d_face == 0.0 || t.g_own == 0.0)) return false;
+  return true;
+}
 
-  // Node groups: nodes joined by a fixed face share their streamfunction
-  // correction. The group of the bottom-left corner (the walls) is the gauge.
-  const int nodes_x = s.nx + 1;
-  auto node = [&](int i, int j) { return j * nodes_x + i; };
-  NodeGroups groups(static_cast<std::size_t>(nodes_x) * (s.ny + 1));
-  // Nodes at the two ends of face (a, b) of component c, in the order that
-  // makes the face's velocity (psi(second) - psi(first)) * scale.
-  auto ends = [&](int c, int a, int b, int& first, int& second, double& scale) {
-    if (c == 0) {  // u = d psi / dy
-      first = node(a, b), second = node(a, b + 1), scale = 1.0 / s.dy();
-    } else {  // v = -d psi / dx
-      first = node(b + 1, a), second = node(b, a), scale = 1.0 / s.dx();
-    }
-  };
-  for (int c = 0; c < 2; ++c)
-    for (int b = 0; b < grid.n_across(c); ++b)
-      for (int a = 0; a <= grid.n_along(c); ++a)
-        if (grid.column(c, grid.face(c, a, b)) < 0) {
-          int first, second;
-          double scale;
-          ends(c, a, b, first, second, scale);
-          groups.unite(first, second);
-        }
-  const int gauge = groups.find(node(0, 0));
+void NullSpaceSolver::build_curl(const StaggeredGrid& grid) {
+  const GridShape& s = grid.shape();
+  NodeGroups groups = fixed_face_groups(grid);
+  // The group of the bottom-left corner (the walls) is the gauge.
+  const int gauge = groups.find(0);
   std::vector<int> group_col(groups.parent.size(), -1);
   int n_groups = 0;
   for (std::size_t k = 0; k < groups.parent.size(); ++k) {
@@ -155,22 +188,23 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
       for (int a = 0; a <= grid.n_along(c); ++a) {
         const int col = grid.column(c, grid.face(c, a, b));
         if (col < 0) continue;
-        int first, second;
-        double scale;
-        ends(c, a, b, first, second, scale);
-        const int g1 = groups.find(first), g2 = groups.find(second);
+        const FaceEnds e = face_ends(s, c, a, b);
+        const int g1 = groups.find(e.first), g2 = groups.find(e.second);
         if (g1 == g2) continue;  // a dead end: no divergence-free flux through it
-        if (group_col[g2] >= 0) triplets.emplace_back(col, group_col[g2], scale);
-        if (group_col[g1] >= 0) triplets.emplace_back(col, group_col[g1], -scale);
+        if (group_col[g2] >= 0) triplets.emplace_back(col, group_col[g2], e.scale);
+        if (group_col[g1] >= 0) triplets.emplace_back(col, group_col[g1], -e.scale);
       }
   curl_.resize(n_, n_groups);
   curl_.setFromTriplets(triplets.begin(), triplets.end());
+}
 
+Eigen::SparseMatrix<double> NullSpaceSolver::build_projection(
+    const Eigen::SparseMatrix<double>& jacobian) {
   // L' = C' (I - G R): C' plus, for each outlet face, minus the curl
   // projection of its cell's pressure column over the face's coefficient.
   const Eigen::SparseMatrix<double> curl_t = curl_.transpose();
-  const Eigen::SparseMatrix<double> projected = curl_t * jacobian;  // groups x n
-  triplets.clear();
+  Eigen::SparseMatrix<double> projected = curl_t * jacobian;  // groups x n
+  std::vector<Eigen::Triplet<double>> triplets;
   for (int col = 0; col < n_mom_; ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(curl_t, col); it; ++it)
       triplets.emplace_back(static_cast<int>(it.row()), col, it.value());
@@ -179,10 +213,15 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
     for (Eigen::SparseMatrix<double>::InnerIterator it(projected, t.p); it; ++it)
       triplets.emplace_back(static_cast<int>(it.row()), t.face, -it.value() / t.g_own);
   }
-  left_.resize(n_groups, n_);
+  left_.resize(curl_.cols(), n_);
   left_.setFromTriplets(triplets.begin(), triplets.end());
+  return projected;
+}
 
-  // Checks: C is divergence-free, and L' removes the pressure.
+bool NullSpaceSolver::operators_check(const GridShape& s,
+                                      const Eigen::SparseMatrix<double>& jacobian,
+                                      const Eigen::SparseMatrix<double>& projected) const {
+  // C is divergence-free, and L' removes the pressure.
   const Eigen::SparseMatrix<double> divergence = jacobian * curl_;
   double d_max = 0.0;
   for (int k = 0; k < divergence.outerSize(); ++k)
@@ -193,7 +232,7 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
     }
   const Eigen::SparseMatrix<double> left_g = left_ * jacobian;
   const double scale = max_abs(projected, n_mom_, n_) + 1.0 / (s.dx() * s.dy());
-  applicable_ = d_max < 1e-9 * scale && max_abs(left_g, n_mom_, n_) < 1e-9 * scale;
+  return d_max < 1e-9 * scale && max_abs(left_g, n_mom_, n_) < 1e-9 * scale;
 }
 
 bool NullSpaceSolver::factorize(const Eigen::SparseMatrix<double>& jacobian) {

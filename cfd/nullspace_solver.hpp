@@ -21,12 +21,13 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include "cfd/linear_solver.hpp"
 #include "cfd/staggered_grid.hpp"
-#include "cfd/umfpack_lu.hpp"
+#include "core/umfpack_lu.hpp"
 
 namespace plumekit::cfd {
 
-class NullSpaceSolver {
+class NullSpaceSolver : public LinearSolver {
  public:
   // `jacobian` holds the values of some Newton matrix of `grid`'s equations
   // (the continuity and pressure entries, which never change, are read here).
@@ -36,12 +37,13 @@ class NullSpaceSolver {
   // Unknowns of the reduced matrix K (node groups).
   int reduced_size() const { return static_cast<int>(curl_.cols()); }
 
+  const char* name() const override { return "nullspace"; }
   // Factorizes K for this Jacobian (same pattern as the constructor's). False
   // when K is singular.
-  bool factorize(const Eigen::SparseMatrix<double>& jacobian);
+  bool factorize(const Eigen::SparseMatrix<double>& jacobian) override;
   // x = J^-1 b with the last factorization, where J is the matrix given to
   // factorize() (x and b must not alias).
-  void solve(const Eigen::SparseMatrix<double>& jacobian, const double* b, double* x);
+  void solve(const Eigen::SparseMatrix<double>& jacobian, const double* b, double* x) override;
 
  private:
   // One cell of the spanning tree, in breadth-first order from the roots.
@@ -61,6 +63,25 @@ class NullSpaceSolver {
     int col[4];
     double coef[4];
   };
+
+  // The constructor's steps; each false step leaves the solver not applicable.
+  // False when a column holds more than a MAC continuity row's four entries.
+  bool read_continuity_rows(const Eigen::SparseMatrix<double>& jacobian);
+  // False when the tree cannot reach every fluid cell, or a tree face cannot
+  // carry its cell's flux or pressure.
+  bool build_tree(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian);
+  void add_roots(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian,
+                 std::vector<char>& reached);
+  void add_root(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian,
+                std::vector<char>& reached, std::size_t cell, int face);
+  void build_curl(const StaggeredGrid& grid);
+  // Makes L'; returns C' J, which the check reuses.
+  Eigen::SparseMatrix<double> build_projection(const Eigen::SparseMatrix<double>& jacobian);
+  // D C = 0 and L' G = 0, to round-off.
+  bool operators_check(const GridShape& s, const Eigen::SparseMatrix<double>& jacobian,
+                       const Eigen::SparseMatrix<double>& projected) const;
+  // The coefficient of velocity column `col` in continuity row `p`.
+  double continuity_coef(int p, int col) const;
 
   int n_ = 0, n_mom_ = 0;
   bool applicable_ = false;

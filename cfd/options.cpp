@@ -3,9 +3,78 @@
 #include <string>
 
 #include "cfd/grid_check.hpp"
+#include "core/error.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::cfd {
+
+namespace {
+
+template <class E>
+struct Named {
+  E value;
+  const char* name;
+};
+constexpr Named<Turbulence> kTurbulence[] = {{Turbulence::None, "none"},
+                                             {Turbulence::MixingLength, "mixing-length"}};
+constexpr Named<Convection> kConvection[] = {{Convection::Upwind, "upwind"},
+                                             {Convection::Central, "central"},
+                                             {Convection::VanLeer, "vanleer"}};
+constexpr Named<LinearSolverKind> kLinearSolver[] = {{LinearSolverKind::Nullspace, "nullspace"},
+                                                     {LinearSolverKind::Coupled, "coupled"}};
+
+template <class E, std::size_t N>
+const char* name_of(const Named<E> (&table)[N], E value) {
+  for (const Named<E>& n : table)
+    if (n.value == value) return n.name;
+  return "?";
+}
+
+template <class E, std::size_t N>
+std::string names_of(const Named<E> (&table)[N]) {
+  std::string names;
+  for (const Named<E>& n : table)
+    names += (names.empty() ? "" : ", ") + std::string(n.name);
+  return names;
+}
+
+template <class E, std::size_t N>
+E parse(const Named<E> (&table)[N], const std::string& name, const std::string& field) {
+  for (const Named<E>& n : table)
+    if (name == n.name) return n.value;
+  throw OptionError(field, "unknown name '" + name + "'; use one of " + names_of(table));
+}
+
+}  // namespace
+
+const char* to_string(Turbulence t) {
+  return name_of(kTurbulence, t);
+}
+const char* to_string(Convection c) {
+  return name_of(kConvection, c);
+}
+const char* to_string(LinearSolverKind k) {
+  return name_of(kLinearSolver, k);
+}
+std::string turbulence_names() {
+  return names_of(kTurbulence);
+}
+std::string convection_names() {
+  return names_of(kConvection);
+}
+std::string linear_solver_names() {
+  return names_of(kLinearSolver);
+}
+
+Turbulence parse_turbulence(const std::string& name) {
+  return parse(kTurbulence, name, "flow.turbulence");
+}
+Convection parse_convection(const std::string& name) {
+  return parse(kConvection, name, "flow.convection");
+}
+LinearSolverKind parse_linear_solver(const std::string& name) {
+  return parse(kLinearSolver, name, "flow.linear_solver");
+}
 
 // The upper bounds are far beyond any useful setting; they catch unit
 // mistakes and typos (a cell of 50 m, a viscosity of 1e9) before a solve that

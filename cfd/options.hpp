@@ -14,8 +14,26 @@ enum class Convection {
   VanLeer,  // second order where smooth, bounded (TVD, van Leer limiter)
 };
 
+// How the Newton systems are solved (linear_solver.hpp); both give the same
+// steps to round-off.
+enum class LinearSolverKind {
+  Nullspace,  // the divergence-free subspace, one unknown per grid node
+  Coupled,    // the (u, v, p) matrix with paired rows
+};
+
+// The names the options are written and read by ("mixing-length", "vanleer",
+// "coupled"), and the list of them for help texts ("upwind, central, vanleer").
 const char* to_string(Turbulence t);
 const char* to_string(Convection c);
+const char* to_string(LinearSolverKind k);
+std::string turbulence_names();
+std::string convection_names();
+std::string linear_solver_names();
+// The option a name denotes; OptionError naming the field ("flow.convection")
+// and the valid names otherwise.
+Turbulence parse_turbulence(const std::string& name);
+Convection parse_convection(const std::string& name);
+LinearSolverKind parse_linear_solver(const std::string& name);
 
 struct FlowOptions {
   double cell = 0.05;  // m; cells per side = round(extent / cell)
@@ -44,10 +62,14 @@ struct FlowOptions {
   // needs fewer of the expensive fine-grid factorizations.
   bool sequencing = true;
   // Solve the Newton systems in the divergence-free subspace (one unknown per
-  // grid node, nullspace_solver.hpp); false: the coupled (u, v, p) matrix with
-  // paired rows (diagonal_pairing.hpp). Both give the same steps to round-off;
+  // grid node, nullspace_solver.hpp), or on the coupled (u, v, p) matrix with
+  // paired rows (coupled_solver.hpp). Both give the same steps to round-off;
   // the coupled one is also the fallback where the nullspace checks fail.
-  bool nullspace = true;
+  LinearSolverKind linear_solver = LinearSolverKind::Nullspace;
+  // The flow policy (cfd::solve_wind, flow_policy.hpp): when Newton does not
+  // converge with central or van Leer convection, solve again with first-order
+  // upwind, and report it. cfd::solve itself ignores this.
+  bool upwind_fallback = true;
   bool verbose = false;  // a line per iteration on stderr
   // Called after each iteration with (iteration, momentum, continuity residual).
   std::function<void(int, double, double)> on_iteration;

@@ -10,17 +10,17 @@
 
 #include <Eigen/SparseCore>
 
-#include "cfd/umfpack_lu.hpp"
+#include "core/umfpack_lu.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::dataset {
 
-// The operator and its LU (cfd::UmfpackLU: one BLAS policy for every UMFPACK
+// The operator and its LU (plumekit::UmfpackLU: one BLAS policy for every UMFPACK
 // call in plumekit). Solves are thread-safe: ste/ shares one model between runs.
 struct AdvectionDiffusion::Lu {
   Eigen::SparseMatrix<double, Eigen::ColMajor, int> a;
-  cfd::UmfpackLU lu;
+  UmfpackLU lu;
 
   void factor() {
     lu.control(UMFPACK_IRSTEP) = 0;  // a direct LU of this operator needs no refinement

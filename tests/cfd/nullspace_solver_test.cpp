@@ -130,7 +130,7 @@ TEST(NullSpaceSolver, FlowEqualsTheCoupledSolversFlow) {
   FlowOptions options;
   options.cell = 0.1;
   const FlowResult a = solve(map, options);
-  options.nullspace = false;
+  options.linear_solver = plumekit::cfd::LinearSolverKind::Coupled;
   const FlowResult b = solve(map, options);
   EXPECT_EQ(a.summary.linear_solver, "nullspace");
   EXPECT_EQ(b.summary.linear_solver, "coupled");

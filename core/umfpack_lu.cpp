@@ -1,4 +1,4 @@
-#include "cfd/umfpack_lu.hpp"
+#include "core/umfpack_lu.hpp"
 
 #include <dlfcn.h>
 #include <umfpack.h>
@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace plumekit::cfd {
+namespace plumekit {
 namespace {
 
 // UMFPACK's dense kernels call whatever BLAS libblas.so.3 points at. Two facts
@@ -102,4 +102,4 @@ void UmfpackLU::solve_shared(const Eigen::SparseMatrix<double>& a, const double*
   wsolve(transpose ? UMFPACK_At : UMFPACK_A, a, b, x, info.data(), wi.data(), w.data());
 }
 
-}  // namespace plumekit::cfd
+}  // namespace plumekit

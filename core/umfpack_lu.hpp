@@ -7,7 +7,7 @@
 #include <array>
 #include <vector>
 
-namespace plumekit::cfd {
+namespace plumekit {
 
 class UmfpackLU {
  public:
@@ -46,4 +46,4 @@ class UmfpackLU {
   void* numeric_ = nullptr;
 };
 
-}  // namespace plumekit::cfd
+}  // namespace plumekit
