@@ -11,7 +11,7 @@
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
-#include "cfd/flow_solver.hpp"
+#include "cfd/flow_policy.hpp"
 #include "core/atomic_file.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
@@ -191,7 +191,7 @@ void add_plume(CLI::App& app) {
                        " is outside the arena or inside an obstacle");
     OutputDirectory out(a->out, "plume", {a->map});
     const auto t0 = std::chrono::steady_clock::now();
-    const cfd::FlowResult flow = cfd::solve(map, a->flow);
+    const cfd::FlowResult flow = cfd::solve_wind(map, a->flow).flow;  // the flow policy
     const auto t1 = std::chrono::steady_clock::now();
     const GridShape g = feature_grid(map);
     const MapPlumes plumes(map, flow.wind, g, a->p);

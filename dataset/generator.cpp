@@ -10,7 +10,7 @@
 #include <thread>
 #include <tuple>
 
-#include "cfd/flow_solver.hpp"
+#include "cfd/flow_policy.hpp"
 #include "cfd/grid_check.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -62,20 +62,6 @@ std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redr
   RandomMap r = random_map(o.map, o.seed, i, redraw);
   r.map.sources = random_sources(r.map, o.sources, o.source_clearance, o.seed, i);
   return {r.map, r.family};
-}
-
-// Central convection first; first-order upwind if Newton stalls on it.
-// wind.json records which one was used.
-cfd::FlowResult solve_flow(const Map& map, cfd::FlowOptions& fo) {
-  fo.on_iteration = nullptr;
-  fo.verbose = false;
-  try {
-    return cfd::solve(map, fo);
-  } catch (const cfd::ConvergenceError&) {
-    if (fo.convection == cfd::Convection::Upwind) throw;
-    fo.convection = cfd::Convection::Upwind;
-    return cfd::solve(map, fo);
-  }
 }
 
 // The run's own options, and the memory of its worker threads: each solves
@@ -200,8 +186,11 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
           for (int redraw = 0;; ++redraw) {
             std::tie(map, family) = dataset_map(o, index, redraw);
             cfd::FlowOptions fo = o.flow;
+            fo.on_iteration = nullptr;
+            fo.verbose = false;
             try {
-              const cfd::FlowResult flow = solve_flow(map, fo);
+              // The flow policy (cfd/flow_policy.hpp); wind.json records the scheme used.
+              const cfd::FlowResult flow = cfd::solve_wind(map, fo).flow;
               write_wind_cache(wind_dir, flow, fo);
               wind = flow.wind;
               break;

@@ -5,7 +5,7 @@
 #include <random>
 #include <string>
 
-#include "cfd/flow_solver.hpp"
+#include "cfd/flow_policy.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
@@ -22,22 +22,13 @@ double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-cfd::WindField solve_upwind_on_stall(const Map& map, cfd::FlowOptions fo) {
-  try {
-    return cfd::solve(map, fo).wind;
-  } catch (const cfd::ConvergenceError&) {
-    fo.convection = cfd::Convection::Upwind;
-    return cfd::solve(map, fo).wind;
-  }
-}
-
 // STE solves the wind at the flow defaults, which no STE option changes, so a
 // fault of the flow's cell size is the map's: say so instead of naming a
 // setting the STE commands do not have.
 cfd::WindField solve_wind(const Map& map) {
   const cfd::FlowOptions fo;
   try {
-    return solve_upwind_on_stall(map, fo);
+    return cfd::solve_wind(map, fo).flow.wind;  // the flow policy
   } catch (const OptionError& e) {
     if (e.field() != "flow.cell") throw;
     throw InputError("map " + map.name + ": STE solves the wind on cells of " + compact(fo.cell) +
