@@ -13,6 +13,7 @@
 #include "core/umfpack_lu.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "core/resample.hpp"
 
 namespace plumekit::dataset {
 
@@ -120,54 +121,14 @@ AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
   lu_->a.makeCompressed();
   summary_.nonzeros = lu_->a.nonZeros();
   lu_->factor();
-  summary_.factor_seconds =
+  summary_.factor_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 AdvectionDiffusion::~AdvectionDiffusion() = default;
 
 std::vector<std::pair<int, double>> AdvectionDiffusion::point_weights(Vec2 p) const {
-  const int nx = shape_.nx, ny = shape_.ny;
-  const GridShape::Bilinear b = shape_.bilinear(p);
-  const int i0 = b.i0, i1 = b.i1, j0 = b.j0, j1 = b.j1;
-  const double tx = b.tx, ty = b.ty;
-  std::vector<std::pair<int, double>> w;
-  double total = 0.0;
-  auto add = [&](int i, int j, double weight) {
-    const int k = static_cast<int>(shape_.index(i, j));
-    if (solid_[k] || weight <= 0.0) return;
-    for (auto& e : w)
-      if (e.first == k) {
-        e.second += weight;
-        total += weight;
-        return;
-      }
-    w.emplace_back(k, weight);
-    total += weight;
-  };
-  add(i0, j0, (1 - tx) * (1 - ty));
-  add(i1, j0, tx * (1 - ty));
-  add(i0, j1, (1 - tx) * ty);
-  add(i1, j1, tx * ty);
-  if (total <= 0.0) {
-    // Every neighbouring centre is solid (a point hard against an obstacle):
-    // take the nearest free cell centre.
-    double best = 1e300;
-    int bk = -1;
-    const int ci = std::clamp(static_cast<int>(p.x / shape_.dx()), 0, nx - 1);
-    const int cj = std::clamp(static_cast<int>(p.y / shape_.dy()), 0, ny - 1);
-    for (int j = std::max(0, cj - 3); j <= std::min(ny - 1, cj + 3); ++j)
-      for (int i = std::max(0, ci - 3); i <= std::min(nx - 1, ci + 3); ++i) {
-        if (solid_[shape_.index(i, j)]) continue;
-        const double d = norm(shape_.centre(i, j) - p);
-        if (d < best) best = d, bk = static_cast<int>(shape_.index(i, j));
-      }
-    if (bk >= 0) w.emplace_back(bk, 1.0);
-    return w;
-  }
-  for (auto& e : w)
-    e.second /= total;
-  return w;
+  return free_bilinear_weights(shape_, solid_, p);
 }
 
 Grid<double> AdvectionDiffusion::solve(Vec2 source) const {
@@ -216,41 +177,6 @@ double AdvectionDiffusion::flux_through_column(const Grid<double>& c, int i) con
   for (int j = 0; j < shape_.ny; ++j)
     total += face_flux(c, i, j);
   return total;
-}
-
-Resampler::Resampler(const AdvectionDiffusion& ad, const GridShape& target)
-    : source_(ad.shape()), target_(target), begin_(target.size() + 1, 0) {
-  const GridShape& s = ad.shape();
-  for (int j = 0; j < target.ny; ++j)
-    for (int i = 0; i < target.nx; ++i) {
-      const std::size_t c = target.index(i, j);
-      const Vec2 p = target.centre(i, j);
-      const int ci = std::min(s.nx - 1, static_cast<int>(p.x / s.dx()));
-      const int cj = std::min(s.ny - 1, static_cast<int>(p.y / s.dy()));
-      if (!ad.solid(ci, cj))  // inside an obstacle: no weights, 0
-        for (const auto& w : ad.point_weights(p))
-          weights_.push_back(w);
-      begin_[c + 1] = static_cast<int>(weights_.size());
-    }
-}
-
-Grid<double> Resampler::apply(const Grid<double>& field) const {
-  if (field.shape.nx != source_.nx || field.shape.ny != source_.ny)
-    throw std::logic_error("resample: the field is not on the flow grid");
-  Grid<double> out(target_, 0.0);
-  for (std::size_t c = 0; c < target_.size(); ++c) {
-    if (begin_[c] == begin_[c + 1]) continue;
-    double v = 0.0;
-    for (int e = begin_[c]; e < begin_[c + 1]; ++e)
-      v += weights_[e].second * field.values[weights_[e].first];
-    out.values[c] = v;
-  }
-  return out;
-}
-
-Grid<double> resample(const AdvectionDiffusion& ad, const Grid<double>& field,
-                      const GridShape& target) {
-  return Resampler(ad, target).apply(field);
 }
 
 }  // namespace plumekit::dataset

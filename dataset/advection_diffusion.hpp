@@ -39,7 +39,7 @@ struct AdvectionDiffusionSummary {
   int nx = 0, ny = 0;
   int unknowns = 0;        // free cells
   long long nonzeros = 0;  // of the operator
-  double factor_seconds = 0.0;
+  double factor_s = 0.0;
   double max_cell_peclet = 0.0;  // |u| h / D over faces; the scheme blends to upwind above 2
 };
 
@@ -55,6 +55,8 @@ class AdvectionDiffusion {
   const AdvectionDiffusionSummary& summary() const { return summary_; }
   const GridShape& shape() const { return shape_; }
   bool solid(int i, int j) const { return solid_[shape_.index(i, j)] != 0; }
+  // One flag per flow cell: what core/resample.hpp reads fields around.
+  const std::vector<std::uint8_t>& solid_mask() const { return solid_; }
   const AdvectionDiffusionOptions& options() const { return options_; }
 
   // Concentration on the flow grid (zero in solid cells) of a release of
@@ -73,7 +75,8 @@ class AdvectionDiffusion {
   double flux_through_column(const Grid<double>& c, int i) const;
 
   // Bilinear weights of a point over free cell centres (renormalised when
-  // some of the four neighbours are solid): pairs (cell index, weight).
+  // some of the four neighbours are solid): pairs (cell index, weight);
+  // core/resample.hpp's free_bilinear_weights on the flow grid.
   std::vector<std::pair<int, double>> point_weights(Vec2 p) const;
 
  private:
@@ -88,24 +91,6 @@ class AdvectionDiffusion {
   AdvectionDiffusionSummary summary_;
   // +x flux (advective + diffusive) through the face left of cell (i, j).
   double face_flux(const Grid<double>& c, int i, int j) const;
-};
-
-// Samples a flow-grid field at the cell centres of `target` (bilinear among
-// free cells; 0 at points inside solid cells).
-Grid<double> resample(const AdvectionDiffusion& ad, const Grid<double>& field,
-                      const GridShape& target);
-
-// resample() with its weights computed once, for many fields of one map
-// (the weights depend only on the grids and the obstacles). Same values.
-class Resampler {
- public:
-  Resampler(const AdvectionDiffusion& ad, const GridShape& target);
-  Grid<double> apply(const Grid<double>& field) const;
-
- private:
-  GridShape source_, target_;
-  std::vector<int> begin_;  // target cell c's weights: [begin_[c], begin_[c + 1])
-  std::vector<std::pair<int, double>> weights_;
 };
 
 }  // namespace plumekit::dataset

@@ -7,6 +7,8 @@
 #include "core/error.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
+#include "core/map_json.hpp"
+#include "dataset/features.hpp"
 #include "dataset/manifest.hpp"
 
 namespace plumekit::dataset {
@@ -118,6 +120,18 @@ void differences(const json& a, const json& b, const std::string& path,
   if (a != b) out.push_back(path + ": this run " + shown(a) + ", the dataset " + shown(b));
 }
 
+// Parameters written before issue 15 named time fields `_seconds`; they read as today's `_s`
+// keys, in place, so an older dataset resumes and merges.
+void upgrade_parameter_keys(ordered_json& parameters) {
+  if (!parameters.contains("filament") || !parameters.at("filament").is_object()) return;
+  const ordered_json old = parameters.at("filament");
+  if (!old.contains("record_seconds")) return;
+  ordered_json renamed = ordered_json::object();
+  for (const auto& [k, v] : old.items())
+    renamed[k == "record_seconds" ? "record_s" : k] = v;
+  parameters["filament"] = renamed;
+}
+
 }  // namespace
 
 Manifest parse_manifest(std::string_view bytes, const std::string& name) {
@@ -130,6 +144,7 @@ Manifest parse_manifest(std::string_view bytes, const std::string& name) {
   Manifest m;
   m.generator = member(j, "generator", name, "");
   if (!m.generator.is_object()) fail(name, "generator", "expected an object of parameters");
+  upgrade_parameter_keys(m.generator);
   m.maps = static_cast<int>(integer(m.generator, "maps", name, "generator", 1, kMaxMaps));
   if (j.contains("part")) {
     m.part_n = static_cast<int>(integer(j.at("part"), "n", name, "part", 1, kMaxMaps));
@@ -185,12 +200,30 @@ Manifest read_manifest(const fs::path& file) {
   return parse_manifest(read_file(file), file.string());
 }
 
+std::vector<Manifest> read_part_manifests(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw InputError(dir.string() + ": not a directory");
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind("manifest.part-", 0) == 0 && e.path().extension() == ".json")
+      files.push_back(e.path());
+  }
+  if (files.empty()) throw InputError(dir.string() + ": no manifest.part-K-of-N.json in it");
+  std::sort(files.begin(), files.end());
+  std::vector<Manifest> manifests;
+  for (const fs::path& f : files)
+    manifests.push_back(read_manifest(f));
+  return manifests;
+}
+
 ordered_json parse_parameters(std::string_view bytes, const std::string& name) {
   constexpr const char* advice =
       "; restore it from the \"generator\" object of the dataset's manifest.json, or use "
       "another --out";
-  const ordered_json j = parse_json(bytes, name, advice);
+  ordered_json j = parse_json(bytes, name, advice);
   if (!j.is_object()) fail(name, "", "expected a JSON object of parameters", advice);
+  upgrade_parameter_keys(j);
   for (const char* key : {"seed", "maps"})
     if (!j.contains(key) || !j.at(key).is_number_integer())
       fail(name, key, j.contains(key) ? "expected an integer" : "missing", advice);
@@ -254,6 +287,58 @@ ShardArrays read_shard(const fs::path& dataset_dir, const ManifestShard& entry) 
   a.targets = load("targets.npy", {n, 2, ny, nx});
   a.sources = load("sources.npy", {n, 2});
   return a;
+}
+
+namespace {
+
+// Rows `row` of an array of [samples, channels, g] floats, one grid per channel.
+std::vector<Grid<double>> channels_of(const std::vector<float>& array, int channels, int row,
+                                      const GridShape& g) {
+  std::vector<Grid<double>> out;
+  for (int c = 0; c < channels; ++c) {
+    Grid<double> f(g, 0.0);
+    const std::size_t off = (static_cast<std::size_t>(row) * channels + c) * g.size();
+    std::copy(array.begin() + off, array.begin() + off + g.size(), f.values.begin());
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+std::string rows_sha256(const std::vector<float>& array, int channels, int row, std::size_t plane) {
+  const std::size_t n = channels * plane;
+  const char* bytes = reinterpret_cast<const char*>(array.data() + row * n);
+  return sha256_hex(std::string_view(bytes, n * sizeof(float)));
+}
+
+}  // namespace
+
+DatasetSample read_sample(const fs::path& dir, long long index) {
+  const Manifest m = read_manifest(dir / "manifest.json");
+  if (index < 0 || index >= m.samples)
+    throw OptionError("show.index", std::to_string(index) + ": the dataset has " +
+                                        std::to_string(m.samples) + " samples");
+  DatasetSample s;
+  s.index = index;
+  long long start = 0;
+  for (const ManifestShard& e : m.shards) {
+    if (index < start + e.samples) {
+      s.shard = e;
+      s.row = static_cast<int>(index - start);
+      break;
+    }
+    start += e.samples;
+  }
+  const ShardArrays arrays = read_shard(dir, s.shard);
+  s.map = read_map(dir / s.shard.map);
+  const GridShape g = feature_grid(s.map);
+  if (g.size() != static_cast<std::size_t>(arrays.nx) * arrays.ny)
+    throw InputError((dir / s.shard.map).string() + ": its feature grid is not the shard's");
+  s.source = {arrays.sources[2 * s.row], arrays.sources[2 * s.row + 1]};
+  s.inputs = channels_of(arrays.inputs, 3, s.row, g);
+  s.targets = channels_of(arrays.targets, 2, s.row, g);
+  s.inputs_sha256 = rows_sha256(arrays.inputs, 3, s.row, g.size());
+  s.targets_sha256 = rows_sha256(arrays.targets, 2, s.row, g.size());
+  return s;
 }
 
 }  // namespace plumekit::dataset

@@ -11,6 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/geometry.hpp"
+#include "core/grid.hpp"
+#include "core/map.hpp"
 #include "dataset/shard.hpp"
 
 namespace plumekit::dataset {
@@ -35,6 +38,9 @@ struct Manifest {
 // manifest.json or manifest.part-K-of-N.json from its bytes (`name` names them in messages).
 Manifest parse_manifest(std::string_view bytes, const std::string& name);
 Manifest read_manifest(const std::filesystem::path& file);
+// Every manifest.part-K-of-N.json of a `dataset generate --shard K/N` folder, by file name;
+// InputError when `dir` is not a folder or holds none.
+std::vector<Manifest> read_part_manifests(const std::filesystem::path& dir);
 
 // parameters.json: a JSON object with at least "seed" and "maps".
 nlohmann::ordered_json parse_parameters(std::string_view bytes, const std::string& name);
@@ -55,5 +61,25 @@ void check_shard(const std::filesystem::path& dir, const Checksums& expected);
 // The checked arrays of `entry` in the dataset `dataset_dir` (map_ids left empty: they equal
 // entry.map_index, which the checksum covers): shapes as manifest.json's contract says.
 ShardArrays read_shard(const std::filesystem::path& dataset_dir, const ManifestShard& entry);
+
+// One sample of a dataset, by its index over the whole dataset (shards in manifest order), with
+// the map it was made on: what `dataset show` draws and what the trainer's reader must agree with.
+struct DatasetSample {
+  long long index = 0;
+  ManifestShard shard;  // the shard that holds it
+  int row = 0;          // its row in that shard
+  Map map;              // the shard's map file
+  Vec2 source;
+  // On the map's feature grid (row 0 at y = 0), channels as manifest.json's contract says.
+  std::vector<Grid<double>> inputs;   // region label, signed distance, source distance
+  std::vector<Grid<double>> targets;  // mean, std
+  // SHA-256 of the sample's raw float32 rows as stored (inputs [3,64,64], targets [2,64,64]):
+  // what another reader of the same files must reproduce bit for bit.
+  std::string inputs_sha256, targets_sha256;
+};
+
+// Reads sample `index` of the dataset in `dir` through the checked manifest and shard;
+// OptionError naming "show.index" when the dataset has no such sample.
+DatasetSample read_sample(const std::filesystem::path& dir, long long index);
 
 }  // namespace plumekit::dataset

@@ -41,11 +41,11 @@ void FilamentOptions::validate() const {
   check_non_negative("plume.min_spinup", min_spinup, 1e5, "s", "the default is 4 s");
   check_range("plume.max_spinup", max_spinup, min_spinup, 1e5, "s",
               "it must be at least plume.min_spinup; the default is 60 s");
-  check_positive("plume.record_seconds", record_seconds, 1e5, "s", "the default is 5 s");
+  check_positive("plume.record_s", record_s, 1e5, "s", "the default is 5 s");
   check_positive("plume.sample_rate", sample_rate, 1e3, "Hz", "the default is 10 Hz");
   check_positive("plume.cutoff", cutoff, 10.0, "filament radii", "the default is 3");
   // The step count bounds the run time: a tiny dt over a long spin-up never ends.
-  const double steps = (max_spinup + record_seconds) / dt;
+  const double steps = (max_spinup + record_s) / dt;
   if (steps > 1e8)
     throw OptionError("plume.dt", compact(dt) + " s gives " + compact(steps) +
                                       " steps over the spin-up and the recording, more than "
@@ -53,7 +53,7 @@ void FilamentOptions::validate() const {
 }
 
 double FilamentOptions::max_filaments() const {
-  return release_per_second * (max_spinup + record_seconds) + 1.0;
+  return release_per_second * (max_spinup + record_s) + 1.0;
 }
 
 FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& wind, Vec2 source,
@@ -64,7 +64,7 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
   const double bytes = 2.0 * sizeof(Filament) * o_.max_filaments();
   if (!fits_in_memory(bytes)) {
     const double fits =
-        memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_seconds));
+        memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_s));
     check_memory(
         bytes, "the filament model at " + compact(o_.release_per_second) + " filaments per second",
         "use fewer plume.filaments_per_second (" + compact(std::floor(0.9 * fits)) + " fits)");
@@ -233,11 +233,11 @@ SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2
   const bool steady = spin_up(sim, options);
   SensorRecord rec;
   rec.summary = sim.summary();
-  rec.summary.spinup_seconds = sim.time();
+  rec.summary.spinup_s = sim.time();
   rec.summary.steady = steady;
 
   const int frames =
-      std::max(1, static_cast<int>(std::lround(options.record_seconds * options.sample_rate)));
+      std::max(1, static_cast<int>(std::lround(options.record_s * options.sample_rate)));
   const int steps_per_frame =
       std::max(1, static_cast<int>(std::lround(1.0 / (options.sample_rate * options.dt))));
   std::vector<double> sum(sensors.size(), 0.0), sum2(sensors.size(), 0.0), frame(sensors.size());

@@ -48,8 +48,8 @@ struct FilamentOptions {
   double steady_tolerance = 0.02;
   double min_spinup = 4.0;
   double max_spinup = 60.0;
-  // Recording: sensors read every 1 / sample_rate s for record_seconds.
-  double record_seconds = 5.0;
+  // Recording: sensors read every 1 / sample_rate s for record_s.
+  double record_s = 5.0;
   double sample_rate = 10.0;
   // Kernels are summed out to this many R (exp(-9) = 1.2e-4 of the peak).
   double cutoff = 3.0;
@@ -71,7 +71,7 @@ struct Filament {
 };
 
 struct FilamentSummary {
-  double spinup_seconds = 0.0;
+  double spinup_s = 0.0;
   bool steady = false;  // false: stopped at max_spinup
   int filaments_at_end = 0;
   long long released = 0;

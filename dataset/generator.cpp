@@ -4,10 +4,9 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <exception>
 #include <mutex>
 #include <set>
-#include <thread>
+#include <sstream>
 #include <tuple>
 
 #include "cfd/flow_policy.hpp"
@@ -18,9 +17,10 @@
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
+#include "core/thread_pool.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
-#include "dataset/seed.hpp"
+#include "core/seed.hpp"
 #include "core/sha256.hpp"
 #include "dataset/wind_cache.hpp"
 
@@ -67,7 +67,7 @@ std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redr
 // The run's own options, and the memory of its worker threads: each solves
 // one map's flow at a time.
 void check_run_options(const DatasetOptions& o, const RunOptions& run) {
-  check_count("dataset.threads", run.threads, 1, 1024, "one map per thread");
+  check_count("dataset.threads", run.threads, 0, 1024, "0 is one per core; one map per thread");
   if (run.part_n <= 0 || run.part_k < 0 || run.part_k >= run.part_n)
     throw OptionError("dataset.shard", "K/N needs 0 <= K < N, got " + std::to_string(run.part_k) +
                                            "/" + std::to_string(run.part_n));
@@ -79,15 +79,227 @@ void check_run_options(const DatasetOptions& o, const RunOptions& run) {
   for (const Map& m : o.given_maps)
     cells = std::max(cells, grid_cells(m));
   const double per_thread = cfd::flow_memory_estimate(cells);
-  if (run.threads > 1 && !fits_in_memory(run.threads * per_thread))
-    check_memory(run.threads * per_thread,
-                 std::to_string(run.threads) + " worker threads, each solving one map's flow",
+  const int threads = resolve_threads(run.threads);
+  if (threads > 1 && !fits_in_memory(threads * per_thread))
+    check_memory(threads * per_thread,
+                 std::to_string(threads) + " worker threads, each solving one map's flow",
                  "use fewer dataset.threads (" +
                      std::to_string(std::max(1, static_cast<int>(memory_limit() / per_thread))) +
                      " fit)");
 }
 
+// A dataset directory belongs to one set of parameters: a resumed run must
+// bring the same ones. Checked before anything is written, naming each
+// parameter that differs. Returns whether the dataset exists already.
+bool check_resume(const fs::path& out, const nlohmann::ordered_json& params) {
+  const fs::path pfile = out / "parameters.json";
+  if (!fs::exists(pfile)) return false;
+  const std::vector<std::string> diff = parameter_differences(params, read_parameters(pfile));
+  if (diff.empty()) return true;
+  std::string list;
+  for (const std::string& d : diff)
+    list += "\n  " + d;
+  throw InputError(out.string() + " holds a dataset made with other parameters (" +
+                   pfile.string() + "):" + list +
+                   "\nuse another --out, or the dataset's parameters to resume it");
+}
+
+// Claims the folder, creates its parts and removes what interrupted runs left.
+void prepare_dataset_folder(const fs::path& out, const nlohmann::ordered_json& params,
+                            bool resumed) {
+  claim_dataset_folder(out);
+  for (const char* part : {"maps", "wind", "shards"})
+    fs::create_directories(out / part);
+  if (!resumed) write_file_atomic(out / "parameters.json", params.dump(2) + "\n");
+  for (const char* part : {"maps", "wind", "shards"})
+    remove_temporaries(out / part);
+}
+
+// One map of this run (part): its index and sample count.
+struct MapJob {
+  int index = 0;
+  int samples = 0;
+};
+
+std::vector<MapJob> part_jobs(const DatasetOptions& o, const RunOptions& run) {
+  const int maps = o.given_maps.empty() ? o.maps : static_cast<int>(o.given_maps.size());
+  std::vector<MapJob> jobs;
+  for (int i = run.part_k; i < maps; i += run.part_n)
+    jobs.push_back({i, o.given_maps.empty() ? o.sources
+                                            : static_cast<int>(o.given_maps[i].sources.size())});
+  return jobs;
+}
+
+// Counts finished samples from every worker and calls run.progress, one call at a time and at
+// most about 5 times a second (plus the last).
+class SampleProgress {
+ public:
+  SampleProgress(const RunOptions& run, long long total) : run_(run), total_(total) {}
+  void add(long long samples) {
+    const long long done = done_ += samples;
+    if (!run_.progress) return;
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (!lock.owns_lock() || (done < total_ && since(last_) < 0.2)) return;
+    last_ = Clock::now();
+    run_.progress(done, total_);
+  }
+  void finish() {
+    std::lock_guard lock(mutex_);
+    if (run_.progress) run_.progress(total_, total_);
+  }
+
+ private:
+  const RunOptions& run_;
+  const long long total_;
+  std::atomic<long long> done_{0};
+  std::mutex mutex_;
+  Clock::time_point last_ = Clock::now() - std::chrono::seconds(1);
+};
+
+// What one worker did with one map.
+struct MapOutcome {
+  ShardEntry entry;
+  bool resumed = false;  // found complete and verified
+  bool cached = false;   // its wind read from the cache
+  long long samples = 0;
+  double flow_s = 0.0, plume_s = 0.0;
+};
+
+struct MapFiles {
+  fs::path shard, map, wind;
+  MapFiles(const fs::path& out, int index)
+      : shard(out / "shards" / shard_name(index)),
+        map(out / "maps" / (map_stem(index) + ".json")),
+        wind(out / "wind" / map_stem(index)) {}
+};
+
+// The family recorded for a map already on disk.
+std::string family_from_file(const DatasetOptions& o, int index, const fs::path& map_file) {
+  return o.given_maps.empty() ? family_of(read_map(map_file).name) : o.map_files[index];
+}
+
+struct MapAndWind {
+  Map map;
+  std::string family;
+  cfd::WindField wind;
+  bool cached = false;
+};
+
+// The map of `index` and its wind: from the files of an earlier run when they
+// are whole, else drawn and solved. A map with no steady flow (vortex shedding
+// behind a bluff body at Re ~ 200) cannot be used: a replacement is drawn for
+// its index. The map file is written after its wind, so a map file with a wind
+// cache is complete.
+MapAndWind map_and_wind(const DatasetOptions& o, int index, const MapFiles& files) {
+  if (fs::exists(files.map)) {
+    Map map = read_map(files.map);
+    if (std::optional<cfd::WindField> wind = read_wind_cache(files.wind, map))
+      return {std::move(map), family_from_file(o, index, files.map), std::move(*wind), true};
+  }
+  for (int redraw = 0;; ++redraw) {
+    auto [map, family] = dataset_map(o, index, redraw);
+    cfd::FlowOptions fo = o.flow;
+    fo.on_iteration = nullptr;
+    fo.verbose = false;
+    try {
+      // The flow policy (cfd/flow_policy.hpp); wind.json records the scheme used.
+      const cfd::FlowResult flow = cfd::solve_wind(map, fo).flow;
+      write_wind_cache(files.wind, flow, fo);
+      write_map(map, files.map);
+      return {std::move(map), std::move(family), flow.wind, false};
+    } catch (const cfd::ConvergenceError& error) {
+      if (!o.given_maps.empty()) throw InputError(o.map_files[index] + ": " + error.what());
+      if (redraw >= kMaxRedraws)
+        throw InputError("map " + std::to_string(index) + ": no steady flow in " +
+                         std::to_string(kMaxRedraws + 1) + " draws: " + error.what());
+    }
+  }
+}
+
+// The samples of one map: features and plume targets of each of its sources,
+// each source's randomness derived from (seed, map index, source index).
+ShardArrays map_samples(const DatasetOptions& o, int index, const Map& map,
+                        const cfd::WindField& wind, int samples, SampleProgress& progress) {
+  const GridShape sensors = feature_grid(map);
+  const std::vector<float> base = map_features(map, sensors);
+  const MapPlumes plumes(map, wind, sensors, o.plume);
+  ShardArrays a;
+  a.samples = samples;
+  const std::size_t cells = sensors.size();
+  a.inputs.reserve(a.samples * 3 * cells);
+  a.targets.reserve(a.samples * 2 * cells);
+  for (int s = 0; s < a.samples; ++s) {
+    const Vec2 src = map.sources[s];
+    const PlumeTargets p = plumes.run(src, derive_seed(o.seed, index, s, Stream::Filaments));
+    a.inputs.insert(a.inputs.end(), base.begin(), base.end());
+    const std::vector<float> d = source_feature(src, sensors);
+    a.inputs.insert(a.inputs.end(), d.begin(), d.end());
+    for (double v : p.mean.values)
+      a.targets.push_back(static_cast<float>(v));
+    for (double v : p.std.values)
+      a.targets.push_back(static_cast<float>(v));
+    a.sources.push_back(static_cast<float>(src.x));
+    a.sources.push_back(static_cast<float>(src.y));
+    a.map_ids.push_back(index);
+    progress.add(1);
+  }
+  return a;
+}
+
+// One map's shard: kept when an earlier run finished it, else made.
+MapOutcome make_map_shard(const fs::path& out, const DatasetOptions& o, const MapJob& job,
+                          SampleProgress& progress) {
+  MapOutcome r;
+  r.entry.map_index = job.index;
+  r.entry.samples = job.samples;
+  const MapFiles files(out, job.index);
+  if (auto sums = verify_shard(files.shard); sums && fs::exists(files.map)) {
+    r.entry.checksums = *sums;
+    r.entry.family = family_from_file(o, job.index, files.map);
+    r.resumed = true;
+    progress.add(job.samples);
+    return r;
+  }
+  const auto t = Clock::now();
+  const MapAndWind m = map_and_wind(o, job.index, files);
+  r.entry.family = m.family;
+  r.cached = m.cached;
+  r.flow_s = since(t);
+  const auto t1 = Clock::now();
+  const ShardArrays a = map_samples(o, job.index, m.map, m.wind, job.samples, progress);
+  r.entry.checksums = write_shard(files.shard, a);
+  r.samples = a.samples;
+  r.plume_s = since(t1);
+  return r;
+}
+
 }  // namespace
+
+void RunOptions::set_part(const std::string& k_of_n) {
+  int k = -1, n = 0;
+  char slash = 0, extra = 0;
+  std::istringstream in(k_of_n);
+  if (!(in >> k >> slash >> n) || slash != '/' || (in >> extra) || n <= 0 || k < 0 || k >= n)
+    throw OptionError("dataset.shard", "expected K/N with 0 <= K < N, got '" + k_of_n + "'");
+  part_k = k;
+  part_n = n;
+}
+
+void use_map_dir(DatasetOptions& o, const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw OptionError("dataset.map_dir", dir.string() + ": not a directory");
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw OptionError("dataset.map_dir", dir.string() + ": no .json maps");
+  o.given_maps.clear();
+  o.map_files.clear();
+  for (const auto& f : files) {
+    o.given_maps.push_back(read_map(f));
+    o.map_files.push_back(f.filename().string());
+  }
+}
 
 std::string part_manifest_name(int k, int n) {
   return "manifest.part-" + std::to_string(k) + "-of-" + std::to_string(n) + ".json";
@@ -96,208 +308,70 @@ std::string part_manifest_name(int k, int n) {
 DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
                                 const RunOptions& run) {
   const auto t0 = Clock::now();
-  const int maps = o.given_maps.empty() ? o.maps : static_cast<int>(o.given_maps.size());
   // Every option is checked before anything is written (dataset/README.md).
   o.validate();
   check_run_options(o, run);
-
-  // A dataset directory belongs to one set of parameters.
-  // Checked before anything is written, naming each parameter that differs.
   const nlohmann::ordered_json params = parameters_json(o);
-  const fs::path pfile = out / "parameters.json";
-  const bool resumed = fs::exists(pfile);
-  if (resumed) {
-    const std::vector<std::string> diff = parameter_differences(params, read_parameters(pfile));
-    if (!diff.empty()) {
-      std::string list;
-      for (const std::string& d : diff)
-        list += "\n  " + d;
-      throw InputError(out.string() + " holds a dataset made with other parameters (" +
-                       pfile.string() + "):" + list +
-                       "\nuse another --out, or the dataset's parameters to resume it");
-    }
-  }
-  claim_dataset_folder(out);
-  fs::create_directories(out / "maps");
-  fs::create_directories(out / "wind");
-  fs::create_directories(out / "shards");
-  if (!resumed) write_file_atomic(pfile, params.dump(2) + "\n");
-  remove_temporaries(out / "maps");
-  remove_temporaries(out / "wind");
-  remove_temporaries(out / "shards");
+  prepare_dataset_folder(out, params, check_resume(out, params));
 
-  std::vector<int> mine;
-  for (int i = run.part_k; i < maps; i += run.part_n)
-    mine.push_back(i);
-  std::vector<ShardEntry> entries(mine.size());
+  const std::vector<MapJob> jobs = part_jobs(o, run);
   long long total = 0;
-  std::vector<int> samples_of(mine.size());
-  for (std::size_t m = 0; m < mine.size(); ++m) {
-    samples_of[m] =
-        o.given_maps.empty() ? o.sources : static_cast<int>(o.given_maps[mine[m]].sources.size());
-    total += samples_of[m];
-  }
+  for (const MapJob& j : jobs)
+    total += j.samples;
+  SampleProgress progress(run, total);
+  std::vector<MapOutcome> outcomes(jobs.size());
+  // One map per index: its bytes depend on (seed, index) only, never on the thread that made it.
+  ThreadPool pool(std::min<int>(resolve_threads(run.threads),
+                                std::max<int>(1, static_cast<int>(jobs.size()))));
+  pool.parallel_for(jobs.size(),
+                    [&](std::size_t m) { outcomes[m] = make_map_shard(out, o, jobs[m], progress); });
+  progress.finish();
 
   DatasetSummary summary;
-  summary.maps = static_cast<int>(mine.size());
-  std::atomic<std::size_t> next{0};
-  std::atomic<long long> done{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex mutex;
-
-  auto work = [&] {
-    while (!failed) {
-      const std::size_t m = next++;
-      if (m >= mine.size()) return;
-      try {
-        const int index = mine[m];
-        ShardEntry& e = entries[m];
-        e.map_index = index;
-        e.samples = samples_of[m];
-        const fs::path shard_dir = out / "shards" / shard_name(index);
-        const fs::path map_file = out / "maps" / (map_stem(index) + ".json");
-        const fs::path wind_dir = out / "wind" / map_stem(index);
-        auto family_from_file = [&] {
-          return o.given_maps.empty() ? family_of(read_map(map_file).name) : o.map_files[index];
-        };
-        if (auto sums = verify_shard(shard_dir); sums && fs::exists(map_file)) {
-          e.checksums = *sums;
-          e.family = family_from_file();
-          done += e.samples;
-          std::lock_guard lock(mutex);
-          ++summary.maps_resumed;
-          continue;
-        }
-        auto t = Clock::now();
-        Map map;
-        std::string family;
-        std::optional<cfd::WindField> wind;
-        if (fs::exists(map_file)) {
-          map = read_map(map_file);
-          wind = read_wind_cache(wind_dir, map);  // nullopt when damaged: solved again
-        }
-        const bool cached = wind.has_value();
-        if (cached) {
-          family = family_from_file();
-        } else {
-          // A map with no steady flow (vortex shedding behind a bluff body
-          // at Re ~ 200) cannot be used: draw a replacement for its index.
-          for (int redraw = 0;; ++redraw) {
-            std::tie(map, family) = dataset_map(o, index, redraw);
-            cfd::FlowOptions fo = o.flow;
-            fo.on_iteration = nullptr;
-            fo.verbose = false;
-            try {
-              // The flow policy (cfd/flow_policy.hpp); wind.json records the scheme used.
-              const cfd::FlowResult flow = cfd::solve_wind(map, fo).flow;
-              write_wind_cache(wind_dir, flow, fo);
-              wind = flow.wind;
-              break;
-            } catch (const cfd::ConvergenceError& error) {
-              if (!o.given_maps.empty()) throw InputError(o.map_files[index] + ": " + error.what());
-              if (redraw >= kMaxRedraws)
-                throw InputError("map " + std::to_string(index) + ": no steady flow in " +
-                                 std::to_string(kMaxRedraws + 1) + " draws: " + error.what());
-            }
-          }
-          write_map(map, map_file);  // after its wind: a map file with a wind cache is complete
-        }
-        e.family = family;
-        const double flow_s = since(t);
-        t = Clock::now();
-        const GridShape sensors = feature_grid(map);
-        const std::vector<float> base = map_features(map, sensors);
-        const MapPlumes plumes(map, *wind, sensors, o.plume);
-        ShardArrays a;
-        a.samples = e.samples;
-        const std::size_t cells = sensors.size();
-        a.inputs.reserve(a.samples * 3 * cells);
-        a.targets.reserve(a.samples * 2 * cells);
-        for (int s = 0; s < a.samples; ++s) {
-          const Vec2 src = map.sources[s];
-          const PlumeTargets p = plumes.run(src, derive_seed(o.seed, index, s, Stream::Filaments));
-          a.inputs.insert(a.inputs.end(), base.begin(), base.end());
-          const std::vector<float> d = source_feature(src, sensors);
-          a.inputs.insert(a.inputs.end(), d.begin(), d.end());
-          for (double v : p.mean.values)
-            a.targets.push_back(static_cast<float>(v));
-          for (double v : p.std.values)
-            a.targets.push_back(static_cast<float>(v));
-          a.sources.push_back(static_cast<float>(src.x));
-          a.sources.push_back(static_cast<float>(src.y));
-          a.map_ids.push_back(index);
-          ++done;
-        }
-        e.checksums = write_shard(shard_dir, a);
-        std::lock_guard lock(mutex);
-        summary.samples += a.samples;
-        summary.flow_seconds += flow_s;
-        summary.plume_seconds += since(t);
-        if (cached) ++summary.winds_cached;
-      } catch (...) {
-        std::lock_guard lock(mutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  const int threads = std::min<int>(run.threads, std::max<std::size_t>(1, mine.size()));
-  for (int t = 0; t < threads; ++t)
-    pool.emplace_back(work);
-  while (true) {
-    const long long d = done;
-    if (run.progress) run.progress(d, total);
-    bool finished = true;
-    {
-      std::lock_guard lock(mutex);
-      finished = failed || d >= total;
-    }
-    if (finished) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  summary.maps = static_cast<int>(jobs.size());
+  std::vector<ShardEntry> entries;
+  for (const MapOutcome& r : outcomes) {
+    entries.push_back(r.entry);
+    summary.maps_resumed += r.resumed;
+    summary.winds_cached += r.cached;
+    summary.samples += r.samples;
+    summary.flow_s += r.flow_s;
+    summary.plume_s += r.plume_s;
   }
-  for (auto& th : pool)
-    th.join();
-  if (error) std::rethrow_exception(error);
-  if (run.progress) run.progress(total, total);
-
   const std::string name =
       run.part_n > 1 ? part_manifest_name(run.part_k, run.part_n) : std::string("manifest.json");
   write_file_atomic(out / name,
                     manifest_json(params, entries, run.part_k, run.part_n).dump(2) + "\n");
+  summary.threads = pool.size();
   summary.seconds = since(t0);
   return summary;
 }
 
-MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& parts) {
-  if (parts.empty()) throw InputError("dataset merge: name at least one part directory");
-  std::vector<std::pair<fs::path, Manifest>> manifests;
-  std::set<fs::path> seen_dirs;
-  for (const fs::path& dir : parts) {
-    const fs::path canon = fs::weakly_canonical(dir);
-    if (!seen_dirs.insert(canon).second) continue;
-    if (!fs::is_directory(dir)) throw InputError(dir.string() + ": not a directory");
-    bool any = false;
-    for (const auto& e : fs::directory_iterator(dir)) {
-      const std::string f = e.path().filename().string();
-      if (f.rfind("manifest.part-", 0) == 0 && e.path().extension() == ".json") {
-        manifests.emplace_back(dir, read_manifest(e.path()));
-        any = true;
-      }
-    }
-    if (!any) throw InputError(dir.string() + ": no manifest.part-K-of-N.json in it");
-  }
-  const nlohmann::ordered_json& params = manifests.front().second.generator;
+namespace {
+
+// Which part folder holds each map, and the joined manifest's entries.
+struct MergePlan {
+  nlohmann::ordered_json params;
+  std::vector<ShardEntry> entries;
+  std::vector<fs::path> from;
+  fs::path first;  // the folder whose parameters.json is copied
+  MergeSummary summary;
+};
+
+// Checks that the parts share one set of parameters and one split and hold every map exactly
+// once, verifying each shard against its checksums.
+MergePlan plan_merge(const std::vector<std::pair<fs::path, Manifest>>& manifests) {
+  MergePlan plan;
+  plan.first = manifests.front().first;
+  plan.params = manifests.front().second.generator;
   const int n = manifests.front().second.part_n;
   const int maps = manifests.front().second.maps;
   std::set<int> parts_seen;
-  std::vector<ShardEntry> entries(maps);
-  std::vector<fs::path> from(maps);
+  plan.entries.resize(maps);
+  plan.from.resize(maps);
   std::vector<bool> have(maps, false);
-  MergeSummary summary;
   for (const auto& [dir, m] : manifests) {
-    if (m.generator != params)
+    if (m.generator != plan.params)
       throw InputError(dir.string() + ": its parts were made with other parameters");
     if (m.part_n != n) throw InputError(dir.string() + ": parts of different splits (N differs)");
     parts_seen.insert(m.part_k);
@@ -305,57 +379,71 @@ MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& pa
       const int i = s.map_index;  // in 0..maps-1: the generators are equal
       if (have[i]) throw InputError(dir.string() + ": map " + std::to_string(i) + " twice");
       have[i] = true;
-      ShardEntry& e = entries[i];
-      e.map_index = i;
-      e.family = s.family;
-      e.samples = s.samples;
-      e.checksums = s.sha256;
-      from[i] = dir;
+      plan.entries[i] = {i, s.family, s.samples, s.sha256};
+      plan.from[i] = dir;
       check_shard(dir / "shards" / s.name, s.sha256);
-      ++summary.shards;
-      summary.samples += e.samples;
+      ++plan.summary.shards;
+      plan.summary.samples += s.samples;
     }
   }
-  {
-    // The parameters.json copied into `out` must be the parameters of the parts it joins.
-    const fs::path pfile = manifests.front().first / "parameters.json";
-    if (read_parameters(pfile) != params)
-      throw InputError(pfile.string() +
-                       ": differs from the \"generator\" of the part manifests beside it; "
-                       "restore it from one of them");
-  }
+  // The parameters.json copied into `out` must be the parameters of the parts it joins.
+  const fs::path pfile = plan.first / "parameters.json";
+  if (read_parameters(pfile) != plan.params)
+    throw InputError(pfile.string() +
+                     ": differs from the \"generator\" of the part manifests beside it; "
+                     "restore it from one of them");
   for (int k = 0; k < n; ++k)
     if (!parts_seen.count(k))
       throw InputError("dataset merge: part " + std::to_string(k) + " of " + std::to_string(n) +
                        " is missing");
   for (int i = 0; i < maps; ++i)
     if (!have[i]) throw InputError("dataset merge: no part holds map " + std::to_string(i));
-  summary.parts = static_cast<int>(parts_seen.size());
+  plan.summary.parts = static_cast<int>(parts_seen.size());
+  return plan;
+}
 
+void copy_dir(const fs::path& src, const fs::path& dst) {
+  const fs::path tmp = dst.string() + ".tmp-merge";
+  fs::remove_all(tmp);
+  fs::copy(src, tmp, fs::copy_options::recursive);
+  fs::remove_all(dst);
+  fs::rename(tmp, dst);
+}
+
+// Copies each map's shard, wind and map file (those not in `out` already) and the parameters.
+void copy_parts(const fs::path& out, const MergePlan& plan) {
   claim_dataset_folder(out);
-  fs::create_directories(out / "shards");
-  fs::create_directories(out / "maps");
-  fs::create_directories(out / "wind");
-  for (int i = 0; i < maps; ++i) {
-    if (fs::weakly_canonical(from[i]) == fs::weakly_canonical(out)) continue;
+  for (const char* part : {"shards", "maps", "wind"})
+    fs::create_directories(out / part);
+  for (std::size_t k = 0; k < plan.from.size(); ++k) {
+    const int i = static_cast<int>(k);
+    if (fs::weakly_canonical(plan.from[k]) == fs::weakly_canonical(out)) continue;
     const std::string stem = map_stem(i);
-    const auto copy_dir = [](const fs::path& src, const fs::path& dst) {
-      const fs::path tmp = dst.string() + ".tmp-merge";
-      fs::remove_all(tmp);
-      fs::copy(src, tmp, fs::copy_options::recursive);
-      fs::remove_all(dst);
-      fs::rename(tmp, dst);
-    };
-    copy_dir(from[i] / "shards" / shard_name(i), out / "shards" / shard_name(i));
-    copy_dir(from[i] / "wind" / stem, out / "wind" / stem);
+    copy_dir(plan.from[k] / "shards" / shard_name(i), out / "shards" / shard_name(i));
+    copy_dir(plan.from[k] / "wind" / stem, out / "wind" / stem);
     write_file_atomic(out / "maps" / (stem + ".json"),
-                      read_file(from[i] / "maps" / (stem + ".json")));
+                      read_file(plan.from[k] / "maps" / (stem + ".json")));
   }
-  if (fs::weakly_canonical(manifests.front().first) != fs::weakly_canonical(out))
-    write_file_atomic(out / "parameters.json",
-                      read_file(manifests.front().first / "parameters.json"));
-  write_file_atomic(out / "manifest.json", manifest_json(params, entries, 0, 1).dump(2) + "\n");
-  return summary;
+  if (fs::weakly_canonical(plan.first) != fs::weakly_canonical(out))
+    write_file_atomic(out / "parameters.json", read_file(plan.first / "parameters.json"));
+}
+
+}  // namespace
+
+MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& parts) {
+  if (parts.empty()) throw InputError("dataset merge: name at least one part directory");
+  std::vector<std::pair<fs::path, Manifest>> manifests;
+  std::set<fs::path> seen_dirs;
+  for (const fs::path& dir : parts) {
+    if (!seen_dirs.insert(fs::weakly_canonical(dir)).second) continue;
+    for (Manifest& m : read_part_manifests(dir))
+      manifests.emplace_back(dir, std::move(m));
+  }
+  const MergePlan plan = plan_merge(manifests);
+  copy_parts(out, plan);
+  write_file_atomic(out / "manifest.json",
+                    manifest_json(plan.params, plan.entries, 0, 1).dump(2) + "\n");
+  return plan.summary;
 }
 
 }  // namespace plumekit::dataset

@@ -8,17 +8,26 @@
 #include <string>
 #include <vector>
 
+#include "core/thread_pool.hpp"
 #include "dataset/manifest.hpp"
 
 namespace plumekit::dataset {
 
 struct RunOptions {
-  int threads = 1;
-  int part_k = 0;  // --shard K/N: this run does the maps with index % N == K
+  int threads = kDefaultThreads;  // 0: one per core; one map per thread
+  int part_k = 0;  // dataset.shard K/N: this run does the maps with index % N == K
   int part_n = 1;
-  // Called from the calling thread about 5 times a second: (done, total samples).
+  // (done, total samples), about 5 times a second and once at the end; from any worker thread,
+  // never two calls at once.
   std::function<void(long long, long long)> progress;
+  // Sets part_k and part_n from "K/N"; OptionError naming dataset.shard when it is not 0 <= K < N.
+  void set_part(const std::string& k_of_n);
 };
+
+// Sets options.given_maps (and map_files) to the *.json maps of `dir`, sorted by name, each
+// with its own sources: the ground truth of test maps. OptionError naming dataset.map_dir
+// when the folder is missing or holds no map.
+void use_map_dir(DatasetOptions& options, const std::filesystem::path& dir);
 
 struct DatasetSummary {
   int maps = 0;               // this run's (part's) maps
@@ -26,8 +35,9 @@ struct DatasetSummary {
   int winds_cached = 0;       // wind fields read from the cache instead of solved
   long long samples = 0;      // computed by this run
   double seconds = 0.0;       // wall time
-  double flow_seconds = 0.0;  // summed over threads
-  double plume_seconds = 0.0;
+  double flow_s = 0.0;  // summed over threads
+  double plume_s = 0.0;
+  int threads = 1;            // worker threads used
   double samples_per_second() const { return seconds > 0.0 ? samples / seconds : 0.0; }
 };
 

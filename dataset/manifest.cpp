@@ -43,7 +43,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                {"convection", cfd::to_string(o.flow.convection)},
                {"tolerance", o.flow.tolerance}};
   j["plume_model"] = to_string(o.plume.model);
-  if (o.plume.model == PlumeModel::Filament)
+  if (o.plume.model == PlumeSimulator::Filament)
     j["filament"] = {{"release_per_second", f.release_per_second},
                      {"release_rate", f.release_rate},
                      {"initial_radius", f.initial_radius},
@@ -57,7 +57,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                      {"steady_tolerance", f.steady_tolerance},
                      {"min_spinup", f.min_spinup},
                      {"max_spinup", f.max_spinup},
-                     {"record_seconds", f.record_seconds},
+                     {"record_s", f.record_s},
                      {"sample_rate", f.sample_rate},
                      {"cutoff", f.cutoff},
                      {"equivalent_diffusivity", f.equivalent_diffusivity()}};

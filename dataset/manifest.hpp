@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cfd/options.hpp"
+#include "core/seed.hpp"
 #include "dataset/plume.hpp"
 #include "dataset/random_maps.hpp"
 #include "dataset/shard.hpp"
@@ -20,7 +21,7 @@ inline constexpr const char* kDatasetFormat = "plumekit-dataset/1";
 struct DatasetOptions {
   int maps = 180;     // the thesis's dataset: 180 maps x 100 sources
   int sources = 100;  // per map
-  std::uint64_t seed = 0;
+  std::uint64_t seed = kDefaultSeed;
   PlumeOptions plume;
   RandomMapOptions map;
   cfd::FlowOptions flow;  // cell 0.05 m, nu 0.01 m^2/s, central convection

@@ -4,15 +4,20 @@
 
 namespace plumekit::dataset {
 
-const char* to_string(PlumeModel m) {
-  return m == PlumeModel::Filament ? "filament" : "advection-diffusion";
+const char* to_string(PlumeSimulator m) {
+  return m == PlumeSimulator::Filament ? "filament" : "advection-diffusion";
 }
 
-PlumeModel parse_plume_model(const std::string& name) {
-  if (name == "filament") return PlumeModel::Filament;
-  if (name == "advection-diffusion") return PlumeModel::AdvectionDiffusion;
+PlumeSimulator parse_plume_simulator(const std::string& name) {
+  if (name == "filament") return PlumeSimulator::Filament;
+  if (name == "advection-diffusion") return PlumeSimulator::AdvectionDiffusion;
   throw OptionError("plume.model",
                     "unknown plume model '" + name + "'; use filament or advection-diffusion");
+}
+
+std::vector<std::pair<std::string, PlumeSimulator>> plume_simulator_names() {
+  return {{"filament", PlumeSimulator::Filament},
+          {"advection-diffusion", PlumeSimulator::AdvectionDiffusion}};
 }
 
 void PlumeOptions::validate() const {
@@ -20,13 +25,19 @@ void PlumeOptions::validate() const {
   advection_diffusion.validate();
 }
 
+void check_source(const Map& map, Vec2 source) {
+  if (!map.is_free(source))
+    throw OptionError("plume.source",
+                      to_string(source) + " is outside the arena or inside an obstacle");
+}
+
 MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape& sensors,
                      const PlumeOptions& options)
     : map_(map), wind_(wind), sensors_(sensors), options_(options) {
   options.validate();
-  if (options.model == PlumeModel::AdvectionDiffusion) {
+  if (options.model == PlumeSimulator::AdvectionDiffusion) {
     ad_ = std::make_unique<AdvectionDiffusion>(wind, options.advection_diffusion);
-    resampler_ = std::make_unique<Resampler>(*ad_, sensors_);
+    resampler_ = std::make_unique<GridResampler>(ad_->shape(), ad_->solid_mask(), sensors_);
     in_obstacle_.resize(sensors_.size());
     for (std::size_t k = 0; k < sensors_.size(); ++k)
       in_obstacle_[k] = map_.obstacle_at(sensors_.centre(static_cast<int>(k % sensors_.nx),
@@ -37,8 +48,7 @@ MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape
 MapPlumes::~MapPlumes() = default;
 
 PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
-  if (!map_.is_free(source))
-    throw InputError("source " + to_string(source) + " is outside the arena or inside an obstacle");
+  check_source(map_, source);
   PlumeTargets t;
   if (ad_) {
     t.mean = resampler_->apply(ad_->solve(source));

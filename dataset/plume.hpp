@@ -5,28 +5,42 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
+#include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
 #include "dataset/filament_model.hpp"
 
 namespace plumekit::dataset {
 
-enum class PlumeModel { Filament, AdvectionDiffusion };
-const char* to_string(PlumeModel m);
-PlumeModel parse_plume_model(const std::string& name);  // InputError naming the value
+// How a dataset's plumes are simulated (`--plume-model` in `plume` and `dataset generate`).
+enum class PlumeSimulator { Filament, AdvectionDiffusion };
+const char* to_string(PlumeSimulator m);
+// OptionError naming plume.model and the value.
+PlumeSimulator parse_plume_simulator(const std::string& name);
+// Every simulator by its name ("filament", "advection-diffusion").
+std::vector<std::pair<std::string, PlumeSimulator>> plume_simulator_names();
 
 struct PlumeOptions {
-  PlumeModel model = PlumeModel::Filament;
+  PlumeSimulator model = PlumeSimulator::Filament;  // plume.model
   FilamentOptions filament;
   AdvectionDiffusionOptions advection_diffusion;
   // Validates both models' options (the unused model's too: a dataset's
   // parameters.json records them all). OptionError naming the field.
   void validate() const;
+  // plume.release_rate: both models release the same amount per second and metre of depth.
+  void set_release_rate(double rate) {
+    filament.release_rate = rate;
+    advection_diffusion.release_rate = rate;
+  }
 };
+
+// A source must lie in the map's free space: OptionError naming plume.source otherwise.
+void check_source(const Map& map, Vec2 source);
 
 struct PlumeTargets {
   Grid<double> mean;
@@ -52,7 +66,7 @@ class MapPlumes {
   std::unique_ptr<AdvectionDiffusion> ad_;
   // Advection-diffusion only, per map: the sensor weights, and which
   // sensors lie inside obstacles.
-  std::unique_ptr<Resampler> resampler_;
+  std::unique_ptr<GridResampler> resampler_;
   std::vector<char> in_obstacle_;
 };
 

@@ -10,7 +10,7 @@
 #include "core/option_check.hpp"
 #include "core/rasterize.hpp"
 #include "dataset/features.hpp"
-#include "dataset/seed.hpp"
+#include "core/seed.hpp"
 
 namespace plumekit::dataset {
 

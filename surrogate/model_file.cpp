@@ -205,7 +205,19 @@ std::size_t parameter_count(const std::vector<LayerSpec>& layers) {
   return n;
 }
 
-ModelFile parse_model_file(std::string_view bytes, const std::string& source) {
+namespace {
+
+// The checked framing of a model file: prefix, header, tensor bytes and the trailing SHA-256.
+struct Framing {
+  json header;
+  std::string_view header_bytes;
+  std::size_t data_offset = 0;
+  std::uint64_t data_bytes = 0;
+  Sha256Digest digest{};
+};
+
+// The 16-byte prefix (magic, version, header length) and the header's JSON.
+Framing read_prefix_and_header(std::string_view bytes, const std::string& source) {
   if (bytes.size() < kPrefix) {
     fail(source,
          "truncated: " + std::to_string(bytes.size()) + " bytes, shorter than the 16-byte prefix");
@@ -223,23 +235,30 @@ ModelFile parse_model_file(std::string_view bytes, const std::string& source) {
     fail(source, "truncated: the header needs " + std::to_string(header_len) + " bytes, " +
                      std::to_string(bytes.size() - kPrefix) + " remain");
   }
-  json header;
+  Framing f;
+  f.header_bytes = bytes.substr(kPrefix, header_len);
   try {
-    header = json::parse(bytes.substr(kPrefix, header_len));
+    f.header = json::parse(f.header_bytes);
   } catch (const json::exception& e) {
     fail(source, std::string("header is not valid JSON: ") + e.what());
   }
-  const auto format = get<std::string>(header, "format", source, "header");
+  const auto format = get<std::string>(f.header, "format", source, "header");
   if (format != "plumekit-cnn/1") {
     fail(source, "unknown version: header format \"" + format + "\", expected \"plumekit-cnn/1\"");
   }
-  const auto data_bytes = get<std::uint64_t>(header, "data_bytes", source, "header");
-  const std::size_t data_offset = (kPrefix + header_len + 15) / 16 * 16;
-  if (data_bytes > bytes.size()) {
-    fail(source, "truncated: the header announces " + std::to_string(data_bytes) +
+  f.data_offset = (kPrefix + header_len + 15) / 16 * 16;
+  return f;
+}
+
+// The file's size against the header's data_bytes, then the checksum over everything before it.
+Framing read_framing(std::string_view bytes, const std::string& source) {
+  Framing f = read_prefix_and_header(bytes, source);
+  f.data_bytes = get<std::uint64_t>(f.header, "data_bytes", source, "header");
+  if (f.data_bytes > bytes.size()) {
+    fail(source, "truncated: the header announces " + std::to_string(f.data_bytes) +
                      " bytes of tensors, the file has " + std::to_string(bytes.size()));
   }
-  const std::size_t expected_size = data_offset + data_bytes + kDigest;
+  const std::size_t expected_size = f.data_offset + f.data_bytes + kDigest;
   if (bytes.size() < expected_size) {
     fail(source, "truncated: " + std::to_string(bytes.size()) + " bytes, the header implies " +
                      std::to_string(expected_size));
@@ -250,50 +269,63 @@ ModelFile parse_model_file(std::string_view bytes, const std::string& source) {
                      std::to_string(bytes.size()) + ", header implies " +
                      std::to_string(expected_size) + ")");
   }
-  const Sha256Digest digest = sha256(bytes.substr(0, data_offset + data_bytes));
-  if (std::memcmp(digest.data(), bytes.data() + data_offset + data_bytes, kDigest) != 0) {
-    fail(source, "checksum mismatch: SHA-256 of the contents is " + to_hex(digest) +
+  f.digest = sha256(bytes.substr(0, f.data_offset + f.data_bytes));
+  if (std::memcmp(f.digest.data(), bytes.data() + f.data_offset + f.data_bytes, kDigest) != 0) {
+    fail(source, "checksum mismatch: SHA-256 of the contents is " + to_hex(f.digest) +
                      ", the file says otherwise (the file is corrupt)");
   }
+  return f;
+}
 
-  ModelFile m;
-  m.header_json = std::string(bytes.substr(kPrefix, header_len));
-  m.sha256_hex = to_hex(digest);
-  m.architecture = parse_architecture(
-      header.contains("architecture") ? header.at("architecture") : json(), source);
-  m.layers = deepcfd_layers(m.architecture);
-  check_layers(header.contains("layers") ? header.at("layers") : json(), m.layers, source);
-  const std::size_t params = parameter_count(m.layers);
-  if (get<std::uint64_t>(header, "parameter_count", source, "header") != params ||
-      data_bytes != 4 * params) {
-    fail(source, "shape mismatch: the architecture has " + std::to_string(params) +
-                     " parameters (" + std::to_string(4 * params) + " bytes), the file holds " +
-                     std::to_string(data_bytes) + " bytes");
+json member_or_null(const json& header, const char* key) {
+  return header.contains(key) ? header.at(key) : json();
+}
+
+std::vector<OutputSpec> parse_outputs(const json& outs, int out_channels,
+                                      const std::string& source) {
+  if (!outs.is_array() || static_cast<int>(outs.size()) != out_channels) {
+    fail(source, "shape mismatch: \"outputs\" must describe " + std::to_string(out_channels) +
+                     " output channels");
   }
-  m.features = parse_features(header.contains("features") ? header.at("features") : json(),
-                              m.architecture.in_channels, source);
-  const int levels = static_cast<int>(m.architecture.filters.size());
-  if ((m.features.rows >> levels) < 1 || (m.features.cols >> levels) < 1) {
-    fail(source, "shape mismatch: a " + std::to_string(m.features.rows) + "x" +
-                     std::to_string(m.features.cols) + " grid cannot be pooled " +
-                     std::to_string(levels) + " times");
-  }
-  const json outs = header.contains("outputs") ? header.at("outputs") : json();
-  if (!outs.is_array() || static_cast<int>(outs.size()) != m.architecture.out_channels) {
-    fail(source, "shape mismatch: \"outputs\" must describe " +
-                     std::to_string(m.architecture.out_channels) + " output channels");
-  }
+  std::vector<OutputSpec> outputs;
   for (std::size_t i = 0; i < outs.size(); ++i) {
     const std::string where = "outputs[" + std::to_string(i) + "]";
     OutputSpec o{get<std::string>(outs[i], "name", source, where),
                  get<std::string>(outs[i], "unit", source, where),
                  get<float>(outs[i], "scale", source, where)};
     if (!std::isfinite(o.scale)) fail(source, "header: " + where + ".scale is not finite");
-    m.outputs.push_back(o);
+    outputs.push_back(o);
   }
+  return outputs;
+}
 
-  // Tensors, in layer order: weight then bias.
-  const char* p = bytes.data() + data_offset;
+// The header's description of the network: architecture, layers, parameter count, features and
+// outputs, each checked against the others.
+void parse_description(const Framing& f, ModelFile& m, const std::string& source) {
+  m.architecture = parse_architecture(member_or_null(f.header, "architecture"), source);
+  m.layers = deepcfd_layers(m.architecture);
+  check_layers(member_or_null(f.header, "layers"), m.layers, source);
+  const std::size_t params = parameter_count(m.layers);
+  if (get<std::uint64_t>(f.header, "parameter_count", source, "header") != params ||
+      f.data_bytes != 4 * params) {
+    fail(source, "shape mismatch: the architecture has " + std::to_string(params) +
+                     " parameters (" + std::to_string(4 * params) + " bytes), the file holds " +
+                     std::to_string(f.data_bytes) + " bytes");
+  }
+  m.features =
+      parse_features(member_or_null(f.header, "features"), m.architecture.in_channels, source);
+  const int levels = static_cast<int>(m.architecture.filters.size());
+  if ((m.features.rows >> levels) < 1 || (m.features.cols >> levels) < 1) {
+    fail(source, "shape mismatch: a " + std::to_string(m.features.rows) + "x" +
+                     std::to_string(m.features.cols) + " grid cannot be pooled " +
+                     std::to_string(levels) + " times");
+  }
+  m.outputs =
+      parse_outputs(member_or_null(f.header, "outputs"), m.architecture.out_channels, source);
+}
+
+// The tensors, in layer order: weight then bias, each value finite.
+void read_tensors(const char* p, ModelFile& m, const std::string& source) {
   auto read_tensor = [&](const LayerSpec& l, std::size_t count, const char* what) {
     std::vector<float> t(count);
     for (std::size_t i = 0; i < count; ++i, p += 4) {
@@ -309,6 +341,17 @@ ModelFile parse_model_file(std::string_view bytes, const std::string& source) {
     m.weights.push_back(read_tensor(l, l.weight_count(), "weight"));
     m.biases.push_back(read_tensor(l, static_cast<std::size_t>(l.out), "bias"));
   }
+}
+
+}  // namespace
+
+ModelFile parse_model_file(std::string_view bytes, const std::string& source) {
+  const Framing f = read_framing(bytes, source);
+  ModelFile m;
+  m.header_json = std::string(f.header_bytes);
+  m.sha256_hex = to_hex(f.digest);
+  parse_description(f, m, source);
+  read_tensors(bytes.data() + f.data_offset, m, source);
   return m;
 }
 

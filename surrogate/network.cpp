@@ -4,7 +4,6 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 namespace plumekit::surrogate {
 
@@ -40,9 +39,16 @@ Network::~Network() = default;
 Network::Network(Network&&) noexcept = default;
 Network& Network::operator=(Network&&) noexcept = default;
 
+void EngineOptions::validate() const {
+  if (threads < 0)
+    throw std::invalid_argument("engine.threads: " + std::to_string(threads) +
+                                " is negative; 0 is one per core");
+}
+
 Network::Network(ModelFile file, EngineOptions options)
     : file_(std::move(file)), options_(options), pool_(std::make_unique<WorkspacePool>()) {
-  if (options_.threads < 1) throw std::invalid_argument("EngineOptions.threads must be >= 1");
+  options_.validate();
+  threads_ = std::make_unique<ThreadPool>(options_.threads);
   // A ModelFile from parse_model_file is consistent; one put together by hand must be too.
   const std::vector<LayerSpec> expected = deepcfd_layers(file_.architecture);
   bool consistent = expected.size() == file_.layers.size() &&
@@ -260,49 +266,27 @@ Tensor Network::predict(const Tensor& input) const {
   const auto& a = file_.architecture;
   Tensor out(input.n, a.out_channels, input.h, input.w);
   const std::size_t plane = static_cast<std::size_t>(input.h) * input.w;
-  if (options_.threads > input.n && a.out_channels > 1) {
+  if (threads_->size() > input.n && a.out_channels > 1) {
     // Fewer samples than threads: each sample's encoder, then its decoders side by side.
-    const int threads = std::min(options_.threads, a.out_channels);
-    std::vector<std::unique_ptr<Workspace>> ws;
-    for (int t = 0; t < threads; ++t)
-      ws.push_back(pool_->take());
+    std::unique_ptr<Workspace> enc = pool_->take();
     for (int i = 0; i < input.n; ++i) {
-      encode(input.sample_data(i), *ws[0]);
-      auto run = [&](int t) {
-        for (int o = t; o < a.out_channels; o += threads)
-          decode(o, *ws[0], *ws[t], out.sample_data(i) + o * plane);
-      };
-      std::vector<std::thread> pool;
-      for (int t = 1; t < threads; ++t)
-        pool.emplace_back(run, t);
-      run(0);
-      for (auto& th : pool)
-        th.join();
+      encode(input.sample_data(i), *enc);
+      threads_->parallel_for(a.out_channels, [&](std::size_t o) {
+        std::unique_ptr<Workspace> ws = pool_->take();
+        decode(static_cast<int>(o), *enc, *ws, out.sample_data(i) + o * plane);
+        pool_->give(std::move(ws));
+      });
     }
-    for (auto& w : ws)
-      pool_->give(std::move(w));
+    pool_->give(std::move(enc));
     return out;
   }
-  const int threads = std::max(1, std::min(options_.threads, input.n));
-  auto run = [&](int first, int last) {
+  threads_->parallel_for(input.n, [&](std::size_t i) {
     std::unique_ptr<Workspace> ws = pool_->take();
-    for (int i = first; i < last; ++i) {
-      encode(input.sample_data(i), *ws);
-      for (int o = 0; o < a.out_channels; ++o)
-        decode(o, *ws, *ws, out.sample_data(i) + o * plane);
-    }
+    encode(input.sample_data(static_cast<int>(i)), *ws);
+    for (int o = 0; o < a.out_channels; ++o)
+      decode(o, *ws, *ws, out.sample_data(static_cast<int>(i)) + o * plane);
     pool_->give(std::move(ws));
-  };
-  if (threads == 1) {
-    run(0, input.n);
-    return out;
-  }
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) {
-    pool.emplace_back(run, input.n * t / threads, input.n * (t + 1) / threads);
-  }
-  for (auto& t : pool)
-    t.join();
+  });
   return out;
 }
 

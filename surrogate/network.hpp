@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/thread_pool.hpp"
 #include "surrogate/layers.hpp"
 #include "surrogate/model_file.hpp"
 #include "surrogate/tensor.hpp"
@@ -14,10 +15,13 @@
 namespace plumekit::surrogate {
 
 struct EngineOptions {
-  // Threads per predict() call. The samples of a batch are split among them; a batch with fewer
-  // samples than threads runs each sample's decoders (one per output) on threads of their own
-  // instead, after its encoder. Results do not depend on the thread count. Default 1.
-  int threads = 1;
+  // Threads of the network's pool (0: one per core), kept from one predict() call to the next.
+  // The samples of a batch are shared out among them; a batch with fewer samples than threads runs
+  // each sample's decoders (one per output) side by side instead, after its encoder. Results do
+  // not depend on the thread count.
+  int threads = kDefaultThreads;
+  // std::invalid_argument naming engine.threads when it is negative.
+  void validate() const;
 };
 
 class Network {
@@ -64,6 +68,8 @@ class Network {
   std::vector<Conv> decoder_;  // output-major, then level L-1..0, convs_per_block per level
   // Workspaces outlive predict() calls, so a batch of one allocates (and page-faults) nothing.
   std::unique_ptr<WorkspacePool> pool_;
+  // The threads persist between predict() calls (a held pointer: Network is movable).
+  std::unique_ptr<ThreadPool> threads_;
 };
 
 }  // namespace plumekit::surrogate

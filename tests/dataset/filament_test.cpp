@@ -7,6 +7,7 @@
 
 #include "cfd/flow_solver.hpp"
 #include "core/map_json.hpp"
+#include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
 #include "dataset/filament_model.hpp"
 #include "uniform_wind.hpp"
@@ -19,7 +20,7 @@ TEST(FilamentModel, LongTimeMeanMatchesAdvectionDiffusionAlongTheCentreline) {
   const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
   FilamentOptions o;
   o.meander_speed = 0.0;  // the equivalence holds for the per-filament walk and growth
-  o.record_seconds = 40.0;
+  o.record_s = 40.0;
   o.sample_rate = 2.0;
   const Vec2 source{1.0, 2.0};
   const GridShape sensors{64, 64, 10.0, 4.0};
@@ -28,7 +29,8 @@ TEST(FilamentModel, LongTimeMeanMatchesAdvectionDiffusionAlongTheCentreline) {
   EXPECT_GT(rec.summary.left_through_outlet, 0);
 
   const AdvectionDiffusion ad(wind, {o.equivalent_diffusivity(), o.release_rate});
-  const Grid<double> exact = resample(ad, ad.solve(source), sensors);
+  const Grid<double> exact =
+      GridResampler(ad.shape(), ad.solid_mask(), sensors).apply(ad.solve(source));
   // Centreline: the two sensor rows either side of y = 2, averaged.
   int checked = 0;
   double worst = 0.0;
@@ -73,7 +75,7 @@ TEST(FilamentModel, SameSeedSameRecordAndSensorsInObstaclesReadZero) {
   const cfd::FlowResult flow = cfd::solve(map, fo);
   FilamentOptions o;
   o.max_spinup = 6.0;
-  o.record_seconds = 1.0;
+  o.record_s = 1.0;
   const GridShape sensors{64, 64, 10.0, 4.0};
   const SensorRecord a = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
   const SensorRecord b = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);

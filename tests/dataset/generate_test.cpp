@@ -45,7 +45,7 @@ DatasetOptions small() {
   o.seed = 99;
   o.flow.cell = 0.1;  // coarse flow: the test is about files, not accuracy
   o.flow.convection = cfd::Convection::Upwind;  // robust on any map at this cell
-  o.plume.filament.record_seconds = 1.0;
+  o.plume.filament.record_s = 1.0;
   o.plume.filament.max_spinup = 8.0;
   return o;
 }
@@ -222,7 +222,7 @@ TEST(Generate, BadInputExitsTwoAndWritesNothing) {
       run(kExe + " dataset generate --maps 2 --shard 2/2 --out " + d.string() + " 2>/dev/null"), 2);
   EXPECT_EQ(run(kExe + " dataset generate --maps 0 --out " + d.string() + " 2>/dev/null"), 2);
   EXPECT_EQ(
-      run(kExe + " dataset generate --maps 2 --threads 0 --out " + d.string() + " 2>/dev/null"), 2);
+      run(kExe + " dataset generate --maps 2 --threads -1 --out " + d.string() + " 2>/dev/null"), 2);
   EXPECT_EQ(run(kExe + " dataset generate --maps 2 --plume gaussian --out " + d.string() +
                 " 2>/dev/null"),
             2);

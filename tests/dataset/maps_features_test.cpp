@@ -12,7 +12,7 @@
 #include "core/rasterize.hpp"
 #include "dataset/features.hpp"
 #include "dataset/random_maps.hpp"
-#include "dataset/seed.hpp"
+#include "core/seed.hpp"
 
 namespace plumekit::dataset {
 namespace {

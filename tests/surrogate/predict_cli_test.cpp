@@ -1,5 +1,5 @@
 // `plumekit predict` end to end, with the randomly initialised golden model (never the shipped
-// one): the files hold PlumeModel's prediction in the documented layout; every kind of bad input
+// one): the files hold PlumeNetwork's prediction in the documented layout; every kind of bad input
 // exits 2 and writes nothing.
 #include <gtest/gtest.h>
 #include <stdlib.h>
@@ -14,7 +14,7 @@
 #include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "support/cli_runner.hpp"
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
 
 namespace plumekit::surrogate {
 namespace {
@@ -43,7 +43,7 @@ TEST_F(Predict, WritesThePlumeModelsPrediction) {
   EXPECT_EQ(j["grid"], nlohmann::json::array({64, 64}));
 
   const Map map = read_map(kMap);
-  const PlumeModel model(std::make_shared<const Network>(Network::load(kModel)), map);
+  const PlumeNetwork model(std::make_shared<const Network>(Network::load(kModel)), map);
   const PlumePrediction p = model.predict({1.5, 1.0});
   const NpyArray mean = read_npy(out / "mean.npy"), std = read_npy(out / "std.npy");
   ASSERT_EQ(mean.shape, (std::vector<std::size_t>{64, 64}));

@@ -1,7 +1,7 @@
-// PlumeModel: its features are the dataset's, bit for bit; batches equal single predictions; point
+// PlumeNetwork: its features are the dataset's, bit for bit; batches equal single predictions; point
 // values are bilinear between cell centres and 0 inside obstacles; bad sources and models whose
 // feature contract does not fit the map are refused.
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -47,7 +47,7 @@ Vec2 inside_obstacle(const Map& map, int k) {
   return {0, 0};
 }
 
-TEST(PlumeModel, FeaturesAreTheDatasets) {
+TEST(PlumeNetwork, FeaturesAreTheDatasets) {
   const fs::path dir =
       fs::temp_directory_path() / ("plumekit-plume-model-test-" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -57,7 +57,7 @@ TEST(PlumeModel, FeaturesAreTheDatasets) {
   o.seed = 7;
   o.flow.cell = 0.1;  // coarse flow and short plumes: only the inputs are compared
   o.flow.convection = cfd::Convection::Upwind;
-  o.plume.filament.record_seconds = 1.0;
+  o.plume.filament.record_s = 1.0;
   o.plume.filament.max_spinup = 8.0;
   dataset::generate_dataset(dir, o, dataset::RunOptions{});
 
@@ -70,7 +70,7 @@ TEST(PlumeModel, FeaturesAreTheDatasets) {
   ASSERT_EQ(inputs.shape, (std::vector<std::size_t>{2, 3, 64, 64}));
   const Map map = read_map(dir / "maps" / "map-00000.json");
 
-  const PlumeModel model(real_network(), map);
+  const PlumeNetwork model(real_network(), map);
   EXPECT_EQ(model.grid().nx, 64);
   EXPECT_EQ(model.grid().width, map.width);
   const std::size_t n = 3 * 64 * 64;
@@ -88,10 +88,10 @@ TEST(PlumeModel, FeaturesAreTheDatasets) {
   fs::remove_all(dir);
 }
 
-TEST(PlumeModel, BatchEqualsSingleAndNetwork) {
+TEST(PlumeNetwork, BatchEqualsSingleAndNetwork) {
   const Map map = read_map(kMap);
   const auto net = real_network(2);
-  const PlumeModel model(net, map);
+  const PlumeNetwork model(net, map);
   const std::vector<Vec2> src = free_points(map, 5);
   ASSERT_EQ(src.size(), 5u);
   const std::vector<PlumePrediction> batch = model.predict_batch(src, 2);
@@ -119,9 +119,9 @@ TEST(PlumeModel, BatchEqualsSingleAndNetwork) {
   EXPECT_TRUE(model.predict_batch({}).empty());
 }
 
-TEST(PlumeModel, PointValuesAreBilinearAndZeroInObstacles) {
+TEST(PlumeNetwork, PointValuesAreBilinearAndZeroInObstacles) {
   const Map map = read_map(kMap);
-  const PlumeModel model(real_network(), map);
+  const PlumeNetwork model(real_network(), map);
   const PlumePrediction p = model.predict(free_points(map, 1)[0]);
   const GridShape& g = p.grid;
   // Cell centres give the cell's value; the midpoint of four free centres their average.
@@ -156,9 +156,9 @@ TEST(PlumeModel, PointValuesAreBilinearAndZeroInObstacles) {
   EXPECT_GE(*std::min_element(p.std.begin(), p.std.end()), 0.0f);
 }
 
-TEST(PlumeModel, RefusesSourcesOutsideFreeSpace) {
+TEST(PlumeNetwork, RefusesSourcesOutsideFreeSpace) {
   const Map map = read_map(kMap);
-  const PlumeModel model(real_network(), map);
+  const PlumeNetwork model(real_network(), map);
   const Vec2 inside = inside_obstacle(map, 0);
   EXPECT_THROW(model.predict(inside), InputError);
   EXPECT_THROW(model.predict({-0.1, 1.0}), InputError);
@@ -168,11 +168,11 @@ TEST(PlumeModel, RefusesSourcesOutsideFreeSpace) {
   EXPECT_THROW(model.predict_batch({free_points(map, 1)[0], inside}), InputError);
 }
 
-TEST(PlumeModel, RefusesAModelWhoseContractDoesNotFitTheMap) {
+TEST(PlumeNetwork, RefusesAModelWhoseContractDoesNotFitTheMap) {
   const Map map = read_map(kMap);
   auto expect_refused = [&](std::shared_ptr<const Network> net, const Map& m, const char* what) {
     try {
-      PlumeModel model(net, m);
+      PlumeNetwork model(net, m);
       ADD_FAILURE() << "accepted: " << what;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
@@ -196,7 +196,7 @@ TEST(PlumeModel, RefusesAModelWhoseContractDoesNotFitTheMap) {
   outputs.outputs[1].name = "variance";
   expect_refused(std::make_shared<const Network>(std::move(outputs)), map, "\"std\"");
   // And the real model on its own arena is accepted.
-  EXPECT_NO_THROW(PlumeModel(real_network(), map));
+  EXPECT_NO_THROW(PlumeNetwork(real_network(), map));
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,9 +39,9 @@ double PlumePrediction::std_at(Vec2 p) const {
   return sample(grid, std, map.get(), p);
 }
 
-PlumeModel::PlumeModel(std::shared_ptr<const Network> network, const Map& map)
+PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& map)
     : network_(std::move(network)), map_(std::make_shared<const Map>(map)) {
-  if (!network_) throw std::invalid_argument("PlumeModel: null network");
+  if (!network_) throw std::invalid_argument("PlumeNetwork: null network");
   const ModelFile& f = network_->file();
   const FeatureContract& c = f.features;
   const std::string who = "surrogate model feature contract vs map \"" + map.name + "\": ";
@@ -87,7 +87,7 @@ PlumeModel::PlumeModel(std::shared_ptr<const Network> network, const Map& map)
     obstacle_cell_[k] = map_features_[k] == 0.0f;  // region label 0: centre inside an obstacle
 }
 
-void PlumeModel::check_source(Vec2 source) const {
+void PlumeNetwork::check_source(Vec2 source) const {
   if (!is_finite(source) || !map_->in_arena(source)) {
     throw InputError("source (" + fmt(source.x) + ", " + fmt(source.y) + ") is outside the arena " +
                      "of map \"" + map_->name + "\" (" + fmt(map_->width) + " x " +
@@ -99,20 +99,20 @@ void PlumeModel::check_source(Vec2 source) const {
   }
 }
 
-std::vector<float> PlumeModel::features(Vec2 source) const {
+std::vector<float> PlumeNetwork::features(Vec2 source) const {
   std::vector<float> x = map_features_;
   const std::vector<float> d = dataset::source_feature(source, grid_);
   x.insert(x.end(), d.begin(), d.end());
   return x;
 }
 
-PlumePrediction PlumeModel::predict(Vec2 source) const {
+PlumePrediction PlumeNetwork::predict(Vec2 source) const {
   return std::move(predict_batch({source}, 1).front());
 }
 
-std::vector<PlumePrediction> PlumeModel::predict_batch(const std::vector<Vec2>& sources,
+std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>& sources,
                                                        int batch_size) const {
-  if (batch_size < 1) throw std::invalid_argument("PlumeModel::predict_batch: batch_size < 1");
+  if (batch_size < 1) throw std::invalid_argument("PlumeNetwork::predict_batch: batch_size < 1");
   for (Vec2 s : sources)
     check_source(s);
   const std::size_t cells = grid_.size();

@@ -19,7 +19,7 @@ struct PlumePrediction {
   // whose centre is inside an obstacle are 0 (as the dataset's targets), negative network outputs
   // are clamped to 0 (a concentration and its std are never negative).
   std::vector<float> mean, std;
-  // The map, to answer 0 inside obstacles; shared by every prediction of one PlumeModel.
+  // The map, to answer 0 inside obstacles; shared by every prediction of one PlumeNetwork.
   std::shared_ptr<const Map> map;
 
   // Bilinear between cell centres (GridShape::bilinear; constant beyond the outermost centres),
@@ -28,12 +28,12 @@ struct PlumePrediction {
   double std_at(Vec2 p) const;
 };
 
-class PlumeModel {
+class PlumeNetwork {
  public:
   // Builds the map-only feature channels once. Checks the model's feature contract against the map
   // and the dataset's features (grid 64 x 64, arena size, channel names, distance form, outputs
   // named mean and std); InputError naming what disagrees.
-  PlumeModel(std::shared_ptr<const Network> network, const Map& map);
+  PlumeNetwork(std::shared_ptr<const Network> network, const Map& map);
 
   // InputError if `source` is not in the map's free space.
   PlumePrediction predict(Vec2 source) const;

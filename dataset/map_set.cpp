@@ -1,0 +1,51 @@
+#include "dataset/map_set.hpp"
+
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+#include "core/map_json.hpp"
+#include "core/option_check.hpp"
+
+namespace plumekit::dataset {
+
+void MapSetOptions::validate() const {
+  check_count("maps.count", count, 1, 1'000'000, "the default is 10");
+  check_count("maps.sources", sources, 0, 1'000'000, "the default is 0");
+  map.validate();
+}
+
+std::vector<RandomMap> random_map_set(const MapSetOptions& o) {
+  o.validate();
+  std::vector<RandomMap> maps;
+  for (int i = 0; i < o.count; ++i) {
+    maps.push_back(random_map(o.map, o.seed, i));
+    maps.back().map.sources =
+        random_sources(maps.back().map, o.sources, o.source_clearance, o.seed, i);
+  }
+  return maps;
+}
+
+Report write_map_set(const std::filesystem::path& dir, const std::string& out,
+                     const MapSetOptions& o, std::vector<RandomMap>& maps) {
+  std::map<std::string, int> families;
+  nlohmann::ordered_json files = nlohmann::ordered_json::array();
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "map-%05zu.json", i);
+    maps[i].map.generated_by = "plumekit maps random";
+    write_map(maps[i].map, dir / name);
+    ++families[maps[i].family];
+    files.push_back({{"file", name}, {"family", maps[i].family}});
+  }
+  Report r;
+  r.json = {{"ok", true}, {"out", out}, {"seed", o.seed}, {"maps", files}};
+  std::ostringstream text;
+  text << "wrote " << maps.size() << " maps to " << out << ":";
+  for (const auto& [f, n] : families)
+    text << " " << n << " " << f;
+  r.text = text.str();
+  return r;
+}
+
+}  // namespace plumekit::dataset
