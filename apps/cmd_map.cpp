@@ -82,39 +82,22 @@ void add_validate(CLI::App& map_cmd) {
   });
 }
 
-// Tints the cells that count as solid at `cell` metres, to show the rasterization rule.
-void overlay_solid_cells(MapCanvas& canvas, double cell) {
-  const Map& map = canvas.map();
-  const GridShape shape = GridShape::with_cell(map.width, map.height, cell);
-  const auto solid = rasterize_occupancy(map, shape);
-  cv::Mat tint = canvas.image().clone();
-  for (int j = 0; j < shape.ny; ++j)
-    for (int i = 0; i < shape.nx; ++i) {
-      const cv::Point a = canvas.pixel({i * shape.dx(), (j + 1) * shape.dy()});
-      const cv::Point b = canvas.pixel({(i + 1) * shape.dx(), j * shape.dy()});
-      if (solid(i, j))
-        cv::rectangle(tint, a, b - cv::Point(1, 1), cv::Scalar(60, 60, 230), cv::FILLED);
-      cv::rectangle(tint, a, b, cv::Scalar(200, 200, 200), 1);
-    }
-  cv::addWeighted(tint, 0.45, canvas.image(), 0.55, 0.0, canvas.image());
-}
-
 void add_render(CLI::App& map_cmd) {
   auto* cmd = map_cmd.add_subcommand("render",
                                      "Draw a map to PNG: obstacles, inlet, outlet, sources, scale");
   struct Args {
     std::string map = default_map().string();
     std::string out;
-    double px_per_m = 100.0;
+    RenderOptions render;
     double cells = 0.0;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
   cmd->add_option("--out,-o", a->out, "PNG file to write (new, or a picture plumekit drew)")
       ->required();
-  bind_field(cmd, cmd->add_option("--px-per-m", a->px_per_m, "Pixels per metre"), "render.px_per_m")
-      ->capture_default_str()
-      ->check(CLI::Range(5.0, 1000.0));
+  bind_field(cmd, cmd->add_option("--px-per-m", a->render.px_per_m, "Pixels per metre"),
+             "render.px_per_m")
+      ->capture_default_str();
   cmd->add_option("--cells", a->cells,
                   "Also show the grid at this cell size (m), tinting the cells that count as solid")
       ->check(CLI::PositiveNumber);
@@ -122,21 +105,17 @@ void add_render(CLI::App& map_cmd) {
   cmd->callback([a] {
     const Map map = read_map(a->map);
     check_output_file(a->out, {a->map});
-    MapCanvas canvas(map, a->px_per_m);
-    canvas.draw_map();
-    if (a->cells > 0.0) {
-      overlay_solid_cells(canvas, a->cells);
-      canvas.draw_walls_and_openings();
-      canvas.draw_sources();
-    }
-    write_png(canvas.image(), a->out);
+    const Picture picture = render_map(map, a->render, a->cells);
+    write_png(picture, a->out);
     ordered_json j{{"ok", true},
                    {"map", a->map},
                    {"out", a->out},
-                   {"width_px", canvas.image().cols},
-                   {"height_px", canvas.image().rows}};
+                   {"width_px", picture.image.cols},
+                   {"height_px", picture.image.rows},
+                   {"arena_px",
+                    {picture.arena.x, picture.arena.y, picture.arena.width, picture.arena.height}}};
     std::ostringstream human;
-    human << "wrote " << a->out << " (" << canvas.image().cols << " x " << canvas.image().rows
+    human << "wrote " << a->out << " (" << picture.image.cols << " x " << picture.image.rows
           << " px)";
     report(j, human.str());
   });

@@ -3,8 +3,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include <opencv2/imgproc.hpp>
-
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "core/error.hpp"
@@ -12,6 +10,7 @@
 #include "core/map_render.hpp"
 #include "core/output_target.hpp"
 #include "planner/free_space.hpp"
+#include "planner/plan_render.hpp"
 #include "planner/planner.hpp"
 
 namespace plumekit::cli {
@@ -20,71 +19,6 @@ namespace {
 
 using nlohmann::ordered_json;
 namespace pl = plumekit::planner;
-
-cv::Point fixed(const MapCanvas& canvas, Vec2 p) {
-  const cv::Point2d q = canvas.to_px(p);
-  return {static_cast<int>(std::lround(q.x * 16)), static_cast<int>(std::lround(q.y * 16))};
-}
-
-// The map, the zone the robot's centre must keep out of (tinted), the inflated
-// boundary, the path and its ends.
-cv::Mat draw_plan(const Map& map, const pl::FreeSpace& space, const pl::PlanResult& r,
-                  const std::string& title) {
-  MapCanvas canvas(map);
-  cv::Mat& img = canvas.image();
-  canvas.draw_free_space();
-
-  std::vector<std::vector<cv::Point>> rings;
-  for (const pl::Region& region : space.regions()) {
-    for (const Polygon* ring = &region.outer; ring;) {
-      std::vector<cv::Point> pts;
-      for (Vec2 v : *ring)
-        pts.push_back(fixed(canvas, v));
-      rings.push_back(std::move(pts));
-      ring = nullptr;
-    }
-    for (const Polygon& h : region.holes) {
-      std::vector<cv::Point> pts;
-      for (Vec2 v : h)
-        pts.push_back(fixed(canvas, v));
-      rings.push_back(std::move(pts));
-    }
-  }
-  // Keep-out zone: the arena minus free space (fillPoly's even-odd rule
-  // carves the free pieces, holes and all, out of the arena).
-  cv::Mat keep_out(img.size(), CV_8U, cv::Scalar(0));
-  cv::rectangle(keep_out, canvas.pixel({0, map.height}), canvas.pixel({map.width, 0}),
-                cv::Scalar(255), cv::FILLED);
-  if (!rings.empty()) cv::fillPoly(keep_out, rings, cv::Scalar(0), cv::LINE_8, 4);
-  cv::Mat tinted = img.clone();
-  tinted.setTo(cv::Scalar(120, 170, 250), keep_out);
-  cv::addWeighted(tinted, 0.45, img, 0.55, 0.0, img);
-  canvas.draw_obstacles();
-  cv::polylines(img, rings, true, cv::Scalar(40, 120, 230), 1, cv::LINE_AA, 4);
-  canvas.draw_walls_and_openings();
-  canvas.draw_sources();
-  canvas.draw_axes_and_scale();
-
-  std::vector<cv::Point> path;
-  for (Vec2 v : r.path)
-    path.push_back(fixed(canvas, v));
-  cv::polylines(img, std::vector<std::vector<cv::Point>>{path}, false, cv::Scalar(170, 60, 20), 3,
-                cv::LINE_AA, 4);
-  for (Vec2 v : r.path)
-    cv::circle(img, fixed(canvas, v), 3 * 16, cv::Scalar(170, 60, 20), cv::FILLED, cv::LINE_AA, 4);
-  // A moved end: a thin line from where it was asked for to where it went.
-  auto moved = [&](Vec2 from, Vec2 to) {
-    cv::line(img, fixed(canvas, from), fixed(canvas, to), cv::Scalar(60, 60, 60), 1, cv::LINE_AA,
-             4);
-    cv::circle(img, fixed(canvas, from), 5 * 16, cv::Scalar(60, 60, 60), 1, cv::LINE_AA, 4);
-  };
-  if (r.start_moved) moved(r.requested_start, r.start);
-  if (r.goal_moved) moved(r.requested_goal, r.goal);
-  canvas.draw_marker(r.start, cv::Scalar(40, 160, 40), 7);
-  canvas.draw_marker(r.goal, cv::Scalar(170, 40, 170), 7);  // purple: sources are red
-  canvas.draw_title(title);
-  return img.clone();
-}
 
 std::string fmt(Vec2 p) {
   std::ostringstream s;
@@ -145,11 +79,7 @@ void add_plan_commands(CLI::App& app) {
 
     if (!a->out.empty()) {
       const pl::FreeSpace space(map, options.margin, options.arc_segments);
-      std::ostringstream title;
-      title << (map.name.empty() ? "map" : map.name) << ": " << pl::to_string(kind)
-            << " path, margin " << a->margin << " m, length " << std::fixed << std::setprecision(3)
-            << r.length << " m";
-      write_png(draw_plan(map, space, r, title.str()), a->out);
+      write_png(pl::draw_plan(map, space, r, pl::to_string(kind)), a->out);
     }
 
     ordered_json path = ordered_json::array();

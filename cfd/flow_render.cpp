@@ -6,11 +6,15 @@
 #include <sstream>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
 #include "core/map_render.hpp"
 
 namespace plumekit::cfd {
 
 namespace {
+
+const cv::Scalar kStreamline(255, 255, 255);
 
 // Streamlines through evenly spaced seeds, stopped where they run into a
 // stretch of the arena another streamline already crossed, so the picture
@@ -71,19 +75,25 @@ std::vector<std::vector<Vec2>> streamlines(const WindField& wind, double spacing
 
 }  // namespace
 
-cv::Mat render_wind(const Map& map, const WindField& wind, double px_per_m) {
-  MapCanvas canvas(map, px_per_m);
+Picture draw_wind(const Map& map, const WindField& wind, const RenderOptions& options) {
   const GridShape& g = wind.shape();
   Grid<double> speed(g, std::numeric_limits<double>::quiet_NaN());
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i)
       if (!wind.solid(i, j)) speed(i, j) = norm(wind.cell_velocity(i, j));
   const double vmax = wind.max_speed();
+  std::ostringstream title;
+  title << (map.name.empty() ? "map" : map.name) << ": wind speed and streamlines  (" << g.nx
+        << " x " << g.ny << " cells, max " << std::setprecision(3) << vmax << " m/s)";
+  ColourBar bar{0.0, vmax, "speed [m/s]"};
+  bar.uniform = !(vmax > 0.0);
+  Frame frame{title.str(), bar, {{LegendEntry::Symbol::Line, kStreamline, "streamline"}}, true};
+  MapCanvas canvas(map, options, frame);
   canvas.draw_free_space();
   canvas.draw_field(speed, 0.0, vmax);
   canvas.draw_obstacles();
   for (const auto& line : streamlines(wind, 0.25)) {
-    canvas.draw_path(line, cv::Scalar(255, 255, 255), 1);
+    canvas.draw_path(line, kStreamline, 1);
     // An arrowhead halfway along shows the direction.
     const std::size_t m = line.size() / 2;
     const Vec2 a = line[m - 1], b = line[m];
@@ -91,23 +101,20 @@ cv::Mat render_wind(const Map& map, const WindField& wind, double px_per_m) {
     const cv::Point tip = canvas.pixel(b);
     const Vec2 left{-d.x * 0.7 - d.y * 0.5, -d.y * 0.7 + d.x * 0.5};
     const Vec2 right{-d.x * 0.7 + d.y * 0.5, -d.y * 0.7 - d.x * 0.5};
-    const double len = 6.0;  // pixels
-    cv::line(canvas.image(), tip,
-             tip + cv::Point(static_cast<int>(len * left.x), static_cast<int>(-len * left.y)),
-             cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
-    cv::line(canvas.image(), tip,
-             tip + cv::Point(static_cast<int>(len * right.x), static_cast<int>(-len * right.y)),
-             cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+    const double len = 6.0 * canvas.mark_scale();  // pixels
+    const int width = std::max(1, static_cast<int>(std::lround(canvas.mark_scale())));
+    for (Vec2 side : {left, right})
+      cv::line(canvas.image(), tip,
+               tip + cv::Point(static_cast<int>(len * side.x), static_cast<int>(-len * side.y)),
+               kStreamline, width, cv::LINE_AA);
   }
   canvas.draw_walls_and_openings();
   canvas.draw_sources();
-  canvas.draw_axes_and_scale();
-  canvas.draw_colour_bar(0.0, vmax, "speed [m/s]");
-  std::ostringstream title;
-  title << (map.name.empty() ? "map" : map.name) << ": wind speed and streamlines  (" << g.nx
-        << " x " << g.ny << " cells, max " << std::setprecision(3) << vmax << " m/s)";
-  canvas.draw_title(title.str());
-  return canvas.image();
+  return canvas.finish();
+}
+
+cv::Mat render_wind(const Map& map, const WindField& wind, double px_per_m) {
+  return draw_wind(map, wind, RenderOptions{px_per_m}).image;
 }
 
 }  // namespace plumekit::cfd

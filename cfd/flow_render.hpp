@@ -4,9 +4,12 @@
 
 #include "cfd/wind_field.hpp"
 #include "core/map.hpp"
+#include "core/map_render.hpp"
 
 namespace plumekit::cfd {
 
+Picture draw_wind(const Map& map, const WindField& wind, const RenderOptions& options = {});
+// The image alone.
 cv::Mat render_wind(const Map& map, const WindField& wind, double px_per_m = 100.0);
 
 }  // namespace plumekit::cfd

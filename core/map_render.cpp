@@ -22,41 +22,35 @@ namespace {
 // Colours are BGR.
 const cv::Scalar kBackground(255, 255, 255);
 const cv::Scalar kFreeSpace(248, 246, 244);
-const cv::Scalar kObstacle(105, 100, 95);
 const cv::Scalar kWall(20, 20, 20);
-const cv::Scalar kInlet(200, 110, 20);
-const cv::Scalar kOutlet(40, 150, 40);
-const cv::Scalar kSource(30, 30, 220);
 const cv::Scalar kText(30, 30, 30);
 
-constexpr int kShift = 4;  // fractional bits for sub-pixel drawing
-constexpr double kScale = 1 << kShift;
+constexpr double kScale = 1 << MapCanvas::kFixedShift;
+constexpr int kShift = MapCanvas::kFixedShift;
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+// Text scale bounds: the floor keeps small pictures legible, the ceiling
+// keeps labels from crowding out a large arena.
+constexpr double kFontFloor = 0.4, kFontCeiling = 1.4;
 
-cv::Point fixed(cv::Point2d p) {
+cv::Point fixed_point(cv::Point2d p) {
   return {static_cast<int>(std::lround(p.x * kScale)), static_cast<int>(std::lround(p.y * kScale))};
 }
 
 std::string format_number(double x) {
   std::ostringstream s;
-  s << std::setprecision(3) << x;
+  s << std::setprecision(3) << (std::abs(x) < 1e-12 ? 0.0 : x);
   return s.str();
-}
-
-void put_text(cv::Mat& img, const std::string& text, cv::Point at, double size,
-              const cv::Scalar& colour, bool centred = false) {
-  int baseline = 0;
-  const cv::Size box = cv::getTextSize(text, kFont, size, 1, &baseline);
-  if (centred) at.x -= box.width / 2;
-  cv::putText(img, text, at, kFont, size, colour, 1, cv::LINE_AA);
 }
 
 }  // namespace
 
+// ---- size checks ------------------------------------------------------------
+
 namespace {
 
-// Margins around the arena, pixels.
-constexpr int kLeft = 56, kTop = 40, kRight = 110, kBottom = 76;
+// Nominal margins around the arena, pixels, for the size and memory checks
+// (the drawn margins follow the text they hold and stay close to these).
+constexpr int kNominalMargins = 166;
 // Longest side a picture may have: OpenCV draws in int pixel coordinates with
 // 4 fractional bits, and no screen or page needs more.
 constexpr double kMaxSidePx = 30000.0;
@@ -64,15 +58,14 @@ constexpr double kMaxSidePx = 30000.0;
 // (map render --cells), and the PNG's rows.
 constexpr double kBytesPerPixel = 4 * 3.0;
 
-// The picture's size in pixels, checked: px_per_m in range, each side within
-// kMaxSidePx, its memory within the limit (core/memory_limit.hpp).
-cv::Size checked_size(const Map& map, double px_per_m) {
-  check_positive("render.px_per_m", px_per_m, 1000.0, "pixels per metre", "the default is 100");
-  const double w = std::ceil(map.width * px_per_m) + kLeft + kRight;
-  const double h = std::ceil(map.height * px_per_m) + kTop + kBottom;
+// Each side within kMaxSidePx, the memory within the limit
+// (core/memory_limit.hpp).
+void check_size(const Map& map, double px_per_m) {
+  const double w = std::ceil(map.width * px_per_m) + kNominalMargins;
+  const double h = std::ceil(map.height * px_per_m) + kNominalMargins;
   // The largest px_per_m whose picture meets both bounds, for the advice.
   const double side = std::max(map.width, map.height);
-  double fit = (kMaxSidePx - kLeft - kRight) / side;
+  double fit = (kMaxSidePx - kNominalMargins) / side;
   fit = std::min(fit, std::sqrt(memory_limit() / kBytesPerPixel / (map.width * map.height)));
   const std::string advice =
       "use a smaller render.px_per_m (" + compact(std::floor(fit * 100) / 100) + " fits)";
@@ -84,14 +77,202 @@ cv::Size checked_size(const Map& map, double px_per_m) {
                                              " px per side; " + advice);
   check_memory(w * h * kBytesPerPixel,
                "a " + compact(w) + " x " + compact(h) + " px picture of the map", advice);
-  return {static_cast<int>(w), static_cast<int>(h)};
 }
 
 }  // namespace
 
-MapCanvas::MapCanvas(const Map& map, double px_per_m)
-    : map_(map), px_per_m_(px_per_m), left_(kLeft), top_(kTop), right_(kRight) {
-  image_ = cv::Mat(checked_size(map, px_per_m), CV_8UC3, kBackground);
+void RenderOptions::validate() const {
+  check_range("render.px_per_m", px_per_m, 20.0, 1000.0, "pixels per metre",
+              "pictures are laid out for 20 to 400; the default is 100");
+}
+
+// ---- text -------------------------------------------------------------------
+
+cv::Size TextPainter::size(const std::string& text, double scale) const {
+  int baseline = 0;
+  const cv::Size s = cv::getTextSize(text, kFont, scale, thickness_, &baseline);
+  return {s.width, s.height + baseline};
+}
+
+void TextPainter::put(cv::Mat& image, const std::string& text, cv::Point top_left) {
+  put(image, text, top_left, scale_);
+}
+
+void TextPainter::put(cv::Mat& image, const std::string& text, cv::Point top_left, double scale) {
+  int baseline = 0;
+  const cv::Size s = cv::getTextSize(text, kFont, scale, thickness_, &baseline);
+  cv::putText(image, text, top_left + cv::Point(0, s.height), kFont, scale, kText, thickness_,
+              cv::LINE_AA);
+  boxes_.emplace_back(top_left, cv::Size(s.width, s.height + baseline));
+}
+
+void TextPainter::put_vertical(cv::Mat& image, const std::string& text, cv::Point top_left) {
+  int baseline = 0;
+  const cv::Size s = cv::getTextSize(text, kFont, scale_, thickness_, &baseline);
+  cv::Mat flat(s.height + baseline, s.width, CV_8UC3, kBackground), upright;
+  cv::putText(flat, text, {0, s.height}, kFont, scale_, kText, thickness_, cv::LINE_AA);
+  cv::rotate(flat, upright, cv::ROTATE_90_COUNTERCLOCKWISE);
+  const cv::Rect box(top_left, upright.size());
+  // Clipped to the image, so that a bad layout shows in the test rather than crashing here.
+  const cv::Rect inside = box & cv::Rect(0, 0, image.cols, image.rows);
+  cv::Mat ink;
+  cv::inRange(upright, kBackground, kBackground, ink);
+  cv::bitwise_not(ink, ink);
+  upright(inside - top_left).copyTo(image(inside), ink(inside - top_left));
+  boxes_.push_back(box);
+}
+
+std::vector<std::string> wrap_words(const TextPainter& painter, const std::string& text, int width,
+                                    double scale) {
+  std::istringstream in(text);
+  std::vector<std::string> lines;
+  std::string word;
+  while (in >> word) {
+    if (!lines.empty() && painter.size(lines.back() + " " + word, scale).width <= width)
+      lines.back() += " " + word;
+    else
+      lines.push_back(word);
+  }
+  return lines;
+}
+
+// ---- layout -----------------------------------------------------------------
+
+namespace {
+
+// Tick positions along one axis of `length` metres.
+std::vector<double> ticks(double length, double step) {
+  std::vector<double> t;
+  for (int k = 0; k * step <= length + 1e-9; ++k)
+    t.push_back(k * step);
+  return t;
+}
+
+// The smallest step of the 1-2-5 series whose tick spacing holds `needed(step)` pixels.
+template <typename Needed>
+double tick_step(double px_per_m, Needed needed) {
+  for (double decade = 0.01;; decade *= 10)
+    for (double m : {1.0, 2.0, 5.0})
+      if (m * decade * px_per_m >= needed(m * decade)) return m * decade;
+}
+
+int widest_word(const TextPainter& painter, const std::string& text, double scale) {
+  std::istringstream in(text);
+  std::string word;
+  int w = 0;
+  while (in >> word)
+    w = std::max(w, painter.size(word, scale).width);
+  return w;
+}
+
+std::vector<std::string> bar_labels(const ColourBar& bar) {
+  if (bar.uniform) return {bar.lo == 0.0 ? "all zero" : "all " + format_number(bar.lo)};
+  return {format_number(bar.hi), format_number(0.5 * (bar.lo + bar.hi)), format_number(bar.lo)};
+}
+
+constexpr double kTitleScale = 1.2;  // title text relative to the rest
+
+}  // namespace
+
+MapCanvas::MapCanvas(const Map& map, const RenderOptions& options, Frame frame)
+    : map_(map), px_per_m_(options.px_per_m), frame_(std::move(frame)) {
+  options.validate();
+  check_size(map, px_per_m_);
+  plan_layout();
+}
+
+// Sizes every margin from the text it will hold, then allocates the image.
+void MapCanvas::plan_layout() {
+  const int arena_w = static_cast<int>(std::ceil(map_.width * px_per_m_));
+  const int arena_h = static_cast<int>(std::ceil(map_.height * px_per_m_));
+  font_ = std::clamp(0.45 * std::max(arena_w, arena_h) / 1000.0, kFontFloor, kFontCeiling);
+  mark_scale_ = font_ / kFontFloor;
+  thickness_ = font_ < 0.7 ? 1 : 2;
+  text_ = TextPainter(font_, thickness_);
+  text_h_ = text_.size("Ag").height;
+  gap_ = std::max(4, text_h_ / 2);
+  tick_ = std::max(4, text_h_ / 3);
+  auto widest_tick = [&](double length, double step) {
+    int w = 0;
+    for (double t : ticks(length, step))
+      w = std::max(w, text_.size(format_number(t)).width);
+    return w;
+  };
+  step_x_ = tick_step(px_per_m_, [&](double s) { return widest_tick(map_.width, s) + 3 * gap_; });
+  step_y_ = tick_step(px_per_m_, [&](double) { return 3 * text_h_; });
+  // One step on both axes where the two differ, so a metre looks the same either way.
+  step_x_ = step_y_ = std::max(step_x_, step_y_);
+  const int x_last_w = text_.size(format_number(ticks(map_.width, step_x_).back())).width;
+  left_ = gap_ + text_h_ + gap_ + widest_tick(map_.height, step_y_) + gap_ / 2 + tick_;
+
+  // Right margin: half the last x label, or the colour bar with its value
+  // labels and its own label turned upright.
+  int right = x_last_w / 2 + gap_;
+  bar_len_ = 0;
+  if (frame_.colour_bar) {
+    int labels_w = 0;
+    for (const std::string& s : bar_labels(*frame_.colour_bar))
+      labels_w = std::max(labels_w, text_.size(s).width);
+    const int bar_off = std::max(2 * gap_, x_last_w / 2 + gap_);
+    bar_x_ = left_ + arena_w + bar_off;
+    right = bar_off + std::max(12, text_h_) + tick_ + gap_ / 2 + labels_w + gap_ + text_h_ + gap_;
+    bar_len_ =
+        std::max({arena_h, text_.size(frame_.colour_bar->label).width + 2 * gap_, 4 * text_h_});
+  }
+
+  // Width: the arena and its margins, or more where a legend entry, a title
+  // word or the x label needs it.
+  const double title_font = font_ * kTitleScale;
+  int width = left_ + arena_w + right;
+  width = std::max(width, widest_word(text_, frame_.title, title_font) + 2 * gap_);
+  width = std::max(width, text_.size("x [m]").width + 2 * gap_);
+  plan_legend(width);
+  for (const LegendEntry& e : legend_)
+    width = std::max(width, 2 * text_h_ + gap_ / 2 + text_.size(e.text).width + 2 * gap_);
+  plan_legend(width);
+  title_lines_ = wrap_words(text_, frame_.title, width - 2 * gap_, title_font);
+  const int title_h = text_.size("Ag", title_font).height;
+
+  top_ = gap_ + static_cast<int>(title_lines_.size()) * (title_h + gap_ / 2) + gap_ + text_h_ / 2;
+  body_h_ = std::max(arena_h + tick_ + gap_ / 2 + text_h_ + gap_ / 2 + text_h_,
+                     bar_len_ + text_h_ / 2 + gap_);
+  const int legend_h = static_cast<int>(legend_rows_.size()) * (text_h_ + gap_ / 2);
+  const int height = top_ + body_h_ + gap_ + legend_h + gap_;
+  image_ = cv::Mat(height, width, CV_8UC3, kBackground);
+}
+
+// The legend's entries (the map's, then the picture's) in rows that fit `width`.
+void MapCanvas::plan_legend(int width) {
+  legend_.clear();
+  if (frame_.map_legend) {
+    legend_.push_back({LegendEntry::Symbol::Swatch, colours::kInlet,
+                       "inlet (" + std::string(to_string(map_.inlet.side)) + ", " +
+                           format_number(map_.inlet.speed) + " m/s " +
+                           to_string(map_.inlet.profile) + ")"});
+    legend_.push_back({LegendEntry::Symbol::Swatch, colours::kOutlet,
+                       "outlet (" + std::string(to_string(map_.outlet.side)) + ")"});
+    if (!map_.obstacles.empty())
+      legend_.push_back({LegendEntry::Symbol::Swatch, colours::kObstacle, "obstacle"});
+    if (!map_.sources.empty())
+      legend_.push_back({LegendEntry::Symbol::Dot, colours::kSource, "source"});
+  }
+  legend_.insert(legend_.end(), frame_.legend.begin(), frame_.legend.end());
+  legend_rows_.clear();
+  int row_w = 0;
+  for (int k = 0; k < static_cast<int>(legend_.size()); ++k) {
+    const int w = 2 * text_h_ + gap_ / 2 + text_.size(legend_[k].text).width;
+    if (legend_rows_.empty() || row_w + 2 * gap_ + w > width - 2 * gap_) {
+      legend_rows_.push_back({});
+      row_w = -2 * gap_;
+    }
+    legend_rows_.back().push_back(k);
+    row_w += 2 * gap_ + w;
+  }
+}
+
+cv::Rect MapCanvas::arena_rect() const {
+  const cv::Point a = pixel({0, map_.height}), b = pixel({map_.width, 0});
+  return {a, b};
 }
 
 cv::Point2d MapCanvas::to_px(Vec2 p) const {
@@ -103,6 +284,12 @@ cv::Point MapCanvas::pixel(Vec2 p) const {
   return {static_cast<int>(std::lround(q.x)), static_cast<int>(std::lround(q.y))};
 }
 
+cv::Point MapCanvas::fixed(Vec2 p) const {
+  return fixed_point(to_px(p));
+}
+
+// ---- the arena --------------------------------------------------------------
+
 void MapCanvas::draw_free_space() {
   cv::rectangle(image_, pixel({0, map_.height}), pixel({map_.width, 0}), kFreeSpace, cv::FILLED);
 }
@@ -111,112 +298,81 @@ void MapCanvas::draw_obstacles() {
   for (const Polygon& poly : map_.obstacles) {
     std::vector<cv::Point> pts;
     for (Vec2 v : poly)
-      pts.push_back(fixed(to_px(v)));
+      pts.push_back(fixed(v));
     const std::vector<std::vector<cv::Point>> polys{pts};
-    cv::fillPoly(image_, polys, kObstacle, cv::LINE_AA, kShift);
-    cv::polylines(image_, polys, true, kObstacle * 0.6, 1, cv::LINE_AA, kShift);
+    cv::fillPoly(image_, polys, colours::kObstacle, cv::LINE_AA, kShift);
+    cv::polylines(image_, polys, true, colours::kObstacle * 0.6, 1, cv::LINE_AA, kShift);
   }
 }
 
 void MapCanvas::draw_walls_and_openings() {
   const double w = map_.width, h = map_.height;
   cv::rectangle(image_, pixel({0, h}), pixel({w, 0}), kWall, 2, cv::LINE_AA);
+  const int band = static_cast<int>(std::lround(6 * mark_scale_));
+  const int arrow_w = std::max(2, static_cast<int>(std::lround(2 * mark_scale_)));
 
   // An opening: a thick coloured band on its wall with arrows across it.
   auto opening = [&](const Opening& o, const cv::Scalar& colour, bool inward) {
     const Vec2 a = map_.wall_point(o.side, o.from), b = map_.wall_point(o.side, o.to);
-    cv::line(image_, fixed(to_px(a)), fixed(to_px(b)), colour, 6, cv::LINE_AA, kShift);
+    cv::line(image_, fixed(a), fixed(b), colour, band, cv::LINE_AA, kShift);
     const Vec2 normal = o.side == Side::Left     ? Vec2{1, 0}
                         : o.side == Side::Right  ? Vec2{-1, 0}
                         : o.side == Side::Bottom ? Vec2{0, 1}
                                                  : Vec2{0, -1};
-    const double arrow = 28.0 / px_per_m_;  // metres
-    const int count = std::max(1, static_cast<int>((o.to - o.from) / (60.0 / px_per_m_)));
+    const double arrow = 28.0 * mark_scale_ / px_per_m_;  // metres
+    const int count =
+        std::max(1, static_cast<int>((o.to - o.from) / (60.0 * mark_scale_ / px_per_m_)));
     for (int k = 0; k < count; ++k) {
       const Vec2 base = map_.wall_point(o.side, o.from + (k + 0.5) * (o.to - o.from) / count);
       // Inlet arrows point into the arena, outlet arrows out through the wall.
       const Vec2 from = inward ? base : base + arrow * normal;
       const Vec2 to = inward ? base + arrow * normal : base;
-      cv::arrowedLine(image_, pixel(from), pixel(to), colour, 2, cv::LINE_AA, 0, 0.35);
+      cv::arrowedLine(image_, pixel(from), pixel(to), colour, arrow_w, cv::LINE_AA, 0, 0.35);
     }
   };
-  opening(map_.inlet, kInlet, true);
-  opening(map_.outlet, kOutlet, false);
+  opening(map_.inlet, colours::kInlet, true);
+  opening(map_.outlet, colours::kOutlet, false);
 }
 
 void MapCanvas::draw_marker(Vec2 p, const cv::Scalar& colour, int radius_px) {
-  cv::circle(image_, fixed(to_px(p)), radius_px * static_cast<int>(kScale) + 2 * kScale,
-             cv::Scalar(255, 255, 255), cv::FILLED, cv::LINE_AA, kShift);
-  cv::circle(image_, fixed(to_px(p)), radius_px * static_cast<int>(kScale), colour, cv::FILLED,
+  const int r = static_cast<int>(std::lround(radius_px * mark_scale_ * kScale));
+  cv::circle(image_, fixed(p), r + 2 * static_cast<int>(kScale), kBackground, cv::FILLED,
              cv::LINE_AA, kShift);
+  cv::circle(image_, fixed(p), r, colour, cv::FILLED, cv::LINE_AA, kShift);
+}
+
+void MapCanvas::draw_cross(Vec2 p, const cv::Scalar& colour) {
+  const cv::Point c = pixel(p);
+  const int r = static_cast<int>(std::lround(8 * mark_scale_));
+  const int w = std::max(2, static_cast<int>(std::lround(2 * mark_scale_)));
+  for (int t : {w + 3, w}) {
+    const cv::Scalar col = t == w ? colour : kBackground;
+    cv::line(image_, c + cv::Point(-r, -r), c + cv::Point(r, r), col, t, cv::LINE_AA);
+    cv::line(image_, c + cv::Point(-r, r), c + cv::Point(r, -r), col, t, cv::LINE_AA);
+  }
+}
+
+void MapCanvas::draw_ring(Vec2 p, const cv::Scalar& colour) {
+  const int r = static_cast<int>(std::lround(5 * mark_scale_ * kScale));
+  cv::circle(image_, fixed(p), r, colour, thickness_, cv::LINE_AA, kShift);
 }
 
 void MapCanvas::draw_sources() {
-  for (std::size_t k = 0; k < map_.sources.size(); ++k) {
-    draw_marker(map_.sources[k], kSource, 6);
-    put_text(image_, "S" + std::to_string(k), pixel(map_.sources[k]) + cv::Point(9, -7), 0.45,
-             kSource);
-  }
+  for (std::size_t k = 0; k < map_.sources.size(); ++k)
+    draw_source(map_.sources[k], "S" + std::to_string(k));
 }
 
-void MapCanvas::draw_axes_and_scale() {
-  // Metre ticks along the bottom and left walls; a step that keeps labels apart.
-  double step = 1.0;
-  while (step * px_per_m_ < 40.0)
-    step *= 2.0;
-  for (double x = 0.0; x <= map_.width + 1e-9; x += step) {
-    const cv::Point p = pixel({x, 0});
-    cv::line(image_, p, p + cv::Point(0, 6), kText, 1, cv::LINE_AA);
-    put_text(image_, format_number(x), p + cv::Point(0, 20), 0.4, kText, true);
-  }
-  for (double y = 0.0; y <= map_.height + 1e-9; y += step) {
-    const cv::Point p = pixel({0, y});
-    cv::line(image_, p, p - cv::Point(6, 0), kText, 1, cv::LINE_AA);
-    put_text(image_, format_number(y), p + cv::Point(-30, 5), 0.4, kText);
-  }
-  // A scale bar under the axis: `step` metres long, with its length written on it.
-  const cv::Point a = pixel({0, 0}) + cv::Point(0, 44);
-  const cv::Point b = a + cv::Point(static_cast<int>(std::lround(step * px_per_m_)), 0);
-  cv::line(image_, a, b, kText, 3);
-  cv::line(image_, a - cv::Point(0, 5), a + cv::Point(0, 5), kText, 1);
-  cv::line(image_, b - cv::Point(0, 5), b + cv::Point(0, 5), kText, 1);
-  put_text(image_, format_number(step) + " m", b + cv::Point(8, 5), 0.45, kText);
-  put_text(image_, "x [m]", pixel({map_.width, 0}) + cv::Point(-36, 40), 0.4, kText);
-
-  // Legend, right of the scale bar.
-  cv::Point at = b + cv::Point(80, 0);
-  auto swatch = [&](const cv::Scalar& colour, const std::string& text) {
-    cv::rectangle(image_, at + cv::Point(0, -6), at + cv::Point(18, 6), colour, cv::FILLED);
-    put_text(image_, text, at + cv::Point(24, 5), 0.45, kText);
-    int baseline = 0;
-    at.x += 24 + cv::getTextSize(text, kFont, 0.45, 1, &baseline).width + 26;
-  };
-  swatch(kInlet, "inlet (" + std::string(to_string(map_.inlet.side)) + ", " +
-                     format_number(map_.inlet.speed) + " m/s " + to_string(map_.inlet.profile) +
-                     ")");
-  swatch(kOutlet, "outlet (" + std::string(to_string(map_.outlet.side)) + ")");
-  swatch(kObstacle, "obstacle");
-  if (!map_.sources.empty()) {
-    draw_marker({(at.x + 9 - left_) / px_per_m_, map_.height - (at.y - top_) / px_per_m_}, kSource,
-                6);
-    put_text(image_, "source", at + cv::Point(24, 5), 0.45, kText);
-  }
-}
-
-void MapCanvas::draw_title(const std::string& title) {
-  put_text(image_, title, cv::Point(left_, top_ - 14), 0.55, kText);
-}
-
-void MapCanvas::draw_map() {
-  draw_free_space();
-  draw_obstacles();
-  draw_walls_and_openings();
-  draw_sources();
-  draw_axes_and_scale();
-  std::ostringstream title;
-  title << (map_.name.empty() ? "map" : map_.name) << "  (" << format_number(map_.width) << " x "
-        << format_number(map_.height) << " m, " << map_.obstacles.size() << " obstacles)";
-  draw_title(title.str());
+void MapCanvas::draw_source(Vec2 p, const std::string& label) {
+  draw_marker(p, colours::kSource, 6);
+  // Up and right of the marker, kept inside the arena.
+  const cv::Size s = text_.size(label);
+  const cv::Rect arena = arena_rect();
+  const int off = static_cast<int>(std::lround(9 * mark_scale_));
+  cv::Point at = pixel(p) + cv::Point(off, -off - s.height);
+  if (at.x + s.width > arena.br().x - 2) at.x = pixel(p).x - off - s.width;
+  at.x = std::clamp(at.x, arena.x + 2, std::max(arena.x + 2, arena.br().x - 2 - s.width));
+  at.y = std::clamp(at.y, arena.y + 2, std::max(arena.y + 2, arena.br().y - 2 - s.height));
+  text_.put(image_, label, at);
 }
 
 void MapCanvas::draw_field(const Grid<double>& field, double lo, double hi, int colormap) {
@@ -233,36 +389,143 @@ void MapCanvas::draw_field(const Grid<double>& field, double lo, double hi, int 
     }
   cv::Mat colour;
   cv::applyColorMap(grey, colour, colormap);
-  const cv::Point a = pixel({0, map_.height}), b = pixel({map_.width, 0});
-  const cv::Size size(b.x - a.x, b.y - a.y);
+  const cv::Rect arena = arena_rect();
   cv::Mat scaled, mask;
-  cv::resize(colour, scaled, size, 0, 0, cv::INTER_NEAREST);
-  cv::resize(valid, mask, size, 0, 0, cv::INTER_NEAREST);
-  scaled.copyTo(image_(cv::Rect(a, size)), mask);
-}
-
-void MapCanvas::draw_colour_bar(double lo, double hi, const std::string& label, int colormap) {
-  const cv::Point top = pixel({map_.width, map_.height}) + cv::Point(28, 0);
-  const int height = pixel({0, 0}).y - top.y, width = 16;
-  cv::Mat ramp(height, 1, CV_8U);
-  for (int r = 0; r < height; ++r)
-    ramp.at<uchar>(r, 0) = static_cast<uchar>(255 - (255 * r) / std::max(1, height - 1));
-  cv::Mat colour, wide;
-  cv::applyColorMap(ramp, colour, colormap);
-  cv::resize(colour, wide, cv::Size(width, height), 0, 0, cv::INTER_NEAREST);
-  wide.copyTo(image_(cv::Rect(top, wide.size())));
-  cv::rectangle(image_, cv::Rect(top, wide.size()), kText, 1);
-  put_text(image_, format_number(hi), top + cv::Point(width + 4, 8), 0.4, kText);
-  put_text(image_, format_number(lo), top + cv::Point(width + 4, height), 0.4, kText);
-  put_text(image_, label, top + cv::Point(-8, -10), 0.4, kText);
+  cv::resize(colour, scaled, arena.size(), 0, 0, cv::INTER_NEAREST);
+  cv::resize(valid, mask, arena.size(), 0, 0, cv::INTER_NEAREST);
+  scaled.copyTo(image_(arena), mask);
 }
 
 void MapCanvas::draw_path(const std::vector<Vec2>& path, const cv::Scalar& colour, int thickness) {
   std::vector<cv::Point> pts;
   for (Vec2 p : path)
-    pts.push_back(fixed(to_px(p)));
-  cv::polylines(image_, std::vector<std::vector<cv::Point>>{pts}, false, colour, thickness,
-                cv::LINE_AA, kShift);
+    pts.push_back(fixed(p));
+  const int t = std::max(1, static_cast<int>(std::lround(thickness * mark_scale_)));
+  cv::polylines(image_, std::vector<std::vector<cv::Point>>{pts}, false, colour, t, cv::LINE_AA,
+                kShift);
+}
+
+// ---- the margins ------------------------------------------------------------
+
+void MapCanvas::draw_axes() {
+  const cv::Rect arena = arena_rect();
+  for (double x : ticks(map_.width, step_x_)) {
+    const cv::Point p = pixel({x, 0});
+    cv::line(image_, p, p + cv::Point(0, tick_), kText, thickness_, cv::LINE_AA);
+    const std::string s = format_number(x);
+    const int w = text_.size(s).width;
+    text_.put(image_, s, p + cv::Point(-w / 2, tick_ + gap_ / 2));
+  }
+  const int x_label_w = text_.size("x [m]").width;
+  const int x_label_x = std::max(gap_, arena.x + arena.width / 2 - x_label_w / 2);
+  text_.put(image_, "x [m]", {x_label_x, arena.br().y + tick_ + gap_ + text_h_ + gap_ / 2});
+  for (double y : ticks(map_.height, step_y_)) {
+    const cv::Point p = pixel({0, y});
+    cv::line(image_, p, p - cv::Point(tick_, 0), kText, thickness_, cv::LINE_AA);
+    const std::string s = format_number(y);
+    const int w = text_.size(s).width;
+    text_.put(image_, s, p + cv::Point(-tick_ - gap_ / 2 - w, -text_h_ / 2));
+  }
+  const int y_label_len = text_.size("y [m]").width;
+  const int y_label_y = std::max(top_, arena.y + arena.height / 2 - y_label_len / 2);
+  text_.put_vertical(image_, "y [m]", {gap_, y_label_y});
+}
+
+void MapCanvas::draw_colour_bar(const ColourBar& bar) {
+  const int width = std::max(12, text_h_);
+  const cv::Point top(bar_x_, top_);
+  cv::Mat ramp(bar_len_, 1, CV_8U);
+  for (int r = 0; r < bar_len_; ++r)
+    ramp.at<uchar>(r, 0) =
+        bar.uniform ? 0 : static_cast<uchar>(255 - (255 * r) / std::max(1, bar_len_ - 1));
+  cv::Mat colour, wide;
+  cv::applyColorMap(ramp, colour, bar.colormap);
+  cv::resize(colour, wide, cv::Size(width, bar_len_), 0, 0, cv::INTER_NEAREST);
+  wide.copyTo(image_(cv::Rect(top, wide.size())));
+  cv::rectangle(image_, cv::Rect(top, wide.size()), kText, 1);
+
+  const std::vector<std::string> labels = bar_labels(bar);
+  // Value labels at the ends and the middle; the middle one only where it has room.
+  const bool room_for_middle = bar_len_ >= 5 * text_h_;
+  int labels_w = 0;
+  for (std::size_t k = 0; k < labels.size(); ++k) {
+    if (labels.size() == 3 && k == 1 && !room_for_middle) continue;
+    const int y = labels.size() == 1 ? top.y + bar_len_ / 2
+                                     : top.y + static_cast<int>(k) * (bar_len_ - 1) / 2;
+    const cv::Point tick_at(top.x + width, y);
+    cv::line(image_, tick_at, tick_at + cv::Point(tick_, 0), kText, thickness_);
+    text_.put(image_, labels[k], tick_at + cv::Point(tick_ + gap_ / 2, -text_h_ / 2));
+    labels_w = std::max(labels_w, text_.size(labels[k]).width);
+  }
+  for (const std::string& s : labels)
+    labels_w = std::max(labels_w, text_.size(s).width);
+  const int label_len = text_.size(bar.label).width;
+  text_.put_vertical(
+      image_, bar.label,
+      {top.x + width + tick_ + gap_ / 2 + labels_w + gap_, top.y + bar_len_ / 2 - label_len / 2});
+}
+
+void MapCanvas::draw_legend_symbol(const LegendEntry& e, cv::Point at) {
+  // `at`: the top-left of a 2 x 1 text-height box.
+  const int w = 2 * text_h_, h = text_h_;
+  const cv::Point c = at + cv::Point(w / 2, h / 2);
+  const int r = std::max(3, h / 2 - 1);
+  // A pale mark (e.g. white streamlines) sits on grey, as it does on the fields it is drawn over.
+  if (e.colour[0] + e.colour[1] + e.colour[2] > 600)
+    cv::rectangle(image_, at, at + cv::Point(w - 1, h - 1), cv::Scalar(120, 120, 120), cv::FILLED);
+  switch (e.symbol) {
+    case LegendEntry::Symbol::Swatch:
+      cv::rectangle(image_, at + cv::Point(1, 2), at + cv::Point(w - 2, h - 3), e.colour,
+                    cv::FILLED);
+      break;
+    case LegendEntry::Symbol::Dot:
+      cv::circle(image_, c, r, e.colour, cv::FILLED, cv::LINE_AA);
+      break;
+    case LegendEntry::Symbol::Line:
+      cv::line(image_, at + cv::Point(1, h / 2), at + cv::Point(w - 2, h / 2), e.colour,
+               std::max(2, h / 5), cv::LINE_AA);
+      break;
+    case LegendEntry::Symbol::Cross:
+      cv::line(image_, c + cv::Point(-r, -r), c + cv::Point(r, r), e.colour, 2, cv::LINE_AA);
+      cv::line(image_, c + cv::Point(-r, r), c + cv::Point(r, -r), e.colour, 2, cv::LINE_AA);
+      break;
+    case LegendEntry::Symbol::Ring:
+      cv::circle(image_, c, r, e.colour, thickness_, cv::LINE_AA);
+      break;
+  }
+}
+
+void MapCanvas::draw_legend() {
+  int y = top_ + body_h_ + gap_;
+  for (const std::vector<int>& row : legend_rows_) {
+    int x = gap_;
+    for (int k : row) {
+      const LegendEntry& e = legend_[k];
+      draw_legend_symbol(e, {x, y});
+      x += 2 * text_h_ + gap_ / 2;
+      text_.put(image_, e.text, {x, y});
+      x += text_.size(e.text).width + 2 * gap_;
+    }
+    y += text_h_ + gap_ / 2;
+  }
+}
+
+void MapCanvas::draw_title() {
+  const double scale = font_ * 1.2;
+  const int h = text_.size("Ag", scale).height;
+  int y = gap_;
+  for (const std::string& line : title_lines_) {
+    text_.put(image_, line, {gap_, y}, scale);
+    y += h + gap_ / 2;
+  }
+}
+
+Picture MapCanvas::finish() {
+  draw_axes();
+  if (frame_.colour_bar) draw_colour_bar(*frame_.colour_bar);
+  draw_legend();
+  draw_title();
+  return {image_, text_.boxes(), arena_rect()};
 }
 
 void write_png(const cv::Mat& image, const std::filesystem::path& path) {

@@ -2,18 +2,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <sstream>
 
 #include <opencv2/imgproc.hpp>
 
-#include "core/map_render.hpp"
+#include "core/statistics.hpp"
 
 namespace plumekit::ste {
 
 namespace {
 
-const cv::Scalar kPath(235, 235, 235), kStart(40, 170, 40), kEstimate(200, 40, 200);
+const cv::Scalar kTrack(235, 235, 235);
 
 cv::Scalar colour_of(double v, double lo, double hi, int colormap) {
   const double t = hi > lo ? std::clamp((v - lo) / (hi - lo), 0.0, 1.0) : 0.0;
@@ -23,29 +24,10 @@ cv::Scalar colour_of(double v, double lo, double hi, int colormap) {
   return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
 }
 
-void draw_cross(MapCanvas& canvas, Vec2 p, const cv::Scalar& colour) {
-  const cv::Point c = canvas.pixel(p);
-  const int r = 8;
-  for (int t : {5, 2}) {
-    const cv::Scalar col = t == 5 ? cv::Scalar(255, 255, 255) : colour;
-    cv::line(canvas.image(), c + cv::Point(-r, -r), c + cv::Point(r, r), col, t, cv::LINE_AA);
-    cv::line(canvas.image(), c + cv::Point(-r, r), c + cv::Point(r, -r), col, t, cv::LINE_AA);
-  }
-}
-
 Map with_source(const Map& map, Vec2 source) {
   Map m = map;
   m.sources = {source};
   return m;
-}
-
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const double pos = q * (v.size() - 1);
-  const std::size_t i = static_cast<std::size_t>(pos);
-  const double f = pos - i;
-  return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
 }
 
 std::string fmt(double v, int digits = 2) {
@@ -54,114 +36,294 @@ std::string fmt(double v, int digits = 2) {
   return s.str();
 }
 
+std::string source_label(const RunToDraw& run) {
+  return run.source_index >= 0 ? "S" + std::to_string(run.source_index) : "source";
+}
+
+// "<map>: <model>, source S1 run 3", the part every picture of a run shares.
+std::string run_heading(const Map& map, const RunToDraw& run) {
+  std::string s =
+      (map.name.empty() ? "map" : map.name) + ": " + run.model + ", source " +
+      (run.source_index >= 0 ? source_label(run)
+                             : "(" + fmt(run.source.x) + ", " + fmt(run.source.y) + ")");
+  if (run.run >= 0) s += " run " + std::to_string(run.run);
+  return s;
+}
+
+std::vector<LegendEntry> run_legend() {
+  return {{LegendEntry::Symbol::Dot, colours::kStart, "start"},
+          {LegendEntry::Symbol::Cross, colours::kEstimate, "estimate"}};
+}
+
 }  // namespace
 
-cv::Mat draw_trajectory(const Map& map, const Grid<double>& mean_plume,
-                        const LocalizationResult& run, Vec2 source, const std::string& title) {
-  MapCanvas canvas(with_source(map, source));
-  canvas.draw_free_space();
+RunToDraw run_to_draw(const RunRecord& record, const std::string& model,
+                      const std::string& chosen_as) {
+  return {&record.result, record.source, record.source_index, record.run, model, chosen_as};
+}
+
+RunToDraw run_to_draw(const Map& map, const LocalizationResult& result, Vec2 source,
+                      const std::string& model) {
+  int index = -1;
+  for (std::size_t k = 0; k < map.sources.size(); ++k)
+    if (norm(map.sources[k] - source) < 1e-9) index = static_cast<int>(k);
+  return {&result, source, index, -1, model, ""};
+}
+
+Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const RunToDraw& run,
+                        const RenderOptions& options) {
+  const LocalizationResult& r = *run.result;
   // Colour scale: the plume up to its 99th percentile, so one hot cell at the
   // source does not wash the rest out; samples share it.
   std::vector<double> v;
   for (double c : mean_plume.values)
     if (c > 0.0) v.push_back(c);
-  double hi = std::max(1.0, percentile(v, 0.99));
+  const double hi = std::max(1.0, percentile(v, 0.99));
   const int cmap = cv::COLORMAP_VIRIDIS;
+  std::string title = run_heading(map, run) + ": error " + fmt(norm(r.estimate - run.source)) +
+                      " m, " + std::to_string(r.samples) + " samples, " + fmt(r.distance_m, 1) +
+                      " m travelled, stopped by " + r.stopped_by;
+  if (!run.chosen_as.empty()) title += " (" + run.chosen_as + ")";
+  std::vector<LegendEntry> legend{
+      {LegendEntry::Symbol::Line, kTrack, "path"},
+      {LegendEntry::Symbol::Dot, colour_of(hi, 0, hi, cmap), "sample (coloured by its reading)"}};
+  for (const LegendEntry& e : run_legend())
+    legend.push_back(e);
+  Frame frame{title, ColourBar{0.0, hi, "mean concentration [conc. units]", cmap}, legend, true};
+  MapCanvas canvas(with_source(map, run.source), options, frame);
+  canvas.draw_free_space();
   canvas.draw_field(mean_plume, 0.0, hi, cmap);
   canvas.draw_obstacles();
   canvas.draw_walls_and_openings();
-  canvas.draw_axes_and_scale();
-  for (const Step& s : run.steps)
-    if (!s.path_in.empty()) canvas.draw_path(s.path_in, kPath, 2);
-  canvas.draw_sources();
-  canvas.draw_marker(run.start, kStart, 7);
-  for (const Step& s : run.steps)
-    canvas.draw_marker(s.position, colour_of(s.value, 0.0, hi, cmap), 5);
-  draw_cross(canvas, run.estimate, kEstimate);
-  canvas.draw_colour_bar(0.0, hi, "mean concentration", cmap);
-  canvas.draw_title(title);
-  return canvas.image().clone();
+  for (const Step& s : r.steps)
+    if (!s.path_in.empty()) canvas.draw_path(s.path_in, kTrack, 2);
+  canvas.draw_source(run.source, source_label(run));
+  canvas.draw_marker(r.start, colours::kStart, 7);
+  // Samples on the plume's colour scale, outlined dark so a low reading
+  // (the colour map's dark end) stays visible on the plume.
+  for (const Step& s : r.steps) {
+    canvas.draw_marker(s.position, cv::Scalar(40, 40, 40), 6);
+    const int radius = static_cast<int>(std::lround(5 * canvas.mark_scale()));
+    cv::circle(canvas.image(), canvas.pixel(s.position), radius, colour_of(s.value, 0.0, hi, cmap),
+               cv::FILLED, cv::LINE_AA);
+  }
+  canvas.draw_cross(r.estimate, colours::kEstimate);
+  return canvas.finish();
 }
 
-cv::Mat draw_posterior(const Map& map, const Posterior& posterior, Vec2 source, Vec2 estimate,
-                       const std::string& title) {
-  MapCanvas canvas(with_source(map, source));
-  canvas.draw_free_space();
+Picture draw_posterior(const Map& map, const RunToDraw& run, const RenderOptions& options) {
+  const LocalizationResult& r = *run.result;
   // log10 of the probability relative to the most probable cell, over six
   // decades: a certain posterior is one cell, and its tails still show.
-  Grid<double> field = posterior.marginal;
+  Grid<double> field = r.posterior.marginal;
   const double top = *std::max_element(field.values.begin(), field.values.end());
   for (double& d : field.values)
     d = d > 0.0 && top > 0.0 ? std::max(-6.0, std::log10(d / top)) : -6.0;
+  Frame frame{run_heading(map, run) + ": final posterior, error " +
+                  fmt(norm(r.estimate - run.source)) + " m",
+              ColourBar{-6.0, 0.0, "log10 P / max P [-]", cv::COLORMAP_INFERNO},
+              {{LegendEntry::Symbol::Cross, colours::kEstimate, "estimate"}},
+              true};
+  MapCanvas canvas(with_source(map, run.source), options, frame);
+  canvas.draw_free_space();
   canvas.draw_field(field, -6.0, 0.0, cv::COLORMAP_INFERNO);
   canvas.draw_obstacles();
   canvas.draw_walls_and_openings();
-  canvas.draw_axes_and_scale();
-  canvas.draw_sources();
-  draw_cross(canvas, estimate, kEstimate);
-  canvas.draw_colour_bar(-6.0, 0.0, "log10 P / max P", cv::COLORMAP_INFERNO);
-  canvas.draw_title(title);
-  return canvas.image().clone();
+  canvas.draw_source(run.source, source_label(run));
+  canvas.draw_cross(r.estimate, colours::kEstimate);
+  return canvas.finish();
 }
 
-cv::Mat draw_box_plot(const std::vector<std::vector<double>>& groups,
-                      const std::vector<std::string>& labels, const std::string& y_label,
-                      const std::string& title, double reference_line) {
-  const int w_box = 70, left = 80, right = 30, top = 50, bottom = 70, height = 360;
-  const int width =
-      left + right + w_box * static_cast<int>(std::max<std::size_t>(1, groups.size()));
-  cv::Mat img(top + height + bottom, width, CV_8UC3, cv::Scalar(255, 255, 255));
-  double ymax = reference_line > 0.0 ? reference_line * 1.2 : 0.0;
-  for (const auto& g : groups)
-    for (double v : g)
-      ymax = std::max(ymax, v);
-  ymax = ymax > 0.0 ? ymax * 1.05 : 1.0;
-  auto y_px = [&](double v) {
-    return top + height - static_cast<int>(std::lround(v / ymax * height));
-  };
-  const cv::Scalar ink(40, 40, 40), grid(225, 225, 225), box(200, 120, 40);
-  // Axis, ticks and grid lines.
+namespace {
+
+// The box plot's geometry, from its measured text.
+struct BoxLayout {
+  int text_h, gap, tick, left, top, plot_h, col_w, width, height;
+  double ymax, step;
+  std::vector<std::string> title_lines;
+  std::vector<std::vector<int>> legend_rows;
+};
+
+const cv::Scalar kInk(40, 40, 40), kGridLine(225, 225, 225), kBox(200, 120, 40),
+    kMedian(30, 30, 200), kReference(60, 60, 220);
+constexpr int kPlotHeight = 360;
+
+std::vector<LegendEntry> box_legend(const BoxPlot& p) {
+  std::vector<LegendEntry> l{{LegendEntry::Symbol::Swatch, kBox, "quartiles"},
+                             {LegendEntry::Symbol::Line, kMedian, "median"},
+                             {LegendEntry::Symbol::Line, kInk, "whiskers: 1.5 IQR"},
+                             {LegendEntry::Symbol::Ring, kInk, "outlier"}};
+  if (p.reference > 0.0)
+    l.push_back({LegendEntry::Symbol::Line, kReference,
+                 p.reference_label.empty() ? "reference " + fmt(p.reference) : p.reference_label});
+  return l;
+}
+
+std::string count_label(const std::vector<double>& g) {
+  return "n = " + std::to_string(g.size());
+}
+
+double tick_step(double ymax) {
   double step = std::pow(10.0, std::floor(std::log10(ymax)));
   if (ymax / step < 3) step /= 2;
-  for (double t = 0.0; t <= ymax + 1e-12; t += step) {
-    cv::line(img, {left, y_px(t)}, {width - right, y_px(t)}, grid, 1);
-    cv::putText(img, fmt(t, step < 1 ? 2 : 0), {8, y_px(t) + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, ink,
-                1, cv::LINE_AA);
+  return step;
+}
+
+std::string tick_text(double t, double step) {
+  return fmt(t, step < 1 ? 2 : 0);
+}
+
+BoxLayout plan_box_plot(const BoxPlot& p, const TextPainter& text) {
+  BoxLayout l{};
+  l.text_h = text.size("Ag").height;
+  l.gap = std::max(4, l.text_h / 2);
+  l.tick = 4;
+  l.ymax = p.reference > 0.0 ? p.reference * 1.2 : 0.0;
+  for (const auto& g : p.groups)
+    for (double v : g)
+      l.ymax = std::max(l.ymax, v);
+  l.ymax = l.ymax > 0.0 ? l.ymax * 1.05 : 1.0;
+  l.step = tick_step(l.ymax);
+  int tick_w = 0;
+  for (double t = 0.0; t <= l.ymax + 1e-12; t += l.step)
+    tick_w = std::max(tick_w, text.size(tick_text(t, l.step)).width);
+  l.left = l.gap + l.text_h + l.gap + tick_w + l.gap / 2 + l.tick;
+  // A column holds its name and its count, with room either side.
+  l.col_w = 70;
+  for (std::size_t k = 0; k < p.groups.size(); ++k) {
+    const std::string name = k < p.names.size() ? p.names[k] : std::to_string(k);
+    l.col_w = std::max({l.col_w, text.size(name).width + 2 * l.gap,
+                        text.size(count_label(p.groups[k])).width + 2 * l.gap});
   }
-  if (reference_line > 0.0)
-    cv::line(img, {left, y_px(reference_line)}, {width - right, y_px(reference_line)},
-             cv::Scalar(60, 60, 220), 1, cv::LINE_AA);
-  cv::line(img, {left, top}, {left, top + height}, ink, 1);
-  cv::line(img, {left, top + height}, {width - right, top + height}, ink, 1);
-  cv::putText(img, title, {left, 28}, cv::FONT_HERSHEY_SIMPLEX, 0.55, ink, 1, cv::LINE_AA);
-  cv::putText(img, y_label, {8, top - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.42, ink, 1, cv::LINE_AA);
-  cv::putText(img, "test map", {(left + width - right) / 2 - 30, top + height + 45},
-              cv::FONT_HERSHEY_SIMPLEX, 0.45, ink, 1, cv::LINE_AA);
-  for (std::size_t k = 0; k < groups.size(); ++k) {
-    const int cx = left + w_box * static_cast<int>(k) + w_box / 2;
-    const std::string& label = k < labels.size() ? labels[k] : std::to_string(k);
-    cv::putText(img, label, {cx - 4 * static_cast<int>(label.size()), top + height + 18},
-                cv::FONT_HERSHEY_SIMPLEX, 0.4, ink, 1, cv::LINE_AA);
-    if (groups[k].empty()) continue;
-    const double q1 = percentile(groups[k], 0.25), q2 = percentile(groups[k], 0.5),
-                 q3 = percentile(groups[k], 0.75), iqr = q3 - q1;
-    double lo = q3, hi = q1;
-    for (double v : groups[k]) {
-      if (v >= q1 - 1.5 * iqr) lo = std::min(lo, v);
-      if (v <= q3 + 1.5 * iqr) hi = std::max(hi, v);
+  const int n = static_cast<int>(std::max<std::size_t>(1, p.groups.size()));
+  l.plot_h = std::max(kPlotHeight, text.size(p.y_label).width + 2 * l.gap);
+  l.width = l.left + n * l.col_w + 2 * l.gap;
+  const double title_scale = text.scale() * 1.2;
+  l.width = std::max(l.width, text.size(p.x_label).width + 2 * l.gap);
+  std::istringstream words(p.title);
+  for (std::string w; words >> w;)
+    l.width = std::max(l.width, text.size(w, title_scale).width + 2 * l.gap);
+  const std::vector<LegendEntry> legend = box_legend(p);
+  int row_w = 0;
+  for (int k = 0; k < static_cast<int>(legend.size()); ++k) {
+    const int w = 2 * l.text_h + l.gap / 2 + text.size(legend[k].text).width;
+    l.width = std::max(l.width, w + 2 * l.gap);
+    if (l.legend_rows.empty() || row_w + 2 * l.gap + w > l.width - 2 * l.gap) {
+      l.legend_rows.push_back({});
+      row_w = -2 * l.gap;
     }
-    const int half = w_box / 4;
-    cv::line(img, {cx, y_px(lo)}, {cx, y_px(q1)}, ink, 1);
-    cv::line(img, {cx, y_px(q3)}, {cx, y_px(hi)}, ink, 1);
-    cv::line(img, {cx - half / 2, y_px(lo)}, {cx + half / 2, y_px(lo)}, ink, 1);
-    cv::line(img, {cx - half / 2, y_px(hi)}, {cx + half / 2, y_px(hi)}, ink, 1);
-    cv::rectangle(img, {cx - half, y_px(q3)}, {cx + half, y_px(q1)}, box, cv::FILLED);
-    cv::rectangle(img, {cx - half, y_px(q3)}, {cx + half, y_px(q1)}, ink, 1);
-    cv::line(img, {cx - half, y_px(q2)}, {cx + half, y_px(q2)}, cv::Scalar(30, 30, 200), 2);
-    for (double v : groups[k])
-      if (v < lo || v > hi) cv::circle(img, {cx, y_px(v)}, 3, ink, 1, cv::LINE_AA);
+    l.legend_rows.back().push_back(k);
+    row_w += 2 * l.gap + w;
   }
-  return img;
+  l.title_lines = wrap_words(text, p.title, l.width - 2 * l.gap, title_scale);
+  const int title_h = text.size("Ag", title_scale).height;
+  l.top =
+      l.gap + static_cast<int>(l.title_lines.size()) * (title_h + l.gap / 2) + l.gap + l.text_h / 2;
+  const int below = l.tick + l.gap / 2 + 2 * l.text_h + l.gap + l.text_h + l.gap +
+                    static_cast<int>(l.legend_rows.size()) * (l.text_h + l.gap / 2) + l.gap;
+  l.height = l.top + l.plot_h + below;
+  return l;
+}
+
+void draw_box(cv::Mat& img, const std::vector<double>& g, int cx, int half,
+              const std::function<int(double)>& y_px) {
+  const double q1 = percentile(g, 0.25), q2 = percentile(g, 0.5), q3 = percentile(g, 0.75),
+               iqr = q3 - q1;
+  double lo = q3, hi = q1;
+  for (double v : g) {
+    if (v >= q1 - 1.5 * iqr) lo = std::min(lo, v);
+    if (v <= q3 + 1.5 * iqr) hi = std::max(hi, v);
+  }
+  cv::line(img, {cx, y_px(lo)}, {cx, y_px(q1)}, kInk, 1);
+  cv::line(img, {cx, y_px(q3)}, {cx, y_px(hi)}, kInk, 1);
+  cv::line(img, {cx - half / 2, y_px(lo)}, {cx + half / 2, y_px(lo)}, kInk, 1);
+  cv::line(img, {cx - half / 2, y_px(hi)}, {cx + half / 2, y_px(hi)}, kInk, 1);
+  cv::rectangle(img, {cx - half, y_px(q3)}, {cx + half, y_px(q1)}, kBox, cv::FILLED);
+  cv::rectangle(img, {cx - half, y_px(q3)}, {cx + half, y_px(q1)}, kInk, 1);
+  cv::line(img, {cx - half, y_px(q2)}, {cx + half, y_px(q2)}, kMedian, 2);
+  for (double v : g)
+    if (v < lo || v > hi) cv::circle(img, {cx, y_px(v)}, 3, kInk, 1, cv::LINE_AA);
+}
+
+void draw_legend_row(cv::Mat& img, TextPainter& text, const std::vector<LegendEntry>& legend,
+                     const std::vector<int>& row, const BoxLayout& l, int y) {
+  int x = l.gap;
+  for (int k : row) {
+    const LegendEntry& e = legend[k];
+    const int w = 2 * l.text_h, h = l.text_h;
+    const cv::Point c(x + w / 2, y + h / 2);
+    if (e.symbol == LegendEntry::Symbol::Swatch)
+      cv::rectangle(img, {x + 1, y + 2}, {x + w - 2, y + h - 3}, e.colour, cv::FILLED);
+    else if (e.symbol == LegendEntry::Symbol::Ring)
+      cv::circle(img, c, 3, e.colour, 1, cv::LINE_AA);
+    else
+      cv::line(img, {x + 1, c.y}, {x + w - 2, c.y}, e.colour, 2);
+    x += w + l.gap / 2;
+    text.put(img, e.text, {x, y});
+    x += text.size(e.text).width + 2 * l.gap;
+  }
+}
+
+}  // namespace
+
+Picture draw_box_plot(const BoxPlot& p) {
+  TextPainter text(0.45, 1);
+  const BoxLayout l = plan_box_plot(p, text);
+  cv::Mat img(l.height, l.width, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int right = l.left + static_cast<int>(std::max<std::size_t>(1, p.groups.size())) * l.col_w;
+  const int bottom = l.top + l.plot_h;
+  auto y_px = [&](double v) {
+    return bottom - static_cast<int>(std::lround(v / l.ymax * l.plot_h));
+  };
+  for (double t = 0.0; t <= l.ymax + 1e-12; t += l.step) {
+    cv::line(img, {l.left, y_px(t)}, {right, y_px(t)}, kGridLine, 1);
+    cv::line(img, {l.left - l.tick, y_px(t)}, {l.left, y_px(t)}, kInk, 1);
+    const std::string s = tick_text(t, l.step);
+    text.put(img, s, {l.left - l.tick - l.gap / 2 - text.size(s).width, y_px(t) - l.text_h / 2});
+  }
+  if (p.reference > 0.0)
+    cv::line(img, {l.left, y_px(p.reference)}, {right, y_px(p.reference)}, kReference, 1,
+             cv::LINE_AA);
+  cv::line(img, {l.left, l.top}, {l.left, bottom}, kInk, 1);
+  cv::line(img, {l.left, bottom}, {right, bottom}, kInk, 1);
+  text.put_vertical(img, p.y_label, {l.gap, l.top + l.plot_h / 2 - text.size(p.y_label).width / 2});
+  for (std::size_t k = 0; k < p.groups.size(); ++k) {
+    const int cx = l.left + l.col_w * static_cast<int>(k) + l.col_w / 2;
+    const std::string name = k < p.names.size() ? p.names[k] : std::to_string(k);
+    const std::string count = count_label(p.groups[k]);
+    const int y = bottom + l.tick + l.gap / 2;
+    text.put(img, name, {cx - text.size(name).width / 2, y});
+    text.put(img, count, {cx - text.size(count).width / 2, y + l.text_h});
+    if (!p.groups[k].empty()) draw_box(img, p.groups[k], cx, std::min(18, l.col_w / 4), y_px);
+  }
+  int y = bottom + l.tick + l.gap / 2 + 2 * l.text_h + l.gap;
+  text.put(img, p.x_label,
+           {std::max(l.gap, (l.left + right) / 2 - text.size(p.x_label).width / 2), y});
+  y += l.text_h + l.gap;
+  const std::vector<LegendEntry> legend = box_legend(p);
+  for (const std::vector<int>& row : l.legend_rows) {
+    draw_legend_row(img, text, legend, row, l, y);
+    y += l.text_h + l.gap / 2;
+  }
+  int ty = l.gap;
+  for (const std::string& line : l.title_lines) {
+    text.put(img, line, {l.gap, ty}, text.scale() * 1.2);
+    ty += text.size("Ag", text.scale() * 1.2).height + l.gap / 2;
+  }
+  return {img, text.boxes(), cv::Rect()};
+}
+
+Picture draw_box_plot(const std::vector<std::vector<double>>& groups,
+                      const std::vector<std::string>& names, const std::string& y_label,
+                      const std::string& title, double reference_line) {
+  BoxPlot p;
+  p.groups = groups;
+  p.names = names;
+  p.y_label = y_label;
+  p.title = title;
+  p.reference = reference_line;
+  if (reference_line > 0.0) p.reference_label = "success radius " + fmt(reference_line) + " m";
+  return draw_box_plot(p);
 }
 
 }  // namespace plumekit::ste

@@ -9,22 +9,52 @@
 
 #include "core/grid.hpp"
 #include "core/map.hpp"
+#include "core/map_render.hpp"
+#include "ste/evaluation.hpp"
 #include "ste/localizer.hpp"
 
 namespace plumekit::ste {
 
-// The trajectory (paths and samples) over `mean_plume`; the true source red,
-// the start green, the estimate a magenta cross.
-cv::Mat draw_trajectory(const Map& map, const Grid<double>& mean_plume,
-                        const LocalizationResult& run, Vec2 source, const std::string& title);
+// The run a picture shows. Its title is built from these fields only, so a
+// title cannot describe another run than the one drawn.
+struct RunToDraw {
+  const LocalizationResult* result = nullptr;
+  Vec2 source;            // the true source
+  int source_index = -1;  // its index among the map's sources; -1: not one of them
+  int run = -1;           // the run's number for its source; -1: a single run
+  std::string model;      // plume model, e.g. "surrogate"
+  // Why this run was picked, e.g. "median error of 30 runs"; empty for none.
+  std::string chosen_as;
+};
+// An evaluation run (all fields from the record).
+RunToDraw run_to_draw(const RunRecord& record, const std::string& model,
+                      const std::string& chosen_as = "");
+// A single run (localize, demo); the source index is looked up among the map's sources.
+RunToDraw run_to_draw(const Map& map, const LocalizationResult& result, Vec2 source,
+                      const std::string& model);
 
-// The posterior's (x, y) marginal, with the true source and the estimate.
-cv::Mat draw_posterior(const Map& map, const Posterior& posterior, Vec2 source, Vec2 estimate,
-                       const std::string& title);
+// The trajectory (paths and samples) over `mean_plume`: the true source, the
+// start, the estimate, each sample coloured on the plume's colour scale.
+Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const RunToDraw& run,
+                        const RenderOptions& options = {});
 
-// Box plots (median, quartiles, whiskers at 1.5 IQR, outliers as dots), one per group.
-cv::Mat draw_box_plot(const std::vector<std::vector<double>>& groups,
-                      const std::vector<std::string>& labels, const std::string& y_label,
+// The run's final posterior (x, y) marginal, with the true source and the estimate.
+Picture draw_posterior(const Map& map, const RunToDraw& run, const RenderOptions& options = {});
+
+// Box plots (median, quartiles, whiskers at 1.5 IQR, outliers as dots), one
+// per group, each named and with its number of values.
+struct BoxPlot {
+  std::vector<std::vector<double>> groups;
+  std::vector<std::string> names;  // one per group
+  std::string title, y_label, x_label = "test map";
+  double reference = -1.0;  // a horizontal line where > 0, e.g. the success radius
+  std::string reference_label;
+};
+Picture draw_box_plot(const BoxPlot& plot);
+
+// Shorthand for the evaluation's plots: `names` label the groups.
+Picture draw_box_plot(const std::vector<std::vector<double>>& groups,
+                      const std::vector<std::string>& names, const std::string& y_label,
                       const std::string& title, double reference_line = -1.0);
 
 }  // namespace plumekit::ste

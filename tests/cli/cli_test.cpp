@@ -62,8 +62,10 @@ TEST_F(Cli, JsonErrorsAreMachineReadable) {
 TEST_F(Cli, RenderWritesAPictureOfTheMap) {
   const fs::path png = dir / "map.png";
   const Result r = run("map render " + (kData / "maps" / "cluttered-1.json").string() + " --out " +
-                       png.string() + " --px-per-m 50");
+                       png.string() + " --px-per-m 50 --json");
   ASSERT_EQ(r.code, 0) << r.err;
+  // The margins follow the text they hold: the arena's place comes with the picture.
+  const auto arena = nlohmann::json::parse(r.out)["arena_px"];
   const cv::Mat img = cv::imread(png.string());
   ASSERT_FALSE(img.empty());
   // Arena 10 x 4 m at 50 px/m plus margins.
@@ -73,7 +75,7 @@ TEST_F(Cli, RenderWritesAPictureOfTheMap) {
   // and a free point (8.0, 1.0) is near-white. The arena's lower-left is at the
   // margin offset, found from the wall line's dark pixels.
   auto grey_at = [&](double x, double y) {
-    const int left = 56, top = 40;  // MapCanvas margins
+    const int left = arena[0], top = arena[1];
     return img.at<cv::Vec3b>(static_cast<int>(top + (4.0 - y) * 50),
                              static_cast<int>(left + x * 50));
   };
