@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <sstream>
 
+#include "cfd/options.hpp"
 #include "support/cli_runner.hpp"
 
 namespace {
@@ -30,6 +32,52 @@ TEST_F(FlowCli, WritesAllOutputsAndASummary) {
   EXPECT_GT(png.cols, 500);
 }
 
+TEST_F(FlowCli, ReportsTheSchemeUsedAndFallsBackOnlyWhenAllowed) {
+  // Central convection stalls at nu = 0.001 on 20 cm cells (cfd/README.md, "Flow policy").
+  const std::string args = "flow " + (kMaps / "cluttered-1.json").string() +
+                           " --cell 0.2 --nu 0.001 --out " + (dir / "wind").string();
+  auto r = run(args + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["convection"], "upwind");
+  EXPECT_EQ(j["convection_requested"], "central");
+  EXPECT_EQ(j["fell_back_to_upwind"], true);
+  r = run(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("upwind convection (central did not converge: fell back to upwind)"),
+            std::string::npos)
+      << r.out;
+  r = run(args + " --upwind-fallback false");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("central convection"), std::string::npos) << r.err;
+
+  r = run("flow " + (kMaps / "cluttered-1.json").string() + " --cell 0.2 --out " +
+          (dir / "plain").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["convection"], "central");
+  EXPECT_EQ(j["fell_back_to_upwind"], false);
+}
+
+TEST_F(FlowCli, HelpShowsTheLibraryDefaults) {
+  const plumekit::cfd::FlowOptions o;
+  auto shown = [](const char* flag, const char* type, auto value) {
+    std::ostringstream s;
+    s << flag << ' ' << type << '=' << value;
+    return s.str();
+  };
+  const auto r = run("flow --help");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const std::string& expected :
+       {shown("--cell", "FLOAT", o.cell), shown("--nu", "FLOAT", o.nu),
+        shown("--turbulence", "TEXT", to_string(o.turbulence)),
+        shown("--convection", "TEXT", to_string(o.convection)),
+        shown("--upwind-fallback", "BOOLEAN", o.upwind_fallback ? "true" : "false"),
+        shown("--tol", "FLOAT", o.tolerance), shown("--max-iter", "INT", o.max_iterations),
+        shown("--linear-solver", "TEXT", to_string(o.linear_solver))})
+    EXPECT_NE(r.out.find(expected), std::string::npos) << expected << " not in:\n" << r.out;
+}
+
 TEST_F(FlowCli, BadInputExitsTwoAndWritesNothing) {
   const std::string map = (kMaps / "cluttered-1.json").string();
   const fs::path out = dir / "wind";
@@ -41,6 +89,8 @@ TEST_F(FlowCli, BadInputExitsTwoAndWritesNothing) {
       {"--cell 3", "at least 3 cells"},
       {"--max-iter 1", "Residual history"},
       {"--max-iter -1", "--max-iter"},
+      {"--convection quick", "--convection: unknown name 'quick'"},
+      {"--linear-solver lu", "--linear-solver: unknown name 'lu'"},
   };
   for (const Case& c : cases) {
     const auto r = run("flow " + map + " --out " + out.string() + " " + c.args);

@@ -61,6 +61,26 @@ TEST(FlowOptions, EveryFieldIsRangeChecked) {
   EXPECT_NO_THROW(FlowOptions().validate());
 }
 
+TEST(FlowOptions, EnumNamesRoundTripAndUnknownNamesNameTheField) {
+  for (Turbulence t : {Turbulence::None, Turbulence::MixingLength})
+    EXPECT_EQ(parse_turbulence(to_string(t)), t);
+  for (Convection c : {Convection::Upwind, Convection::Central, Convection::VanLeer})
+    EXPECT_EQ(parse_convection(to_string(c)), c);
+  for (LinearSolverKind k : {LinearSolverKind::Nullspace, LinearSolverKind::Coupled})
+    EXPECT_EQ(parse_linear_solver(to_string(k)), k);
+  EXPECT_EQ(convection_names(), "upwind, central, vanleer");
+
+  auto e = error_of<OptionError>([] { parse_convection("Central"); });
+  EXPECT_EQ(e.field(), "flow.convection");
+  expect_has(e.message(), "unknown name 'Central'; use one of upwind, central, vanleer");
+  e = error_of<OptionError>([] { parse_turbulence("k-epsilon"); });
+  EXPECT_EQ(e.field(), "flow.turbulence");
+  expect_has(e.message(), "none, mixing-length");
+  e = error_of<OptionError>([] { parse_linear_solver(""); });
+  EXPECT_EQ(e.field(), "flow.linear_solver");
+  expect_has(e.message(), "nullspace, coupled");
+}
+
 TEST(FlowGridSize, TooFewOrTooManyCellsNameTheCellThatFits) {
   FlowOptions o;
   o.cell = 2.0;

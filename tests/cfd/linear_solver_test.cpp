@@ -1,0 +1,87 @@
+// The LinearSolver interface: make_linear_solver picks the implementation the
+// options name, and both implementations give the same Newton step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "cfd/linear_solver.hpp"
+#include "cfd/navier_stokes.hpp"
+#include "core/map_json.hpp"
+
+namespace plumekit::cfd {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kMaps = fs::path(PLUMEKIT_DATA_DIR) / "maps";
+
+// The step of `kind` for a Jacobian of `map`'s equations at a non-trivial
+// state, with a pseudo-time term, through the interface only.
+Eigen::VectorXd step_of(LinearSolverKind kind, const Map& map, Convection convection,
+                        std::string& name) {
+  FlowOptions options;
+  options.cell = 0.2;
+  const GridShape shape = GridShape::with_cell(map.width, map.height, options.cell);
+  const StaggeredGrid grid(map, shape, options);
+  NavierStokes equations(grid, convection);
+  const int n = grid.unknowns();
+  Eigen::VectorXd state(n);
+  for (int k = 0; k < n; ++k)
+    state[k] = 0.3 + 0.2 * std::sin(0.37 * k);
+  equations.update_jacobian(state.data());
+  equations.add_to_momentum_diagonal(0.5);
+  const std::unique_ptr<LinearSolver> solver = make_linear_solver(kind, grid, equations.jacobian());
+  name = solver->name();
+  EXPECT_TRUE(solver->factorize(equations.jacobian()));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd x(n);
+  solver->solve(equations.jacobian(), b.data(), x.data());
+  // x solves J x = b to round-off, whichever implementation ran.
+  const Eigen::SparseMatrix<double>& j = equations.jacobian();
+  const double terms = (j.cwiseAbs() * x.cwiseAbs()).lpNorm<Eigen::Infinity>();
+  // (The coupled LU runs without iterative refinement: a few 1e-12 of the terms.)
+  EXPECT_LT((j * x - b).lpNorm<Eigen::Infinity>(), 1e-10 * terms) << name;
+  return x;
+}
+
+TEST(LinearSolver, BothImplementationsGiveTheSameStep) {
+  for (const char* file : {"cluttered-1.json", "cluttered-3.json"})
+    for (Convection convection : {Convection::Central, Convection::VanLeer}) {
+      const Map map = read_map(kMaps / file);
+      std::string nullspace_name, coupled_name;
+      const Eigen::VectorXd a =
+          step_of(LinearSolverKind::Nullspace, map, convection, nullspace_name);
+      const Eigen::VectorXd b = step_of(LinearSolverKind::Coupled, map, convection, coupled_name);
+      EXPECT_EQ(nullspace_name, "nullspace");
+      EXPECT_EQ(coupled_name, "coupled");
+      EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-10 * b.lpNorm<Eigen::Infinity>())
+          << file << " " << to_string(convection);
+    }
+}
+
+TEST(LinearSolver, ReusedFactorizationSolvesFurtherRightHandSides) {
+  // Chord steps: one factorization, several solves.
+  const Map map = read_map(kMaps / "cluttered-2.json");
+  FlowOptions options;
+  options.cell = 0.2;
+  const StaggeredGrid grid(map, GridShape::with_cell(map.width, map.height, options.cell), options);
+  NavierStokes equations(grid, Convection::Central);
+  const int n = grid.unknowns();
+  const Eigen::VectorXd state = Eigen::VectorXd::Constant(n, 0.5);
+  equations.update_jacobian(state.data());
+  for (LinearSolverKind kind : {LinearSolverKind::Nullspace, LinearSolverKind::Coupled}) {
+    const auto solver = make_linear_solver(kind, grid, equations.jacobian());
+    ASSERT_TRUE(solver->factorize(equations.jacobian()));
+    for (int r = 0; r < 3; ++r) {
+      Eigen::VectorXd b(n), x(n);
+      for (int k = 0; k < n; ++k)
+        b[k] = std::cos(0.1 * k * (r + 1));
+      solver->solve(equations.jacobian(), b.data(), x.data());
+      const Eigen::VectorXd residual = equations.jacobian() * x - b;
+      EXPECT_LT(residual.lpNorm<Eigen::Infinity>(), 1e-9) << solver->name() << " rhs " << r;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace plumekit::cfd
