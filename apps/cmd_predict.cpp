@@ -14,7 +14,8 @@
 #include "core/map_render.hpp"
 #include "core/npy.hpp"
 #include "core/output_target.hpp"
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
+#include "surrogate/prediction_report.hpp"
 
 namespace plumekit::cli {
 
@@ -22,6 +23,10 @@ namespace {
 
 namespace fs = std::filesystem;
 using surrogate::PlumePrediction;
+
+std::filesystem::path shipped_model() {
+  return data_dir() / "models" / "plume-unet.pkcnn";
+}
 
 }  // namespace
 
@@ -31,42 +36,40 @@ void add_predict_commands(CLI::App& app) {
       "The surrogate CNN's plume for one source: mean.npy, std.npy (float32 [64,64], row 0 at "
       "y = 0) and plume.png");
   struct Args {
-    std::string model = (data_dir() / "models" / "plume-unet.pkcnn").string();
-    std::string map = default_map().string();
-    std::string source;
-    std::string out;
-    int threads = 1;
+    std::string cnn = shipped_model().string();
+    std::string map, source, out;
+    surrogate::EngineOptions engine;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("--model", a->model, "Model file (plumekit-cnn/1)")->capture_default_str();
-  cmd->add_option("--map", a->map, "Map file (JSON)")->capture_default_str();
+  add_map_argument(cmd, a->map);
+  add_deprecated_alias(cmd, "--map", "MAP", a->map);
+  cmd->add_option("--cnn", a->cnn, "CNN model file (plumekit-cnn/1)")->capture_default_str();
+  add_deprecated_alias(cmd, "--model", "--cnn", a->cnn);
   cmd->add_option("--source", a->source, "Source position X,Y in metres")->required();
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `predict` output")
       ->required();
-  cmd->add_option("--threads", a->threads, "Engine threads")
-      ->capture_default_str()
-      ->check(CLI::Range(1, 256));
+  add_threads_flag(cmd, a->engine.threads, "engine.threads", "Engine threads (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a] {
     const auto start = std::chrono::steady_clock::now();
     const Vec2 source = parse_point(a->source, "--source");
     std::error_code ec;
-    if (!fs::exists(a->model, ec)) {
-      throw InputError(a->model + ": no such model file" +
-                       std::string(a->model == (data_dir() / "models" / "plume-unet.pkcnn").string()
+    if (!fs::exists(a->cnn, ec)) {
+      throw InputError(a->cnn + ": no such model file" +
+                       std::string(a->cnn == shipped_model().string()
                                        ? " (the shipped model is not there yet: train one as "
-                                         "surrogate/README.md says, or give --model)"
+                                         "surrogate/README.md says, or give --cnn)"
                                        : ""));
     }
     const Map map = read_map(a->map);
-    OutputDirectory out(a->out, "predict", {a->map, a->model});
-    auto network = std::make_shared<const surrogate::Network>(
-        surrogate::Network::load(a->model, surrogate::EngineOptions{a->threads}));
-    std::unique_ptr<surrogate::PlumeModel> model;
+    OutputDirectory out(a->out, "predict", {a->map, a->cnn});
+    auto network =
+        std::make_shared<const surrogate::Network>(surrogate::Network::load(a->cnn, a->engine));
+    std::unique_ptr<surrogate::PlumeNetwork> model;
     try {
-      model = std::make_unique<surrogate::PlumeModel>(network, map);
+      model = std::make_unique<surrogate::PlumeNetwork>(network, map);
     } catch (const InputError& e) {
-      throw InputError(a->model + ": " + e.what());
+      throw InputError(a->cnn + ": " + e.what());
     }
     const auto t0 = std::chrono::steady_clock::now();
     const PlumePrediction p = model->predict(source);
@@ -76,16 +79,8 @@ void add_predict_commands(CLI::App& app) {
     const GridShape& g = p.grid;
     const std::vector<std::size_t> shape{static_cast<std::size_t>(g.ny),
                                          static_cast<std::size_t>(g.nx)};
-    const auto peak = std::max_element(p.mean.begin(), p.mean.end()) - p.mean.begin();
-    const Vec2 peak_at = g.centre(static_cast<int>(peak % g.nx), static_cast<int>(peak / g.nx));
-    const float peak_std = *std::max_element(p.std.begin(), p.std.end());
-    const auto& outs = network->file().outputs;
-    std::string unit;
-    for (const auto& o : outs)
-      if (o.name == "mean") unit = o.unit;
-
-    const Picture image = draw_plume(map, g, p.mean, p.std, source, "surrogate", unit);
-
+    const Picture image =
+        draw_plume(map, g, p.mean, p.std, source, "surrogate", surrogate::mean_unit(*network));
     const fs::path& dir = out.open();
     write_file_atomic(dir / "mean.npy", npy_float32(p.mean, shape));
     write_file_atomic(dir / "std.npy", npy_float32(p.std, shape));
@@ -94,26 +89,9 @@ void add_predict_commands(CLI::App& app) {
 
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    nlohmann::ordered_json j{{"ok", true},
-                             {"model", a->model},
-                             {"model_sha256", network->file().sha256_hex},
-                             {"map", a->map},
-                             {"source", {source.x, source.y}},
-                             {"out", a->out},
-                             {"grid", {g.ny, g.nx}},
-                             {"unit", unit},
-                             {"peak_mean", p.mean[peak]},
-                             {"peak_mean_at", {peak_at.x, peak_at.y}},
-                             {"peak_std", peak_std},
-                             {"mean_at_source", p.mean_at(source)},
-                             {"predict_seconds", predict_s},
-                             {"seconds", seconds}};
-    std::ostringstream human;
-    human << std::setprecision(4) << "wrote " << a->out << "/{mean,std}.npy, plume.png: peak mean "
-          << p.mean[peak] << " at (" << peak_at.x << ", " << peak_at.y << "), peak std " << peak_std
-          << (unit.empty() ? "" : " [" + unit + "]") << "; network " << predict_s * 1e3
-          << " ms, total " << seconds << " s";
-    report(j, human.str());
+    const Report r = surrogate::prediction_report(
+        {a->cnn, a->map, a->out, source, predict_s, seconds}, p, *network);
+    report(r.json, r.text);
   });
 }
 
