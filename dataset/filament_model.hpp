@@ -16,6 +16,7 @@
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
+#include "core/random.hpp"
 
 namespace plumekit::dataset {
 
@@ -107,7 +108,7 @@ class FilamentSimulation {
   Vec2 source_;
   FilamentOptions o_;
   std::mt19937_64 rng_;
-  std::normal_distribution<double> normal_{0.0, 1.0};
+  NormalSampler normal_;  // core/random.hpp: the same variates with any standard library
   std::vector<Filament> filaments_;
   std::vector<std::uint8_t> clear_;  // per flow cell: no obstacle within it
   double time_ = 0.0;
