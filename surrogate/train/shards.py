@@ -3,9 +3,15 @@
 DIR/manifest.json lists `shards` (each with `name`, else `map_index`); DIR/shards/NAME/ holds
 inputs.npy float32 [n,3,64,64], targets.npy float32 [n,2,64,64], sources.npy float32 [n,2] and
 map_ids.npy int [n]. Arrays stay on disk (numpy mmap_mode='r'); a batch copies only its rows.
+
+The C++ reader (dataset/dataset_reader.hpp) is the format's reference: `python3 shards.py DIR INDEX`
+prints what this reader loads for one sample in the fields of `plumekit dataset show --json`, and
+tests/surrogate/train_smoke_test.cpp checks that the two agree.
 """
+import hashlib
 import json
 import os
+import sys
 
 import numpy as np
 
@@ -16,6 +22,7 @@ class Shard:
         load = lambda name: np.load(os.path.join(directory, name), mmap_mode="r")  # noqa: E731
         self.inputs = load("inputs.npy")
         self.targets = load("targets.npy")
+        self.sources = load("sources.npy")
         self.map_ids = np.asarray(load("map_ids.npy")).astype(np.int64)
         n = self.inputs.shape[0]
         if (self.inputs.ndim != 4 or self.inputs.shape[1] != 3 or self.targets.shape[0] != n
@@ -57,3 +64,27 @@ def batch(shards, rows):
     x = np.stack([shards[s].inputs[r] for s, r in rows]).astype(np.float32)
     y = np.stack([shards[s].targets[r] for s, r in rows]).astype(np.float32)
     return x, y
+
+
+def sample(directory, index):
+    """Sample `index` over the whole dataset (shards in manifest order), in the fields of
+    `plumekit dataset show --json`: shard, row, map_index, source and the SHA-256 of the sample's
+    float32 inputs and targets as stored."""
+    manifest, shards = open_dataset(directory)
+    start = 0
+    for entry, shard in zip(manifest["shards"], shards):
+        n = shard.inputs.shape[0]
+        if index < start + n:
+            row = index - start
+            raw = lambda a: np.ascontiguousarray(a[row], dtype="<f4").tobytes()  # noqa: E731
+            return {"shard": os.path.basename(shard.directory), "row": row,
+                    "map_index": int(shard.map_ids[row]),
+                    "source": [float(v) for v in shard.sources[row]],
+                    "inputs_sha256": hashlib.sha256(raw(shard.inputs)).hexdigest(),
+                    "targets_sha256": hashlib.sha256(raw(shard.targets)).hexdigest()}
+        start += n
+    raise IndexError(f"{directory}: sample {index} of {start}")
+
+
+if __name__ == "__main__":
+    print(json.dumps(sample(sys.argv[1], int(sys.argv[2]))))

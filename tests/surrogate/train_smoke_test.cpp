@@ -11,6 +11,8 @@
 #include <fstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/atomic_file.hpp"
 #include "core/npy.hpp"
 #include "surrogate/network.hpp"
@@ -138,7 +140,7 @@ TEST(TrainSmoke, TrainsOnADatasetTheGeneratorMade) {
   const fs::path model = dir / "model.pkcnn";
   ASSERT_EQ(std::system((std::string(PLUMEKIT_EXE) +
                          " dataset generate --maps 2 --sources 3 --seed 1 --cell 0.1"
-                         " --plume advection-diffusion --out " +
+                         " --plume-model advection-diffusion --out " +
                          data + " > /dev/null")
                             .c_str()),
             0);
@@ -147,6 +149,38 @@ TEST(TrainSmoke, TrainsOnADatasetTheGeneratorMade) {
                             .c_str()),
             0);
   expect_engine_reproduces_golden_pair(model);
+  fs::remove_all(dir);
+}
+
+// The trainer's reader (surrogate/train/shards.py) loads what the C++ reader (dataset show) reads:
+// the same sample of the same shard row, the same source and bit for bit the same arrays.
+TEST(TrainerReader, AgreesWithTheCppReader) {
+  const fs::path dir = fresh_dir("trainer-reader");
+  const std::string data = (dir / "data").string();
+  ASSERT_EQ(std::system((std::string(PLUMEKIT_EXE) +
+                         " dataset generate --maps 2 --sources 3 --seed 1 --cell 0.1 --out " +
+                         data + " > /dev/null")
+                            .c_str()),
+            0);
+  for (int index : {0, 4, 5}) {
+    const std::string png = (dir / ("show-" + std::to_string(index) + ".png")).string();
+    const std::string cpp = (dir / "cpp.json").string(), py = (dir / "py.json").string();
+    ASSERT_EQ(std::system((std::string(PLUMEKIT_EXE) + " dataset show " + data + " --index " +
+                           std::to_string(index) + " --out " + png + " --json > " + cpp)
+                              .c_str()),
+              0);
+    ASSERT_EQ(std::system((std::string(PLUMEKIT_PYTHON) + " " + PLUMEKIT_SOURCE_DIR +
+                           "/surrogate/train/shards.py " + data + " " + std::to_string(index) +
+                           " > " + py)
+                              .c_str()),
+              0);
+    const nlohmann::json c = nlohmann::json::parse(read_file(cpp));
+    const nlohmann::json p = nlohmann::json::parse(read_file(py));
+    for (const char* key :
+         {"shard", "row", "map_index", "source", "inputs_sha256", "targets_sha256"})
+      EXPECT_EQ(c.at(key), p.at(key)) << "sample " << index << ": " << key;
+  }
+  // Samples 0 and 5 lie in different shards: the test covers the walk over the manifest.
   fs::remove_all(dir);
 }
 
