@@ -319,7 +319,9 @@ void MapCanvas::draw_walls_and_openings() {
                         : o.side == Side::Right  ? Vec2{-1, 0}
                         : o.side == Side::Bottom ? Vec2{0, 1}
                                                  : Vec2{0, -1};
-    const double arrow = 28.0 * mark_scale_ / px_per_m_;  // metres
+    // At most a fifth of the arena's short side, so arrows never cross a small arena.
+    const double short_side = std::min(map_.width, map_.height);
+    const double arrow = std::min(28.0 * mark_scale_ / px_per_m_, 0.2 * short_side);  // metres
     const int count =
         std::max(1, static_cast<int>((o.to - o.from) / (60.0 * mark_scale_ / px_per_m_)));
     for (int k = 0; k < count; ++k) {
@@ -352,9 +354,11 @@ void MapCanvas::draw_cross(Vec2 p, const cv::Scalar& colour) {
   }
 }
 
-void MapCanvas::draw_ring(Vec2 p, const cv::Scalar& colour) {
-  const int r = static_cast<int>(std::lround(5 * mark_scale_ * kScale));
-  cv::circle(image_, fixed(p), r, colour, thickness_, cv::LINE_AA, kShift);
+void MapCanvas::draw_ring(Vec2 p, const cv::Scalar& colour, int radius_px) {
+  const int r = static_cast<int>(std::lround(radius_px * mark_scale_ * kScale));
+  const int width =
+      std::max(thickness_, static_cast<int>(std::lround(radius_px * mark_scale_ / 4)));
+  cv::circle(image_, fixed(p), r, colour, width, cv::LINE_AA, kShift);
 }
 
 void MapCanvas::draw_sources() {
@@ -490,7 +494,7 @@ void MapCanvas::draw_legend_symbol(const LegendEntry& e, cv::Point at) {
       cv::line(image_, c + cv::Point(-r, r), c + cv::Point(r, -r), e.colour, 2, cv::LINE_AA);
       break;
     case LegendEntry::Symbol::Ring:
-      cv::circle(image_, c, r, e.colour, thickness_, cv::LINE_AA);
+      cv::circle(image_, c, r, e.colour, std::max(2, thickness_), cv::LINE_AA);
       break;
   }
 }

@@ -136,7 +136,8 @@ class MapCanvas {
   // the radius is scaled by mark_scale().
   void draw_marker(Vec2 p, const cv::Scalar& colour, int radius_px);
   void draw_cross(Vec2 p, const cv::Scalar& colour);
-  void draw_ring(Vec2 p, const cv::Scalar& colour);
+  // A circle outline (radius scaled by mark_scale()), e.g. where a moved end was asked for.
+  void draw_ring(Vec2 p, const cv::Scalar& colour, int radius_px = 5);
 
   // Paints a cell-centred field over the arena with a colour map (OpenCV's
   // viridis by default), values clamped to [lo, hi]; NaN cells stay unpainted.

@@ -1,5 +1,6 @@
 #include "planner/plan_render.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 #include <vector>
@@ -84,8 +85,9 @@ Picture draw_plan(const Map& map, const FreeSpace& space, const PlanResult& r,
   canvas.draw_sources();
 
   canvas.draw_path(r.path, colours::kPath, 3);
+  const int vertex = static_cast<int>(std::lround(3 * canvas.mark_scale()));
   for (Vec2 v : r.path)
-    canvas.draw_marker(v, colours::kPath, 2);
+    cv::circle(img, canvas.pixel(v), vertex, colours::kPath, cv::FILLED, cv::LINE_AA);
   // A moved end: a thin line from where it was asked for to where it went.
   auto moved = [&](Vec2 from, Vec2 to) {
     cv::line(img, canvas.fixed(from), canvas.fixed(to), kMoved, 1, cv::LINE_AA, shift);

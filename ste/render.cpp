@@ -51,7 +51,7 @@ std::string run_heading(const Map& map, const RunToDraw& run) {
 }
 
 std::vector<LegendEntry> run_legend() {
-  return {{LegendEntry::Symbol::Dot, colours::kStart, "start"},
+  return {{LegendEntry::Symbol::Ring, colours::kStart, "start"},
           {LegendEntry::Symbol::Cross, colours::kEstimate, "estimate"}};
 }
 
@@ -98,15 +98,17 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   for (const Step& s : r.steps)
     if (!s.path_in.empty()) canvas.draw_path(s.path_in, kTrack, 2);
   canvas.draw_source(run.source, source_label(run));
-  canvas.draw_marker(r.start, colours::kStart, 7);
-  // Samples on the plume's colour scale, outlined dark so a low reading
-  // (the colour map's dark end) stays visible on the plume.
+  // Samples on the plume's colour scale with a thin grey rim (no white halo, so a
+  // low reading shows the colour map's dark end, as the plume under it does).
+  const int radius = static_cast<int>(std::lround(6 * canvas.mark_scale()));
   for (const Step& s : r.steps) {
-    canvas.draw_marker(s.position, cv::Scalar(40, 40, 40), 6);
-    const int radius = static_cast<int>(std::lround(5 * canvas.mark_scale()));
     cv::circle(canvas.image(), canvas.pixel(s.position), radius, colour_of(s.value, 0.0, hi, cmap),
                cv::FILLED, cv::LINE_AA);
+    cv::circle(canvas.image(), canvas.pixel(s.position), radius, cv::Scalar(150, 150, 150), 1,
+               cv::LINE_AA);
   }
+  // The start as a ring, around the first sample that is usually taken there.
+  canvas.draw_ring(r.start, colours::kStart, 11);
   canvas.draw_cross(r.estimate, colours::kEstimate);
   return canvas.finish();
 }
