@@ -253,15 +253,16 @@ void add_show(CLI::App* group) {
     // The one validating reader: the manifest, then the drawn shard against its checksums.
     const DatasetSample s = read_sample(a->dir, a->index);
     const Map& map = s.map;
-    write_png(draw_field_panels(
-                  map,
-                  {{s.inputs[0], "input 0: region label", "region label [-]"},
-                   {s.inputs[1], "input 1: signed distance to surfaces", "distance [m]"},
-                   {s.inputs[2], "input 2: distance to the source", "distance [m]"},
-                   {s.targets[0], "target 0: mean concentration", "mean [conc. units]", true},
-                   {s.targets[1], "target 1: std of concentration", "std [conc. units]", true}},
-                  s.source),
-              a->out);
+    write_png(
+        draw_field_panels(
+            map,
+            {{s.inputs[0], "input 0: region label", "region label [-]"},
+             {s.inputs[1], "input 1: signed distance to surfaces", "distance [m]"},
+             {s.inputs[2], "input 2: distance to the source", "distance [m]"},
+             {s.targets[0], "target 0: mean concentration", "mean [concentration units]", true},
+             {s.targets[1], "target 1: std of concentration", "std [concentration units]", true}},
+            s.source),
+        a->out);
     const Report r = show_report(a->out, s);
     report(r.json, r.text);
   });

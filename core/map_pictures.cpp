@@ -122,9 +122,9 @@ Picture draw_plume(const Map& map, const Grid<double>& mean, const Grid<double>&
   std::ostringstream heading;
   heading << (map.name.empty() ? "map" : map.name) << ": " << model << ", source (" << std::fixed
           << std::setprecision(2) << source.x << ", " << source.y << ")";
-  const std::string u = unit.empty() ? "conc. units" : unit;
-  FieldPanel m{free_cells(map, mean), "", "mean concentration [" + u + "]", true};
-  FieldPanel s{free_cells(map, std), "", "std of the concentration [" + u + "]", true};
+  const std::string u = unit.empty() ? "concentration units" : unit;
+  FieldPanel m{free_cells(map, mean), "", "mean [" + u + "]", true};
+  FieldPanel s{free_cells(map, std), "", "std [" + u + "]", true};
   m.title = heading.str() + ": mean concentration, peak " + format_number(largest(m.field));
   const double std_max = largest(s.field);
   s.title = heading.str() + ": std of the concentration, " +

@@ -89,7 +89,7 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
       {LegendEntry::Symbol::Dot, colour_of(hi, 0, hi, cmap), "sample (coloured by its reading)"}};
   for (const LegendEntry& e : run_legend())
     legend.push_back(e);
-  Frame frame{title, ColourBar{0.0, hi, "mean concentration [conc. units]", cmap}, legend, true};
+  Frame frame{title, ColourBar{0.0, hi, "mean [concentration units]", cmap}, legend, true};
   MapCanvas canvas(with_source(map, run.source), options, frame);
   canvas.draw_free_space();
   canvas.draw_field(mean_plume, 0.0, hi, cmap);
