@@ -287,10 +287,14 @@ void RunOptions::set_part(const std::string& k_of_n) {
 
 void use_map_dir(DatasetOptions& o, const fs::path& dir) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) throw OptionError("dataset.map_dir", dir.string() + ": not a directory");
+  if (!fs::is_directory(dir, ec))
+    throw OptionError("dataset.map_dir", dir.string() + ": not a directory");
   std::vector<fs::path> files;
+  // Hidden files are not maps: a `maps random` folder holds its output marker,
+  // .plumekit-output.json.
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".json") files.push_back(e.path());
+    if (e.path().extension() == ".json" && e.path().filename().string()[0] != '.')
+      files.push_back(e.path());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw OptionError("dataset.map_dir", dir.string() + ": no .json maps");
   o.given_maps.clear();

@@ -1,0 +1,145 @@
+// `plume`, `maps random`, `dataset generate|show` and `predict` as issue 15 wants them: the
+// shared flags (positional MAP, --plume-model, --cnn, --map-dir, --seed 1, --threads 0), the old
+// spellings as deprecated aliases that do the same and warn, and errors that name the flag.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "support/cli_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using plumekit::test::slurp;
+
+const fs::path kData = PLUMEKIT_DATA_DIR;
+const std::string kMap = (kData / "maps" / "cluttered-1.json").string();
+const std::string kCnn = (kData / "models" / "plume-unet.pkcnn").string();
+
+using Result = plumekit::test::CliResult;
+class DatasetCli : public plumekit::test::CliTest {
+ protected:
+  std::string at(const std::string& name) const { return (dir / name).string(); }
+  bool same_file(const std::string& a, const std::string& b) const {
+    return slurp(a) == slurp(b) && !slurp(a).empty();
+  }
+};
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST_F(DatasetCli, HelpShowsTheSharedDefaults) {
+  const Result generate = run("dataset generate --help");
+  EXPECT_TRUE(has(generate.out, "--seed UINT=1")) << generate.out;
+  EXPECT_TRUE(has(generate.out, "-j,--threads INT=0")) << generate.out;
+  EXPECT_TRUE(has(generate.out, "--plume-model")) << generate.out;
+  EXPECT_TRUE(has(generate.out, "--map-dir")) << generate.out;
+  EXPECT_FALSE(has(generate.out, "--from-maps")) << "a deprecated alias is hidden";
+  const Result plume = run("plume --help");
+  EXPECT_TRUE(has(plume.out, "--seed UINT=1")) << plume.out;
+  EXPECT_TRUE(has(plume.out, "MAP")) << plume.out;
+  EXPECT_TRUE(has(plume.out, "=filament")) << plume.out;
+  EXPECT_TRUE(has(plume.out, "--release-rate FLOAT=1000")) << plume.out;
+  const Result predict = run("predict --help");
+  EXPECT_TRUE(has(predict.out, "-j,--threads INT=0")) << predict.out;
+  EXPECT_TRUE(has(predict.out, "--cnn")) << predict.out;
+  EXPECT_TRUE(has(predict.out, "[MAP]")) << predict.out;
+  EXPECT_TRUE(has(run("maps random --help").out, "--seed UINT=1"));
+}
+
+// The default seed is 1: a seedless filament plume is the --seed 1 plume, not the --seed 0 one.
+TEST_F(DatasetCli, PlumeDefaultsToSeedOne) {
+  const std::string common = " --source 1,1 --cell 0.1 --out ";
+  ASSERT_EQ(run("plume" + common + at("none")).code, 0);
+  ASSERT_EQ(run("plume --seed 1" + common + at("one")).code, 0);
+  ASSERT_EQ(run("plume --seed 0" + common + at("zero")).code, 0);
+  EXPECT_TRUE(same_file(at("none/mean.npy"), at("one/mean.npy")));
+  EXPECT_FALSE(same_file(at("none/mean.npy"), at("zero/mean.npy")));
+}
+
+TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
+  const std::string common = " --source 1,1 --cell 0.1 --json --out ";
+  const Result now = run("plume " + kMap + " --plume-model advection-diffusion" + common + at("a"));
+  ASSERT_EQ(now.code, 0) << now.err;
+  EXPECT_EQ(nlohmann::json::parse(now.out)["model"], "advection-diffusion");
+  EXPECT_TRUE(now.err.empty()) << now.err;
+  for (const std::string old : {"--model", "--plume"}) {
+    const std::string out = at("old" + old);
+    const Result r = run("plume " + kMap + " " + old + " advection-diffusion" + common + out);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(has(r.err, old + " is deprecated")) << r.err;
+    EXPECT_TRUE(has(r.err, "--plume-model")) << r.err;
+    EXPECT_TRUE(same_file(at("a/mean.npy"), out + "/mean.npy")) << old;
+  }
+  const Result both = run("plume --model filament --plume-model filament" + common + at("b"));
+  EXPECT_EQ(both.code, 2);
+  const Result bad = run("plume --plume-model gaussian" + common + at("c"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_TRUE(has(bad.err, "--plume-model")) << bad.err;
+}
+
+TEST_F(DatasetCli, MapDirAndItsOldSpellingMakeTheSameDataset) {
+  ASSERT_EQ(run("maps random --count 1 --sources 2 --out " + at("maps")).code, 0);
+  const std::string common = " --cell 0.1 --plume-model advection-diffusion --out ";
+  const Result now = run("dataset generate --map-dir " + at("maps") + common + at("new"));
+  ASSERT_EQ(now.code, 0) << now.err;
+  const Result old = run("dataset generate --from-maps " + at("maps") + common + at("old"));
+  ASSERT_EQ(old.code, 0) << old.err;
+  EXPECT_TRUE(has(old.err, "--from-maps is deprecated")) << old.err;
+  EXPECT_TRUE(same_file(at("new/manifest.json"), at("old/manifest.json")));
+  const Result missing = run("dataset generate --map-dir " + at("nowhere") + common + at("x"));
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_TRUE(has(missing.err, "--map-dir")) << missing.err;
+  EXPECT_FALSE(has(missing.err, "dataset.map_dir")) << "the field is shown as its flag";
+}
+
+TEST_F(DatasetCli, ErrorsNameTheFlags) {
+  const Result shard = run("dataset generate --maps 2 --shard 3/2 --out " + at("d"));
+  EXPECT_EQ(shard.code, 2);
+  EXPECT_TRUE(has(shard.err, "--shard")) << shard.err;
+  const Result threads = run("dataset generate --maps 2 --threads -1 --out " + at("d"));
+  EXPECT_EQ(threads.code, 2);
+  EXPECT_TRUE(has(threads.err, "--threads")) << threads.err;
+  const Result count = run("maps random --count 0 --out " + at("m"));
+  EXPECT_EQ(count.code, 2);
+  EXPECT_TRUE(has(count.err, "--count")) << count.err;
+  const Result source = run("plume --source 3.2,1.0 --out " + at("p"));
+  EXPECT_EQ(source.code, 2);
+  EXPECT_TRUE(has(source.err, "--source")) << source.err;
+  EXPECT_FALSE(fs::exists(at("d")) || fs::exists(at("m")) || fs::exists(at("p")));
+}
+
+TEST_F(DatasetCli, ShowReportsTheSampleAndRefusesAnIndexBeyondTheDataset) {
+  ASSERT_EQ(run("dataset generate --maps 1 --sources 2 --cell 0.1 --plume-model "
+                "advection-diffusion --out " + at("d"))
+                .code,
+            0);
+  const Result r = run("dataset show " + at("d") + " --index 1 --json --out " + at("s.png"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["shard"], "shard-00000");
+  EXPECT_EQ(j["row"], 1);
+  EXPECT_EQ(j["inputs_sha256"].get<std::string>().size(), 64u);
+  const Result beyond = run("dataset show " + at("d") + " --index 2 --out " + at("t.png"));
+  EXPECT_EQ(beyond.code, 2);
+  EXPECT_TRUE(has(beyond.err, "--index")) << beyond.err;
+  EXPECT_TRUE(has(beyond.err, "2 samples")) << beyond.err;
+}
+
+TEST_F(DatasetCli, PredictTakesThePositionalMapAndCnnAndTheOldSpellings) {
+  const Result now = run("predict " + kMap + " --cnn " + kCnn + " --source 1,1 --out " + at("a"));
+  ASSERT_EQ(now.code, 0) << now.err;
+  const Result old =
+      run("predict --map " + kMap + " --model " + kCnn + " --source 1,1 -j 2 --out " + at("b"));
+  ASSERT_EQ(old.code, 0) << old.err;
+  EXPECT_TRUE(has(old.err, "--map is deprecated")) << old.err;
+  EXPECT_TRUE(has(old.err, "--model is deprecated")) << old.err;
+  EXPECT_TRUE(same_file(at("a/mean.npy"), at("b/mean.npy")));
+  EXPECT_TRUE(same_file(at("a/std.npy"), at("b/std.npy")));
+}
+
+}  // namespace
