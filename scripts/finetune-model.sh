@@ -24,7 +24,7 @@ mkdir -p "$work" data/models
 ./build/plumekit dataset generate --maps "$maps" --sources 50 --seed 2 --threads "$threads" \
   --families rectangle,two-rectangles,l-shape,u-shape,three-rectangles,shape-and-rectangle \
   --out "$work/dataset"
-./build/plumekit dataset generate --from-maps data/test-maps --threads "$threads" --out "$work/test-truth"
+./build/plumekit dataset generate --map-dir data/test-maps --seed 0 --threads "$threads" --out "$work/test-truth"
 "$python" surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" --init "$base" \
   --out data/models/plume-unet.pkcnn --epochs "$epochs" --lr 3e-4 --lr-schedule cosine --batch 32 \
   --seed 1 --threads "$threads" ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}

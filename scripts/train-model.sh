@@ -24,7 +24,7 @@ python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$work" data/models
 [ -x build/plumekit ] || bash scripts/build.sh
 ./build/plumekit dataset generate --maps "$maps" --sources 100 --seed 1 --threads "$threads" --out "$work/dataset"
-./build/plumekit dataset generate --from-maps data/test-maps --threads "$threads" --out "$work/test-truth"
+./build/plumekit dataset generate --map-dir data/test-maps --seed 0 --threads "$threads" --out "$work/test-truth"
 "$python" surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" \
   --out data/models/plume-unet-base.pkcnn --epochs "$epochs" --lr-schedule cosine --batch 32 --seed 1 \
   --threads "$threads" ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}
