@@ -106,6 +106,11 @@ void TextPainter::put(cv::Mat& image, const std::string& text, cv::Point top_lef
   boxes_.emplace_back(top_left, cv::Size(s.width, s.height + baseline));
 }
 
+void TextPainter::put_on_white(cv::Mat& image, const std::string& text, cv::Point top_left) {
+  cv::rectangle(image, cv::Rect(top_left, size(text)), kBackground, cv::FILLED);
+  put(image, text, top_left);
+}
+
 void TextPainter::put_vertical(cv::Mat& image, const std::string& text, cv::Point top_left) {
   int baseline = 0;
   const cv::Size s = cv::getTextSize(text, kFont, scale_, thickness_, &baseline);
@@ -376,7 +381,7 @@ void MapCanvas::draw_source(Vec2 p, const std::string& label) {
   if (at.x + s.width > arena.br().x - 2) at.x = pixel(p).x - off - s.width;
   at.x = std::clamp(at.x, arena.x + 2, std::max(arena.x + 2, arena.br().x - 2 - s.width));
   at.y = std::clamp(at.y, arena.y + 2, std::max(arena.y + 2, arena.br().y - 2 - s.height));
-  text_.put(image_, label, at);
+  text_.put_on_white(image_, label, at);
 }
 
 void MapCanvas::draw_field(const Grid<double>& field, double lo, double hi, int colormap) {

@@ -47,6 +47,8 @@ class TextPainter {
   // The text with its box's top-left at `top_left`.
   void put(cv::Mat& image, const std::string& text, cv::Point top_left);
   void put(cv::Mat& image, const std::string& text, cv::Point top_left, double scale);
+  // The text on a white box, for labels inside the arena (over a colour map).
+  void put_on_white(cv::Mat& image, const std::string& text, cv::Point top_left);
   // Text read bottom to top (a vertical axis label), its box's top-left at top_left.
   void put_vertical(cv::Mat& image, const std::string& text, cv::Point top_left);
   const std::vector<cv::Rect>& boxes() const { return boxes_; }
