@@ -1,7 +1,5 @@
 // plumekit plan: a collision-free path between two points of a map.
 #include <chrono>
-#include <iomanip>
-#include <sstream>
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
@@ -11,6 +9,7 @@
 #include "core/output_target.hpp"
 #include "planner/free_space.hpp"
 #include "planner/plan_render.hpp"
+#include "planner/plan_report.hpp"
 #include "planner/planner.hpp"
 
 namespace plumekit::cli {
@@ -20,99 +19,65 @@ namespace {
 using nlohmann::ordered_json;
 namespace pl = plumekit::planner;
 
-std::string fmt(Vec2 p) {
-  std::ostringstream s;
-  s << std::setprecision(6) << '(' << p.x << ", " << p.y << ')';
-  return s.str();
-}
-
 }  // namespace
 
 void add_plan_commands(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "plan", "Shortest collision-free path between two points, keeping a margin off obstacles");
   struct Args {
-    std::string map = default_map().string();
-    std::string from, to, planner = "vg", out;
-    double margin = 0.15;
+    std::string map, from, to, out;
+    std::string planner = pl::to_string(pl::PlannerKind::VisibilityGraph);
+    pl::PlannerOptions options;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
+  add_map_argument(cmd, a->map);
   cmd->add_option("--from", a->from, "Start point X,Y in metres")->required();
   cmd->add_option("--to", a->to, "Goal point X,Y in metres")->required();
-  bind_field(
-      cmd,
-      cmd->add_option("--margin", a->margin,
-                      "Clearance from obstacles and walls in metres (robot radius + safety)"),
-      "planner.margin")
+  bind_field(cmd,
+             cmd->add_option("--margin", a->options.margin,
+                             "Clearance from obstacles and walls in metres (robot radius + "
+                             "safety)"),
+             "planner.margin")
       ->capture_default_str();
-  cmd->add_option("--planner", a->planner,
-                  "vg (visibility graph + A*, exact), rrtstar or prmstar (OMPL)")
+  bind_field(cmd,
+             cmd->add_option("--planner", a->planner,
+                             "vg (visibility graph + A*, exact), rrtstar or prmstar (OMPL)"),
+             "planner.kind")
       ->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Also draw the path over the map to this PNG");
   add_common_flags(cmd);
   cmd->callback([a] {
     const Vec2 from = parse_point(a->from, "--from"), to = parse_point(a->to, "--to");
-    if (!std::isfinite(a->margin) || a->margin < 0.0)
-      throw InputError("--margin: must be a number >= 0 (metres), got " +
-                       std::to_string(a->margin));
-    pl::PlannerKind kind;
-    try {
-      kind = pl::parse_planner_kind(a->planner);
-    } catch (const InputError&) {
-      throw InputError("--planner: unknown planner '" + a->planner +
-                       "' (use vg, rrtstar or prmstar)");
-    }
+    const pl::PlannerKind kind = pl::parse_planner_kind(a->planner);
+    a->options.validate();
     const Map map = read_map(a->map);
     if (!a->out.empty()) check_output_file(a->out, {a->map});
-    pl::PlannerOptions options;
-    options.margin = a->margin;
 
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    const auto planner = pl::make_planner(map, options, kind);
+    const auto planner = pl::make_planner(map, a->options, kind);
     const auto t1 = Clock::now();
     const pl::PlanResult r = planner->plan(from, to);
     const auto t2 = Clock::now();
-    const double build_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    const double query_us = std::chrono::duration<double, std::micro>(t2 - t1).count();
+    const pl::PlanTiming timing{std::chrono::duration<double, std::milli>(t1 - t0).count(),
+                                std::chrono::duration<double, std::micro>(t2 - t1).count()};
 
     if (!a->out.empty()) {
-      const pl::FreeSpace space(map, options.margin, options.arc_segments);
+      const pl::FreeSpace space(map, a->options.margin, a->options.arc_segments);
       write_png(pl::draw_plan(map, space, r, pl::to_string(kind)), a->out);
     }
-
-    ordered_json path = ordered_json::array();
-    for (Vec2 v : r.path)
-      path.push_back(point_json(v));
-    ordered_json j{{"ok", true},
-                   {"map", a->map},
-                   {"planner", pl::to_string(kind)},
-                   {"margin", a->margin},
-                   {"from", point_json(from)},
-                   {"to", point_json(to)},
-                   {"start", point_json(r.start)},
-                   {"goal", point_json(r.goal)},
-                   {"start_moved", r.start_moved},
-                   {"goal_moved", r.goal_moved},
-                   {"path", path},
-                   {"length_m", r.length},
-                   {"build_ms", build_ms},
-                   {"query_us", query_us}};
-    if (!a->out.empty()) j["out"] = a->out;
-
-    std::ostringstream human;
-    human << pl::to_string(kind) << " path from " << fmt(from) << " to " << fmt(to) << ", margin "
-          << a->margin << " m: " << r.path.size() << " vertices, length " << std::setprecision(6)
-          << r.length << " m\n";
-    for (Vec2 v : r.path)
-      human << "  " << fmt(v) << '\n';
-    if (r.start_moved)
-      human << "start moved to " << fmt(r.start) << " (it was within the margin)\n";
-    if (r.goal_moved) human << "goal moved to " << fmt(r.goal) << " (it was within the margin)\n";
-    human << "built in " << std::setprecision(3) << build_ms << " ms, query " << query_us << " us";
-    if (!a->out.empty()) human << "\nwrote " << a->out;
-    report(j, human.str());
+    Report rep = pl::plan_report(r, kind, a->options, from, to, timing);
+    ordered_json j{{"ok", true}, {"map", a->map}};
+    j.update(rep.json);
+    if (r.start_moved) {
+      add_moved_start(j, r.requested_start, r.start);
+      rep.text += "\n" + moved_start_text(r.requested_start, r.start);
+    }
+    if (!a->out.empty()) {
+      j["out"] = a->out;
+      rep.text += "\nwrote " + a->out;
+    }
+    report(j, rep.text);
   });
 }
 

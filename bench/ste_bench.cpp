@@ -88,12 +88,11 @@ int main(int argc, char** argv) {
                                    ste::PlumeModelKind::Gaussian}) {
     ste::SteOptions o;
     o.model = kind;
-    o.likelihood = ste::default_likelihood(kind);
-    o.model_path = model.string();
-    o.table_threads = 2;
+    o.model_path = model.string();  // the likelihood follows the model (ste::default_likelihood)
+    o.threads = 2;
     const ste::Scenario sc(map, o);
     std::printf("%-9s median compute per decision step %.2f ms CPU (%d runs; model build %.2f s)\n",
-                ste::to_string(kind), 1000 * step_median(sc, runs), runs, sc.model_seconds());
+                ste::to_string(kind), 1000 * step_median(sc, runs), runs, sc.model_build_s());
   }
 
   // The baseline: no table, the CNN run for every candidate source at each step
@@ -108,7 +107,6 @@ int main(int argc, char** argv) {
   const double per_pass = (process_cpu() - c0) / batch.size();  // CPU: load-independent
   ste::SteOptions o;
   o.model = ste::PlumeModelKind::Surrogate;
-  o.likelihood = ste::default_likelihood(o.model);
   o.model_path = model.string();
   const ste::Scenario sc(map, o);
   const double with_table = step_median(sc, runs);

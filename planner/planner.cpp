@@ -22,7 +22,7 @@ const char* to_string(PlannerKind kind) {
 PlannerKind parse_planner_kind(const std::string& name) {
   for (PlannerKind k : {PlannerKind::VisibilityGraph, PlannerKind::RRTstar, PlannerKind::PRMstar})
     if (name == to_string(k)) return k;
-  throw InputError("planner: unknown planner '" + name + "' (use vg, rrtstar or prmstar)");
+  throw OptionError("planner.kind", "unknown planner '" + name + "' (use vg, rrtstar or prmstar)");
 }
 
 void PlannerOptions::validate() const {

@@ -1,24 +1,62 @@
 #include "ste/evaluation.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <iomanip>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 
 namespace plumekit::ste {
 
 namespace {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+using Clock = std::chrono::steady_clock;
+
+int sources_evaluated(const Map& map, const EvaluationOptions& o) {
+  const int all = static_cast<int>(map.sources.size());
+  return o.source_count > 0 ? std::min(o.source_count, all) : all;
+}
+
+// The records of one map, in run order (source-major), before they are run.
+std::vector<RunRecord> planned_runs(const Map& map, int map_index, const EvaluationOptions& o) {
+  const int n_src = sources_evaluated(map, o);
+  std::vector<RunRecord> records(static_cast<std::size_t>(n_src) * o.runs);
+  for (int s = 0; s < n_src; ++s)
+    for (int r = 0; r < o.runs; ++r) {
+      RunRecord& rec = records[static_cast<std::size_t>(s) * o.runs + r];
+      rec.map = map.name;
+      rec.map_index = map_index;
+      rec.source_index = s;
+      rec.run = r;
+      rec.source = map.sources[s];
+    }
+  return records;
+}
+
+// One run from its seeded random start; its record's summary columns filled in.
+void run_one(const Scenario& scenario, std::uint64_t seed, RunRecord& rec) {
+  const std::uint64_t s = run_seed(seed, rec.map_index, rec.source_index, rec.run);
+  rec.start = scenario.random_start(rec.source, stream_seed(s, SteStream::Start));
+  rec.result = scenario.run(rec.source, rec.start, s);
+  const LocalizationResult& r = rec.result;
+  rec.estimate = r.estimate;
+  rec.error_m = norm(r.estimate - rec.source);
+  rec.samples = r.samples;
+  rec.distance_m = r.distance_m;
+  rec.mission_s = r.time_s;
+  rec.compute_s = r.compute_s;
+  rec.median_step_s = r.median_step_s;
+  rec.stopped_by = r.stopped_by;
+}
+
+std::vector<const RunRecord*> pointers(const std::vector<RunRecord>& records) {
+  std::vector<const RunRecord*> p;
+  for (const RunRecord& r : records)
+    p.push_back(&r);
+  return p;
 }
 
 }  // namespace
@@ -55,90 +93,41 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
                           const std::function<void(int, int)>& progress,
                           const AfterMap& after_map) {
   o.validate();
-  using Clock = std::chrono::steady_clock;
   const auto t_all = Clock::now();
-  EvaluationResult result;
   int total = 0;
   for (const Map& m : maps) {
     if (m.sources.empty())
       throw InputError("map " + m.name + " has no ground-truth \"sources\" to evaluate on");
-    const int k = o.sources > 0 ? std::min<int>(o.sources, m.sources.size()) : m.sources.size();
-    total += k * o.runs;
+    total += sources_evaluated(m, o) * o.runs;
   }
+  SteOptions ste = o.ste;
+  ste.threads = o.threads;  // the table build uses the evaluation's threads
+  ThreadPool pool(o.threads);
+  EvaluationResult result;
   int done = 0;
   std::mutex lock;
   for (std::size_t mi = 0; mi < maps.size(); ++mi) {
-    const Map& map = maps[mi];
     const auto t_map = Clock::now();
-    const Scenario scenario(map, o.ste);
-    const int n_src =
-        o.sources > 0 ? std::min<int>(o.sources, map.sources.size()) : map.sources.size();
-    std::vector<RunRecord> records(static_cast<std::size_t>(n_src) * o.runs);
-    for (int s = 0; s < n_src; ++s)
-      for (int r = 0; r < o.runs; ++r) {
-        RunRecord& rec = records[static_cast<std::size_t>(s) * o.runs + r];
-        rec.map = map.name;
-        rec.map_index = static_cast<int>(mi);
-        rec.source_index = s;
-        rec.run = r;
-        rec.source = map.sources[s];
-      }
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    auto worker = [&] {
-      for (;;) {
-        const std::size_t k = next++;
-        if (k >= records.size()) return;
-        RunRecord& rec = records[k];
-        try {
-          const std::uint64_t seed = run_seed(o.seed, mi, rec.source_index, rec.run);
-          rec.start = scenario.random_start(rec.source, seed ^ 0xA5A5);
-          rec.result = scenario.run(rec.source, rec.start, seed);
-        } catch (...) {
-          std::lock_guard<std::mutex> g(lock);
-          if (!failure) failure = std::current_exception();
-          next = records.size();
-          return;
-        }
-        const LocalizationResult& r = rec.result;
-        rec.estimate = r.estimate;
-        rec.error_m = norm(r.estimate - rec.source);
-        rec.samples = r.samples;
-        rec.distance_m = r.distance_m;
-        rec.mission_s = r.time_s;
-        rec.compute_s = r.compute_s;
-        rec.median_step_s = r.median_step_s;
-        rec.stopped_by = r.stopped_by;
-        std::lock_guard<std::mutex> g(lock);
-        ++done;
-        if (progress) progress(done, total);
-      }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 0; t < o.threads; ++t)
-      pool.emplace_back(worker);
-    for (std::thread& t : pool)
-      t.join();
-    if (failure) std::rethrow_exception(failure);
-
+    const Scenario scenario(maps[mi], ste);
+    std::vector<RunRecord> records = planned_runs(maps[mi], static_cast<int>(mi), o);
+    pool.parallel_for(records.size(), [&](std::size_t k) {
+      run_one(scenario, o.seed, records[k]);
+      std::lock_guard<std::mutex> g(lock);
+      ++done;
+      if (progress) progress(done, total);
+    });
     MapReport report;
-    report.name = map.name;
-    report.wind_s = scenario.wind_seconds();
-    report.table_build_s = scenario.model_seconds();
-    std::vector<const RunRecord*> ptrs;
-    for (const RunRecord& r : records)
-      ptrs.push_back(&r);
-    report.stats = summarise(ptrs);
+    report.name = maps[mi].name;
+    report.wind_s = scenario.wind_s();
+    report.table_build_s = scenario.model_build_s();
+    report.stats = summarise(pointers(records));
     report.wall_s = std::chrono::duration<double>(Clock::now() - t_map).count();
     result.maps.push_back(report);
     if (after_map) after_map(scenario, records);
     for (RunRecord& r : records)
       result.runs.push_back(std::move(r));
   }
-  std::vector<const RunRecord*> all;
-  for (const RunRecord& r : result.runs)
-    all.push_back(&r);
-  result.overall = summarise(all);
+  result.overall = summarise(pointers(result.runs));
   result.wall_s = std::chrono::duration<double>(Clock::now() - t_all).count();
   return result;
 }

@@ -10,16 +10,20 @@
 #include <vector>
 
 #include "core/map.hpp"
+#include "core/seed.hpp"
+#include "core/thread_pool.hpp"
 #include "ste/scenario.hpp"
 
 namespace plumekit::ste {
 
 struct EvaluationOptions {
   SteOptions ste;
-  int runs = 3;
-  std::uint64_t seed = 1;
-  int threads = 2;
-  int sources = 0;  // 0: all of each map's sources; K: the first K (a labelled subset)
+  int runs = 3;  // per source, from seeded random free starts
+  std::uint64_t seed = kDefaultSeed;
+  // Runs in parallel, and the threads of each map's surrogate table build (it replaces
+  // ste.threads); 0: one per core. Results do not depend on it.
+  int threads = kDefaultThreads;
+  int source_count = 0;  // 0: all of each map's sources; K: the first K (a labelled subset)
   // The run counts and ste.validate(); evaluate() calls it before any work.
   void validate() const;
 };

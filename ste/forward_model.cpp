@@ -1,4 +1,4 @@
-#include "ste/plume_model.hpp"
+#include "ste/forward_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 namespace plumekit::ste {
 
-double PlumeModel::predict_at(const double* params, Vec2 p) const {
+double ForwardModel::predict_at(const double* params, Vec2 p) const {
   return predict(std::vector<double>(params, params + parameters().size()), {p})[0];
 }
 
@@ -22,7 +22,7 @@ std::vector<double> SourceTableModel::predict(const std::vector<double>& params,
 }
 
 int SourceTableModel::nearest_allowed(Vec2 p) const {
-  const GridShape& g = sources();
+  const GridShape& g = candidates();
   const std::vector<std::uint8_t>& ok = allowed();
   const int ci = std::clamp(static_cast<int>(p.x / g.dx()), 0, g.nx - 1);
   const int cj = std::clamp(static_cast<int>(p.y / g.dy()), 0, g.ny - 1);

@@ -1,6 +1,6 @@
 #pragma once
-// One interface for every plume model STE can estimate with: the predicted
-// mean concentration at a set of points for one parameter vector. The first
+// The forward model: one interface for every plume model STE can estimate with,
+// the predicted mean concentration at a set of points for one parameter vector. The first
 // two parameters are always the source's x and y (metres).
 //
 // Models whose only free quantity besides the source position is the release
@@ -22,9 +22,9 @@ struct Parameter {
   double lo = 0.0, hi = 0.0;  // the uniform prior's bounds
 };
 
-class PlumeModel {
+class ForwardModel {
  public:
-  virtual ~PlumeModel() = default;
+  virtual ~ForwardModel() = default;
   virtual std::string name() const = 0;
   // Layout and prior bounds of the parameter vector; [0], [1] are x, y.
   virtual const std::vector<Parameter>& parameters() const = 0;
@@ -38,14 +38,14 @@ class PlumeModel {
 // Parameters {x, y, release_scale}: the concentration is release_scale times
 // the unit-release prediction of a source at (x, y), which is tabulated on a
 // grid of source cells.
-class SourceTableModel : public PlumeModel {
+class SourceTableModel : public ForwardModel {
  public:
   // The candidate source cells; a source is only possible at allowed cells
   // (free cell centres): the prior is zero inside obstacles.
-  virtual const GridShape& sources() const = 0;
+  virtual const GridShape& candidates() const = 0;
   virtual const std::vector<std::uint8_t>& allowed() const = 0;
   // What a sensor at `p` reads, at release scale 1, for a source at each cell
-  // of sources() (0 at cells that are not allowed). Thread-safe.
+  // of candidates() (0 at cells that are not allowed). Thread-safe.
   virtual std::vector<double> readings_at(Vec2 p) const = 0;
   // Whether the model also predicts how much the readings scatter (their std), and that std at
   // `p`, at release scale 1, per cell like readings_at (empty when the model has none).

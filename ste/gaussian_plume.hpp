@@ -7,7 +7,7 @@
 // with d the downwind and c the crosswind distance from the source. The wind
 // blows straight in from the inlet (its inward normal), at the inlet's mean
 // speed u; obstacles are ignored. Parameters {x, y, Q, a, b}.
-#include "ste/plume_model.hpp"
+#include "ste/forward_model.hpp"
 
 namespace plumekit::ste {
 
@@ -21,7 +21,7 @@ struct GaussianPlumeBounds {
   void validate() const;
 };
 
-class GaussianPlume final : public PlumeModel {
+class GaussianPlume final : public ForwardModel {
  public:
   explicit GaussianPlume(const Map& map, const GaussianPlumeBounds& bounds = {});
   std::string name() const override { return "gaussian"; }

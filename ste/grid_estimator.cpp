@@ -69,13 +69,13 @@ GridEstimator::GridEstimator(const SourceTableModel& model, const LikelihoodOpti
                       "must be 0 here: the " + model.name() +
                           " model predicts no std of the readings (only the surrogate does)");
   for (std::vector<double>* v : {&sums_.a, &sums_.b, &sums_.c, &sums_.h})
-    v->assign(model.sources().size(), 0.0);
+    v->assign(model.candidates().size(), 0.0);
   // The largest entropy: every bin holding an allowed cell equally likely.
-  Grid<double> uniform(model.sources(), 0.0);
+  Grid<double> uniform(model.candidates(), 0.0);
   for (std::size_t k = 0; k < uniform.values.size(); ++k)
     uniform.values[k] = model.allowed()[k];
   std::vector<std::uint8_t> reached(bins.size(), 0);
-  const GridShape& g = model.sources();
+  const GridShape& g = model.candidates();
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i)
       if (model.allowed()[g.index(i, j)]) {
@@ -137,7 +137,7 @@ std::vector<double> GridEstimator::log_weights(const Sums& sums) const {
 
 Posterior GridEstimator::posterior() {
   const std::vector<double> l = log_weights(sums_);
-  const GridShape& g = model_.sources();
+  const GridShape& g = model_.candidates();
   Posterior post;
   post.marginal = Grid<double>(g, 0.0);
   double ex = 0.0, ey = 0.0, es = 0.0, best = -kInf;

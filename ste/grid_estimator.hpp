@@ -14,7 +14,7 @@
 // closed form over its uniform prior [lo, hi] (a Gaussian integral: erf).
 #include <vector>
 
-#include "ste/plume_model.hpp"
+#include "ste/forward_model.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::ste {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/random.hpp"
 
 namespace plumekit::ste {
 
@@ -12,7 +13,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 }
 
-MhEstimator::MhEstimator(const PlumeModel& model, const Map& map,
+MhEstimator::MhEstimator(const ForwardModel& model, const Map& map,
                          const LikelihoodOptions& likelihood, const GridShape& bins,
                          const MhOptions& options, std::uint64_t seed)
     : model_(model),
@@ -30,9 +31,10 @@ MhEstimator::MhEstimator(const PlumeModel& model, const Map& map,
   // Start at the middle of every range, moved to a free point for (x, y).
   for (const Parameter& p : model.parameters())
     state_.push_back(0.5 * (p.lo + p.hi));
-  std::uniform_real_distribution<double> ux(0.0, map.width), uy(0.0, map.height);
-  for (int t = 0; t < 10000 && !map.is_free({state_[0], state_[1]}); ++t)
-    state_[0] = ux(rng_), state_[1] = uy(rng_);
+  for (int t = 0; t < 10000 && !map.is_free({state_[0], state_[1]}); ++t) {
+    state_[0] = uniform(rng_, 0.0, map.width);
+    state_[1] = uniform(rng_, 0.0, map.height);
+  }
   // The bins a free point reaches (probed on a 5 cm lattice).
   std::vector<std::uint8_t> reached(bins.size(), 0);
   for (double y = 0.025; y < map.height; y += 0.05)
@@ -65,8 +67,7 @@ double MhEstimator::log_posterior(const std::vector<double>& m) const {
 
 Posterior MhEstimator::posterior() {
   const std::vector<Parameter>& ps = model_.parameters();
-  std::normal_distribution<double> normal(0.0, 1.0);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  NormalSampler normal;  // a fresh pair per chain, as the committed results were drawn
   double lp = log_posterior(state_);
   std::vector<double> proposal(state_.size()), best_state = state_;
   double best = lp;
@@ -76,7 +77,7 @@ Posterior MhEstimator::posterior() {
     for (std::size_t k = 0; k < state_.size(); ++k)
       proposal[k] = state_[k] + options_.proposal * (ps[k].hi - ps[k].lo) * normal(rng_);
     const double lq = log_posterior(proposal);
-    if (lq > -kInf && std::log(uniform(rng_)) < lq - lp) {
+    if (lq > -kInf && std::log(uniform01(rng_)) < lq - lp) {
       state_ = proposal;
       lp = lq;
       ++accepted;

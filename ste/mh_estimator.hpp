@@ -1,5 +1,5 @@
 #pragma once
-// Metropolis-Hastings over any PlumeModel's parameters (thesis section 7.2):
+// Metropolis-Hastings over any ForwardModel's parameters (thesis section 7.2):
 // a Gaussian random-walk proposal, the chain's states binned on the (x, y)
 // grid. Each posterior() continues the chain from where it stopped, with the
 // samples added since, for `iterations` steps, and summarises the states after
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "ste/plume_model.hpp"
+#include "ste/forward_model.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::ste {
@@ -25,7 +25,7 @@ struct MhOptions {
 
 class MhEstimator final : public Estimator {
  public:
-  MhEstimator(const PlumeModel& model, const Map& map, const LikelihoodOptions& likelihood,
+  MhEstimator(const ForwardModel& model, const Map& map, const LikelihoodOptions& likelihood,
               const GridShape& bins, const MhOptions& options, std::uint64_t seed);
   void add(Vec2 p, double value) override;
   int samples() const override { return static_cast<int>(points_.size()); }
@@ -37,7 +37,7 @@ class MhEstimator final : public Estimator {
   double log_posterior(const std::vector<double>& m) const;
   int bin_of(double x, double y) const;
 
-  const PlumeModel& model_;
+  const ForwardModel& model_;
   const Map& map_;
   LikelihoodOptions likelihood_;
   GridShape bins_;

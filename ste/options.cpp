@@ -3,11 +3,13 @@
 // simulated world and the physics model's advection-diffusion check their own
 // fields ("plume.*", dataset/).
 #include <cmath>
+#include <filesystem>
 
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "ste/evaluation.hpp"
 #include "ste/scenario.hpp"
+#include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
 
@@ -54,7 +56,7 @@ void StopOptions::validate() const {
 void WorldOptions::validate() const {
   filament.validate();
   check_positive("ste.world.speed", speed, 100.0, "m/s", "the default is 0.5 m/s");
-  check_positive("ste.world.sample_seconds", sample_seconds, 3600.0, "s", "the thesis uses 5 s");
+  check_positive("ste.world.sample_s", sample_s, 3600.0, "s", "the thesis uses 5 s");
   check_positive("ste.world.sample_rate", sample_rate, 1000.0, "Hz", "the thesis uses 10 Hz");
   check_non_negative("ste.world.noise", noise, 1e9, "concentration units",
                      "0 means a noise-free sensor");
@@ -76,26 +78,75 @@ void GaussianPlumeBounds::validate() const {
   check_range("ste.gaussian.b_max", b_max, b_min, 100.0, "m", "it must be at least b_min");
 }
 
+LikelihoodOptions SteOptions::likelihood_options() const {
+  LikelihoodOptions l = default_likelihood(model);
+  l.sigma_m = likelihood.sigma_m.value_or(l.sigma_m);
+  l.sigma_d = likelihood.sigma_d;
+  l.sigma_rel = likelihood.sigma_rel;
+  l.sigma_std = likelihood.sigma_std.value_or(l.sigma_std);
+  return l;
+}
+
+double SteOptions::source_cell_in_use() const {
+  switch (model) {
+    case PlumeModelKind::Surrogate:
+      return source_cell.value_or(SurrogatePlumeOptions{}.source_cell);
+    case PlumeModelKind::Physics:
+      return source_cell.value_or(physics.source_cell);
+    case PlumeModelKind::Gaussian:
+      break;
+  }
+  return 0.0;
+}
+
 void SteOptions::validate() const {
-  likelihood.validate();
+  likelihood_options().validate();
+  if (likelihood.sigma_std && *likelihood.sigma_std != 0.0 && model != PlumeModelKind::Surrogate)
+    throw OptionError("ste.likelihood.sigma_std",
+                      "only the surrogate predicts the std of the readings; leave it unset for "
+                      "the " +
+                          std::string(to_string(model)) + " plume model");
   bins.validate();
   mh.validate();
   navigation.validate();
   stop.validate();
   world.validate();
+  flow.validate();
   physics.validate();
   gaussian.validate();
+  if (source_cell) {
+    if (model == PlumeModelKind::Gaussian)
+      throw OptionError("ste.source_cell",
+                        "only the surrogate and physics models have a source grid (the Gaussian "
+                        "plume's MH runs on the bins); leave it unset");
+    check_positive("ste.source_cell", *source_cell, 10.0, "m",
+                   "the defaults are 0.2 m (surrogate) and 0.1 m (physics)");
+  }
   check_non_negative("ste.margin", margin, 10.0, "m", "the thesis's clearance is 0.15 m");
-  check_positive("ste.surrogate_cell", surrogate_cell, 10.0, "m", "the default is 0.2 m");
-  check_count("ste.table_threads", table_threads, 1, 1024);
+  check_count("ste.threads", threads, 0, 1024, "0 means one per core");
   check_non_negative("ste.min_start_distance", min_start_distance, 1000.0, "m",
                      "the default is 1 m");
+  if (model == PlumeModelKind::Surrogate) check_model_file();
+}
+
+void SteOptions::check_model_file() const {
+  if (model_path.empty())
+    throw OptionError("ste.model_path",
+                      "the surrogate plume model needs a CNN model file; name one, or use "
+                      "ste.model physics or gaussian");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(model_path, ec))
+    throw OptionError("ste.model_path",
+                      model_path +
+                          " not found (train one, see surrogate/README.md, or use "
+                          "ste.model physics or gaussian)");
 }
 
 void EvaluationOptions::validate() const {
   check_count("evaluation.runs", runs, 1, 1'000'000, "the default is 3");
-  check_count("evaluation.threads", threads, 1, 1024);
-  check_count("evaluation.sources", sources, 0, 1'000'000, "0 means all of each map's sources");
+  check_count("evaluation.threads", threads, 0, 1024, "0 means one per core");
+  check_count("evaluation.source_count", source_count, 0, 1'000'000,
+              "0 means all of each map's sources");
   ste.validate();
 }
 

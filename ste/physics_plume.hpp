@@ -7,8 +7,9 @@
 #include <memory>
 
 #include "cfd/wind_field.hpp"
+#include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
-#include "ste/plume_model.hpp"
+#include "ste/forward_model.hpp"
 
 namespace plumekit::ste {
 
@@ -30,17 +31,17 @@ class PhysicsPlume final : public SourceTableModel {
   PhysicsPlume(const Map& map, const cfd::WindField& wind, const PhysicsPlumeOptions& options = {});
   std::string name() const override { return "physics"; }
   const std::vector<Parameter>& parameters() const override { return parameters_; }
-  const GridShape& sources() const override { return sources_; }
+  const GridShape& candidates() const override { return candidates_; }
   const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
   std::vector<double> readings_at(Vec2 p) const override;
   const dataset::AdvectionDiffusion& operator_() const { return *ad_; }
 
  private:
   std::vector<Parameter> parameters_;
-  GridShape sources_;
+  GridShape candidates_;
   std::vector<std::uint8_t> allowed_;
   std::unique_ptr<dataset::AdvectionDiffusion> ad_;
-  std::unique_ptr<dataset::Resampler> resampler_;  // flow grid -> source cells, built once
+  std::unique_ptr<GridResampler> resampler_;  // flow grid -> source cells, built once
 };
 
 }  // namespace plumekit::ste

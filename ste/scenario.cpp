@@ -2,15 +2,15 @@
 
 #include <chrono>
 #include <cmath>
-#include <random>
 #include <string>
 
 #include "cfd/flow_policy.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
-#include "dataset/seed.hpp"
+#include "core/random.hpp"
 #include "ste/grid_estimator.hpp"
+#include "ste/seeds.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
@@ -20,22 +20,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-
-// STE solves the wind at the flow defaults, which no STE option changes, so a
-// fault of the flow's cell size is the map's: say so instead of naming a
-// setting the STE commands do not have.
-cfd::WindField solve_wind(const Map& map) {
-  const cfd::FlowOptions fo;
-  try {
-    return cfd::solve_wind(map, fo).flow.wind;  // the flow policy
-  } catch (const OptionError& e) {
-    if (e.field() != "flow.cell") throw;
-    throw InputError("map " + map.name + ": STE solves the wind on cells of " + compact(fo.cell) +
-                     " m, and on that grid " + e.message() +
-                     " (STE cannot change its flow cell: edit the map, or check it with the flow "
-                     "command at a finer cell)");
-  }
 }
 
 // Bytes per candidate source cell: the estimators' sums and likelihoods and
@@ -56,6 +40,33 @@ void check_source_grid(const Map& map, double cell, const std::string& field,
   check_memory(cells * bytes_per_cell,
                "the source grid of " + compact(cells) + " cells of " + compact(cell) + " m",
                "use a larger " + field + " (" + fit + " m fits)");
+}
+
+// The plume model of `options.model` on `map`; `from_cache` says whether a surrogate table came
+// from its cache.
+std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& wind,
+                                         const SteOptions& options, bool& from_cache) {
+  switch (options.model) {
+    case PlumeModelKind::Gaussian:
+      return std::make_unique<GaussianPlume>(map, options.gaussian);
+    case PlumeModelKind::Physics: {
+      PhysicsPlumeOptions po = options.physics;
+      po.source_cell = options.source_cell_in_use();
+      return std::make_unique<PhysicsPlume>(map, wind, po);
+    }
+    case PlumeModelKind::Surrogate:
+      break;
+  }
+  SurrogatePlumeOptions so;
+  so.model = options.model_path;
+  so.source_cell = options.source_cell_in_use();
+  so.threads = options.threads;
+  so.cache_dir = options.table_cache;
+  so.scale_lo = options.physics.scale_lo;
+  so.scale_hi = options.physics.scale_hi;
+  auto m = std::make_unique<SurrogatePlume>(map, so);
+  from_cache = m->from_cache();
+  return m;
 }
 
 }  // namespace
@@ -89,46 +100,29 @@ PlumeModelKind parse_plume_model_kind(const std::string& name) {
                     "unknown plume model '" + name + "'; use surrogate, gaussian or physics");
 }
 
-std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t source,
-                       std::uint64_t run) {
-  using dataset::splitmix64;
-  return splitmix64(splitmix64(splitmix64(splitmix64(seed) ^ map) ^ source) ^ (run + 0x57E));
+const char* to_string(NavigationOptions::Reward reward) {
+  return reward == NavigationOptions::Reward::Kl ? "kl" : "expected";
+}
+
+NavigationOptions::Reward parse_reward(const std::string& name) {
+  if (name == "kl") return NavigationOptions::Reward::Kl;
+  if (name == "expected") return NavigationOptions::Reward::ExpectedGain;
+  throw OptionError("ste.navigation.reward", "unknown reward '" + name + "' (kl or expected)");
 }
 
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
   options.validate();
   if (options.model == PlumeModelKind::Physics)
-    check_source_grid(map_, options.physics.source_cell, "ste.physics.source_cell",
-                      kBytesPerSourceCell);
+    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell", kBytesPerSourceCell);
   if (options.model == PlumeModelKind::Surrogate)
-    check_source_grid(map_, options.surrogate_cell, "ste.surrogate_cell",
+    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
-  wind_ = solve_wind(map_);
-  wind_seconds_ = since(t0);
+  wind_ = cfd::solve_wind(map_, options.flow).flow.wind;  // the flow policy
+  wind_s_ = since(t0);
   t0 = Clock::now();
-  switch (options.model) {
-    case PlumeModelKind::Gaussian:
-      model_ = std::make_unique<GaussianPlume>(map_, options.gaussian);
-      break;
-    case PlumeModelKind::Physics:
-      model_ = std::make_unique<PhysicsPlume>(map_, wind_, options.physics);
-      break;
-    case PlumeModelKind::Surrogate: {
-      SurrogatePlumeOptions so;
-      so.model = options.model_path;
-      so.source_cell = options.surrogate_cell;
-      so.threads = options.table_threads;
-      so.cache_dir = options.table_cache;
-      so.scale_lo = options.physics.scale_lo;
-      so.scale_hi = options.physics.scale_hi;
-      auto m = std::make_unique<SurrogatePlume>(map_, so);
-      table_from_cache_ = m->from_cache();
-      model_ = std::move(m);
-      break;
-    }
-  }
-  model_seconds_ = since(t0);
+  model_ = make_model(map_, wind_, options, table_from_cache_);
+  model_build_s_ = since(t0);
   planner::PlannerOptions po;
   po.margin = options.margin;
   planner_ = planner::make_planner(map_, po);
@@ -167,9 +161,9 @@ Vec2 Scenario::check_start(Vec2 start) const {
 Vec2 Scenario::random_start(Vec2 source, std::uint64_t seed) const {
   const int region = space_->region_of(space_->nearest_free(source));
   std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> ux(0.0, map_.width), uy(0.0, map_.height);
   for (int attempt = 0; attempt < 100000; ++attempt) {
-    const Vec2 p{ux(rng), uy(rng)};
+    const double x = uniform(rng, 0.0, map_.width);  // x first: the committed starts' order
+    const Vec2 p{x, uniform(rng, 0.0, map_.height)};
     if (norm(p - source) < options_.min_start_distance) continue;
     if (space_->contains(p) && space_->region_of(p) == region) return p;
   }
@@ -182,10 +176,11 @@ LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) co
   start = check_start(start);
   std::unique_ptr<Estimator> estimator;
   if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get()))
-    estimator = std::make_unique<GridEstimator>(*table, options_.likelihood, bins_);
+    estimator = std::make_unique<GridEstimator>(*table, options_.likelihood_options(), bins_);
   else
-    estimator = std::make_unique<MhEstimator>(*model_, map_, options_.likelihood, bins_,
-                                              options_.mh, dataset::splitmix64(seed ^ 0x3C));
+    estimator =
+        std::make_unique<MhEstimator>(*model_, map_, options_.likelihood_options(), bins_,
+                                      options_.mh, splitmix64(stream_seed(seed, SteStream::Mh)));
   SimulatedWorld world(map_, wind_, source, options_.world, seed);
   return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);
 }

@@ -4,17 +4,21 @@
 // its free space. A run adds its own estimator, world and start.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "cfd/options.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/map.hpp"
+#include "core/thread_pool.hpp"
 #include "planner/free_space.hpp"
 #include "planner/planner.hpp"
+#include "ste/forward_model.hpp"
 #include "ste/gaussian_plume.hpp"
 #include "ste/localizer.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/physics_plume.hpp"
-#include "ste/plume_model.hpp"
+#include "ste/seeds.hpp"
 #include "ste/world.hpp"
 
 namespace plumekit::ste {
@@ -31,33 +35,60 @@ PlumeModelKind parse_plume_model_kind(const std::string& name);
 // held-out random maps (ste/README.md).
 LikelihoodOptions default_likelihood(PlumeModelKind kind);
 
+// The likelihood's settings in SteOptions. sigma_m and sigma_std follow the plume model
+// unless set (default_likelihood): the same number cannot suit a CNN and an exact model.
+struct SteLikelihood {
+  std::optional<double> sigma_m;  // unset: 200 for the surrogate, 30 for gaussian and physics
+  double sigma_d = 0.0;
+  double sigma_rel = 0.0;
+  std::optional<double> sigma_std;  // unset: 2 for the surrogate, 0 otherwise (surrogate only)
+};
+
+// Every option of a localization, with its default (ste/README.md, "Options"). The default plume
+// model is the surrogate; its CNN file (model_path) has no default here, since where the shipped
+// model lies is the CLI's to say (it fills in data/models/plume-unet.pkcnn).
 struct SteOptions {
-  PlumeModelKind model = PlumeModelKind::Physics;
-  LikelihoodOptions likelihood;
+  PlumeModelKind model = PlumeModelKind::Surrogate;
+  std::string model_path;  // the surrogate's CNN file (plumekit-cnn)
+  SteLikelihood likelihood;
   BinOptions bins;
   MhOptions mh;
   NavigationOptions navigation;
   StopOptions stop;
   WorldOptions world;
-  // Also holds the release-scale prior [scale_lo, scale_hi] of the surrogate.
+  // The wind every run of a map shares (the flow's defaults: 5 cm cells).
+  cfd::FlowOptions flow;
+  // The diffusivity of the physics model, and the release-scale prior [scale_lo, scale_hi] of
+  // the surrogate and physics models. Its source_cell is the physics default of `source_cell`.
   PhysicsPlumeOptions physics;
   GaussianPlumeBounds gaussian;
-  double margin = 0.15;  // m, the planner's clearance (thesis 14.3.1)
-  // Surrogate: the model file, the candidate source cell (m), an optional
-  // table cache directory, threads for the table build.
-  std::string model_path;
-  double surrogate_cell = 0.2;
-  std::string table_cache;
-  int table_threads = 2;
+  // Candidate source grid, m, of the surrogate and physics models; unset: the model's own default
+  // (SurrogatePlumeOptions: 0.2 m, physics.source_cell: 0.1 m). The Gaussian plume has none.
+  std::optional<double> source_cell;
+  double margin = 0.15;             // m, the planner's clearance (thesis 14.3.1)
+  std::string table_cache;          // folder caching surrogate tables; empty: none
+  int threads = kDefaultThreads;    // for the surrogate's table build; 0: one per core
   double min_start_distance = 1.0;  // m, random starts are at least this far from the source
-  // Every field, the nested options' too (OptionError naming it: "ste.world.noise", ...).
-  // Scenario's constructor calls it.
+
+  // The likelihood the plume model runs with (the unset sigmas filled in).
+  LikelihoodOptions likelihood_options() const;
+  // The candidate source grid in use (0 for the Gaussian plume, which has none).
+  double source_cell_in_use() const;
+  // Every field, the nested options' too (OptionError naming it: "ste.world.noise", ...), and
+  // that a surrogate's model file exists. Scenario's constructor calls it.
   void validate() const;
+
+ private:
+  void check_model_file() const;
 };
+
+const char* to_string(NavigationOptions::Reward reward);
+// "kl", "expected"; OptionError on ste.navigation.reward otherwise.
+NavigationOptions::Reward parse_reward(const std::string& name);
 
 class Scenario {
  public:
-  // Solves the wind (central convection, upwind if Newton stalls) and builds
+  // Solves the wind (options.flow; upwind if Newton stalls with central convection) and builds
   // the plume model. InputError for a map STE cannot run on.
   Scenario(const Map& map, const SteOptions& options);
   ~Scenario();
@@ -65,14 +96,15 @@ class Scenario {
   const Map& map() const { return map_; }
   const SteOptions& options() const { return options_; }
   const cfd::WindField& wind() const { return wind_; }
-  const PlumeModel& model() const { return *model_; }
+  const ForwardModel& model() const { return *model_; }
   const planner::FreeSpace& free_space() const { return *space_; }
-  double wind_seconds() const { return wind_seconds_; }
-  double model_seconds() const { return model_seconds_; }  // plume model / table build
+  double wind_s() const { return wind_s_; }
+  double model_build_s() const { return model_build_s_; }  // plume model / table build
   bool table_from_cache() const { return table_from_cache_; }
 
-  // Checks a true source and a start (InputError naming the flag and the
-  // fault); a start inside the planner's margin is moved to the nearest free point.
+  // Checks a true source and a start (OptionError on ste.source / ste.start naming the fault);
+  // a start inside the planner's margin is moved to the nearest free point (the caller reports
+  // the move: the point returned differs from the one given).
   Vec2 check_source(Vec2 source) const;
   Vec2 check_start(Vec2 start) const;
   // A uniformly random start in the free space that can reach the source,
@@ -90,17 +122,13 @@ class Scenario {
   Map map_;
   SteOptions options_;
   cfd::WindField wind_;
-  std::unique_ptr<PlumeModel> model_;
+  std::unique_ptr<ForwardModel> model_;
   std::unique_ptr<planner::Planner> planner_;
   std::unique_ptr<planner::FreeSpace> space_;
   std::unique_ptr<Navigator> navigator_;
   GridShape bins_;
-  double wind_seconds_ = 0.0, model_seconds_ = 0.0;
+  double wind_s_ = 0.0, model_build_s_ = 0.0;
   bool table_from_cache_ = false;
 };
-
-// Counter-based seeds: one stream per (seed, map, source, run).
-std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t source,
-                       std::uint64_t run);
 
 }  // namespace plumekit::ste

@@ -14,8 +14,9 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/sha256.hpp"
+#include "core/thread_pool.hpp"
 #include "surrogate/network.hpp"
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
 
 namespace plumekit::ste {
 
@@ -102,6 +103,18 @@ void prepare_cache_dir(const fs::path& dir, const fs::path& file) {
                      "you can write, or run without a table cache");
 }
 
+// The cache key: the map's geometry, the model file and the candidate grid.
+std::string table_key(const Map& map, const fs::path& model, const GridShape& candidates) {
+  Sha256 h;
+  h.update("plumekit-surrogate-table/2\n");  // the key's own version; the file's is kMagic
+  h.update(sha256_hex(geometry_text(map)) + "\n" + sha256_file(model) + "\n");
+  std::ostringstream g;
+  g.precision(17);
+  g << candidates.nx << ' ' << candidates.ny << ' ' << candidates.width << ' ' << candidates.height;
+  h.update(g.str());
+  return h.hex_digest();
+}
+
 void print_note(const std::string& note) {
   std::cerr << "plumekit: note: " << note << "\n";
 }
@@ -154,84 +167,85 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
     : map_(map),
       parameters_{
           {"x", 0.0, map.width}, {"y", 0.0, map.height}, {"release_scale", o.scale_lo, o.scale_hi}},
-      sources_(GridShape::with_cell(map.width, map.height, o.source_cell)),
-      allowed_(free_cells(map, sources_, 0.0)) {
+      candidates_(GridShape::with_cell(map.width, map.height, o.source_cell)),
+      allowed_(free_cells(map, candidates_, 0.0)) {
   if (!(o.source_cell > 0.0))
     throw InputError("surrogate plume model: source_cell must be positive");
-  if (o.threads < 1 || o.batch < 1)
-    throw InputError("surrogate plume model: threads and batch >= 1");
+  if (o.threads < 0 || o.batch < 1)
+    throw InputError("surrogate plume model: threads >= 0 and batch >= 1");
   std::vector<Vec2> cells;
-  row_.assign(sources_.size(), -1);
-  for (int j = 0; j < sources_.ny; ++j)
-    for (int i = 0; i < sources_.nx; ++i)
-      if (allowed_[sources_.index(i, j)]) {
-        row_[sources_.index(i, j)] = static_cast<int>(cells.size());
-        cells.push_back(sources_.centre(i, j));
+  row_.assign(candidates_.size(), -1);
+  for (int j = 0; j < candidates_.ny; ++j)
+    for (int i = 0; i < candidates_.nx; ++i)
+      if (allowed_[candidates_.index(i, j)]) {
+        row_[candidates_.index(i, j)] = static_cast<int>(cells.size());
+        cells.push_back(candidates_.centre(i, j));
       }
 
   surrogate::EngineOptions eo;
-  eo.threads = o.threads;
+  eo.threads = resolve_threads(o.threads);
   auto network = std::make_shared<const surrogate::Network>(surrogate::Network::load(o.model, eo));
-  const surrogate::PlumeModel plume(network, map);  // checks the model's contract against the map
+  const surrogate::PlumeNetwork plume(network, map);  // checks the model's contract against the map
   grid_ = plume.grid();
-  const std::size_t per = grid_.size();
-
-  Sha256 h;
-  h.update("plumekit-surrogate-table/2\n");  // the key's own version; the file's is kMagic
-  h.update(sha256_hex(geometry_text(map)) + "\n" + sha256_file(o.model) + "\n");
-  std::ostringstream g;
-  g.precision(17);
-  g << sources_.nx << ' ' << sources_.ny << ' ' << sources_.width << ' ' << sources_.height;
-  h.update(g.str());
-  key_ = h.hex_digest();
-
+  key_ = table_key(map, o.model, candidates_);
   cache_file_ = o.cache_dir.empty()
                     ? fs::path()
                     : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");
-  const std::size_t floats = cells.size() * per;  // of each table
-  const auto note = [&](const std::string& text) { (o.on_note ? o.on_note : print_note)(text); };
+  const Note note = [&](const std::string& text) { (o.on_note ? o.on_note : print_note)(text); };
   if (!cache_file_.empty()) {
     prepare_cache_dir(o.cache_dir, cache_file_);
-    if (fs::exists(cache_file_)) {
-      try {
-        SurrogateTable t = parse_table_cache(read_file(cache_file_), cache_file_.string());
-        if (t.key != key_ || t.rows != cells.size() || t.per != per)
-          throw InputError(cache_file_.string() +
-                           ": made for another map, model or source grid (its key differs)");
-        table_ = std::move(t.mean);
-        table_std_ = std::move(t.std);
-        from_cache_ = true;
-        return;
-      } catch (const InputError& e) {
-        rebuilt_because_ = e.what();
-        note("table cache " + rebuilt_because_ + "; rebuilding the table");
-      }
-    }
+    if (load_cache(cells.size(), note)) return;
   }
-  table_.resize(floats);
-  table_std_.resize(floats);
+  build_table(plume, cells, o.batch);
+  if (!cache_file_.empty()) save_cache(cells.size(), note);
+}
+
+bool SurrogatePlume::load_cache(std::size_t rows, const Note& note) {
+  if (!fs::exists(cache_file_)) return false;
+  try {
+    SurrogateTable t = parse_table_cache(read_file(cache_file_), cache_file_.string());
+    if (t.key != key_ || t.rows != rows || t.per != grid_.size())
+      throw InputError(cache_file_.string() +
+                       ": made for another map, model or source grid (its key differs)");
+    table_ = std::move(t.mean);
+    table_std_ = std::move(t.std);
+    from_cache_ = true;
+    return true;
+  } catch (const InputError& e) {
+    rebuilt_because_ = e.what();
+    note("table cache " + rebuilt_because_ + "; rebuilding the table");
+    return false;
+  }
+}
+
+void SurrogatePlume::build_table(const surrogate::PlumeNetwork& plume,
+                                 const std::vector<Vec2>& cells, int batch) {
+  const std::size_t per = grid_.size();
+  table_.resize(cells.size() * per);
+  table_std_.resize(cells.size() * per);
   for (std::size_t first = 0; first < cells.size(); first += 256) {
     const std::vector<Vec2> chunk(cells.begin() + first,
                                   cells.begin() + std::min(cells.size(), first + 256));
-    const std::vector<surrogate::PlumePrediction> p = plume.predict_batch(chunk, o.batch);
+    const std::vector<surrogate::PlumePrediction> p = plume.predict_batch(chunk, batch);
     for (std::size_t k = 0; k < p.size(); ++k) {
       std::memcpy(table_.data() + (first + k) * per, p[k].mean.data(), per * sizeof(float));
       std::memcpy(table_std_.data() + (first + k) * per, p[k].std.data(), per * sizeof(float));
     }
   }
-  if (!cache_file_.empty()) {
-    SurrogateTable t;
-    t.key = key_;
-    t.rows = static_cast<std::uint32_t>(cells.size());
-    t.per = static_cast<std::uint32_t>(per);
-    t.mean = table_;
-    t.std = table_std_;
-    try {
-      write_file_atomic(cache_file_, table_cache_bytes(t));
-    } catch (const InputError& e) {
-      // The table is built and correct: losing only its cache is not worth failing the run.
-      note("table cache " + std::string(e.what()) + "; the table is used without being cached");
-    }
+}
+
+void SurrogatePlume::save_cache(std::size_t rows, const Note& note) const {
+  SurrogateTable t;
+  t.key = key_;
+  t.rows = static_cast<std::uint32_t>(rows);
+  t.per = static_cast<std::uint32_t>(grid_.size());
+  t.mean = table_;
+  t.std = table_std_;
+  try {
+    write_file_atomic(cache_file_, table_cache_bytes(t));
+  } catch (const InputError& e) {
+    // The table is built and correct: losing only its cache is not worth failing the run.
+    note("table cache " + std::string(e.what()) + "; the table is used without being cached");
   }
 }
 
@@ -244,7 +258,7 @@ std::vector<double> SurrogatePlume::spreads_at(Vec2 p) const {
 }
 
 std::vector<double> SurrogatePlume::lookup(const std::vector<float>& table, Vec2 p) const {
-  std::vector<double> out(sources_.size(), 0.0);
+  std::vector<double> out(candidates_.size(), 0.0);
   if (!map_.is_free(p)) return out;  // the surrogate predicts 0 inside obstacles
   const GridShape::Bilinear b = grid_.bilinear(p);
   const std::size_t per = grid_.size();

@@ -1,5 +1,5 @@
 #pragma once
-// The surrogate plume model: the CNN (surrogate/plume_model.hpp) over the
+// The surrogate plume model: the CNN (surrogate/plume_network.hpp) over the
 // source position, tabulated. At construction every allowed source cell's
 // predicted mean and std plumes (64 x 64) are computed, in batches split across
 // threads, so that during a run readings_at(p) is one bilinear lookup per
@@ -16,14 +16,19 @@
 #include <string_view>
 #include <vector>
 
-#include "ste/plume_model.hpp"
+#include "core/thread_pool.hpp"
+#include "ste/forward_model.hpp"
+
+namespace plumekit::surrogate {
+class PlumeNetwork;
+}
 
 namespace plumekit::ste {
 
 struct SurrogatePlumeOptions {
-  std::filesystem::path model;  // plumekit-cnn file
-  double source_cell = 0.2;     // m: 50 x 20 candidate sources on the 10 x 4 arena
-  int threads = 2;              // for the table build
+  std::filesystem::path model;    // plumekit-cnn file
+  double source_cell = 0.2;       // m: 50 x 20 candidate sources on the 10 x 4 arena
+  int threads = kDefaultThreads;  // for the table build; 0: one per core
   int batch = 32;
   // Empty: no disk cache. Created if missing; it must be a writable folder, checked before the
   // table is built. Only files named surrogate-table-*.bin (and their temporaries) are written.
@@ -53,7 +58,7 @@ class SurrogatePlume final : public SourceTableModel {
   SurrogatePlume(const Map& map, const SurrogatePlumeOptions& options);
   std::string name() const override { return "surrogate"; }
   const std::vector<Parameter>& parameters() const override { return parameters_; }
-  const GridShape& sources() const override { return sources_; }
+  const GridShape& candidates() const override { return candidates_; }
   const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
   std::vector<double> readings_at(Vec2 p) const override;
   bool has_spreads() const override { return true; }
@@ -69,11 +74,17 @@ class SurrogatePlume final : public SourceTableModel {
  private:
   Map map_;
   std::vector<Parameter> parameters_;
-  GridShape sources_, grid_;
+  GridShape candidates_, grid_;
   std::vector<std::uint8_t> allowed_;
   std::vector<int> row_;  // source cell -> row of table_, or -1
   // Per allowed source cell (row), the predicted mean and std plumes: [rows][grid_.ny][grid_.nx].
   std::vector<float> table_, table_std_;
+  using Note = std::function<void(const std::string&)>;
+  // Reads the table from cache_file_ if it is there and this table's; else says why (`note`).
+  bool load_cache(std::size_t rows, const Note& note);
+  void build_table(const surrogate::PlumeNetwork& plume, const std::vector<Vec2>& cells, int batch);
+  // A write that fails is a note: the built table is used uncached.
+  void save_cache(std::size_t rows, const Note& note) const;
   // Bilinear values at p of every cell's plume in `table`.
   std::vector<double> lookup(const std::vector<float>& table, Vec2 p) const;
   std::string key_;

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/random.hpp"
+#include "ste/seeds.hpp"
 
 namespace plumekit::ste {
 
@@ -13,7 +15,7 @@ SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 
       options_(options),
       sim_(map, wind, source, options.filament, seed),
       // An independent stream for the sensor, so noise never shifts the plume.
-      noise_rng_(seed ^ 0x5DEECE66DULL) {
+      noise_rng_(stream_seed(seed, SteStream::SensorNoise)) {
   options.validate();  // the filament simulation (sim_) has checked its own options already
   dataset::spin_up(sim_, options.filament);
   spinup_ = sim_.time();
@@ -34,13 +36,13 @@ void SimulatedWorld::travel(double metres) {
 
 double SimulatedWorld::sample(Vec2 p) {
   const int n =
-      std::max(1, static_cast<int>(std::lround(options_.sample_seconds * options_.sample_rate)));
-  std::normal_distribution<double> noise(0.0, options_.noise);
+      std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
+  NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
   double sum = 0.0;
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = sim_.concentration_at(p);
-    if (options_.noise > 0.0) c = std::max(0.0, c + noise(noise_rng_));
+    if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval

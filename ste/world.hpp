@@ -2,7 +2,7 @@
 // The simulated world a robot samples: the filament plume of the true source
 // in the map's wind (dataset/filament_model.hpp), spun up until statistically
 // steady and then kept running in time while the robot travels and samples.
-// A sample is the mean of `sample_seconds` of readings at `sample_rate` Hz at
+// A sample is the mean of `sample_s` of readings at `sample_rate` Hz at
 // the robot's position, each reading optionally with Gaussian sensor noise
 // (clipped at 0: a sensor reads no negative concentration).
 #include <cstdint>
@@ -17,7 +17,7 @@ namespace plumekit::ste {
 struct WorldOptions {
   dataset::FilamentOptions filament;  // the dataset's plume (release rate 1000)
   double speed = 0.5;                 // m/s, the robot's travel speed
-  double sample_seconds = 5.0;        // thesis: 5 s ...
+  double sample_s = 5.0;              // thesis: 5 s ...
   double sample_rate = 10.0;          // ... at 10 Hz
   double noise = 0.0;                 // std of each reading's sensor noise, dataset units
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
@@ -30,10 +30,10 @@ class SimulatedWorld {
                  const WorldOptions& options, std::uint64_t seed);
   // The plume runs on while the robot covers `metres` at options.speed.
   void travel(double metres);
-  // Stays at p for sample_seconds and returns the mean reading.
+  // Stays at p for sample_s and returns the mean reading.
   double sample(Vec2 p);
-  double time() const { return sim_.time(); }        // simulated seconds since release
-  double spinup_seconds() const { return spinup_; }  // before the robot started
+  double time() const { return sim_.time(); }  // simulated seconds since release
+  double spinup_s() const { return spinup_; }  // before the robot started
   Vec2 source() const { return source_; }
 
  private:

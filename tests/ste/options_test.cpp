@@ -1,6 +1,6 @@
-// STE's options checks: each field is refused by the library with its name and
-// range (before the wind is solved), the flow's cell faults are reported as the
-// map's, and oversized source grids are refused.
+// STE's options: the library's defaults (the surrogate, its sigmas and grid
+// following the model), each field refused by the library with its name and
+// range (before the wind is solved), and oversized source grids refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +11,9 @@
 
 namespace plumekit::ste {
 namespace {
+
+// A model file for the checks that need one to exist (its content is not read).
+const std::string kModel = std::string(PLUMEKIT_DATA_DIR) + "/models/plume-unet.pkcnn";
 
 void expect_has(const std::string& text, const std::string& part) {
   EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
@@ -49,6 +52,28 @@ TEST(SteOptions, EveryDefectNamesTheFieldAndTheRange) {
       {"ste.stop.max_samples", [](SteOptions& o) { o.stop.max_samples = 0; }, "from 1"},
       {"ste.mh.burn_in", [](SteOptions& o) { o.mh.burn_in = 5000; }, "from 0 to 3999"},
       {"ste.physics.source_cell", [](SteOptions& o) { o.physics.source_cell = NAN; }, "got nan"},
+      {"ste.source_cell",
+       [](SteOptions& o) {
+         o.model = PlumeModelKind::Physics;
+         o.source_cell = 0.0;
+       },
+       "more than 0"},
+      {"ste.source_cell",
+       [](SteOptions& o) {
+         o.model = PlumeModelKind::Gaussian;
+         o.source_cell = 0.2;
+       },
+       "only the surrogate and physics"},
+      {"ste.likelihood.sigma_std",
+       [](SteOptions& o) {
+         o.model = PlumeModelKind::Physics;
+         o.likelihood.sigma_std = 2.0;
+       },
+       "only the surrogate"},
+      {"ste.model_path", [](SteOptions& o) { o.model_path = "/nonexistent/x.pkcnn"; },
+       "/nonexistent/x.pkcnn not found"},
+      {"ste.model_path", [](SteOptions& o) { o.model_path.clear(); }, "needs a CNN model file"},
+      {"flow.cell", [](SteOptions& o) { o.flow.cell = -1.0; }, "got -1"},
       {"ste.physics.scale_hi", [](SteOptions& o) { o.physics.scale_hi = 0.5; }, "from 1 to"},
       {"plume.release_rate", [](SteOptions& o) { o.world.filament.release_rate = NAN; }, "got nan"},
       {"plume.diffusivity", [](SteOptions& o) { o.physics.advection_diffusion.diffusivity = -1.0; },
@@ -58,10 +83,36 @@ TEST(SteOptions, EveryDefectNamesTheFieldAndTheRange) {
   const Map map = default_arena();
   for (const Case& c : cases) {
     SteOptions o;
+    o.model_path = kModel;
     c.set(o);
     expect_option_error([&] { Scenario s(map, o); }, c.field, c.says);
   }
-  EXPECT_NO_THROW(SteOptions().validate());
+  SteOptions o;
+  o.model_path = kModel;
+  EXPECT_NO_THROW(o.validate());
+}
+
+TEST(SteOptions, DefaultsAreTheSurrogatesAndFollowTheModel) {
+  SteOptions o;
+  EXPECT_EQ(o.model, PlumeModelKind::Surrogate);
+  EXPECT_EQ(o.threads, kDefaultThreads);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 200.0);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 2.0);
+  EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.2);
+  o.model = PlumeModelKind::Physics;
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 30.0);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 0.0);
+  EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.1);
+  o.model = PlumeModelKind::Gaussian;
+  EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.0);
+  o.likelihood.sigma_m = 55.0;  // a value given wins over the model's
+  o.source_cell = 0.3;
+  o.model = PlumeModelKind::Physics;
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 55.0);
+  EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.3);
+  EXPECT_EQ(parse_reward(to_string(NavigationOptions::Reward::Kl)), NavigationOptions::Reward::Kl);
+  expect_option_error([] { parse_reward("greedy"); }, "ste.navigation.reward", "'greedy'");
+  expect_option_error([] { parse_plume_model_kind("kriging"); }, "ste.model", "'kriging'");
 }
 
 TEST(EvaluationOptions, CountsAreCheckedBeforeAnyWork) {
@@ -73,49 +124,42 @@ TEST(EvaluationOptions, CountsAreCheckedBeforeAnyWork) {
   expect_option_error([&] { evaluate({default_arena()}, o); }, "ste.world.noise", "got nan");
 }
 
-TEST(Scenario, FlowCellFaultIsReportedAsTheMapsWithoutAFlag) {
-  // Two blocks 3 cm apart: the flow's 5 cm grid would close the gap.
+TEST(Scenario, FlowCellFaultNamesTheFlowCell) {
+  // Two blocks 3 cm apart: the flow's 5 cm grid would close the gap; ste's flow.cell can fix it.
   Map map = default_arena();
   map.name = "narrow";
   map.obstacles.push_back({{3.0, 0.0}, {4.0, 0.0}, {4.0, 1.9}, {3.0, 1.9}});
   map.obstacles.push_back({{3.0, 1.93}, {4.0, 1.93}, {4.0, 4.0}, {3.0, 4.0}});
-  try {
-    Scenario s(map, SteOptions{});
-    FAIL() << "no InputError";
-  } catch (const OptionError& e) {
-    FAIL() << "an OptionError names a field STE has no setting for: " << e.what();
-  } catch (const InputError& e) {
-    const std::string m = e.what();
-    expect_has(m, "map narrow: STE solves the wind on cells of 0.05 m");
-    expect_has(m, "0.03 m apart");
-    EXPECT_EQ(m.find("--"), std::string::npos) << m;
-  }
+  SteOptions o;
+  o.model = PlumeModelKind::Gaussian;
+  expect_option_error([&] { Scenario s(map, o); }, "flow.cell", "0.03 m apart");
 }
 
 TEST(Scenario, OversizedSourceGridIsRefused) {
   SteOptions o;
-  o.physics.source_cell = 1e-4;  // 100000 x 40000 candidate cells
-  expect_option_error([&] { Scenario s(default_arena(), o); }, "ste.physics.source_cell",
+  o.model = PlumeModelKind::Physics;
+  o.source_cell = 1e-4;  // 100000 x 40000 candidate cells
+  expect_option_error([&] { Scenario s(default_arena(), o); }, "ste.source_cell",
                       "more than 1e+08");
   set_memory_limit(parse_memory_size("64M"));
-  o.physics.source_cell = 0.005;  // 1.6 million cells, 205 MB
+  o.source_cell = 0.005;  // 1.6 million cells, 205 MB
   try {
     Scenario s(default_arena(), o);
     ADD_FAILURE() << "no MemoryLimitError";
   } catch (const MemoryLimitError& e) {
-    expect_has(e.what(), "use a larger ste.physics.source_cell (");
+    expect_has(e.what(), "use a larger ste.source_cell (");
   }
   // The surrogate keeps two 64 x 64 plumes per cell: 2 cm cells on 10 x 4 m are 3.3 GB.
   set_memory_limit(parse_memory_size("1G"));
   SteOptions surrogate;
-  surrogate.model = PlumeModelKind::Surrogate;
-  surrogate.surrogate_cell = 0.02;
+  surrogate.model_path = kModel;
+  surrogate.source_cell = 0.02;
   try {
     Scenario s(default_arena(), surrogate);
     ADD_FAILURE() << "no MemoryLimitError";
   } catch (const MemoryLimitError& e) {
     expect_has(e.what(), "the source grid of 1e+05 cells of 0.02 m");
-    expect_has(e.what(), "use a larger ste.surrogate_cell (");
+    expect_has(e.what(), "use a larger ste.source_cell (");
   }
   set_memory_limit(default_memory_limit());
 }

@@ -57,7 +57,7 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("unknown plume model 'kriging'"), std::string::npos) << r.err;
   EXPECT_FALSE(json::parse(r.out)["ok"].get<bool>());
-  r = run("localize " + map + " --source 4.2,1.3 --plume-model surrogate --model " +
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model surrogate --cnn " +
           (dir / "missing.pkcnn").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("missing.pkcnn not found"), std::string::npos) << r.err;
@@ -66,10 +66,12 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   EXPECT_NE(r.err.find("--reward: unknown reward 'greedy'"), std::string::npos) << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --lattice 0");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--lattice: must be a whole number from 1 to 20, got 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--lattice: must be a whole number from 1 to 20, got 0"), std::string::npos)
+      << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --source-cell 0");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--source-cell: must be a finite number more than 0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--source-cell: must be a finite number more than 0"), std::string::npos)
+      << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model gaussian --source-cell 0.2");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--source-cell: only the surrogate and physics"), std::string::npos)
@@ -77,7 +79,7 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --sigma-std 2");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--sigma-std: only the surrogate"), std::string::npos) << r.err;
-  r = run("evaluate --maps " + (dir / "nowhere").string() + " --plume-model physics");
+  r = run("evaluate --map-dir " + (dir / "nowhere").string() + " --plume-model physics");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("is not a directory"), std::string::npos) << r.err;
 }
@@ -86,15 +88,15 @@ TEST_F(SteCli, EvaluateWritesEverythingAndIgnoresThreadCount) {
   write_map();
   const std::string maps = (dir / "maps").string();
   CliResult r =
-      run("evaluate --maps " + maps + " --runs 2 --threads 1 --plume-model physics --json --out " +
-          (dir / "e1").string());
+      run("evaluate --map-dir " + maps +
+          " --runs 2 --threads 1 --plume-model physics --json --out " + (dir / "e1").string());
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   EXPECT_EQ(j["overall"]["runs"].get<int>(), 4);
   for (const char* f : {"runs.csv", "summary.json", "boxplot-error.png", "boxplot-samples.png",
                         "trajectories/small.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / "e1" / f)) << f;
-  r = run("evaluate --maps " + maps + " --runs 2 --threads 2 --plume-model physics --out " +
+  r = run("evaluate --map-dir " + maps + " --runs 2 --threads 2 --plume-model physics --out " +
           (dir / "e2").string());
   ASSERT_EQ(r.code, 0) << r.err;
   // Identical runs apart from the measured compute times (the last columns).

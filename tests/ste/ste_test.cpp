@@ -17,7 +17,7 @@
 #include "ste/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/network.hpp"
-#include "surrogate/plume_model.hpp"
+#include "surrogate/plume_network.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -117,7 +117,7 @@ class TwoSources final : public SourceTableModel {
         spread_(std::move(spread)) {}
   std::string name() const override { return "two"; }
   const std::vector<Parameter>& parameters() const override { return params_; }
-  const GridShape& sources() const override { return grid_; }
+  const GridShape& candidates() const override { return grid_; }
   const std::vector<std::uint8_t>& allowed() const override { return ok_; }
   std::vector<double> readings_at(Vec2 p) const override { return p.x < 1.0 ? near_ : far_; }
   bool has_spreads() const override { return !spread_.empty(); }
@@ -324,18 +324,20 @@ TEST(SurrogatePlume, TableMatchesTheNetworkAndIsCached) {
   o.cache_dir = cache;
   const SurrogatePlume built(map, o);
   EXPECT_FALSE(built.from_cache());
-  // The table holds what PlumeModel predicts.
+  // The table holds what PlumeNetwork predicts.
   auto net = std::make_shared<const surrogate::Network>(surrogate::Network::load(kRandomModel));
-  const surrogate::PlumeModel direct(net, map);
+  const surrogate::PlumeNetwork direct(net, map);
   const Vec2 p{6.1, 2.9};
   const int k = built.nearest_allowed({2.5, 0.5});
   const double expect =
-      direct.predict(built.sources().centre(k % built.sources().nx, k / built.sources().nx))
+      direct
+          .predict(built.candidates().centre(k % built.candidates().nx, k / built.candidates().nx))
           .mean_at(p);
   EXPECT_NEAR(built.readings_at(p)[k], expect, 1e-4 * std::max(1.0, std::abs(expect)));
   // And the std the network predicts for the same readings.
   const double expect_std =
-      direct.predict(built.sources().centre(k % built.sources().nx, k / built.sources().nx))
+      direct
+          .predict(built.candidates().centre(k % built.candidates().nx, k / built.candidates().nx))
           .std_at(p);
   EXPECT_TRUE(built.has_spreads());
   EXPECT_NEAR(built.spreads_at(p)[k], expect_std, 1e-4 * std::max(1.0, std::abs(expect_std)));
@@ -361,9 +363,9 @@ TEST(SurrogatePlume, PosteriorConcentratesOnTheTrueSourceWithItsOwnSamples) {
   o.model = kRandomModel;
   o.source_cell = 0.8;  // 13 x 5 cells
   const SurrogatePlume model(map, o);
-  const Vec2 truth = model.sources().centre(9, 2);
+  const Vec2 truth = model.candidates().centre(9, 2);
   const int k = model.nearest_allowed(truth);
-  ASSERT_EQ(model.sources().centre(k % model.sources().nx, k / model.sources().nx), truth);
+  ASSERT_EQ(model.candidates().centre(k % model.candidates().nx, k / model.candidates().nx), truth);
   // Random weights give small outputs: sigma_M in proportion keeps the test's meaning.
   std::vector<std::pair<Vec2, double>> samples;
   double top = 0.0;

@@ -18,7 +18,7 @@ class TableCacheCli : public CliTest {
   CliResult localize(const fs::path& cache) {
     return run("localize " +
                (fs::path(PLUMEKIT_DATA_DIR) / "test-maps" / "test-1-block.json").string() +
-               " --source 8.5,1 --start 1,2 --plume-model surrogate --model " +
+               " --source 8.5,1 --start 1,2 --plume-model surrogate --cnn " +
                (fs::path(PLUMEKIT_TEST_DATA) / "surrogate" / "real.pkcnn").string() +
                " --source-cell 1 --max-samples 3 --seed 5 --json --table-cache " + cache.string());
   }

@@ -1,0 +1,245 @@
+#include "ste/report.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/map_json.hpp"
+#include "core/map_render.hpp"
+#include "core/output_target.hpp"
+#include "ste/render.hpp"
+
+namespace plumekit::ste {
+
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+std::string fmt(double v, int digits = 2) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+std::string fmt(Vec2 p) {
+  return "(" + fmt(p.x) + ", " + fmt(p.y) + ")";
+}
+
+ordered_json point_json(Vec2 p) {
+  return ordered_json::array({p.x, p.y});
+}
+
+// The candidate source grid of a table model; null for the Gaussian plume (MH on the bins).
+ordered_json source_cell_json(const SteOptions& o) {
+  const double cell = o.source_cell_in_use();
+  return cell > 0.0 ? ordered_json(cell) : ordered_json(nullptr);
+}
+
+ordered_json steps_json(const std::vector<Step>& steps) {
+  ordered_json out = ordered_json::array();
+  for (const Step& s : steps)
+    out.push_back({{"position", point_json(s.position)},
+                   {"value", s.value},
+                   {"time_s", s.time_s},
+                   {"distance_m", s.distance_m},
+                   {"estimate", point_json(s.estimate)},
+                   {"entropy", s.entropy},
+                   {"compute_s", s.compute_s}});
+  return out;
+}
+
+ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
+  ordered_json expected = ordered_json::object();
+  const auto& params = sc.model().parameters();
+  for (std::size_t k = 0; k < params.size() && k < r.expected.size(); ++k)
+    expected[params[k].name] = r.expected[k];
+  return {{"estimate", point_json(r.estimate)},
+          {"error_m", norm(r.estimate - source)},
+          {"samples", r.samples},
+          {"distance_m", r.distance_m},
+          {"compute_s", r.compute_s},
+          {"stopped_by", r.stopped_by},
+          {"median_step_s", r.median_step_s},
+          {"mission_s", r.time_s},
+          {"map_estimate", point_json(r.map)},
+          {"source_cell", source_cell_json(sc.options())},
+          {"expected_parameters", expected},
+          {"entropy", r.posterior.entropy},
+          {"max_entropy", r.posterior.max_entropy},
+          {"start", point_json(r.start)},
+          {"source", point_json(source)},
+          {"wind_s", sc.wind_s()},
+          {"table_build_s", sc.model_build_s()},
+          {"steps", steps_json(r.steps)}};
+}
+
+std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
+  std::ostringstream h;
+  h << sc.map().name << ", " << to_string(sc.options().model) << " plume model: source "
+    << fmt(source) << ", start " << fmt(r.start) << "\n"
+    << "estimate " << fmt(r.estimate) << ", error " << fmt(norm(r.estimate - source)) << " m after "
+    << r.samples << " samples and " << fmt(r.distance_m, 1) << " m (stopped by " << r.stopped_by
+    << ")\ncompute " << fmt(r.compute_s, 3) << " s in all, median "
+    << fmt(r.median_step_s * 1000, 1) << " ms per decision step; wind " << fmt(sc.wind_s(), 1)
+    << " s, model build " << fmt(sc.model_build_s(), 1) << " s";
+  return h.str();
+}
+
+ordered_json stats_json(const Stats& s) {
+  return {{"runs", s.runs},
+          {"median_error_m", s.median_error_m},
+          {"mean_error_m", s.mean_error_m},
+          {"success_0_5m", s.success_0_5},
+          {"success_1_0m", s.success_1_0},
+          {"median_samples", s.median_samples},
+          {"median_distance_m", s.median_distance_m},
+          {"median_step_compute_s", s.median_step_s},
+          {"entropy_stops", s.entropy_stops}};
+}
+
+// The errors (or sample counts) of each map's runs, in map order: the box plots' groups.
+std::vector<std::vector<double>> per_map(const EvaluationResult& res, bool errors) {
+  std::vector<std::vector<double>> groups(res.maps.size());
+  for (const RunRecord& r : res.runs)
+    groups.at(r.map_index).push_back(errors ? r.error_m : r.samples);
+  return groups;
+}
+
+std::string evaluation_table(const EvaluationResult& res, const std::string& label,
+                             const fs::path& out) {
+  std::ostringstream h;
+  h << "evaluated " << res.runs.size() << " runs (" << res.maps.size() << " maps, " << label
+    << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
+  h << std::left << std::setw(22) << "map"
+    << " median_err  mean_err  ok@0.5  ok@1.0  samples"
+    << "  dist_m  step_ms  table_s\n";
+  auto line = [&](const std::string& name, const Stats& s, double table) {
+    h << std::left << std::setw(22) << name << std::right << std::setw(11) << fmt(s.median_error_m)
+      << std::setw(10) << fmt(s.mean_error_m) << std::setw(8) << fmt(100 * s.success_0_5, 0) + "%"
+      << std::setw(8) << fmt(100 * s.success_1_0, 0) + "%" << std::setw(9)
+      << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1) << std::setw(9)
+      << fmt(1000 * s.median_step_s, 1) << std::setw(9)
+      << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
+  };
+  for (const MapReport& mr : res.maps)
+    line(mr.name, mr.stats, mr.table_build_s);
+  line("overall", res.overall, -1);
+  h << "wrote " << out.string()
+    << "/{runs.csv, summary.json, boxplot-error.png, boxplot-samples.png, trajectories/}";
+  return h.str();
+}
+
+}  // namespace
+
+Report run_report(const Scenario& scenario, Vec2 source, const LocalizationResult& result) {
+  return {run_json(scenario, source, result), run_text(scenario, source, result)};
+}
+
+RunPictures write_run_pictures(const Scenario& sc, Vec2 source, const LocalizationResult& r,
+                               const fs::path& dir) {
+  RunPictures p{dir / "trajectory.png", dir / "posterior.png"};
+  const RunToDraw run = run_to_draw(sc.map(), r, source, to_string(sc.options().model));
+  write_png(draw_trajectory(sc.map(), sc.mean_plume(source), run), p.trajectory);
+  write_png(draw_posterior(sc.map(), run), p.posterior);
+  return p;
+}
+
+MapFolder read_map_folder(const fs::path& dir) {
+  std::error_code ec;
+  if (dir.empty()) throw OptionError("evaluation.map_dir", "name a folder of map files");
+  if (!fs::is_directory(dir, ec))
+    throw OptionError("evaluation.map_dir", dir.string() + " is not a directory");
+  MapFolder f;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".json") f.files.push_back(e.path());
+  std::sort(f.files.begin(), f.files.end());
+  if (f.files.empty())
+    throw OptionError("evaluation.map_dir", "no *.json map files in " + dir.string());
+  std::vector<std::string> taken;
+  for (const fs::path& file : f.files) {
+    f.maps.push_back(read_map(file));
+    f.picture_names.push_back(safe_file_name(file.stem().string(), taken) + ".png");
+  }
+  return f;
+}
+
+const RunRecord& median_run(const std::vector<RunRecord>& runs) {
+  std::vector<const RunRecord*> sorted;
+  for (const RunRecord& r : runs)
+    sorted.push_back(&r);
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](auto* a, auto* b) { return a->error_m < b->error_m; });
+  return *sorted.at((sorted.size() - 1) / 2);
+}
+
+std::string median_run_note(const std::vector<RunRecord>& runs) {
+  std::vector<const RunRecord*> all;
+  for (const RunRecord& r : runs)
+    all.push_back(&r);
+  return "median run of " + std::to_string(runs.size()) + "; map median " +
+         fmt(summarise(all).median_error_m) + " m";
+}
+
+AfterMap trajectory_pictures(const fs::path& dir, const std::vector<std::string>& picture_names,
+                             PlumeModelKind model) {
+  return [dir, picture_names, model](const Scenario& sc, const std::vector<RunRecord>& runs) {
+    const RunRecord& r = median_run(runs);
+    fs::create_directories(dir / "trajectories");
+    write_png(draw_trajectory(sc.map(), sc.mean_plume(r.source),
+                              run_to_draw(r, to_string(model), median_run_note(runs))),
+              dir / "trajectories" / picture_names.at(r.map_index));
+  };
+}
+
+Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& eo,
+                         const fs::path& map_dir, const fs::path& out) {
+  ordered_json maps = ordered_json::array();
+  for (const MapReport& mr : res.maps) {
+    ordered_json j{{"map", mr.name}};
+    j.update(stats_json(mr.stats));
+    j["wind_s"] = mr.wind_s;
+    j["table_build_s"] = mr.table_build_s;
+    j["wall_s"] = mr.wall_s;
+    maps.push_back(j);
+  }
+  const LikelihoodOptions l = eo.ste.likelihood_options();
+  const std::string label = to_string(eo.ste.model);
+  ordered_json summary{{"ok", true},
+                       {"map_dir", provenance_path(map_dir)},
+                       {"plume_model", label},
+                       {"runs_per_source", eo.runs},
+                       {"sources_per_map",
+                        eo.source_count > 0 ? ordered_json(eo.source_count) : ordered_json("all")},
+                       {"seed", eo.seed},
+                       {"threads", resolve_threads(eo.threads)},
+                       {"sigma_m", l.sigma_m},
+                       {"sigma_rel", l.sigma_rel},
+                       {"sigma_std", l.sigma_std},
+                       {"source_cell", source_cell_json(eo.ste)},
+                       {"noise", eo.ste.world.noise},
+                       {"overall", stats_json(res.overall)},
+                       {"maps", maps},
+                       {"wall_s", res.wall_s}};
+  return {summary, evaluation_table(res, label, out)};
+}
+
+void write_evaluation_files(const fs::path& dir, const EvaluationResult& res,
+                            const EvaluationOptions& eo, const ordered_json& summary) {
+  std::vector<std::string> labels;
+  for (std::size_t m = 0; m < res.maps.size(); ++m)
+    labels.push_back(std::to_string(m));
+  const std::string label = to_string(eo.ste.model);
+  write_file_atomic(dir / "runs.csv", runs_csv(res));
+  write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+  write_png(draw_box_plot(per_map(res, true), labels, "error [m]",
+                          "STE (" + label + ") localization error per test map", 0.5),
+            dir / "boxplot-error.png");
+  write_png(draw_box_plot(per_map(res, false), labels, "samples",
+                          "STE (" + label + ") samples per test map"),
+            dir / "boxplot-samples.png");
+}
+
+}  // namespace plumekit::ste

@@ -1,0 +1,60 @@
+#pragma once
+// What the STE commands write and print: run.json and its human summary, the
+// pictures of a run, and an evaluation's runs.csv, summary.json, box plots and
+// per-map trajectory pictures. apps/ only binds flags and prints these.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/map.hpp"
+#include "core/report.hpp"
+#include "ste/evaluation.hpp"
+#include "ste/scenario.hpp"
+
+namespace plumekit::ste {
+
+// One run: run.json's content (the JSON) and its human summary (the text).
+Report run_report(const Scenario& scenario, Vec2 source, const LocalizationResult& result);
+
+struct RunPictures {
+  std::filesystem::path trajectory, posterior;
+};
+// Writes trajectory.png and posterior.png of one run into `dir` (the true source labelled as in
+// the map's list of sources when it is one of them).
+RunPictures write_run_pictures(const Scenario& scenario, Vec2 source,
+                               const LocalizationResult& result, const std::filesystem::path& dir);
+
+// The map files of a folder (*.json, sorted by name) read, and the name of each one's trajectory
+// picture, made from its file name (never from the name inside it). OptionError on
+// evaluation.map_dir when the folder is missing or holds no map file.
+struct MapFolder {
+  std::vector<std::filesystem::path> files;
+  std::vector<Map> maps;
+  std::vector<std::string> picture_names;  // "<file stem>.png", made safe and unique
+};
+MapFolder read_map_folder(const std::filesystem::path& dir);
+
+// The run of a map whose error is the median one (the lower of the two middle runs for an even
+// count): the map's typical trajectory.
+const RunRecord& median_run(const std::vector<RunRecord>& runs);
+// Why that run is the one drawn, for its picture's title: "median run of N; map median X m".
+// The title states the drawn run's own error; with an even count the map's median is the mean
+// of two runs and no run's error, so both are said.
+std::string median_run_note(const std::vector<RunRecord>& runs);
+// An AfterMap (evaluate()) that draws each map's median run into
+// dir/trajectories/<picture_names[map]>.
+AfterMap trajectory_pictures(const std::filesystem::path& dir,
+                             const std::vector<std::string>& picture_names, PlumeModelKind model);
+
+// summary.json's content and the evaluation's table (the text). `map_dir` is the folder the maps
+// came from, `out` the output folder, both as the user named them.
+Report evaluation_report(const EvaluationResult& result, const EvaluationOptions& options,
+                         const std::filesystem::path& map_dir, const std::filesystem::path& out);
+// Writes runs.csv, summary.json (`summary`) and the two box plots into `dir`.
+void write_evaluation_files(const std::filesystem::path& dir, const EvaluationResult& result,
+                            const EvaluationOptions& options,
+                            const nlohmann::ordered_json& summary);
+
+}  // namespace plumekit::ste

@@ -1,0 +1,31 @@
+#pragma once
+// The random streams of a localization run, in one place. Every run has one
+// seed (run_seed); each consumer draws from its own stream of it, so that, for
+// example, sensor noise never shifts the plume. The stream values are those
+// the committed evaluation results were made with (ste/results/): changing one
+// changes every run.
+#include <cstdint>
+
+#include "core/seed.hpp"
+
+namespace plumekit::ste {
+
+// Counter-based seeds: one per (seed, map, source, run), whatever thread runs it.
+inline std::uint64_t run_seed(std::uint64_t seed, std::uint64_t map, std::uint64_t source,
+                              std::uint64_t run) {
+  return splitmix64(splitmix64(splitmix64(splitmix64(seed) ^ map) ^ source) ^ (run + 0x57E));
+}
+
+// What a run's seed is XORed with for each consumer. The filament plume takes the run's seed
+// itself.
+enum class SteStream : std::uint64_t {
+  Start = 0xA5A5,                // the random start (Scenario::random_start)
+  SensorNoise = 0x5DEECE66DULL,  // the simulated sensor's noise (SimulatedWorld)
+  Mh = 0x3C,                     // the Metropolis-Hastings chain, through splitmix64 (MhEstimator)
+};
+
+inline std::uint64_t stream_seed(std::uint64_t run_seed, SteStream stream) {
+  return run_seed ^ static_cast<std::uint64_t>(stream);
+}
+
+}  // namespace plumekit::ste
