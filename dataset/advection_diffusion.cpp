@@ -10,10 +10,10 @@
 
 #include <Eigen/SparseCore>
 
-#include "core/umfpack_lu.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "core/resample.hpp"
+#include "core/umfpack_lu.hpp"
 
 namespace plumekit::dataset {
 
@@ -121,8 +121,7 @@ AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
   lu_->a.makeCompressed();
   summary_.nonzeros = lu_->a.nonZeros();
   lu_->factor();
-  summary_.factor_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  summary_.factor_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 AdvectionDiffusion::~AdvectionDiffusion() = default;

@@ -5,9 +5,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
-#include "core/map_json.hpp"
 #include "dataset/features.hpp"
 #include "dataset/manifest.hpp"
 
@@ -220,7 +220,7 @@ std::vector<Manifest> read_part_manifests(const fs::path& dir) {
 ordered_json parse_parameters(std::string_view bytes, const std::string& name) {
   constexpr const char* advice =
       "; restore it from the \"generator\" object of the dataset's manifest.json, or use "
-      "another --out";
+      "another output folder";
   ordered_json j = parse_json(bytes, name, advice);
   if (!j.is_object()) fail(name, "", "expected a JSON object of parameters", advice);
   upgrade_parameter_keys(j);

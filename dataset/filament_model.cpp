@@ -63,8 +63,7 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
   // The filament vector at its largest, twice over for its growth by doubling.
   const double bytes = 2.0 * sizeof(Filament) * o_.max_filaments();
   if (!fits_in_memory(bytes)) {
-    const double fits =
-        memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_s));
+    const double fits = memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_s));
     check_memory(
         bytes, "the filament model at " + compact(o_.release_per_second) + " filaments per second",
         "use fewer plume.filaments_per_second (" + compact(std::floor(0.9 * fits)) + " fits)");

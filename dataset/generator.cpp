@@ -17,11 +17,11 @@
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
+#include "core/seed.hpp"
+#include "core/sha256.hpp"
 #include "core/thread_pool.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
-#include "core/seed.hpp"
-#include "core/sha256.hpp"
 #include "dataset/wind_cache.hpp"
 
 namespace plumekit::dataset {
@@ -99,9 +99,9 @@ bool check_resume(const fs::path& out, const nlohmann::ordered_json& params) {
   std::string list;
   for (const std::string& d : diff)
     list += "\n  " + d;
-  throw InputError(out.string() + " holds a dataset made with other parameters (" +
-                   pfile.string() + "):" + list +
-                   "\nuse another --out, or the dataset's parameters to resume it");
+  throw InputError(out.string() + " holds a dataset made with other parameters (" + pfile.string() +
+                   "):" + list +
+                   "\nwrite to another folder, or resume it with the dataset's parameters");
 }
 
 // Claims the folder, creates its parts and removes what interrupted runs left.
@@ -125,8 +125,8 @@ std::vector<MapJob> part_jobs(const DatasetOptions& o, const RunOptions& run) {
   const int maps = o.given_maps.empty() ? o.maps : static_cast<int>(o.given_maps.size());
   std::vector<MapJob> jobs;
   for (int i = run.part_k; i < maps; i += run.part_n)
-    jobs.push_back({i, o.given_maps.empty() ? o.sources
-                                            : static_cast<int>(o.given_maps[i].sources.size())});
+    jobs.push_back(
+        {i, o.given_maps.empty() ? o.sources : static_cast<int>(o.given_maps[i].sources.size())});
   return jobs;
 }
 
@@ -325,10 +325,10 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
   SampleProgress progress(run, total);
   std::vector<MapOutcome> outcomes(jobs.size());
   // One map per index: its bytes depend on (seed, index) only, never on the thread that made it.
-  ThreadPool pool(std::min<int>(resolve_threads(run.threads),
-                                std::max<int>(1, static_cast<int>(jobs.size()))));
-  pool.parallel_for(jobs.size(),
-                    [&](std::size_t m) { outcomes[m] = make_map_shard(out, o, jobs[m], progress); });
+  ThreadPool pool(
+      std::min<int>(resolve_threads(run.threads), std::max<int>(1, static_cast<int>(jobs.size()))));
+  pool.parallel_for(
+      jobs.size(), [&](std::size_t m) { outcomes[m] = make_map_shard(out, o, jobs[m], progress); });
   progress.finish();
 
   DatasetSummary summary;

@@ -15,7 +15,7 @@ namespace plumekit::dataset {
 
 struct RunOptions {
   int threads = kDefaultThreads;  // 0: one per core; one map per thread
-  int part_k = 0;  // dataset.shard K/N: this run does the maps with index % N == K
+  int part_k = 0;                 // dataset.shard K/N: this run does the maps with index % N == K
   int part_n = 1;
   // (done, total samples), about 5 times a second and once at the end; from any worker thread,
   // never two calls at once.
@@ -30,14 +30,14 @@ struct RunOptions {
 void use_map_dir(DatasetOptions& options, const std::filesystem::path& dir);
 
 struct DatasetSummary {
-  int maps = 0;               // this run's (part's) maps
-  int maps_resumed = 0;       // found complete and verified, not redone
-  int winds_cached = 0;       // wind fields read from the cache instead of solved
-  long long samples = 0;      // computed by this run
-  double seconds = 0.0;       // wall time
-  double flow_s = 0.0;  // summed over threads
+  int maps = 0;           // this run's (part's) maps
+  int maps_resumed = 0;   // found complete and verified, not redone
+  int winds_cached = 0;   // wind fields read from the cache instead of solved
+  long long samples = 0;  // computed by this run
+  double seconds = 0.0;   // wall time
+  double flow_s = 0.0;    // summed over threads
   double plume_s = 0.0;
-  int threads = 1;            // worker threads used
+  int threads = 1;  // worker threads used
   double samples_per_second() const { return seconds > 0.0 ? samples / seconds : 0.0; }
 };
 

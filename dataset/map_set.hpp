@@ -13,10 +13,10 @@
 namespace plumekit::dataset {
 
 struct MapSetOptions {
-  int count = 10;                       // maps.count
-  std::uint64_t seed = kDefaultSeed;    // maps.seed
-  int sources = 0;                      // maps.sources: random sources stored in each map
-  double source_clearance = 0.1;        // m from every obstacle and wall
+  int count = 10;                     // maps.count
+  std::uint64_t seed = kDefaultSeed;  // maps.seed
+  int sources = 0;                    // maps.sources: random sources stored in each map
+  double source_clearance = 0.1;      // m from every obstacle and wall
   RandomMapOptions map;
   // OptionError naming the field ("maps.count", "maps.sources", "maps.width", ...).
   void validate() const;

@@ -9,8 +9,8 @@
 #include "core/map_json.hpp"
 #include "core/option_check.hpp"
 #include "core/rasterize.hpp"
-#include "dataset/features.hpp"
 #include "core/seed.hpp"
+#include "dataset/features.hpp"
 
 namespace plumekit::dataset {
 

@@ -48,9 +48,9 @@ Report generate_report(const std::string& out, PlumeSimulator model, const Datas
             {"threads", s.threads}};
   std::ostringstream text;
   text.precision(3);
-  text << "wrote " << out << ": " << s.maps << " maps (" << s.maps_resumed
-       << " already complete), " << s.samples << " samples computed in " << s.seconds << " s ("
-       << s.samples_per_second() << " samples/s; flow " << s.flow_s << " s, plumes " << s.plume_s
+  text << "wrote " << out << ": " << s.maps << " maps (" << s.maps_resumed << " already complete), "
+       << s.samples << " samples computed in " << s.seconds << " s (" << s.samples_per_second()
+       << " samples/s; flow " << s.flow_s << " s, plumes " << s.plume_s
        << " s, summed over threads)";
   r.text = text.str();
   return r;
@@ -58,11 +58,8 @@ Report generate_report(const std::string& out, PlumeSimulator model, const Datas
 
 Report merge_report(const std::string& out, const MergeSummary& s) {
   Report r;
-  r.json = {{"ok", true},
-            {"out", out},
-            {"parts", s.parts},
-            {"shards", s.shards},
-            {"samples", s.samples}};
+  r.json = {
+      {"ok", true}, {"out", out}, {"parts", s.parts}, {"shards", s.shards}, {"samples", s.samples}};
   std::ostringstream text;
   text << "merged " << s.parts << " parts into " << out << ": " << s.shards << " shards, "
        << s.samples << " samples, all checksums verified";

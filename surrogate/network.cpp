@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/option_check.hpp"
+
 namespace plumekit::surrogate {
 
 // Per-thread scratch: activations of every level, pool indices and the im2col buffer.
@@ -40,9 +42,7 @@ Network::Network(Network&&) noexcept = default;
 Network& Network::operator=(Network&&) noexcept = default;
 
 void EngineOptions::validate() const {
-  if (threads < 0)
-    throw std::invalid_argument("engine.threads: " + std::to_string(threads) +
-                                " is negative; 0 is one per core");
+  check_count("engine.threads", threads, 0, 1024, "0 is one per core");
 }
 
 Network::Network(ModelFile file, EngineOptions options)

@@ -20,7 +20,7 @@ struct EngineOptions {
   // each sample's decoders (one per output) side by side instead, after its encoder. Results do
   // not depend on the thread count.
   int threads = kDefaultThreads;
-  // std::invalid_argument naming engine.threads when it is negative.
+  // OptionError naming engine.threads outside 0..1024.
   void validate() const;
 };
 

@@ -111,7 +111,7 @@ PlumePrediction PlumeNetwork::predict(Vec2 source) const {
 }
 
 std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>& sources,
-                                                       int batch_size) const {
+                                                         int batch_size) const {
   if (batch_size < 1) throw std::invalid_argument("PlumeNetwork::predict_batch: batch_size < 1");
   for (Vec2 s : sources)
     check_source(s);

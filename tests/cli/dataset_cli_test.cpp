@@ -115,7 +115,8 @@ TEST_F(DatasetCli, ErrorsNameTheFlags) {
 
 TEST_F(DatasetCli, ShowReportsTheSampleAndRefusesAnIndexBeyondTheDataset) {
   ASSERT_EQ(run("dataset generate --maps 1 --sources 2 --cell 0.1 --plume-model "
-                "advection-diffusion --out " + at("d"))
+                "advection-diffusion --out " +
+                at("d"))
                 .code,
             0);
   const Result r = run("dataset show " + at("d") + " --index 1 --json --out " + at("s.png"));

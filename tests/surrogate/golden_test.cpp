@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/error.hpp"
 #include "core/npy.hpp"
 #include "surrogate/network.hpp"
 
@@ -84,6 +85,34 @@ TEST(Golden, ThreadCountsAndRepeatedCallsGiveTheSameBytes) {
   const Tensor got = two.predict(three);
   for (int i = 0; i < 3; ++i)
     EXPECT_TRUE(std::equal(want.data.begin(), want.data.end(), got.sample_data(i))) << i;
+}
+
+// The engine's pool (core/thread_pool) outlives each call: five threads on batches of 1, 3 and 7
+// (decoders side by side, then samples shared out), called again and again, from the default (one
+// per core) too, give the bytes of one thread. A negative count names its field.
+TEST(Golden, APersistentPoolOfAnySizeGivesTheSameBytes) {
+  const Tensor input = load_tensor(kDir + "real_input.npy");
+  const Network one = Network::load(kDir + "real.pkcnn", EngineOptions{1});
+  const Network five = Network::load(kDir + "real.pkcnn", EngineOptions{5});
+  const Network cores = Network::load(kDir + "real.pkcnn");
+  const Tensor want = one.predict(input);
+  for (int n : {1, 3, 7, 1}) {
+    Tensor batch(n, input.c, input.h, input.w);
+    for (int i = 0; i < n; ++i)
+      std::copy(input.data.begin(), input.data.end(), batch.sample_data(i));
+    for (const Network* net : {&five, &cores}) {
+      const Tensor got = net->predict(batch);
+      for (int i = 0; i < n; ++i)
+        EXPECT_TRUE(std::equal(want.data.begin(), want.data.end(), got.sample_data(i)))
+            << "batch " << n << " sample " << i;
+    }
+  }
+  try {
+    Network::load(kDir + "real.pkcnn", EngineOptions{-1});
+    ADD_FAILURE() << "no OptionError";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "engine.threads");
+  }
 }
 
 // PyTorch's pool indices for a golden pair, split into the engine's levels.
