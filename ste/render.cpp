@@ -70,6 +70,15 @@ RunToDraw run_to_draw(const Map& map, const LocalizationResult& result, Vec2 sou
   return {&result, source, index, -1, model, ""};
 }
 
+std::string trajectory_title(const Map& map, const RunToDraw& run) {
+  const LocalizationResult& r = *run.result;
+  std::string title = run_heading(map, run) + ": error " + fmt(norm(r.estimate - run.source)) +
+                      " m, " + std::to_string(r.samples) + " samples, " + fmt(r.distance_m, 1) +
+                      " m travelled, stopped by " + r.stopped_by;
+  if (!run.chosen_as.empty()) title += " (" + run.chosen_as + ")";
+  return title;
+}
+
 Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const RunToDraw& run,
                         const RenderOptions& options) {
   const LocalizationResult& r = *run.result;
@@ -80,10 +89,7 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
     if (c > 0.0) v.push_back(c);
   const double hi = std::max(1.0, percentile(v, 0.99));
   const int cmap = cv::COLORMAP_VIRIDIS;
-  std::string title = run_heading(map, run) + ": error " + fmt(norm(r.estimate - run.source)) +
-                      " m, " + std::to_string(r.samples) + " samples, " + fmt(r.distance_m, 1) +
-                      " m travelled, stopped by " + r.stopped_by;
-  if (!run.chosen_as.empty()) title += " (" + run.chosen_as + ")";
+  const std::string title = trajectory_title(map, run);
   std::vector<LegendEntry> legend{
       {LegendEntry::Symbol::Line, kTrack, "path"},
       {LegendEntry::Symbol::Dot, colour_of(hi, 0, hi, cmap), "sample (coloured by its reading)"}};

@@ -33,6 +33,10 @@ RunToDraw run_to_draw(const RunRecord& record, const std::string& model,
 RunToDraw run_to_draw(const Map& map, const LocalizationResult& result, Vec2 source,
                       const std::string& model);
 
+// "<map>: <model>, source S1 run 2: error 0.42 m, 18 samples, 23.1 m travelled,
+// stopped by entropy (<chosen_as>)": every number from `run`.
+std::string trajectory_title(const Map& map, const RunToDraw& run);
+
 // The trajectory (paths and samples) over `mean_plume`: the true source, the
 // start, the estimate, each sample coloured on the plume's colour scale.
 Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const RunToDraw& run,

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -192,6 +193,17 @@ TEST(PictureLayout, TitlesNameTheRunTheyDraw) {
   EXPECT_EQ(run.result, &record.result);
   EXPECT_EQ(run.source_index, 1);
   EXPECT_EQ(run.run, 2);
+  // The title states the drawn run's own source, number and error (estimate to true source).
+  const std::string title = ste::trajectory_title(map, run);
+  const double error = norm(record.result.estimate - record.source);
+  std::ostringstream expected;
+  expected << "source S1 run 2: error " << std::fixed << std::setprecision(2) << error
+           << " m, 5 samples";
+  EXPECT_NE(title.find(expected.str()), std::string::npos) << title;
+  EXPECT_EQ(title.find("median run"), std::string::npos) << title;
+  EXPECT_NE(ste::trajectory_title(map, ste::run_to_draw(record, "surrogate", "median run of 9"))
+                .find("(median run of 9)"),
+            std::string::npos);
   // A single run's source index is looked up among the map's sources.
   EXPECT_EQ(ste::run_to_draw(map, record.result, map.sources[1], "gaussian").source_index, 1);
   EXPECT_EQ(ste::run_to_draw(map, record.result, {0.3, 0.3}, "gaussian").source_index, -1);
