@@ -146,6 +146,11 @@ TEST(PictureLayout, MapWindPlumeAndPlanReadAtEveryShapeAndScale) {
     }
 }
 
+TEST(PictureLayout, MapReadsAtTheLargestAcceptedScale) {
+  for (const Shape& s : kShapes)
+    look(render_map(test_map(s), RenderOptions{1000.0}), "map-" + std::string(s.name) + "-1000");
+}
+
 TEST(PictureLayout, TrajectoryAndPosteriorReadAtEveryShapeAndScale) {
   for (const Shape& s : kShapes)
     for (double px : kScales) {
