@@ -71,7 +71,7 @@ void add_families_option(CLI::App* cmd, RandomMapOptions& o) {
                       "u-shape (the thesis's, the default), three-rectangles, shape-and-rectangle"),
       "maps.families")
       ->delimiter(',')
-      ->default_str("rectangle,two-rectangles,l-shape,u-shape");
+      ->default_str(CLI::detail::join(o.families, ","));
 }
 
 void add_maps_random(CLI::App& app) {
@@ -141,15 +141,10 @@ void add_plume(CLI::App& app) {
   cmd->callback([a] {
     const Map map = read_map(a->map);
     const Vec2 src = parse_point(a->source, "--source");
-    check_source(map, src);  // before the flow is solved
+    check_source(map, src);  // before the output folder is checked
     OutputDirectory out(a->out, "plume", {a->map});
-    const auto t0 = std::chrono::steady_clock::now();
-    const cfd::FlowResult flow = cfd::solve_wind(map, a->flow).flow;  // the flow policy
-    const auto t1 = std::chrono::steady_clock::now();
-    const GridShape g = feature_grid(map);
-    const MapPlumes plumes(map, flow.wind, g, a->p);
-    const PlumeTargets t = plumes.run(src, a->seed);
-    const auto t2 = std::chrono::steady_clock::now();
+    const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed);
+    const PlumeTargets& t = plume.targets;
     const Picture img =
         draw_plume(map, t.mean, t.std, src, std::string(to_string(a->p.model)) + " plume", "");
     const fs::path& dir = out.open();
@@ -157,12 +152,7 @@ void add_plume(CLI::App& app) {
     write_file_atomic(dir / "std.npy", npy_float32(t.std.values, {64, 64}));
     write_png(img, dir / "plume.png");
     out.commit();
-    const PlumeRun run{a->map,
-                       a->out,
-                       src,
-                       a->p.model,
-                       std::chrono::duration<double>(t1 - t0).count(),
-                       std::chrono::duration<double>(t2 - t1).count()};
+    const PlumeRun run{a->map, a->out, src, a->p.model, plume.flow_s, plume.plume_s};
     const Report r = plume_report(run, t);
     report(r.json, r.text);
   });

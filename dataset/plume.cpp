@@ -1,6 +1,10 @@
 #include "dataset/plume.hpp"
 
+#include <chrono>
+
+#include "cfd/flow_policy.hpp"
 #include "core/error.hpp"
+#include "dataset/features.hpp"
 
 namespace plumekit::dataset {
 
@@ -62,6 +66,21 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
   t.std = std::move(r.std);
   t.filament = r.summary;
   return t;
+}
+
+SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
+                         const cfd::FlowOptions& flow, std::uint64_t seed) {
+  using Clock = std::chrono::steady_clock;
+  check_source(map, source);  // before the flow is solved
+  SinglePlume r;
+  const auto t0 = Clock::now();
+  const cfd::FlowResult solved = cfd::solve_wind(map, flow).flow;
+  const auto t1 = Clock::now();
+  const MapPlumes plumes(map, solved.wind, feature_grid(map), options);
+  r.targets = plumes.run(source, seed);
+  r.flow_s = std::chrono::duration<double>(t1 - t0).count();
+  r.plume_s = std::chrono::duration<double>(Clock::now() - t1).count();
+  return r;
 }
 
 }  // namespace plumekit::dataset

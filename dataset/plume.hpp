@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "cfd/options.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
@@ -69,5 +70,14 @@ class MapPlumes {
   std::unique_ptr<GridResampler> resampler_;
   std::vector<char> in_obstacle_;
 };
+
+// `plumekit plume`: one source's plume in a map whose wind is solved by the flow policy
+// (cfd::solve_wind), with the time each part took.
+struct SinglePlume {
+  PlumeTargets targets;
+  double flow_s = 0.0, plume_s = 0.0;
+};
+SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
+                         const cfd::FlowOptions& flow, std::uint64_t seed);
 
 }  // namespace plumekit::dataset
