@@ -1,9 +1,9 @@
 #include "ste/localizer.hpp"
 
-#include <algorithm>
 #include <ctime>
 
 #include "core/error.hpp"
+#include "core/statistics.hpp"
 
 namespace plumekit::ste {
 
@@ -11,7 +11,7 @@ namespace {
 
 // CPU time of the calling thread: a decision step runs on one thread, and
 // this reads the same on a loaded machine as on a quiet one.
-double thread_cpu_seconds() {
+double thread_cpu_s() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
@@ -37,7 +37,7 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
     s.value = world.sample(pos);
     s.time_s = world.time() - t_start;
 
-    const double t0 = thread_cpu_seconds();
+    const double t0 = thread_cpu_s();
     estimator.add(pos, s.value);
     r.posterior = estimator.posterior();
     s.estimate = r.posterior.expected_source();
@@ -52,7 +52,7 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
       const Decision d = navigator.decide(pos, estimator, r.posterior);
       path = planner.plan(pos, d.goal);
     }
-    s.compute_s = thread_cpu_seconds() - t0;
+    s.compute_s = thread_cpu_s() - t0;
     step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;
     r.steps.push_back(std::move(s));
@@ -68,9 +68,7 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
   r.estimate = r.posterior.expected_source();
   r.map = r.posterior.map;
   r.time_s = world.time() - t_start;
-  std::sort(step_times.begin(), step_times.end());
-  const std::size_t n = step_times.size();
-  r.median_step_s = n % 2 ? step_times[n / 2] : 0.5 * (step_times[n / 2 - 1] + step_times[n / 2]);
+  r.median_step_s = median(step_times);
   return r;
 }
 
