@@ -5,7 +5,7 @@
 
 --data: the training dataset; only the validation maps named in the model's header
 (training.val_maps) are scored, so the figures are for maps the model never saw. --test: the
-dataset of the nine test maps (`plumekit dataset generate --from-maps data/test-maps`). Either may
+dataset of the nine test maps (`plumekit dataset generate --map-dir data/test-maps --seed 0`). Either may
 be left out.
 
 Figures, per channel (mean, std), in dataset units:

@@ -287,8 +287,9 @@ TEST_F(DatasetReader, ProvenanceHoldsNoAbsolutePaths) {
   "obstacles": [[[4.0, 1.0], [5.0, 1.0], [5.0, 2.0], [4.0, 2.0]]],
   "sources": [[7.0, 2.5]]})";
   const fs::path out = dir / "given";
-  const CliResult r = run("dataset generate --cell 0.1 --plume advection-diffusion --from-maps " +
-                          fs::absolute(maps).string() + " --out " + fs::absolute(out).string());
+  const CliResult r =
+      run("dataset generate --cell 0.1 --plume-model advection-diffusion --map-dir " +
+          fs::absolute(maps).string() + " --out " + fs::absolute(out).string());
   ASSERT_EQ(r.code, 0) << r.err;
   for (const fs::path& f :
        {out / "manifest.json", out / "parameters.json", out / "wind" / "map-00000" / "wind.json",
