@@ -141,6 +141,82 @@ std::vector<std::string> wrap_words(const TextPainter& painter, const std::strin
   return lines;
 }
 
+// ---- legends ----------------------------------------------------------------
+
+namespace {
+
+int legend_gap(const TextPainter& text) {
+  return std::max(4, text.size("Ag").height / 2);
+}
+
+// A symbol in a box two text heights wide and one high, its top-left at `at`.
+void draw_legend_symbol(cv::Mat& image, const LegendEntry& e, cv::Point at, int h, int thickness) {
+  const int w = 2 * h;
+  const cv::Point c = at + cv::Point(w / 2, h / 2);
+  const int r = std::max(3, h / 2 - 1);
+  // A pale mark (e.g. white streamlines) sits on grey, as it does on the fields it is drawn over.
+  if (e.colour[0] + e.colour[1] + e.colour[2] > 600)
+    cv::rectangle(image, at, at + cv::Point(w - 1, h - 1), cv::Scalar(120, 120, 120), cv::FILLED);
+  switch (e.symbol) {
+    case LegendEntry::Symbol::Swatch:
+      cv::rectangle(image, at + cv::Point(1, 2), at + cv::Point(w - 2, h - 3), e.colour,
+                    cv::FILLED);
+      break;
+    case LegendEntry::Symbol::Dot:
+      cv::circle(image, c, r, e.colour, cv::FILLED, cv::LINE_AA);
+      break;
+    case LegendEntry::Symbol::Line:
+      cv::line(image, at + cv::Point(1, h / 2), at + cv::Point(w - 2, h / 2), e.colour,
+               std::max(2, h / 5), cv::LINE_AA);
+      break;
+    case LegendEntry::Symbol::Cross:
+      cv::line(image, c + cv::Point(-r, -r), c + cv::Point(r, r), e.colour, 2, cv::LINE_AA);
+      cv::line(image, c + cv::Point(-r, r), c + cv::Point(r, -r), e.colour, 2, cv::LINE_AA);
+      break;
+    case LegendEntry::Symbol::Ring:
+      cv::circle(image, c, r, e.colour, std::max(2, thickness), cv::LINE_AA);
+      break;
+  }
+}
+
+}  // namespace
+
+LegendLayout plan_legend(const TextPainter& text, const std::vector<LegendEntry>& entries,
+                         int width) {
+  const int h = text.size("Ag").height, gap = legend_gap(text);
+  LegendLayout l;
+  l.row_height = h + gap / 2;
+  int row_w = 0;
+  for (int k = 0; k < static_cast<int>(entries.size()); ++k) {
+    const int w = 2 * h + gap / 2 + text.size(entries[k].text).width;
+    l.widest = std::max(l.widest, w);
+    if (l.rows.empty() || row_w + 2 * gap + w > width - 2 * gap) {
+      l.rows.push_back({});
+      row_w = -2 * gap;
+    }
+    l.rows.back().push_back(k);
+    row_w += 2 * gap + w;
+  }
+  return l;
+}
+
+void draw_legend(cv::Mat& image, TextPainter& text, const std::vector<LegendEntry>& entries,
+                 const LegendLayout& layout, cv::Point at) {
+  const int h = text.size("Ag").height, gap = legend_gap(text);
+  int y = at.y;
+  for (const std::vector<int>& row : layout.rows) {
+    int x = at.x;
+    for (int k : row) {
+      const LegendEntry& e = entries[k];
+      draw_legend_symbol(image, e, {x, y}, h, text.thickness());
+      x += 2 * h + gap / 2;
+      text.put(image, e.text, {x, y});
+      x += text.size(e.text).width + 2 * gap;
+    }
+    y += layout.row_height;
+  }
+}
+
 // ---- layout -----------------------------------------------------------------
 
 namespace {
@@ -231,23 +307,22 @@ void MapCanvas::plan_layout() {
   int width = left_ + arena_w + right;
   width = std::max(width, widest_word(text_, frame_.title, title_font) + 2 * gap_);
   width = std::max(width, text_.size("x [m]").width + 2 * gap_);
-  plan_legend(width);
-  for (const LegendEntry& e : legend_)
-    width = std::max(width, 2 * text_h_ + gap_ / 2 + text_.size(e.text).width + 2 * gap_);
-  plan_legend(width);
+  collect_legend();
+  width = std::max(width, plan_legend(text_, legend_, width).widest + 2 * gap_);
+  legend_layout_ = plan_legend(text_, legend_, width);
   title_lines_ = wrap_words(text_, frame_.title, width - 2 * gap_, title_font);
   const int title_h = text_.size("Ag", title_font).height;
 
   top_ = gap_ + static_cast<int>(title_lines_.size()) * (title_h + gap_ / 2) + gap_ + text_h_ / 2;
   body_h_ = std::max(arena_h + tick_ + gap_ / 2 + text_h_ + gap_ / 2 + text_h_,
                      bar_len_ + text_h_ / 2 + gap_);
-  const int legend_h = static_cast<int>(legend_rows_.size()) * (text_h_ + gap_ / 2);
+  const int legend_h = legend_layout_.height();
   const int height = top_ + body_h_ + gap_ + legend_h + gap_;
   image_ = cv::Mat(height, width, CV_8UC3, kBackground);
 }
 
-// The legend's entries (the map's, then the picture's) in rows that fit `width`.
-void MapCanvas::plan_legend(int width) {
+// The legend's entries: the map's, then the picture's.
+void MapCanvas::collect_legend() {
   legend_.clear();
   if (frame_.map_legend) {
     legend_.push_back({LegendEntry::Symbol::Swatch, colours::kInlet,
@@ -262,17 +337,6 @@ void MapCanvas::plan_legend(int width) {
       legend_.push_back({LegendEntry::Symbol::Dot, colours::kSource, "source"});
   }
   legend_.insert(legend_.end(), frame_.legend.begin(), frame_.legend.end());
-  legend_rows_.clear();
-  int row_w = 0;
-  for (int k = 0; k < static_cast<int>(legend_.size()); ++k) {
-    const int w = 2 * text_h_ + gap_ / 2 + text_.size(legend_[k].text).width;
-    if (legend_rows_.empty() || row_w + 2 * gap_ + w > width - 2 * gap_) {
-      legend_rows_.push_back({});
-      row_w = -2 * gap_;
-    }
-    legend_rows_.back().push_back(k);
-    row_w += 2 * gap_ + w;
-  }
 }
 
 cv::Rect MapCanvas::arena_rect() const {
@@ -474,51 +538,6 @@ void MapCanvas::draw_colour_bar(const ColourBar& bar) {
       {top.x + width + tick_ + gap_ / 2 + labels_w + gap_, top.y + bar_len_ / 2 - label_len / 2});
 }
 
-void MapCanvas::draw_legend_symbol(const LegendEntry& e, cv::Point at) {
-  // `at`: the top-left of a 2 x 1 text-height box.
-  const int w = 2 * text_h_, h = text_h_;
-  const cv::Point c = at + cv::Point(w / 2, h / 2);
-  const int r = std::max(3, h / 2 - 1);
-  // A pale mark (e.g. white streamlines) sits on grey, as it does on the fields it is drawn over.
-  if (e.colour[0] + e.colour[1] + e.colour[2] > 600)
-    cv::rectangle(image_, at, at + cv::Point(w - 1, h - 1), cv::Scalar(120, 120, 120), cv::FILLED);
-  switch (e.symbol) {
-    case LegendEntry::Symbol::Swatch:
-      cv::rectangle(image_, at + cv::Point(1, 2), at + cv::Point(w - 2, h - 3), e.colour,
-                    cv::FILLED);
-      break;
-    case LegendEntry::Symbol::Dot:
-      cv::circle(image_, c, r, e.colour, cv::FILLED, cv::LINE_AA);
-      break;
-    case LegendEntry::Symbol::Line:
-      cv::line(image_, at + cv::Point(1, h / 2), at + cv::Point(w - 2, h / 2), e.colour,
-               std::max(2, h / 5), cv::LINE_AA);
-      break;
-    case LegendEntry::Symbol::Cross:
-      cv::line(image_, c + cv::Point(-r, -r), c + cv::Point(r, r), e.colour, 2, cv::LINE_AA);
-      cv::line(image_, c + cv::Point(-r, r), c + cv::Point(r, -r), e.colour, 2, cv::LINE_AA);
-      break;
-    case LegendEntry::Symbol::Ring:
-      cv::circle(image_, c, r, e.colour, std::max(2, thickness_), cv::LINE_AA);
-      break;
-  }
-}
-
-void MapCanvas::draw_legend() {
-  int y = top_ + body_h_ + gap_;
-  for (const std::vector<int>& row : legend_rows_) {
-    int x = gap_;
-    for (int k : row) {
-      const LegendEntry& e = legend_[k];
-      draw_legend_symbol(e, {x, y});
-      x += 2 * text_h_ + gap_ / 2;
-      text_.put(image_, e.text, {x, y});
-      x += text_.size(e.text).width + 2 * gap_;
-    }
-    y += text_h_ + gap_ / 2;
-  }
-}
-
 void MapCanvas::draw_title() {
   const double scale = font_ * 1.2;
   const int h = text_.size("Ag", scale).height;
@@ -532,7 +551,7 @@ void MapCanvas::draw_title() {
 Picture MapCanvas::finish() {
   draw_axes();
   if (frame_.colour_bar) draw_colour_bar(*frame_.colour_bar);
-  draw_legend();
+  draw_legend(image_, text_, legend_, legend_layout_, {gap_, top_ + body_h_ + gap_});
   draw_title();
   return {image_, text_.boxes(), arena_rect()};
 }

@@ -86,6 +86,21 @@ struct LegendEntry {
   std::string text;
 };
 
+// A legend: entries in rows no wider than `width` pixels, each a symbol two
+// text heights wide and its text; every picture's legend is laid out and
+// drawn by these two.
+struct LegendLayout {
+  std::vector<std::vector<int>> rows;  // entry indices per row
+  int widest = 0;                      // the widest entry, pixels
+  int row_height = 0;
+  int height() const { return static_cast<int>(rows.size()) * row_height; }
+};
+LegendLayout plan_legend(const TextPainter& text, const std::vector<LegendEntry>& entries,
+                         int width);
+// The legend with its top-left at `at`.
+void draw_legend(cv::Mat& image, TextPainter& text, const std::vector<LegendEntry>& entries,
+                 const LegendLayout& layout, cv::Point at);
+
 // A vertical colour bar right of the arena. The label carries the unit,
 // e.g. "speed [m/s]".
 struct ColourBar {
@@ -153,14 +168,11 @@ class MapCanvas {
   Picture finish();
 
  private:
-  struct Layout;
   void plan_layout();
-  void plan_legend(int width);
+  void collect_legend();
   void draw_axes();
   void draw_colour_bar(const ColourBar& bar);
-  void draw_legend();
   void draw_title();
-  void draw_legend_symbol(const LegendEntry& e, cv::Point at);
 
   Map map_;
   double px_per_m_;
@@ -172,8 +184,8 @@ class MapCanvas {
   double step_x_ = 1.0, step_y_ = 1.0;
   int left_ = 0, top_ = 0, body_h_ = 0, bar_x_ = 0, bar_len_ = 0;
   std::vector<std::string> title_lines_;
-  std::vector<std::vector<int>> legend_rows_;  // entry indices per row
   std::vector<LegendEntry> legend_;
+  LegendLayout legend_layout_;
   cv::Mat image_;
 };
 

@@ -149,7 +149,7 @@ struct BoxLayout {
   int text_h, gap, tick, left, top, plot_h, col_w, width, height;
   double ymax, step;
   std::vector<std::string> title_lines;
-  std::vector<std::vector<int>> legend_rows;
+  LegendLayout legend;
 };
 
 const cv::Scalar kInk(40, 40, 40), kGridLine(225, 225, 225), kBox(200, 120, 40),
@@ -212,23 +212,14 @@ BoxLayout plan_box_plot(const BoxPlot& p, const TextPainter& text) {
   for (std::string w; words >> w;)
     l.width = std::max(l.width, text.size(w, title_scale).width + 2 * l.gap);
   const std::vector<LegendEntry> legend = box_legend(p);
-  int row_w = 0;
-  for (int k = 0; k < static_cast<int>(legend.size()); ++k) {
-    const int w = 2 * l.text_h + l.gap / 2 + text.size(legend[k].text).width;
-    l.width = std::max(l.width, w + 2 * l.gap);
-    if (l.legend_rows.empty() || row_w + 2 * l.gap + w > l.width - 2 * l.gap) {
-      l.legend_rows.push_back({});
-      row_w = -2 * l.gap;
-    }
-    l.legend_rows.back().push_back(k);
-    row_w += 2 * l.gap + w;
-  }
+  l.width = std::max(l.width, plan_legend(text, legend, l.width).widest + 2 * l.gap);
+  l.legend = plan_legend(text, legend, l.width);
   l.title_lines = wrap_words(text, p.title, l.width - 2 * l.gap, title_scale);
   const int title_h = text.size("Ag", title_scale).height;
   l.top =
       l.gap + static_cast<int>(l.title_lines.size()) * (title_h + l.gap / 2) + l.gap + l.text_h / 2;
-  const int below = l.tick + l.gap / 2 + 2 * l.text_h + l.gap + l.text_h + l.gap +
-                    static_cast<int>(l.legend_rows.size()) * (l.text_h + l.gap / 2) + l.gap;
+  const int below =
+      l.tick + l.gap / 2 + 2 * l.text_h + l.gap + l.text_h + l.gap + l.legend.height() + l.gap;
   l.height = l.top + l.plot_h + below;
   return l;
 }
@@ -250,26 +241,7 @@ void draw_box(cv::Mat& img, const std::vector<double>& g, int cx, int half,
   cv::rectangle(img, {cx - half, y_px(q3)}, {cx + half, y_px(q1)}, kInk, 1);
   cv::line(img, {cx - half, y_px(q2)}, {cx + half, y_px(q2)}, kMedian, 2);
   for (double v : g)
-    if (v < lo || v > hi) cv::circle(img, {cx, y_px(v)}, 3, kInk, 1, cv::LINE_AA);
-}
-
-void draw_legend_row(cv::Mat& img, TextPainter& text, const std::vector<LegendEntry>& legend,
-                     const std::vector<int>& row, const BoxLayout& l, int y) {
-  int x = l.gap;
-  for (int k : row) {
-    const LegendEntry& e = legend[k];
-    const int w = 2 * l.text_h, h = l.text_h;
-    const cv::Point c(x + w / 2, y + h / 2);
-    if (e.symbol == LegendEntry::Symbol::Swatch)
-      cv::rectangle(img, {x + 1, y + 2}, {x + w - 2, y + h - 3}, e.colour, cv::FILLED);
-    else if (e.symbol == LegendEntry::Symbol::Ring)
-      cv::circle(img, c, 3, e.colour, 1, cv::LINE_AA);
-    else
-      cv::line(img, {x + 1, c.y}, {x + w - 2, c.y}, e.colour, 2);
-    x += w + l.gap / 2;
-    text.put(img, e.text, {x, y});
-    x += text.size(e.text).width + 2 * l.gap;
-  }
+    if (v < lo || v > hi) cv::circle(img, {cx, y_px(v)}, 4, kInk, 2, cv::LINE_AA);
 }
 
 }  // namespace
@@ -308,11 +280,7 @@ Picture draw_box_plot(const BoxPlot& p) {
   text.put(img, p.x_label,
            {std::max(l.gap, (l.left + right) / 2 - text.size(p.x_label).width / 2), y});
   y += l.text_h + l.gap;
-  const std::vector<LegendEntry> legend = box_legend(p);
-  for (const std::vector<int>& row : l.legend_rows) {
-    draw_legend_row(img, text, legend, row, l, y);
-    y += l.text_h + l.gap / 2;
-  }
+  draw_legend(img, text, box_legend(p), l.legend, {l.gap, y});
   int ty = l.gap;
   for (const std::string& line : l.title_lines) {
     text.put(img, line, {l.gap, ty}, text.scale() * 1.2);
