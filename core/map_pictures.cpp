@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/map_render.hpp"
+#include "core/option_check.hpp"
 #include "core/rasterize.hpp"
 
 namespace plumekit {
@@ -15,12 +16,6 @@ namespace plumekit {
 namespace {
 
 const cv::Scalar kSolidCell(60, 60, 230);
-
-std::string format_number(double x) {
-  std::ostringstream s;
-  s << std::setprecision(3) << x;
-  return s.str();
-}
 
 // Tints the cells that count as solid at `cell` metres, to show the rasterization rule.
 void overlay_solid_cells(MapCanvas& canvas, double cell) {
@@ -48,15 +43,15 @@ Map with_source(const Map& map, Vec2 source) {
 
 Picture render_map(const Map& map, const RenderOptions& options, double cells) {
   std::ostringstream title;
-  title << (map.name.empty() ? "map" : map.name) << "  (" << format_number(map.width) << " x "
-        << format_number(map.height) << " m, " << map.obstacles.size()
+  title << (map.name.empty() ? "map" : map.name) << "  (" << compact(map.width) << " x "
+        << compact(map.height) << " m, " << map.obstacles.size()
         << (map.obstacles.size() == 1 ? " obstacle" : " obstacles");
   Frame frame;
   if (cells > 0.0) {
-    title << ", grid of " << format_number(cells) << " m cells";
+    title << ", grid of " << compact(cells) << " m cells";
     // The tint is blended at 45 %: the swatch shows it over free space.
     frame.legend.push_back({LegendEntry::Symbol::Swatch, cv::Scalar(163, 162, 238),
-                            "solid cell at " + format_number(cells) + " m"});
+                            "solid cell at " + compact(cells) + " m"});
   }
   title << ")";
   frame.title = title.str();
@@ -125,10 +120,10 @@ Picture draw_plume(const Map& map, const Grid<double>& mean, const Grid<double>&
   const std::string u = unit.empty() ? "concentration units" : unit;
   FieldPanel m{free_cells(map, mean), "", "mean [" + u + "]", true};
   FieldPanel s{free_cells(map, std), "", "std [" + u + "]", true};
-  m.title = heading.str() + ": mean concentration, peak " + format_number(largest(m.field));
+  m.title = heading.str() + ": mean concentration, peak " + compact(largest(m.field));
   const double std_max = largest(s.field);
   s.title = heading.str() + ": std of the concentration, " +
-            (std_max > 0.0 ? "largest " + format_number(std_max) : "all zero");
+            (std_max > 0.0 ? "largest " + compact(std_max) : "all zero");
   return draw_field_panels(map, {m, s}, source, options);
 }
 

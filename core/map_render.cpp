@@ -36,12 +36,6 @@ cv::Point fixed_point(cv::Point2d p) {
   return {static_cast<int>(std::lround(p.x * kScale)), static_cast<int>(std::lround(p.y * kScale))};
 }
 
-std::string format_number(double x) {
-  std::ostringstream s;
-  s << std::setprecision(3) << (std::abs(x) < 1e-12 ? 0.0 : x);
-  return s.str();
-}
-
 }  // namespace
 
 // ---- size checks ------------------------------------------------------------
@@ -247,8 +241,8 @@ int widest_word(const TextPainter& painter, const std::string& text, double scal
 }
 
 std::vector<std::string> bar_labels(const ColourBar& bar) {
-  if (bar.uniform) return {bar.lo == 0.0 ? "all zero" : "all " + format_number(bar.lo)};
-  return {format_number(bar.hi), format_number(0.5 * (bar.lo + bar.hi)), format_number(bar.lo)};
+  if (bar.uniform) return {bar.lo == 0.0 ? "all zero" : "all " + compact(bar.lo)};
+  return {compact(bar.hi), compact(0.5 * (bar.lo + bar.hi)), compact(bar.lo)};
 }
 
 constexpr double kTitleScale = 1.2;  // title text relative to the rest
@@ -276,14 +270,14 @@ void MapCanvas::plan_layout() {
   auto widest_tick = [&](double length, double step) {
     int w = 0;
     for (double t : ticks(length, step))
-      w = std::max(w, text_.size(format_number(t)).width);
+      w = std::max(w, text_.size(compact(t)).width);
     return w;
   };
   step_x_ = tick_step(px_per_m_, [&](double s) { return widest_tick(map_.width, s) + 3 * gap_; });
   step_y_ = tick_step(px_per_m_, [&](double) { return 3 * text_h_; });
   // One step on both axes where the two differ, so a metre looks the same either way.
   step_x_ = step_y_ = std::max(step_x_, step_y_);
-  const int x_last_w = text_.size(format_number(ticks(map_.width, step_x_).back())).width;
+  const int x_last_w = text_.size(compact(ticks(map_.width, step_x_).back())).width;
   left_ = gap_ + text_h_ + gap_ + widest_tick(map_.height, step_y_) + gap_ / 2 + tick_;
 
   // Right margin: half the last x label, or the colour bar with its value
@@ -327,8 +321,8 @@ void MapCanvas::collect_legend() {
   if (frame_.map_legend) {
     legend_.push_back({LegendEntry::Symbol::Swatch, colours::kInlet,
                        "inlet (" + std::string(to_string(map_.inlet.side)) + ", " +
-                           format_number(map_.inlet.speed) + " m/s " +
-                           to_string(map_.inlet.profile) + ")"});
+                           compact(map_.inlet.speed) + " m/s " + to_string(map_.inlet.profile) +
+                           ")"});
     legend_.push_back({LegendEntry::Symbol::Swatch, colours::kOutlet,
                        "outlet (" + std::string(to_string(map_.outlet.side)) + ")"});
     if (!map_.obstacles.empty())
@@ -485,7 +479,7 @@ void MapCanvas::draw_axes() {
   for (double x : ticks(map_.width, step_x_)) {
     const cv::Point p = pixel({x, 0});
     cv::line(image_, p, p + cv::Point(0, tick_), kText, thickness_, cv::LINE_AA);
-    const std::string s = format_number(x);
+    const std::string s = compact(x);
     const int w = text_.size(s).width;
     text_.put(image_, s, p + cv::Point(-w / 2, tick_ + gap_ / 2));
   }
@@ -495,7 +489,7 @@ void MapCanvas::draw_axes() {
   for (double y : ticks(map_.height, step_y_)) {
     const cv::Point p = pixel({0, y});
     cv::line(image_, p, p - cv::Point(tick_, 0), kText, thickness_, cv::LINE_AA);
-    const std::string s = format_number(y);
+    const std::string s = compact(y);
     const int w = text_.size(s).width;
     text_.put(image_, s, p + cv::Point(-tick_ - gap_ / 2 - w, -text_h_ / 2));
   }
