@@ -173,7 +173,7 @@ TEST(Generate, LoadsInNumpyWithTheManifestShapesDtypesAndChecksums) {
   const fs::path d = scratch("numpy");
   ASSERT_EQ(run(kExe +
                 " dataset generate --maps 2 --sources 3 --seed 4 --cell 0.1 "
-                "--plume advection-diffusion --out " +
+                "--plume-model advection-diffusion --out " +
                 d.string() + " > /dev/null"),
             0);
   const fs::path script = d / "check.py";
@@ -222,8 +222,9 @@ TEST(Generate, BadInputExitsTwoAndWritesNothing) {
       run(kExe + " dataset generate --maps 2 --shard 2/2 --out " + d.string() + " 2>/dev/null"), 2);
   EXPECT_EQ(run(kExe + " dataset generate --maps 0 --out " + d.string() + " 2>/dev/null"), 2);
   EXPECT_EQ(
-      run(kExe + " dataset generate --maps 2 --threads -1 --out " + d.string() + " 2>/dev/null"), 2);
-  EXPECT_EQ(run(kExe + " dataset generate --maps 2 --plume gaussian --out " + d.string() +
+      run(kExe + " dataset generate --maps 2 --threads -1 --out " + d.string() + " 2>/dev/null"),
+      2);
+  EXPECT_EQ(run(kExe + " dataset generate --maps 2 --plume-model gaussian --out " + d.string() +
                 " 2>/dev/null"),
             2);
   EXPECT_EQ(run(kExe + " plume --source 3.2,1.0 --out " + d.string() + " 2>/dev/null"), 2);

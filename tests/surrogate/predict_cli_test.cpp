@@ -29,11 +29,11 @@ const fs::path kMap = fs::path(PLUMEKIT_DATA_DIR) / "maps" / "cluttered-1.json";
 
 std::string predict_args(const fs::path& out, const std::string& source,
                          const fs::path& model = kModel, const fs::path& map = kMap) {
-  return "predict --model " + model.string() + " --map " + map.string() + " --source " + source +
+  return "predict " + map.string() + " --cnn " + model.string() + " --source " + source +
          " --out " + out.string();
 }
 
-TEST_F(Predict, WritesThePlumeModelsPrediction) {
+TEST_F(Predict, WritesThePlumeNetworksPrediction) {
   const fs::path out = dir / "plume";
   const Result r = run(predict_args(out, "1.5,1.0") + " --json --threads 2");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -100,7 +100,8 @@ TEST_F(Predict, RefusesToReplaceADirectoryHoldingOtherFiles) {
   std::ofstream(dir / "mine" / "notes.txt") << "keep me";
   const Result r = run(predict_args(dir / "mine", "1.5,1"));
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("holds files plumekit did not write (notes.txt)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("holds files plumekit did not write (notes.txt)"), std::string::npos)
+      << r.err;
   EXPECT_TRUE(fs::exists(dir / "mine" / "notes.txt"));
   EXPECT_FALSE(fs::exists(dir / "mine" / "mean.npy"));
 }
