@@ -36,10 +36,22 @@ namespace {
 // --plume-model (old spellings --model and --plume kept as deprecated aliases) and the plume
 // options, bound to the library's fields.
 void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
-  const auto names = CLI::CheckedTransformer(plume_simulator_names());
+  // A kind's name becomes the enum's number for CLI11; the library parses the name and words
+  // the error.
+  const CLI::Validator names(
+      [](std::string& kind) {
+        try {
+          kind = std::to_string(static_cast<int>(parse_plume_simulator(kind)));
+          return std::string();
+        } catch (const OptionError& e) {
+          return e.message();
+        }
+      },
+      "", "plume model kind");
   bind_field(cmd,
              cmd->add_option("--plume-model", p.model, "Plume model: filament, advection-diffusion")
                  ->transform(names)
+                 ->type_name("KIND")
                  ->default_str(to_string(p.model)),
              "plume.model");
   for (const char* old : {"--model", "--plume"})
