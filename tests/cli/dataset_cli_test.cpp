@@ -80,6 +80,9 @@ TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
   const Result bad = run("plume --plume-model gaussian" + common + at("c"));
   EXPECT_EQ(bad.code, 2);
   EXPECT_TRUE(has(bad.err, "--plume-model")) << bad.err;
+  const Result number = run("plume --plume-model 1" + common + at("d"));
+  EXPECT_EQ(number.code, 2) << "the enum's number is no kind";
+  EXPECT_TRUE(has(number.err, "use filament or advection-diffusion")) << number.err;
 }
 
 TEST_F(DatasetCli, MapDirAndItsOldSpellingMakeTheSameDataset) {

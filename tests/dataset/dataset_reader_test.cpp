@@ -302,5 +302,45 @@ TEST_F(DatasetReader, ProvenanceHoldsNoAbsolutePaths) {
   EXPECT_NE(read_file(out / "manifest.json").find("\"one.json\""), std::string::npos);
 }
 
+// read_sample walks the manifest's shards: the sample's row, source and channels are the shard's,
+// and an index beyond the dataset names the option field.
+TEST_F(DatasetReader, ReadSampleReturnsTheShardsRow) {
+  const DatasetSample s = read_sample(data, 1);
+  EXPECT_EQ(s.shard.name, "shard-00000");
+  EXPECT_EQ(s.row, 1);
+  const Manifest m = read_manifest(data / "manifest.json");
+  const ShardArrays a = read_shard(data, m.shards.at(0));
+  EXPECT_EQ(s.source.x, a.sources[2]);
+  EXPECT_EQ(s.source.y, a.sources[3]);
+  ASSERT_EQ(s.inputs.size(), 3u);
+  ASSERT_EQ(s.targets.size(), 2u);
+  const std::size_t plane = 64 * 64;
+  EXPECT_EQ(s.targets[1].values[7], a.targets[(1 * 2 + 1) * plane + 7]);
+  EXPECT_EQ(s.inputs[2].values[9], a.inputs[(1 * 3 + 2) * plane + 9]);
+  EXPECT_EQ(s.inputs_sha256.size(), 64u);
+  EXPECT_NE(s.inputs_sha256, read_sample(data, 0).inputs_sha256);
+  try {
+    read_sample(data, 2);
+    ADD_FAILURE() << "no OptionError";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "show.index");
+  }
+}
+
+// Parameters written before issue 15 say filament.record_seconds; they read as record_s, in
+// place, so the dataset resumes with today's parameters.
+TEST(DatasetParameters, OlderRecordSecondsKeyReadsAsRecordS) {
+  const std::string old = R"({"seed": 1, "maps": 2, "filament": {"dt": 0.05,
+    "record_seconds": 5.0, "sample_rate": 10.0}})";
+  const nlohmann::ordered_json p = parse_parameters(old, "parameters.json");
+  const nlohmann::ordered_json& f = p.at("filament");
+  EXPECT_FALSE(f.contains("record_seconds"));
+  EXPECT_EQ(f.at("record_s"), 5.0);
+  EXPECT_EQ(f.dump(), R"({"dt":0.05,"record_s":5.0,"sample_rate":10.0})");
+  const nlohmann::ordered_json now = nlohmann::ordered_json::parse(
+      R"({"seed": 1, "maps": 2, "filament": {"dt": 0.05, "record_s": 5.0, "sample_rate": 10.0}})");
+  EXPECT_TRUE(parameter_differences(now, p).empty());
+}
+
 }  // namespace
 }  // namespace plumekit::dataset
