@@ -61,16 +61,20 @@ void warn_deprecated(const std::string& old_flag, const std::string& new_flag);
 template <typename T>
 CLI::Option* add_deprecated_alias(CLI::App* command, const std::string& old_flag,
                                   const std::string& new_flag, T& target) {
-  CLI::Option* replacement = command->get_option(new_flag);
+  const CLI::Option* replacement = command->get_option(new_flag);
+  // Checked here rather than with excludes(), which would list the hidden
+  // spelling in the new flag's --help line.
   CLI::Option* alias = command->add_option_function<T>(
       old_flag,
-      [&target, old_flag, new_flag](const T& value) {
+      [&target, old_flag, new_flag, replacement](const T& value) {
+        if (replacement->count() > 0)
+          throw CLI::ValidationError(
+              old_flag, "give " + new_flag + " or its old spelling " + old_flag + ", not both");
         warn_deprecated(old_flag, new_flag);
         target = value;
       },
       "Deprecated: use " + new_flag);
   alias->group("");
-  alias->excludes(replacement);
   return alias;
 }
 

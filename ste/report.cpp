@@ -230,7 +230,7 @@ void write_evaluation_files(const fs::path& dir, const EvaluationResult& res,
                             const EvaluationOptions& eo, const ordered_json& summary) {
   std::vector<std::string> labels;
   for (std::size_t m = 0; m < res.maps.size(); ++m)
-    labels.push_back(std::to_string(m));
+    labels.push_back(res.maps[m].name);
   const std::string label = to_string(eo.ste.model);
   write_file_atomic(dir / "runs.csv", runs_csv(res));
   write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");

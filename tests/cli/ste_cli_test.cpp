@@ -7,27 +7,16 @@
 #include <nlohmann/json.hpp>
 
 #include "support/cli_runner.hpp"
+#include "support/small_map.hpp"
 
 namespace plumekit::test {
 namespace {
 
 using nlohmann::json;
 
-const std::string kSmallMap = R"({
-  "format": "plumekit-map/1", "name": "small", "size": [6.0, 3.0],
-  "inlet": {"side": "left", "speed": 1.0}, "outlet": {"side": "right"},
-  "obstacles": [[[2.5, 1.0], [3.0, 1.0], [3.0, 2.0], [2.5, 2.0]]],
-  "sources": [[4.5, 0.5], [1.5, 0.7]]
-})";
-
 class SteFlags : public CliTest {
  protected:
-  std::string write_map() {
-    std::filesystem::create_directories(dir / "maps");
-    const auto p = dir / "maps" / "small.json";
-    std::ofstream(p) << kSmallMap;
-    return p.string();
-  }
+  std::string write_map() { return write_small_map(dir); }
   static bool has(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
   }
