@@ -105,7 +105,7 @@ void add_moved_start(nlohmann::ordered_json& summary, Vec2 requested, Vec2 used)
 std::string moved_start_text(Vec2 requested, Vec2 used) {
   std::ostringstream s;
   s << "start moved from (" << requested.x << ", " << requested.y << ") to (" << used.x << ", "
-    << used.y << "): closer than the margin to an obstacle";
+    << used.y << "): closer than the margin to an obstacle or wall";
   return s.str();
 }
 

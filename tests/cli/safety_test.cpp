@@ -63,7 +63,7 @@ TEST_F(Safety, EvaluateRefusesAFolderWithFilesItDidNotWrite) {
   const fs::path work = thesis();
   const auto before = snapshot(work);
   const Result r =
-      run("evaluate --maps " + one_map_dir().string() + " --out " + work.string() + quick_ste());
+      run("evaluate --map-dir " + one_map_dir().string() + " --out " + work.string() + quick_ste());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("holds files plumekit did not write"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("thesis.tex"), std::string::npos) << r.err;
@@ -74,13 +74,13 @@ TEST_F(Safety, EvaluateRefusesTheCurrentFolderTheInputsAndAFile) {
   const fs::path maps = one_map_dir();
   put(dir / "keep.txt", "keep");
   const auto before = snapshot(dir);
-  Result r = here("evaluate --maps maps --out ." + quick_ste());
+  Result r = here("evaluate --map-dir maps --out ." + quick_ste());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("the current folder"), std::string::npos) << r.err;
-  r = run("evaluate --maps " + maps.string() + " --out " + maps.string() + quick_ste());
+  r = run("evaluate --map-dir " + maps.string() + " --out " + maps.string() + quick_ste());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("is also an input"), std::string::npos) << r.err;
-  r = run("evaluate --maps " + maps.string() + " --out " + (dir / "keep.txt").string() +
+  r = run("evaluate --map-dir " + maps.string() + " --out " + (dir / "keep.txt").string() +
           quick_ste());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("is a file, but this output is a folder"), std::string::npos) << r.err;
@@ -99,14 +99,14 @@ TEST_F(Safety, EvaluateNamesPicturesAfterFilesNotMapNamesAndReplacesItsOwnOutput
   put(dir / "maps" / "b.json", text);  // the same name twice
   const fs::path out = dir / "runs" / "eval";
   Result r =
-      run("evaluate --maps " + (dir / "maps").string() + " --out " + out.string() + quick_ste());
+      run("evaluate --map-dir " + (dir / "maps").string() + " --out " + out.string() + quick_ste());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out / "trajectories" / "a.png"));
   EXPECT_TRUE(fs::exists(out / "trajectories" / "b.png"));
   EXPECT_FALSE(fs::exists(dir / "escaped.png"));
   EXPECT_FALSE(fs::exists(dir / "runs" / "escaped.png"));
   // A second run replaces its own earlier output.
-  r = run("evaluate --maps " + (dir / "maps").string() + " --out " + out.string() + quick_ste());
+  r = run("evaluate --map-dir " + (dir / "maps").string() + " --out " + out.string() + quick_ste());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "runs"), fs::directory_iterator{}), 1);
 }
@@ -174,7 +174,7 @@ TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {
   for (const std::string& cmd : {
            "flow " + map + " --cell 0.2 --out " + w,
            "plume " + map + " --source 1,2 --out " + w,
-           "predict --map " + map + " --source 1,2 --out " + w,
+           "predict " + map + " --source 1,2 --out " + w,
            "localize " + map + " --source 1,2 --plume-model gaussian --out " + w,
            "demo --plume-model gaussian --out " + w,
            "maps random --count 1 --out " + w,
@@ -188,7 +188,7 @@ TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {
   // dataset merge, given a real part to merge
   const fs::path part = dir / "part";
   for (const char* k : {"0/2", "1/2"})
-    ASSERT_EQ(run(std::string("dataset generate --maps 2 --sources 1 --model advection-diffusion "
+    ASSERT_EQ(run(std::string("dataset generate --maps 2 --sources 1 --plume-model advection-diffusion "
                               "--shard ") +
                   k + " --out " + part.string())
                   .code,
@@ -315,7 +315,7 @@ TEST_F(Safety, WrittenFilesRecordNoAbsolutePath) {
           "--out " + (dir / "loc").string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(slurp(dir / "loc" / "run.json").find(dir.string()), std::string::npos);
-  r = run("evaluate --maps " + maps.string() + " --out " + (dir / "ev").string() + quick_ste());
+  r = run("evaluate --map-dir " + maps.string() + " --out " + (dir / "ev").string() + quick_ste());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(slurp(dir / "ev" / "summary.json").find(dir.string()), std::string::npos);
 }
