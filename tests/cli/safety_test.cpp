@@ -115,7 +115,7 @@ TEST_F(Safety, InterruptedEvaluateLeavesNoTemporary) {
   const fs::path maps = one_map_dir();
   const fs::path out = dir / "eval";
   const std::string exe = PLUMEKIT_EXE;
-  std::vector<std::string> args{exe,      "evaluate",   "--maps",        maps.string(),
+  std::vector<std::string> args{exe,      "evaluate",   "--map-dir",     maps.string(),
                                 "--out",  out.string(), "--plume-model", "physics",
                                 "--runs", "3",          "--threads",     "1"};
   std::vector<char*> argv;
@@ -188,11 +188,12 @@ TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {
   // dataset merge, given a real part to merge
   const fs::path part = dir / "part";
   for (const char* k : {"0/2", "1/2"})
-    ASSERT_EQ(run(std::string("dataset generate --maps 2 --sources 1 --plume-model advection-diffusion "
-                              "--shard ") +
-                  k + " --out " + part.string())
-                  .code,
-              0);
+    ASSERT_EQ(
+        run(std::string("dataset generate --maps 2 --sources 1 --plume-model advection-diffusion "
+                        "--shard ") +
+            k + " --out " + part.string())
+            .code,
+        0);
   const Result r = run("dataset merge " + part.string() + " --out " + w);
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("did not write"), std::string::npos) << r.err;

@@ -134,7 +134,8 @@ int run(const std::string& cmd) {
 }
 
 const std::string kExe = PLUMEKIT_EXE;
-const std::string kArgs = " dataset generate --maps 5 --sources 4 --seed 3 --cell 0.1 ";
+// One thread, so that the run below is still going when its first shard is complete.
+const std::string kArgs = " dataset generate --maps 5 --sources 4 --seed 3 --cell 0.1 --threads 1 ";
 
 TEST(Generate, KilledRunResumedEqualsAnUninterruptedOne) {
   const fs::path whole = scratch("whole"), killed = scratch("killed");
@@ -145,7 +146,8 @@ TEST(Generate, KilledRunResumedEqualsAnUninterruptedOne) {
   if (pid == 0) {
     const std::string out = killed.string();
     ::execl(kExe.c_str(), kExe.c_str(), "dataset", "generate", "--maps", "5", "--sources", "4",
-            "--seed", "3", "--cell", "0.1", "--out", out.c_str(), static_cast<char*>(nullptr));
+            "--seed", "3", "--cell", "0.1", "--threads", "1", "--out", out.c_str(),
+            static_cast<char*>(nullptr));
     ::_exit(127);
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
