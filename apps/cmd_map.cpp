@@ -65,8 +65,8 @@ ordered_json map_summary(const Map& map, const std::string& file) {
 void add_validate(CLI::App& map_cmd) {
   auto* cmd =
       map_cmd.add_subcommand("validate", "Check a plumekit-map/1 file; exit 2 naming the fault");
-  auto path = std::make_shared<std::string>(default_map().string());
-  cmd->add_option("MAP", *path, "Map file (JSON)")->capture_default_str();
+  auto path = std::make_shared<std::string>();
+  add_map_argument(cmd, *path);
   add_common_flags(cmd);
   cmd->callback([path] {
     const Map map = read_map(*path);
@@ -86,13 +86,12 @@ void add_render(CLI::App& map_cmd) {
   auto* cmd = map_cmd.add_subcommand("render",
                                      "Draw a map to PNG: obstacles, inlet, outlet, sources, scale");
   struct Args {
-    std::string map = default_map().string();
-    std::string out;
+    std::string map, out;
     RenderOptions render;
     double cells = 0.0;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("MAP", a->map, "Map file (JSON)")->capture_default_str();
+  add_map_argument(cmd, a->map);
   cmd->add_option("--out,-o", a->out, "PNG file to write (new, or a picture plumekit drew)")
       ->required();
   bind_field(cmd, cmd->add_option("--px-per-m", a->render.px_per_m, "Pixels per metre"),
