@@ -6,6 +6,7 @@
 #include "apps/commands.hpp"
 #include "cfd/flow_output.hpp"
 #include "cfd/flow_policy.hpp"
+#include "cfd/openfoam_report.hpp"
 #include "core/map_json.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
@@ -18,11 +19,53 @@ struct FlowArgs {
   std::string map;
   std::string out;
   cfd::FlowOptions options;
+  cfd::OpenFoamOptions foam;
   // Enum fields as their names, read by the library's parsers (cfd/options.hpp).
   std::string turbulence = cfd::to_string(options.turbulence);
   std::string convection = cfd::to_string(options.convection);
   std::string linear_solver = cfd::to_string(options.linear_solver);
+  std::string engine = cfd::to_string(foam.engine);
+  std::string foam_turbulence = cfd::to_string(foam.turbulence);
 };
+
+void bind_engine_options(CLI::App* cmd, FlowArgs& a) {
+  cfd::OpenFoamOptions& f = a.foam;
+  bind_field(cmd,
+             cmd->add_option("--engine", a.engine,
+                             "Flow solver: " + cfd::engine_names() +
+                                 " (openfoam: OpenFOAM's simpleFoam on the same grid, read back "
+                                 "into the same files)"),
+             "flow.engine")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--ranks", f.ranks,
+                             "OpenFOAM engine: MPI ranks (1: serial; N: decomposePar, mpirun -np "
+                             "N simpleFoam -parallel, reconstructPar)"),
+             "flow.ranks")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--foam-turbulence", a.foam_turbulence,
+                             "OpenFOAM engine: turbulence model, " + cfd::foam_turbulence_names() +
+                                 " (RANS with wall functions; --nu is then the molecular "
+                                 "viscosity)"),
+             "flow.openfoam_turbulence")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--foam-tol", f.tolerance,
+                             "OpenFOAM engine: stop when every initial residual is below this"),
+             "flow.openfoam_tolerance")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--foam-max-iter", f.max_iterations,
+                             "OpenFOAM engine: fail after this many SIMPLE iterations"),
+             "flow.openfoam_max_iterations")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--keep-case", f.keep_case,
+                             "OpenFOAM engine: write the case into this new or empty folder and "
+                             "keep it (default: a temporary, removed)"),
+             "flow.openfoam_case");
+}
 
 void bind_flow_options(CLI::App* cmd, FlowArgs& a) {
   cfd::FlowOptions& o = a.options;
@@ -87,6 +130,17 @@ void show_progress(cfd::FlowOptions& o, ProgressBar& bar, double& first) {
   };
 }
 
+const char* const kWrote = "/{u,v,p}.npy, wind.json, wind.vti, wind.png: ";
+
+void run_openfoam(const FlowArgs& a, const Map& map, OutputDirectory& out) {
+  const cfd::OpenFoamResult r = cfd::solve_openfoam(map, a.options, a.foam, out.open());
+  cfd::write_flow(out.open(), map, r.flow.wind, cfd::openfoam_summary_json(r, a.options));
+  out.commit();
+  nlohmann::ordered_json j{{"ok", true}, {"map", a.map}, {"out", a.out}};
+  j.update(cfd::openfoam_report_json(r, a.options));
+  report(j, "wrote " + a.out + kWrote + cfd::openfoam_report_text(r));
+}
+
 }  // namespace
 
 void add_flow_commands(CLI::App& app) {
@@ -98,14 +152,18 @@ void add_flow_commands(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `flow` output")
       ->required();
   bind_flow_options(cmd, *a);
+  bind_engine_options(cmd, *a);
   add_common_flags(cmd);
   cmd->callback([a] {
     cfd::FlowOptions& o = a->options;
     o.turbulence = cfd::parse_turbulence(a->turbulence);
     o.convection = cfd::parse_convection(a->convection);
     o.linear_solver = cfd::parse_linear_solver(a->linear_solver);
+    a->foam.engine = cfd::parse_engine(a->engine);
+    a->foam.turbulence = cfd::parse_foam_turbulence(a->foam_turbulence);
     const Map map = read_map(a->map);
     OutputDirectory out(a->out, "flow", {a->map});
+    if (a->foam.engine == cfd::Engine::OpenFoam) return run_openfoam(*a, map, out);
     ProgressBar bar("flow");
     double first = 0.0;
     show_progress(o, bar, first);
@@ -115,8 +173,7 @@ void add_flow_commands(CLI::App& app) {
     out.commit();
     nlohmann::ordered_json j{{"ok", true}, {"map", a->map}, {"out", a->out}};
     j.update(cfd::flow_report_json(wind, o));
-    report(j, "wrote " + a->out +
-                  "/{u,v,p}.npy, wind.json, wind.vti, wind.png: " + cfd::flow_report_text(wind));
+    report(j, "wrote " + a->out + kWrote + cfd::flow_report_text(wind));
   });
 }
 

@@ -52,6 +52,7 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
 nlohmann::ordered_json flow_report_json(const WindResult& w, const FlowOptions& options) {
   nlohmann::ordered_json j = summary_json(w.flow.summary, w.flow.wind, options);
   j.erase("residual_history");
+  j["engine"] = "builtin";
   j["convection_requested"] = to_string(w.requested);
   j["fell_back_to_upwind"] = w.fell_back();
   return j;
@@ -89,7 +90,11 @@ std::string wind_vti(const WindField& wind) {
 
 void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResult& result,
                 const FlowOptions& options) {
-  const WindField& wind = result.wind;
+  write_flow(dir, map, result.wind, summary_json(result.summary, result.wind, options));
+}
+
+void write_flow(const std::filesystem::path& dir, const Map& map, const WindField& wind,
+                const nlohmann::ordered_json& summary) {
   const std::vector<std::size_t> shape{static_cast<std::size_t>(wind.shape().ny),
                                        static_cast<std::size_t>(wind.shape().nx)};
   const std::string png = encode_png(render_wind(map, wind));
@@ -100,7 +105,7 @@ void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResu
       {"p.npy", npy_float32(wind.p(), shape)},
       {"wind.vti", wind_vti(wind)},
       {"wind.png", png},
-      {"wind.json", summary_json(result.summary, wind, options).dump(2) + "\n"},
+      {"wind.json", summary.dump(2) + "\n"},
   };
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

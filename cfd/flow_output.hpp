@@ -29,5 +29,8 @@ std::string wind_vti(const WindField& wind);
 // unless all could be produced.
 void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResult& result,
                 const FlowOptions& options);
+// The same with wind.json's summary given: another engine's (openfoam_report.hpp).
+void write_flow(const std::filesystem::path& dir, const Map& map, const WindField& wind,
+                const nlohmann::ordered_json& summary);
 
 }  // namespace plumekit::cfd
