@@ -9,6 +9,7 @@
 #include "cfd/openfoam_fields.hpp"
 #include "cfd/openfoam_run.hpp"
 #include "cfd/staggered_grid.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit::cfd {
 
@@ -107,13 +108,12 @@ void check_converged(const SimpleFoamLog& log, const OpenFoamOptions& foam, Flow
                                "): try a larger flow.nu or a smaller flow.cell",
                            summary);
   if (!log.converged)
-    throw ConvergenceError("simpleFoam did not converge within " +
-                               std::to_string(foam.max_iterations) +
-                               " iterations (flow.openfoam_max_iterations; last residuals " +
-                               residual_text(log.residuals) + ", flow.openfoam_tolerance " +
-                               std::to_string(foam.tolerance) + "); the end of its log:\n" +
-                               file_tail(dir / "log.simpleFoam", 6),
-                           summary);
+    throw ConvergenceError(
+        "simpleFoam did not converge within " + std::to_string(foam.max_iterations) +
+            " iterations (flow.openfoam_max_iterations; last residuals " +
+            residual_text(log.residuals) + ", flow.openfoam_tolerance " + compact(foam.tolerance) +
+            "); the end of its log:\n" + file_tail(dir / "log.simpleFoam", 6),
+        summary);
 }
 
 }  // namespace
@@ -148,6 +148,7 @@ OpenFoamResult solve_openfoam(const Map& map, const FlowOptions& flow, const Ope
   r.flow = wind_from_foam(grid, mesh, read_foam_field(guard.dir / time / "phi", 1),
                           read_foam_field(guard.dir / time / "p", 1), flow.nu);
   r.run.read_seconds = seconds_since(t1);
+  r.run.ranks = log.processes;  // as simpleFoam reports it
   r.run.iterations = log.iterations;
   r.run.converged = log.converged;
   r.run.residuals = log.residuals;

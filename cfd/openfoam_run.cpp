@@ -133,7 +133,9 @@ SimpleFoamLog parse_simplefoam_log(const std::string& text) {
   std::string line;
   const std::string solving = "Solving for ", initial = "Initial residual = ";
   while (std::getline(in, line)) {
-    if (line.rfind("Time = ", 0) == 0) {
+    if (line.rfind("nProcs : ", 0) == 0) {
+      log.processes = std::atoi(line.c_str() + 9);
+    } else if (line.rfind("Time = ", 0) == 0) {
       log.iterations = std::atoi(line.c_str() + 7);
     } else if (line.find("SIMPLE solution converged") != std::string::npos) {
       log.converged = true;

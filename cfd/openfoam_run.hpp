@@ -20,6 +20,7 @@ double run_foam_program(const std::vector<std::string>& args, const std::filesys
 
 // What simpleFoam's log says.
 struct SimpleFoamLog {
+  int processes = 1;                        // "nProcs : N" (parallel runs print it)
   int iterations = 0;                       // the last "Time = N"
   bool converged = false;                   // "SIMPLE solution converged"
   bool diverged = false;                    // a residual is nan or inf

@@ -30,9 +30,12 @@ packages=(
   # /usr/bin/python3. Debian's torch uses one thread unless told otherwise (torch.set_num_threads),
   # which the training script does.
   python3-torch python3-numpy
+  # `plumekit flow --engine openfoam` and its test (openfoam_tests, 2 MPI ranks): OpenFOAM v1912
+  # (simpleFoam, decomposePar, reconstructPar) and the Open MPI launcher, mpirun.
+  openfoam openmpi-bin
 )
 # Optional, never needed by the build: libtorch-dev for bench/surrogate_vs_libtorch
-# (bench/libtorch/run.sh passes it as an argument), openfoam (bench/openfoam/install.sh).
+# (bench/libtorch/run.sh passes it as an argument).
 
 if [[ $# -gt 0 ]]; then
   packages=("$@")
