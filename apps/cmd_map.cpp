@@ -36,8 +36,7 @@ ordered_json map_summary(const Map& map, const std::string& file) {
   ordered_json j = map_to_json(map);
   j.erase("obstacles");
   j.erase("sources");
-  j.erase("format");
-  ordered_json out{{"ok", true}, {"file", file}, {"format", kMapFormat}};
+  ordered_json out{{"ok", true}, {"file", file}};
   out.update(j);
   out["obstacles"] = map.obstacles.size();
   out["obstacle_vertices"] = vertex_count(map);
@@ -63,8 +62,8 @@ ordered_json map_summary(const Map& map, const std::string& file) {
 }
 
 void add_validate(CLI::App& map_cmd) {
-  auto* cmd =
-      map_cmd.add_subcommand("validate", "Check a plumekit-map/1 file; exit 2 naming the fault");
+  auto* cmd = map_cmd.add_subcommand(
+      "validate", "Check a plumekit-map/2 (or /1) file; exit 2 naming the fault");
   auto path = std::make_shared<std::string>();
   add_map_argument(cmd, *path);
   add_common_flags(cmd);
@@ -72,10 +71,15 @@ void add_validate(CLI::App& map_cmd) {
     const Map map = read_map(*path);
     const ordered_json summary = map_summary(map, *path);
     std::ostringstream human;
-    human << *path << ": valid " << kMapFormat << " '" << map.name << "', " << map.width << " x "
-          << map.height << " m, " << map.obstacles.size() << " obstacles (" << vertex_count(map)
-          << " vertices), " << map.sources.size()
-          << (map.sources.size() == 1 ? " source" : " sources");
+    std::size_t inlets = 0;
+    for (const Opening& o : map.openings)
+      inlets += o.is_inlet();
+    human << *path << ": valid " << summary["format"].get<std::string>() << " '" << map.name
+          << "', " << map.width << " x " << map.height << " m, " << inlets
+          << (inlets == 1 ? " inlet, " : " inlets, ") << map.openings.size() - inlets
+          << (map.openings.size() - inlets == 1 ? " outlet, " : " outlets, ")
+          << map.obstacles.size() << " obstacles (" << vertex_count(map) << " vertices), "
+          << map.sources.size() << (map.sources.size() == 1 ? " source" : " sources");
     for (const auto& w : summary["warnings"])
       human << "\nwarning: " << w.get<std::string>();
     report(summary, human.str());

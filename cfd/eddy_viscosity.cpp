@@ -25,6 +25,15 @@ EddyViscosity::EddyViscosity(const StaggeredGrid& grid, const FlowOptions& optio
     if (open(Side::Bottom, (i + 0.5) * s.dx())) free.at<uchar>(ny + 1, i + 1) = 255;
     if (open(Side::Top, (i + 0.5) * s.dx())) free.at<uchar>(0, i + 1) = 255;
   }
+  // An opening on an obstacle's edge is no surface either: free its solid side.
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 1; a < grid.n_along(c); ++a) {
+        const int side = grid.fluid_side(c, a, b);
+        if ((side != 1 && side != -1) || grid.opening_at(c, a, b) < 0) continue;
+        const std::size_t k = grid.cell(c, side > 0 ? a - 1 : a, b);
+        free.at<uchar>(ny - static_cast<int>(k) / nx, static_cast<int>(k) % nx + 1) = 255;
+      }
   cv::Mat dist;
   cv::distanceTransform(free, dist, cv::DIST_L2, cv::DIST_MASK_PRECISE);
   const double h = std::sqrt(s.dx() * s.dy());

@@ -120,11 +120,15 @@ Unpacked unpack(const StaggeredGrid& grid, const Eigen::VectorXd& x) {
 // Mass balance through the openings (per metre of depth).
 void mass_balance(const StaggeredGrid& grid, const std::vector<double> (&face)[2],
                   FlowSummary& summary) {
+  // Every face on the free space's boundary: the arena's edge and the faces
+  // between fluid and solid cells (openings on obstacles' edges).
   for (int c = 0; c < 2; ++c) {
     for (int b = 0; b < grid.n_across(c); ++b) {
-      for (int a : {0, grid.n_along(c)}) {
+      for (int a = 0; a <= grid.n_along(c); ++a) {
+        const int side = grid.fluid_side(c, a, b);
+        if (side != 1 && side != -1) continue;
         const std::size_t k = grid.face(c, a, b);
-        const double inward = (a == 0 ? 1.0 : -1.0) * face[c][k] * grid.h_across(c);
+        const double inward = side * face[c][k] * grid.h_across(c);
         if (grid.kind(c, k) == kOutflow)
           summary.outflow -= inward;
         else if (inward > 0.0)

@@ -76,16 +76,24 @@ NavierStokes::MomentumRow NavierStokes::momentum_row(int c, int a, int b) const 
     m.w[0] = m.w[1];
     m.w[4] = m.w[3];
   }
+  // The cells a-1 and a beside the face; beyond an outflow face (outside the
+  // domain, or an obstacle behind an outlet on its edge) the fluid cell
+  // stands in for the missing one: zero gradient.
+  int low = a - 1, high = a;
+  if (const int side = grid.fluid_side(c, a, b); side == 1)
+    low = a;
+  else if (side == -1)
+    high = a - 1;
   // The other component's faces at the CV's north (b+1) and south (b)
-  // sides, in the cells a-1 and a beside it.
-  m.o[0] = grid.other(c, b + 1, a - 1);
-  m.o[1] = grid.other(c, b + 1, a);
-  m.o[2] = grid.other(c, b, a - 1);
-  m.o[3] = grid.other(c, b, a);
-  m.p[0] = grid.pressure(c, b, a - 1);
-  m.p[1] = grid.pressure(c, b, a);
-  m.cell_w = static_cast<int>(grid.cell(c, std::max(a - 1, 0), b));
-  m.cell_e = static_cast<int>(grid.cell(c, std::min(a, grid.n_along(c) - 1), b));
+  // sides, in the cells beside it.
+  m.o[0] = grid.other(c, b + 1, low);
+  m.o[1] = grid.other(c, b + 1, high);
+  m.o[2] = grid.other(c, b, low);
+  m.o[3] = grid.other(c, b, high);
+  m.p[0] = grid.pressure(c, a, b, false);
+  m.p[1] = grid.pressure(c, a, b, true);
+  m.cell_w = static_cast<int>(grid.cell(c, low, b));
+  m.cell_e = static_cast<int>(grid.cell(c, high, b));
   // Corners of the cell grid, (nx+1) x (ny+1), at along a, across b / b+1.
   auto corner = [&](int along, int across) {
     const int i = c == 0 ? along : across, j = c == 0 ? across : along;

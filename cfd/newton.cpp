@@ -47,7 +47,7 @@ std::string convergence_advice(double reynolds, const FlowOptions& o) {
 Scales reference_scales(const Map& map, const FlowOptions& o) {
   Scales s;
   s.length = std::min(map.width, map.height);
-  double u = o.closed ? 0.0 : map.inlet.speed;
+  double u = o.closed ? 0.0 : map.reference_speed();
   for (double w : o.wall_speed)
     u = std::max(u, std::abs(w));
   s.speed = u > 0.0 ? u : 1.0;

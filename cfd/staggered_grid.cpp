@@ -8,23 +8,6 @@ namespace plumekit::cfd {
 
 namespace {
 
-bool covers_span(const Opening& o, Side side, double s) {
-  return o.side == side && s >= o.from && s <= o.to;
-}
-
-// Inflow speed of the inlet profile at position s along its wall.
-double inlet_speed(const Inlet& inlet, double s) {
-  if (inlet.profile == Profile::Uniform) return inlet.speed;
-  const double t = (s - inlet.from) / (inlet.to - inlet.from);
-  return inlet.speed * 4.0 * t * (1.0 - t);
-}
-
-Side low_side(int c) {
-  return c == 0 ? Side::Left : Side::Bottom;
-}
-Side high_side(int c) {
-  return c == 0 ? Side::Right : Side::Top;
-}
 // Walls beyond the across direction of component c.
 Side low_across_side(int c) {
   return c == 0 ? Side::Bottom : Side::Left;
@@ -33,52 +16,13 @@ Side high_across_side(int c) {
   return c == 0 ? Side::Top : Side::Right;
 }
 
-// Marks as solid the fluid cells that no path of fluid cells joins to an
-// opening (or, in a closed box, to the first fluid cell): a pocket sealed by
-// obstacles has no flow and no pressure level, and would leave the Newton
-// matrix singular.
-void seal_pockets(const Map& map, const GridShape& s, bool closed,
-                  std::vector<std::uint8_t>& solid) {
-  std::vector<char> reached(s.size(), 0);
-  std::vector<int> queue;
-  auto seed = [&](int i, int j) {
-    const std::size_t k = s.index(i, j);
-    if (!solid[k] && !reached[k]) reached[k] = 1, queue.push_back(static_cast<int>(k));
-  };
-  if (closed) {
-    for (std::size_t k = 0; k < s.size() && queue.empty(); ++k)
-      seed(static_cast<int>(k % s.nx), static_cast<int>(k / s.nx));
-  } else {
-    auto opening = [&](Side side, double at) {
-      return wall_type(map, side, at, false) != WallType::Wall;
-    };
-    for (int j = 0; j < s.ny; ++j) {
-      if (opening(Side::Left, (j + 0.5) * s.dy())) seed(0, j);
-      if (opening(Side::Right, (j + 0.5) * s.dy())) seed(s.nx - 1, j);
-    }
-    for (int i = 0; i < s.nx; ++i) {
-      if (opening(Side::Bottom, (i + 0.5) * s.dx())) seed(i, 0);
-      if (opening(Side::Top, (i + 0.5) * s.dx())) seed(i, s.ny - 1);
-    }
-  }
-  for (std::size_t q = 0; q < queue.size(); ++q) {
-    const int i = queue[q] % s.nx, j = queue[q] / s.nx;
-    if (i > 0) seed(i - 1, j);
-    if (i + 1 < s.nx) seed(i + 1, j);
-    if (j > 0) seed(i, j - 1);
-    if (j + 1 < s.ny) seed(i, j + 1);
-  }
-  for (std::size_t k = 0; k < s.size(); ++k)
-    if (!reached[k]) solid[k] = 1;
-}
-
 }  // namespace
 
 WallType wall_type(const Map& map, Side side, double s, bool closed) {
   if (closed) return WallType::Wall;
-  if (covers_span(map.inlet, side, s)) return WallType::Inlet;
-  if (covers_span(map.outlet, side, s)) return WallType::Outlet;
-  return WallType::Wall;
+  const int k = map.opening_on_wall(side, s);
+  if (k < 0) return WallType::Wall;
+  return map.openings[static_cast<std::size_t>(k)].is_inlet() ? WallType::Inlet : WallType::Outlet;
 }
 
 StaggeredGrid::StaggeredGrid(const Map& map, const GridShape& shape, const FlowOptions& options)
@@ -87,18 +31,18 @@ StaggeredGrid::StaggeredGrid(const Map& map, const GridShape& shape, const FlowO
       map_(&map),
       wall_speed_(options.wall_speed),
       closed_(options.closed) {
-  seal_pockets(map, shape, closed_, solid_);
+  seal_pockets();
   for (int c = 0; c < 2; ++c) {
     kind_[c].assign(face_count(c), kFixed);
     fixed_[c].assign(face_count(c), 0.0);
     col_[c].assign(face_count(c), -1);
     for (int b = 0; b < n_across(c); ++b) {
       for (int a = 0; a <= n_along(c); ++a) {
-        if (a == 0 || a == n_along(c)) {
-          classify_boundary_face(map, c, a, b, options);
-        } else if (!solid(c, a - 1, b) && !solid(c, a, b)) {
+        const int side = fluid_side(c, a, b);
+        if (side == 2)
           kind_[c][face(c, a, b)] = kFree;
-        }
+        else if (side != 0)
+          classify_boundary_face(c, a, b, side > 0);
       }
     }
   }
@@ -112,23 +56,62 @@ StaggeredGrid::StaggeredGrid(const Map& map, const GridShape& shape, const FlowO
     if (!solid_[k]) p_col_[k] = unknowns_++;
 }
 
-void StaggeredGrid::classify_boundary_face(const Map& map, int c, int a, int b,
-                                           const FlowOptions& options) {
-  const bool high = a == n_along(c);
+int StaggeredGrid::fluid_side(int c, int a, int b) const {
+  const bool low = a > 0 && !solid(c, a - 1, b);
+  const bool high = a < n_along(c) && !solid(c, a, b);
+  return low && high ? 2 : high ? 1 : low ? -1 : 0;
+}
+
+int StaggeredGrid::opening_at(int c, int a, int b) const {
+  if (closed_) return -1;
+  return map_->opening_on_line(c == 0, a * h_along(c), 0.5 * h_along(c), (b + 0.5) * h_across(c));
+}
+
+// Marks as solid the fluid cells that no path of fluid cells joins to an
+// opening (or, in a closed box, to the first fluid cell): a pocket sealed by
+// obstacles has no flow and no pressure level, and would leave the Newton
+// matrix singular.
+void StaggeredGrid::seal_pockets() {
+  const GridShape& s = shape_;
+  std::vector<char> reached(s.size(), 0);
+  std::vector<std::size_t> queue;
+  auto seed = [&](std::size_t k) {
+    if (!solid_[k] && !reached[k]) reached[k] = 1, queue.push_back(k);
+  };
+  if (closed_) {
+    for (std::size_t k = 0; k < s.size() && queue.empty(); ++k)
+      seed(k);
+  } else {
+    // The fluid cell beside each boundary face that lies on an opening.
+    for (int c = 0; c < 2; ++c)
+      for (int b = 0; b < n_across(c); ++b)
+        for (int a = 0; a <= n_along(c); ++a) {
+          const int side = fluid_side(c, a, b);
+          if ((side == 1 || side == -1) && opening_at(c, a, b) >= 0)
+            seed(cell(c, side > 0 ? a : a - 1, b));
+        }
+  }
+  for (std::size_t q = 0; q < queue.size(); ++q) {
+    const int i = static_cast<int>(queue[q] % s.nx), j = static_cast<int>(queue[q] / s.nx);
+    if (i > 0) seed(s.index(i - 1, j));
+    if (i + 1 < s.nx) seed(s.index(i + 1, j));
+    if (j > 0) seed(s.index(i, j - 1));
+    if (j + 1 < s.ny) seed(s.index(i, j + 1));
+  }
+  for (std::size_t k = 0; k < s.size(); ++k)
+    if (!reached[k]) solid_[k] = 1;
+}
+
+void StaggeredGrid::classify_boundary_face(int c, int a, int b, bool fluid_high) {
+  const int k = opening_at(c, a, b);
+  if (k < 0) return;  // a wall or an obstacle's side: no flow through it
+  const Opening& o = map_->openings[static_cast<std::size_t>(k)];
   const std::size_t f = face(c, a, b);
-  if (solid(c, high ? a - 1 : a, b)) return;  // an obstacle against the wall
-  const Side side = high ? high_side(c) : low_side(c);
-  const double s = (b + 0.5) * h_across(c);
-  switch (wall_type(map, side, s, options.closed)) {
-    case WallType::Inlet:
-      fixed_[c][f] = (high ? -1.0 : 1.0) * inlet_speed(map.inlet, s);
-      break;
-    case WallType::Outlet:
-      kind_[c][f] = kOutflow;
-      has_outflow_ = true;
-      break;
-    case WallType::Wall:
-      break;  // no flow through a wall
+  if (o.is_inlet()) {
+    fixed_[c][f] = (fluid_high ? 1.0 : -1.0) * o.speed_at((b + 0.5) * h_across(c));
+  } else {
+    kind_[c][f] = kOutflow;
+    has_outflow_ = true;
   }
 }
 
@@ -144,10 +127,17 @@ Ref StaggeredGrid::real_face(int c, std::size_t f) const {
 }
 
 Ref StaggeredGrid::along(int c, int a, int b, int k) const {
-  // Beyond the domain (only next to an outflow face, or two steps out), the
-  // nearest face in that direction stands in: zero gradient.
-  const int a2 = std::clamp(a + k, 0, n_along(c));
-  return real_face(c, face(c, a2, b));
+  // Walk k faces along through fluid cells. Where the walk would leave the
+  // fluid (only next to an outflow face, or two steps out), the last face
+  // reached stands in: zero gradient.
+  const int step = k > 0 ? 1 : -1;
+  int at = a;
+  for (int n = 0; n < std::abs(k); ++n) {
+    const int between = step > 0 ? at : at - 1;
+    if (between < 0 || between >= n_along(c) || solid(c, between, b)) break;
+    at += step;
+  }
+  return real_face(c, face(c, at, b));
 }
 
 Ref StaggeredGrid::wall_ghost(int c, int a, int b, bool beyond_high) const {
@@ -184,8 +174,10 @@ Ref StaggeredGrid::across(int c, int a, int b, int k) const {
     const bool high_solid = a < n_along(c) && solid(c, a, b1);
     const bool beside_low = a > 0, beside_high = a < n_along(c);
     if ((!beside_low || low_solid) && (!beside_high || high_solid)) {
-      // Both cells across are solid: an obstacle wall half a cell away.
+      // Both cells across are solid: an obstacle wall half a cell away, or an
+      // outlet on an obstacle's edge (zero gradient of the tangential velocity).
       const Ref self = real_face(c, face(c, a, b));
+      if (outlet_across(c, a, std::max(b, b1))) return self;
       near.col = self.col;
       near.scale = -self.scale;
       near.offset = -self.offset;
@@ -212,18 +204,26 @@ Ref StaggeredGrid::other(int c, int a_other, int b_other) const {
   return real_face(o, face(o, a_other, b_other));
 }
 
-Ref StaggeredGrid::pressure(int c, int b, int cell_along) const {
+Ref StaggeredGrid::pressure(int c, int a, int b, bool high) const {
+  const int inside = high ? a : a - 1;
   Ref r;
-  if (cell_along >= 0 && cell_along < n_along(c)) {
-    r.col = p_col_[cell(c, cell_along, b)];
+  if (inside >= 0 && inside < n_along(c) && !solid(c, inside, b)) {
+    r.col = p_col_[cell(c, inside, b)];
     r.scale = 1.0;
     return r;
   }
-  // Beyond an outflow face: p = 0 on the boundary, so the ghost mirrors the inside.
-  const int inside = cell_along < 0 ? 0 : n_along(c) - 1;
-  r.col = p_col_[cell(c, inside, b)];
+  // Beyond an outflow face: p = 0 on the face, so the ghost mirrors the
+  // fluid cell on its other side.
+  r.col = p_col_[cell(c, high ? a - 1 : a, b)];
   r.scale = -1.0;
   return r;
+}
+
+bool StaggeredGrid::outlet_across(int c, int a, int b_line) const {
+  if (closed_) return false;
+  const int k =
+      map_->opening_on_line(c == 1, b_line * h_across(c), 0.5 * h_across(c), a * h_along(c));
+  return k >= 0 && !map_->openings[static_cast<std::size_t>(k)].is_inlet();
 }
 
 }  // namespace plumekit::cfd

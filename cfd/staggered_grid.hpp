@@ -71,13 +71,25 @@ class StaggeredGrid {
   Ref along(int c, int a, int b, int k) const;       // the face k steps along (k = +-1, +-2)
   Ref across(int c, int a, int b, int k) const;      // the face k cells across
   Ref other(int c, int a_other, int b_other) const;  // a face of the other component
-  Ref pressure(int c, int b, int cell_along) const;  // p in cell (cell_along, b)
-  Ref real_face(int c, std::size_t f) const;         // fixed value or unknown, no ghost
+  // p in the cell on the low (a-1) or high (a) side of face (a, b); beyond an
+  // outflow face, the ghost that makes p = 0 on the face.
+  Ref pressure(int c, int a, int b, bool high) const;
+  Ref real_face(int c, std::size_t f) const;  // fixed value or unknown, no ghost
   // The boundary condition at position s along a wall.
   WallType wall_at(Side side, double s) const { return wall_type(*map_, side, s, closed_); }
+  // Which cells beside face (a, b) are fluid: 2 both, 1 only the high one (a),
+  // -1 only the low one (a-1), 0 neither. +-1 marks a boundary face.
+  int fluid_side(int c, int a, int b) const;
+  // The map's opening that face (a, b) lies on (Map::opening_on_line), or -1;
+  // always -1 in a closed box.
+  int opening_at(int c, int a, int b) const;
 
  private:
-  void classify_boundary_face(const Map& map, int c, int a, int b, const FlowOptions& options);
+  void seal_pockets();
+  void classify_boundary_face(int c, int a, int b, bool fluid_high);
+  // Whether the obstacle wall across from the faces of component c, on grid
+  // line b_line of the across direction at along position a, is an outlet.
+  bool outlet_across(int c, int a, int b_line) const;
   // The ghost a face sees across a domain wall (side beyond across index b).
   Ref wall_ghost(int c, int a, int b, bool beyond_high) const;
 

@@ -1,5 +1,9 @@
 #include "core/map.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
 namespace plumekit {
 
 const char* to_string(Side side) {
@@ -18,6 +22,24 @@ const char* to_string(Side side) {
 
 const char* to_string(Profile profile) {
   return profile == Profile::Uniform ? "uniform" : "parabolic";
+}
+
+const char* to_string(OpeningKind kind) {
+  return kind == OpeningKind::Inlet ? "inlet" : "outlet";
+}
+
+double Opening::lo() const {
+  return vertical() ? std::min(from.y, to.y) : std::min(from.x, to.x);
+}
+
+double Opening::hi() const {
+  return vertical() ? std::max(from.y, to.y) : std::max(from.x, to.x);
+}
+
+double Opening::speed_at(double s) const {
+  if (profile == Profile::Uniform) return speed;
+  const double t = (s - lo()) / (hi() - lo());
+  return speed * 4.0 * t * (1.0 - t);
 }
 
 double Map::wall_length(Side side) const {
@@ -45,17 +67,83 @@ int Map::obstacle_at(Vec2 p) const {
   return -1;
 }
 
+std::optional<Side> Map::wall_of(const Opening& o) const {
+  if (o.vertical()) {
+    if (o.line() == 0.0) return Side::Left;
+    if (o.line() == width) return Side::Right;
+  } else {
+    if (o.line() == 0.0) return Side::Bottom;
+    if (o.line() == height) return Side::Top;
+  }
+  return std::nullopt;
+}
+
+Vec2 Map::inward_normal(const Opening& o) const {
+  const Vec2 n = o.vertical() ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
+  if (const auto wall = wall_of(o))
+    return *wall == Side::Left || *wall == Side::Bottom ? n : -1.0 * n;
+  // The free side of an obstacle's edge: probe a little off its middle.
+  const double mid = 0.5 * (o.lo() + o.hi());
+  const Vec2 at = o.vertical() ? Vec2{o.line(), mid} : Vec2{mid, o.line()};
+  const double probe = 1e-6 * std::max({width, height, 1.0});
+  return is_free(at + probe * n) ? n : -1.0 * n;
+}
+
+const Opening& Map::first_inlet() const {
+  for (const Opening& o : openings)
+    if (o.is_inlet()) return o;
+  throw std::logic_error("map '" + name + "' has no inlet");
+}
+
+const Opening& Map::first_outlet() const {
+  for (const Opening& o : openings)
+    if (!o.is_inlet()) return o;
+  throw std::logic_error("map '" + name + "' has no outlet");
+}
+
+double Map::reference_speed() const {
+  double u = 0.0;
+  for (const Opening& o : openings)
+    if (o.is_inlet()) u = std::max(u, o.speed);
+  return u;
+}
+
+int Map::opening_on_wall(Side side, double s) const {
+  for (std::size_t k = 0; k < openings.size(); ++k) {
+    const Opening& o = openings[k];
+    if (wall_of(o) == side && s >= o.lo() && s <= o.hi()) return static_cast<int>(k);
+  }
+  return -1;
+}
+
+int Map::opening_on_line(bool vertical, double line, double half_cell, double s) const {
+  for (std::size_t k = 0; k < openings.size(); ++k) {
+    const Opening& o = openings[k];
+    if (o.vertical() == vertical && std::abs(o.line() - line) <= half_cell && s >= o.lo() &&
+        s <= o.hi())
+      return static_cast<int>(k);
+  }
+  return -1;
+}
+
+Opening wall_opening(const Map& map, Side side, double from, double to, OpeningKind kind,
+                     double speed, Profile profile) {
+  Opening o;
+  o.kind = kind;
+  o.from = map.wall_point(side, from);
+  o.to = map.wall_point(side, to);
+  o.speed = speed;
+  o.profile = profile;
+  return o;
+}
+
 Map default_arena(double width, double height) {
   Map map;
   map.name = "arena";
   map.width = width;
   map.height = height;
-  map.inlet.side = Side::Left;
-  map.inlet.from = 0.0;
-  map.inlet.to = height;
-  map.outlet.side = Side::Right;
-  map.outlet.from = 0.0;
-  map.outlet.to = height;
+  map.openings.push_back(wall_opening(map, Side::Left, 0.0, height, OpeningKind::Inlet));
+  map.openings.push_back(wall_opening(map, Side::Right, 0.0, height, OpeningKind::Outlet));
   return map;
 }
 

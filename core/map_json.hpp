@@ -1,5 +1,5 @@
 #pragma once
-// The plumekit-map/1 JSON format (see ../shared/DESIGN.md and the README).
+// The plumekit-map/2 JSON format, and /1 before it (see core/README.md).
 // Reading validates everything; a fault throws InputError naming the file,
 // the key (e.g. "obstacles[2][1]") and what is wrong.
 #include <filesystem>
@@ -12,16 +12,19 @@
 
 namespace plumekit {
 
-inline constexpr const char* kMapFormat = "plumekit-map/1";
+inline constexpr const char* kMapFormat = "plumekit-map/2";
+inline constexpr const char* kMapFormatV1 = "plumekit-map/1";
 
 // Parse and validate map text; `origin` names the file in messages.
 Map parse_map(std::string_view text, const std::string& origin);
 Map read_map(const std::filesystem::path& path);
 
 // Checks the geometry of a map already in memory (the same checks read_map
-// makes after parsing): spans, polygons, sources.
+// makes after parsing): frame, polygons, openings, sources.
 void validate_map(const Map& map, const std::string& origin);
 
+// The file's JSON: plumekit-map/1 for a map read as /1 (format_version 1),
+// else /2, with every coordinate in the map frame.
 nlohmann::ordered_json map_to_json(const Map& map);
 // The file's text, one line per key, polygon or source; validates first
 // (InputError naming `origin`).

@@ -215,11 +215,13 @@ void draw_legend(cv::Mat& image, TextPainter& text, const std::vector<LegendEntr
 
 namespace {
 
-// Tick positions along one axis of `length` metres.
-std::vector<double> ticks(double length, double step) {
+// Tick values along one axis of `length` metres that starts at `origin` in
+// the map frame: the multiples of `step` in between, in the map frame.
+std::vector<double> ticks(double origin, double length, double step) {
   std::vector<double> t;
-  for (int k = 0; k * step <= length + 1e-9; ++k)
-    t.push_back(k * step);
+  const double first = std::ceil((origin - 1e-9) / step);
+  for (double k = first; k * step <= origin + length + 1e-9; ++k)
+    t.push_back(k * step + 0.0);  // + 0.0: no "-0"
   return t;
 }
 
@@ -267,18 +269,21 @@ void MapCanvas::plan_layout() {
   text_h_ = text_.size("Ag").height;
   gap_ = std::max(4, text_h_ / 2);
   tick_ = std::max(4, text_h_ / 3);
-  auto widest_tick = [&](double length, double step) {
+  auto widest_tick = [&](double origin, double length, double step) {
     int w = 0;
-    for (double t : ticks(length, step))
+    for (double t : ticks(origin, length, step))
       w = std::max(w, text_.size(compact(t)).width);
     return w;
   };
-  step_x_ = tick_step(px_per_m_, [&](double s) { return widest_tick(map_.width, s) + 3 * gap_; });
+  const Vec2 origin = map_.frame.origin;
+  step_x_ = tick_step(px_per_m_,
+                      [&](double s) { return widest_tick(origin.x, map_.width, s) + 3 * gap_; });
   step_y_ = tick_step(px_per_m_, [&](double) { return 3 * text_h_; });
   // One step on both axes where the two differ, so a metre looks the same either way.
   step_x_ = step_y_ = std::max(step_x_, step_y_);
-  const int x_last_w = text_.size(compact(ticks(map_.width, step_x_).back())).width;
-  left_ = gap_ + text_h_ + gap_ + widest_tick(map_.height, step_y_) + gap_ / 2 + tick_;
+  const std::vector<double> x_ticks = ticks(origin.x, map_.width, step_x_);
+  const int x_last_w = x_ticks.empty() ? 0 : text_.size(compact(x_ticks.back())).width;
+  left_ = gap_ + text_h_ + gap_ + widest_tick(origin.y, map_.height, step_y_) + gap_ / 2 + tick_;
 
   // Right margin: half the last x label, or the colour bar with its value
   // labels and its own label turned upright.
@@ -315,16 +320,42 @@ void MapCanvas::plan_layout() {
   image_ = cv::Mat(height, width, CV_8UC3, kBackground);
 }
 
+namespace {
+
+// "inlet (left, 1 m/s uniform)", "outlet (right)", "inlets (3, 0.5-1 m/s)",
+// "outlet (on an obstacle)".
+std::string openings_legend(const Map& map, bool inlets) {
+  std::vector<const Opening*> list;
+  for (const Opening& o : map.openings)
+    if (o.is_inlet() == inlets) list.push_back(&o);
+  if (list.empty()) return inlets ? "inlet" : "outlet";
+  const std::string noun = inlets ? "inlet" : "outlet";
+  if (list.size() == 1) {
+    const Opening& o = *list[0];
+    const auto wall = map.wall_of(o);
+    std::string where = wall ? to_string(*wall) : "on an obstacle";
+    if (inlets) where += ", " + compact(o.speed) + " m/s " + to_string(o.profile);
+    return noun + " (" + where + ")";
+  }
+  std::string s = noun + "s (" + std::to_string(list.size());
+  if (inlets) {
+    double lo = list[0]->speed, hi = lo;
+    for (const Opening* o : list)
+      lo = std::min(lo, o->speed), hi = std::max(hi, o->speed);
+    s += ", " + (lo == hi ? compact(lo) : compact(lo) + "-" + compact(hi)) + " m/s";
+  }
+  return s + ")";
+}
+
+}  // namespace
+
 // The legend's entries: the map's, then the picture's.
 void MapCanvas::collect_legend() {
   legend_.clear();
   if (frame_.map_legend) {
-    legend_.push_back({LegendEntry::Symbol::Swatch, colours::kInlet,
-                       "inlet (" + std::string(to_string(map_.inlet.side)) + ", " +
-                           compact(map_.inlet.speed) + " m/s " + to_string(map_.inlet.profile) +
-                           ")"});
-    legend_.push_back({LegendEntry::Symbol::Swatch, colours::kOutlet,
-                       "outlet (" + std::string(to_string(map_.outlet.side)) + ")"});
+    legend_.push_back({LegendEntry::Symbol::Swatch, colours::kInlet, openings_legend(map_, true)});
+    legend_.push_back(
+        {LegendEntry::Symbol::Swatch, colours::kOutlet, openings_legend(map_, false)});
     if (!map_.obstacles.empty())
       legend_.push_back({LegendEntry::Symbol::Swatch, colours::kObstacle, "obstacle"});
     if (!map_.sources.empty())
@@ -374,29 +405,26 @@ void MapCanvas::draw_walls_and_openings() {
   const int band = static_cast<int>(std::lround(6 * mark_scale_));
   const int arrow_w = std::max(2, static_cast<int>(std::lround(2 * mark_scale_)));
 
-  // An opening: a thick coloured band on its wall with arrows across it.
+  // An opening: a thick coloured band on its stretch with arrows across it.
   auto opening = [&](const Opening& o, const cv::Scalar& colour, bool inward) {
-    const Vec2 a = map_.wall_point(o.side, o.from), b = map_.wall_point(o.side, o.to);
-    cv::line(image_, fixed(a), fixed(b), colour, band, cv::LINE_AA, kShift);
-    const Vec2 normal = o.side == Side::Left     ? Vec2{1, 0}
-                        : o.side == Side::Right  ? Vec2{-1, 0}
-                        : o.side == Side::Bottom ? Vec2{0, 1}
-                                                 : Vec2{0, -1};
+    cv::line(image_, fixed(o.from), fixed(o.to), colour, band, cv::LINE_AA, kShift);
+    const Vec2 normal = map_.inward_normal(o);
+    const Vec2 along = o.vertical() ? Vec2{0, 1} : Vec2{1, 0};
+    const Vec2 start = o.vertical() ? Vec2{o.line(), o.lo()} : Vec2{o.lo(), o.line()};
     // At most a fifth of the arena's short side, so arrows never cross a small arena.
     const double short_side = std::min(map_.width, map_.height);
     const double arrow = std::min(28.0 * mark_scale_ / px_per_m_, 0.2 * short_side);  // metres
-    const int count =
-        std::max(1, static_cast<int>((o.to - o.from) / (60.0 * mark_scale_ / px_per_m_)));
+    const int count = std::max(1, static_cast<int>(o.length() / (60.0 * mark_scale_ / px_per_m_)));
     for (int k = 0; k < count; ++k) {
-      const Vec2 base = map_.wall_point(o.side, o.from + (k + 0.5) * (o.to - o.from) / count);
-      // Inlet arrows point into the arena, outlet arrows out through the wall.
+      const Vec2 base = start + ((k + 0.5) * o.length() / count) * along;
+      // Inlet arrows point into the free space, outlet arrows out of it.
       const Vec2 from = inward ? base : base + arrow * normal;
       const Vec2 to = inward ? base + arrow * normal : base;
       cv::arrowedLine(image_, pixel(from), pixel(to), colour, arrow_w, cv::LINE_AA, 0, 0.35);
     }
   };
-  opening(map_.inlet, colours::kInlet, true);
-  opening(map_.outlet, colours::kOutlet, false);
+  for (const Opening& o : map_.openings)
+    opening(o, o.is_inlet() ? colours::kInlet : colours::kOutlet, o.is_inlet());
 }
 
 void MapCanvas::draw_marker(Vec2 p, const cv::Scalar& colour, int radius_px) {
@@ -476,8 +504,10 @@ void MapCanvas::draw_path(const std::vector<Vec2>& path, const cv::Scalar& colou
 
 void MapCanvas::draw_axes() {
   const cv::Rect arena = arena_rect();
-  for (double x : ticks(map_.width, step_x_)) {
-    const cv::Point p = pixel({x, 0});
+  // Tick labels are map-frame coordinates.
+  const Vec2 origin = map_.frame.origin;
+  for (double x : ticks(origin.x, map_.width, step_x_)) {
+    const cv::Point p = pixel({x - origin.x, 0});
     cv::line(image_, p, p + cv::Point(0, tick_), kText, thickness_, cv::LINE_AA);
     const std::string s = compact(x);
     const int w = text_.size(s).width;
@@ -486,8 +516,8 @@ void MapCanvas::draw_axes() {
   const int x_label_w = text_.size("x [m]").width;
   const int x_label_x = std::max(gap_, arena.x + arena.width / 2 - x_label_w / 2);
   text_.put(image_, "x [m]", {x_label_x, arena.br().y + tick_ + gap_ + text_h_ + gap_ / 2});
-  for (double y : ticks(map_.height, step_y_)) {
-    const cv::Point p = pixel({0, y});
+  for (double y : ticks(origin.y, map_.height, step_y_)) {
+    const cv::Point p = pixel({0, y - origin.y});
     cv::line(image_, p, p - cv::Point(tick_, 0), kText, thickness_, cv::LINE_AA);
     const std::string s = compact(y);
     const int w = text_.size(s).width;

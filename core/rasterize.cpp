@@ -63,15 +63,8 @@ Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape) {
 
 namespace {
 
-bool in_span(const Opening& o, Side side, double s) {
-  return o.side == side && s >= o.from && s <= o.to;
-}
-
-// The label a free cell gets from one wall it touches.
-std::uint8_t wall_label(const Map& map, Side side, double s) {
-  if (in_span(map.inlet, side, s)) return kInlet;
-  if (in_span(map.outlet, side, s)) return kOutlet;
-  return kWall;
+std::uint8_t opening_label(const Map& map, int k) {
+  return map.openings[static_cast<std::size_t>(k)].is_inlet() ? kInlet : kOutlet;
 }
 
 }  // namespace
@@ -79,6 +72,7 @@ std::uint8_t wall_label(const Map& map, Side side, double s) {
 Grid<std::uint8_t> rasterize_labels(const Map& map, const GridShape& shape) {
   const Grid<std::uint8_t> solid = rasterize_occupancy(map, shape);
   Grid<std::uint8_t> labels(shape, kFree);
+  const double hx = 0.5 * shape.dx(), hy = 0.5 * shape.dy();
   for (int j = 0; j < shape.ny; ++j) {
     for (int i = 0; i < shape.nx; ++i) {
       if (solid(i, j)) {
@@ -87,16 +81,21 @@ Grid<std::uint8_t> rasterize_labels(const Map& map, const GridShape& shape) {
       }
       const Vec2 c = shape.centre(i, j);
       std::uint8_t label = kFree;
-      auto touch = [&](bool touches, Side side, double s) {
-        if (!touches) return;
-        const std::uint8_t l = wall_label(map, side, s);
-        // Openings win over plain wall at corners.
+      // A face of the cell on the free space's boundary: an arena edge (a wall
+      // unless an opening covers it) or a solid neighbour (only an opening
+      // labels it). Openings win over plain wall at corners.
+      auto face = [&](int ni, int nj, bool vertical, double line, double s) {
+        const bool edge = !shape.contains(ni, nj);
+        if (!edge && !solid(ni, nj)) return;
+        const int k = map.opening_on_line(vertical, line, vertical ? hx : hy, s);
+        if (k < 0 && !edge) return;
+        const std::uint8_t l = k >= 0 ? opening_label(map, k) : std::uint8_t{kWall};
         if (label == kFree || (label == kWall && l != kWall)) label = l;
       };
-      touch(i == 0, Side::Left, c.y);
-      touch(i == shape.nx - 1, Side::Right, c.y);
-      touch(j == 0, Side::Bottom, c.x);
-      touch(j == shape.ny - 1, Side::Top, c.x);
+      face(i - 1, j, true, i * shape.dx(), c.y);
+      face(i + 1, j, true, (i + 1) * shape.dx(), c.y);
+      face(i, j - 1, false, j * shape.dy(), c.x);
+      face(i, j + 1, false, (j + 1) * shape.dy(), c.x);
       labels(i, j) = label;
     }
   }

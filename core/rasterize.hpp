@@ -1,9 +1,11 @@
 #pragma once
 // Map -> label grid. The rule: a cell is solid when its centre lies inside an
-// obstacle or on an obstacle's boundary. Free cells that touch the arena's
-// edge take the label of that wall: inlet or outlet when the centre's position
-// along the wall lies within the opening's span, plain wall otherwise (a corner
-// cell takes an opening's label if either of its walls has one there).
+// obstacle or on an obstacle's boundary. A free cell whose face lies on an
+// opening (Map::opening_on_line: within half a cell of the opening's line,
+// the face's middle within its span) takes the opening's label, inlet or
+// outlet, whether the face is on an arena wall or against a solid cell; other
+// free cells that touch the arena's edge are wall. At a corner the first of
+// the left, right, bottom and top faces with an opening decides.
 #include <cstdint>
 
 #include "core/grid.hpp"

@@ -14,8 +14,8 @@ namespace {
 void solid_wall_segments(const Map& map, Side side, std::vector<std::pair<Vec2, Vec2>>& out) {
   const double length = map.wall_length(side);
   std::vector<std::pair<double, double>> gaps;
-  for (const Opening* o : {static_cast<const Opening*>(&map.inlet), &map.outlet})
-    if (o->side == side) gaps.emplace_back(std::min(o->from, o->to), std::max(o->from, o->to));
+  for (const Opening& o : map.openings)
+    if (map.wall_of(o) == side) gaps.emplace_back(o.lo(), o.hi());
   std::sort(gaps.begin(), gaps.end());
   double s = 0.0;
   for (const auto& [a, b] : gaps) {

@@ -14,8 +14,17 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-bool within(const Opening& o, double s) {
-  return s >= std::min(o.from, o.to) && s <= std::max(o.from, o.to);
+// Whether an outlet on an arena wall covers position s along that wall.
+bool outlet_on_wall(const Map& map, Side side, double s) {
+  const int k = map.opening_on_wall(side, s);
+  return k >= 0 && !map.openings[static_cast<std::size_t>(k)].is_inlet();
+}
+
+// Whether the move from a to b crosses an outlet on an obstacle's edge.
+bool through_obstacle_outlet(const Map& map, Vec2 a, Vec2 b) {
+  for (const Opening& o : map.openings)
+    if (!o.is_inlet() && !map.wall_of(o) && segments_intersect(a, b, o.from, o.to)) return true;
+  return false;
 }
 
 }  // namespace
@@ -128,12 +137,12 @@ void FilamentSimulation::step() {
     bool gone = false;
     if (p.x < 0.0 || p.x > W) {
       const Side side = p.x < 0.0 ? Side::Left : Side::Right;
-      if (map_.outlet.side == side && within(map_.outlet, std::clamp(p.y, 0.0, H))) gone = true;
+      if (outlet_on_wall(map_, side, std::clamp(p.y, 0.0, H))) gone = true;
       p.x = p.x < 0.0 ? -p.x : 2.0 * W - p.x;
     }
     if (p.y < 0.0 || p.y > H) {
       const Side side = p.y < 0.0 ? Side::Bottom : Side::Top;
-      if (map_.outlet.side == side && within(map_.outlet, std::clamp(p.x, 0.0, W))) gone = true;
+      if (outlet_on_wall(map_, side, std::clamp(p.x, 0.0, W))) gone = true;
       p.y = p.y < 0.0 ? -p.y : 2.0 * H - p.y;
     }
     if (gone) {
@@ -142,10 +151,14 @@ void FilamentSimulation::step() {
     }
     p.x = std::clamp(p.x, 0.0, W);
     p.y = std::clamp(p.y, 0.0, H);
-    if (free_at(p))
+    if (free_at(p)) {
       f.position = p;
-    else
+    } else if (through_obstacle_outlet(map_, f.position, p)) {
+      ++summary_.left_through_outlet;  // out through a door or vent in an obstacle's edge
+      continue;
+    } else {
       ++summary_.rejected_moves;  // into an obstacle: the move is not taken
+    }
     f.radius2 += o_.growth * dt;
     if (f.radius2 > max_r2) {
       ++summary_.dropped_too_wide;

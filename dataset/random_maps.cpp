@@ -203,7 +203,10 @@ RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_
   r.family = o.families[d.pick(static_cast<int>(o.families.size()))];
   for (r.attempts = 1; r.attempts <= o.max_attempts; ++r.attempts) {
     Map map = default_arena(o.width, o.height);
-    map.inlet.speed = o.inlet_speed;
+    map.openings[0].speed = o.inlet_speed;
+    // These families fit plumekit-map/1, which keeps the files of datasets
+    // made before /2 byte for byte.
+    map.format_version = 1;
     map.name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" +
                (redraw > 0 ? "r" + std::to_string(redraw) + "-" : std::string()) + r.family;
     if (r.family == "two-rectangles" || r.family == "three-rectangles") {

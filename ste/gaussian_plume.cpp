@@ -7,19 +7,6 @@ namespace plumekit::ste {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
-Vec2 inward_normal(Side side) {
-  switch (side) {
-    case Side::Left:
-      return {1.0, 0.0};
-    case Side::Right:
-      return {-1.0, 0.0};
-    case Side::Bottom:
-      return {0.0, 1.0};
-    case Side::Top:
-      return {0.0, -1.0};
-  }
-  return {1.0, 0.0};
-}
 }  // namespace
 
 GaussianPlume::GaussianPlume(const Map& map, const GaussianPlumeBounds& b)
@@ -28,10 +15,11 @@ GaussianPlume::GaussianPlume(const Map& map, const GaussianPlumeBounds& b)
                   {"Q", 0.0, b.q_max},
                   {"a", b.a_min, b.a_max},
                   {"b", b.b_min, b.b_max}},
-      downwind_(inward_normal(map.inlet.side)),
-      // A parabolic profile's mean is 2/3 of its peak.
-      speed_(map.inlet.profile == Profile::Parabolic ? map.inlet.speed * 2.0 / 3.0
-                                                     : map.inlet.speed) {}
+      // The wind blows in through the first inlet; a parabolic profile's mean is
+      // 2/3 of its peak.
+      downwind_(map.inward_normal(map.first_inlet())),
+      speed_(map.first_inlet().profile == Profile::Parabolic ? map.first_inlet().speed * 2.0 / 3.0
+                                                             : map.first_inlet().speed) {}
 
 double GaussianPlume::predict_at(const double* m, Vec2 p) const {
   const Vec2 r{p.x - m[0], p.y - m[1]};

@@ -77,13 +77,9 @@ TEST(NullSpaceSolver, HandlesOpeningsOnAnyWall) {
                  {Side::Top, 6.0, 9.0, Side::Bottom, 0.4, 2.0},
                  {Side::Left, 2.4, 4.0, Side::Left, 0.0, 1.6}};
   for (const auto& l : layouts) {
-    map.inlet.side = l.inlet_side;
-    map.inlet.from = l.in_from;
-    map.inlet.to = l.in_to;
-    map.inlet.profile = Profile::Parabolic;
-    map.outlet.side = l.outlet_side;
-    map.outlet.from = l.out_from;
-    map.outlet.to = l.out_to;
+    map.openings = {wall_opening(map, l.inlet_side, l.in_from, l.in_to, OpeningKind::Inlet, 1.0,
+                                 Profile::Parabolic),
+                    wall_opening(map, l.outlet_side, l.out_from, l.out_to, OpeningKind::Outlet)};
     check_solve(map, coarse(0.2), Convection::Central);
   }
 }

@@ -20,8 +20,8 @@ struct ChannelError {
 
 ChannelError poiseuille(int cells_across) {
   Map map = default_arena(4.0, 1.0);
-  map.inlet.profile = Profile::Parabolic;
-  map.inlet.speed = 1.5;
+  map.openings[0].profile = Profile::Parabolic;
+  map.openings[0].speed = 1.5;
   FlowOptions o;
   o.cell = 1.0 / cells_across;
   o.nu = 0.1;
@@ -112,10 +112,8 @@ TEST(Validation, LidDrivenCavityRe1000MatchesGhia) {
 double reattachment_over_h(double reynolds) {
   const double upstream = 2.0, downstream = 22.0;
   Map map = default_arena(upstream + downstream, 2.0);
-  map.inlet.from = 1.0;
-  map.inlet.to = 2.0;
-  map.inlet.profile = Profile::Parabolic;
-  map.inlet.speed = 1.5;
+  map.openings[0] =
+      wall_opening(map, Side::Left, 1.0, 2.0, OpeningKind::Inlet, 1.5, Profile::Parabolic);
   map.obstacles.push_back({{0, 0}, {upstream, 0}, {upstream, 1}, {0, 1}});
   FlowOptions o;
   o.cell = 1.0 / 20;

@@ -51,11 +51,14 @@ TEST(MapJson, DefaultsAndFields) {
   const Map map = parse_map(map_text(kHead + R"(, "obstacles": [[[2,0],[3,0],[3,2]]],
                                                    "sources": [[1, 1]])"),
                             "x");
-  EXPECT_EQ(map.inlet.side, Side::Left);
-  EXPECT_DOUBLE_EQ(map.inlet.from, 0.0);
-  EXPECT_DOUBLE_EQ(map.inlet.to, 4.0);  // whole wall by default
-  EXPECT_EQ(map.inlet.profile, Profile::Uniform);
-  EXPECT_DOUBLE_EQ(map.outlet.to, 4.0);
+  ASSERT_EQ(map.openings.size(), 2u);
+  EXPECT_EQ(map.format_version, 1);
+  EXPECT_EQ(map.wall_of(map.openings[0]), Side::Left);
+  EXPECT_DOUBLE_EQ(map.openings[0].lo(), 0.0);
+  EXPECT_DOUBLE_EQ(map.openings[0].hi(), 4.0);  // whole wall by default
+  EXPECT_EQ(map.openings[0].profile, Profile::Uniform);
+  EXPECT_EQ(map.wall_of(map.openings[1]), Side::Right);
+  EXPECT_DOUBLE_EQ(map.openings[1].hi(), 4.0);
   ASSERT_EQ(map.obstacles.size(), 1u);
   EXPECT_EQ(map.obstacles[0].size(), 3u);
   ASSERT_EQ(map.sources.size(), 1u);
@@ -150,7 +153,7 @@ TEST(MapJson, RejectsBadSyntaxTypesAndVersions) {
   expect_rejected(map_text(R"("size": [10, "4"], "inlet": {"side": "left", "speed": 1},
                               "outlet": {"side": "right"})"),
                   "size[1]", "expected a number");
-  expect_rejected(R"({"format": "plumekit-map/2"})", "format", "not supported");
+  expect_rejected(R"({"format": "plumekit-map/3"})", "format", "not supported");
   expect_rejected(map_text(kHead + R"(, "sources": [], "sources": [])"), "sources", "twice");
   expect_rejected(map_text(R"("size": [0, 4], "inlet": {"side": "left", "speed": 1},
                               "outlet": {"side": "right"})"),

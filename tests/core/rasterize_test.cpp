@@ -57,8 +57,8 @@ TEST(Rasterize, SolidAreaConvergesToPolygonArea) {
 
 TEST(Rasterize, LabelsMarkObstaclesWallsAndOpenings) {
   Map map = arena_with({{{4, 1}, {6, 1}, {6, 3}, {4, 3}}});
-  map.inlet.from = 1.0;  // inlet on the middle of the left wall only
-  map.inlet.to = 3.0;
+  // The inlet on the middle of the left wall only.
+  map.openings[0] = wall_opening(map, Side::Left, 1.0, 3.0, OpeningKind::Inlet);
   const GridShape s{10, 4, 10.0, 4.0};
   const auto l = rasterize_labels(map, s);
   EXPECT_EQ(l(4, 1), kObstacle);
