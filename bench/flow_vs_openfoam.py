@@ -1,18 +1,21 @@
 #!/usr/bin/python3
 """plumekit's steady flow solver against OpenFOAM's simpleFoam on the same map and mesh.
 
-For each cell size: writes an OpenFOAM case with plumekit's staircase mesh (blockMesh on the
-arena, topoSet + subsetMesh to cut out the obstacle cells; not timed), times simpleFoam (laminar,
-serial), times `plumekit flow` on the same map, cell size and viscosity, and prints the wall-time
-ratio and the difference of the two velocity fields over the fluid cells.
+For each cell size: has an OpenFOAM case written and simpleFoam run (laminar), times `plumekit
+flow` on the same map, cell size and viscosity, and prints the wall-time ratio and the difference
+of the two velocity fields over the fluid cells. The case comes from plumekit's own OpenFOAM
+engine (`plumekit flow --engine openfoam --keep-case`, default: the mesh is plumekit's grid, so
+maps with any number of openings work, and --ranks N runs simpleFoam over N MPI ranks), or from
+bench/openfoam/foam_case.py (--foam-case python: blockMesh + topoSet + subsetMesh, map/1 only).
 
     /usr/bin/python3 bench/flow_vs_openfoam.py [--map data/maps/cluttered-1.json]
         [--cells 0.05,0.025] [--nu 0.01] [--plumekit build/plumekit] [--keep DIR]
-        [--repeats N] [--foam-tol 1e-6] [--foam-convection SCHEME] [--json]
+        [--repeats N] [--foam-tol 1e-6] [--foam-case engine|python] [--ranks N]
+        [--foam-convection SCHEME (python case only)] [--json]
 
 Needs Debian's openfoam and python3-numpy (bench/openfoam/install.sh); run with /usr/bin/python3.
-If the plumekit binary is missing or fails, the OpenFOAM half is still reported.
-See bench/openfoam/README.md.
+With --foam-case python, if the plumekit binary is missing or fails, the OpenFOAM half is still
+reported. See bench/openfoam/README.md.
 """
 
 import argparse
@@ -40,13 +43,13 @@ TARGET_REL_L2 = 0.05
 LAST_CPU = [0.0]  # CPU seconds of the last plumekit run
 
 
-def run_plumekit(exe, map_path, cell, nu, out):
-    """One `plumekit flow` run. Returns wall seconds, the wind.json summary and u, v arrays,
-    or raises RuntimeError with the reason."""
+def run_plumekit(exe, map_path, cell, nu, out, extra=()):
+    """One `plumekit flow` run (`extra`: more flags). Returns wall seconds, the wind.json
+    summary and u, v arrays, or raises RuntimeError with the reason."""
     if os.path.exists(out):
         shutil.rmtree(out)
     cmd = [exe, "flow", map_path, "--out", out, "--cell", repr(cell), "--nu", repr(nu),
-           "--turbulence", "none", "--json"]
+           "--turbulence", "none", "--json", *extra]
     t0 = time.perf_counter()
     c0 = foam_case._child_cpu()
     r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -75,20 +78,21 @@ def compare(u_pk, v_pk, u_of, v_of, fluid):
     return rel, float(max(np.abs(du).max(), np.abs(dv).max()))
 
 
-def bench_cell(args, m, map_path, cell, root, log):
+def foam_python(args, m, cell, root, log):
+    """The OpenFOAM half with foam_case.py's case (blockMesh + topoSet + subsetMesh; map/1 only).
+    Returns the row so far, OpenFOAM's u and v, and the fluid mask."""
     case = os.path.join(root, f"cell-{cell:g}", "openfoam")
-    meta = foam_case.write_case(m, cell, args.nu, case,
-                                {"p_tol": args.foam_tol, "U_tol": args.foam_tol,
-                                 "convection": args.foam_convection})
+    foam_case.write_case(m, cell, args.nu, case,
+                         {"p_tol": args.foam_tol, "U_tol": args.foam_tol,
+                          "convection": args.foam_convection})
     mesh_times = foam_case.mesh_case(case)  # not timed in the comparison
     meta = foam_case.case_meta(case)
     nx, ny = meta["nx"], meta["ny"]
     log(f"[{cell:g} m] {nx} x {ny} cells, {meta['n_fluid']} fluid; meshed in "
         f"{sum(mesh_times.values()):.1f} s")
-
     row = {"cell": cell, "nx": nx, "ny": ny, "n_fluid": meta["n_fluid"],
            "cell_order": meta["cell_order"], "foam_tol": args.foam_tol,
-           "foam_convection": args.foam_convection}
+           "foam_convection": args.foam_convection, "foam_case": "python", "foam_ranks": 1}
     runs = []
     for k in range(args.repeats):
         r = foam_case.run_solver(case)
@@ -96,17 +100,75 @@ def bench_cell(args, m, map_path, cell, root, log):
         log(f"[{cell:g} m] simpleFoam run {k + 1}/{args.repeats}: {r['seconds']:.2f} s "
             f"(cpu {r['cpu_seconds']:.2f} s), "
             f"{r['iterations']} iterations, converged={r['converged']}")
+    foam_rows(row, runs)
+    of = foam_case.read_result(case)
+    fluid = ~np.load(os.path.join(case, "removed.npy"))
+    for k in ("u", "v", "p"):
+        np.save(os.path.join(case, f"{k}.npy"), of[k].astype(np.float32))
+    return row, of["u"], of["v"], fluid
+
+
+def foam_rows(row, runs):
     row["simpleFoam_seconds"] = statistics.median(r["seconds"] for r in runs)
     row["simpleFoam_seconds_all"] = [r["seconds"] for r in runs]
     row["simpleFoam_cpu_seconds"] = statistics.median(r["cpu_seconds"] for r in runs)
     row["simpleFoam_iterations"] = runs[-1]["iterations"]
     row["simpleFoam_converged"] = all(r["converged"] for r in runs)
     row["simpleFoam_final_residuals"] = runs[-1]["final_residuals"]
-    of = foam_case.read_result(case)
-    fluid = ~np.load(os.path.join(case, "removed.npy"))
-    for k in ("u", "v", "p"):
-        np.save(os.path.join(case, f"{k}.npy"), of[k].astype(np.float32))
 
+
+def read_label_list(path):
+    """An ASCII OpenFOAM labelList (the engine's constant/plumekit_cells)."""
+    with open(path) as f:
+        text = f.read()
+    body = text[text.index("(", text.index("}")) + 1:text.rindex(")")]
+    return np.array(body.split(), dtype=np.int64)
+
+
+def foam_engine(args, map_path, cell, root, log):
+    """The OpenFOAM half with plumekit's own engine (`plumekit flow --engine openfoam`): the
+    case is meshed from plumekit's grid, so any map with any openings works. simpleFoam's time
+    is the engine's solver time (decomposePar and reconstructPar included when --ranks > 1)."""
+    if args.foam_convection != foam_case.DEFAULTS["convection"]:
+        raise SystemExit("--foam-convection needs --foam-case python (the engine uses "
+                         "linearUpwind)")
+    exe = args.plumekit
+    out = os.path.join(root, f"cell-{cell:g}", "openfoam-out")
+    case = os.path.join(root, f"cell-{cell:g}", "openfoam")
+    runs = []
+    for k in range(args.repeats):
+        for d in (out, case):
+            shutil.rmtree(d, ignore_errors=True)
+        extra = ["--engine", "openfoam", "--foam-tol", repr(args.foam_tol), "--ranks",
+                 str(args.ranks), "--keep-case", case]
+        wall, wind, u, v = run_plumekit(exe, map_path, cell, args.nu, out, extra)
+        of = wind["openfoam"]
+        runs.append({"seconds": of["seconds_breakdown"]["solver"], "cpu_seconds": LAST_CPU[0],
+                     "iterations": of["iterations"], "converged": wind["converged"],
+                     "final_residuals": wind["final_residuals"], "wall": wall})
+        log(f"[{cell:g} m] simpleFoam (engine, {args.ranks} rank(s)) run {k + 1}/{args.repeats}: "
+            f"{runs[-1]['seconds']:.2f} s solver, {wall:.2f} s whole command "
+            f"(cpu {LAST_CPU[0]:.2f} s), {of['iterations']} iterations")
+    nx, ny = wind["grid"]["nx"], wind["grid"]["ny"]
+    fluid = np.zeros(nx * ny, dtype=bool)
+    fluid[read_label_list(os.path.join(case, "constant", "plumekit_cells"))] = True
+    fluid = fluid.reshape(ny, nx)
+    log(f"[{cell:g} m] {nx} x {ny} cells, {int(fluid.sum())} fluid")
+    row = {"cell": cell, "nx": nx, "ny": ny, "n_fluid": int(fluid.sum()),
+           "foam_tol": args.foam_tol, "foam_convection": foam_case.DEFAULTS["convection"],
+           "foam_case": "engine", "foam_ranks": args.ranks,
+           "engine_command_seconds": statistics.median(r["wall"] for r in runs)}
+    foam_rows(row, runs)
+    return row, u, v, fluid
+
+
+def bench_cell(args, m, map_path, cell, root, log):
+    if args.foam_case == "python":
+        row, of_u, of_v, fluid = foam_python(args, m, cell, root, log)
+    else:
+        row, of_u, of_v, fluid = foam_engine(args, map_path, cell, root, log)
+    nx, ny = row["nx"], row["ny"]
+    of = {"u": of_u, "v": of_v}
     row["plumekit_error"] = None
     exe = args.plumekit
     if not (os.path.isfile(exe) and os.access(exe, os.X_OK)):
@@ -146,7 +208,8 @@ def bench_cell(args, m, map_path, cell, root, log):
 
 
 def print_table(rows, map_path, nu):
-    print(f"\nplumekit flow vs. OpenFOAM simpleFoam (laminar, serial) on {map_path}, nu = {nu:g}")
+    how = f"{rows[0]['foam_case']} case, {rows[0]['foam_ranks']} rank(s)" if rows else ""
+    print(f"\nplumekit flow vs. OpenFOAM simpleFoam (laminar, {how}) on {map_path}, nu = {nu:g}")
     head = ("cell m", "nx x ny", "simpleFoam s", "iters", "plumekit s", "(solver s)",
             "ratio", "rel L2 |U|", "max |dU|")
     lines = [head]
@@ -195,6 +258,12 @@ def main():
                     help="simpleFoam residualControl for p and U (initial residuals)")
     ap.add_argument("--foam-convection", default=foam_case.DEFAULTS["convection"],
                     help="simpleFoam's div(phi,U) scheme (default: %(default)s)")
+    ap.add_argument("--foam-case", choices=("engine", "python"), default="engine",
+                    help="who writes and runs the OpenFOAM case: plumekit's own engine "
+                    "(`plumekit flow --engine openfoam`: any map, any openings; default) or "
+                    "bench/openfoam/foam_case.py (map/1 only)")
+    ap.add_argument("--ranks", type=int, default=1,
+                    help="MPI ranks for simpleFoam (--foam-case engine only)")
     ap.add_argument("--json", action="store_true", help="print a JSON result on stdout instead "
                     "of the table")
     args = ap.parse_args()
@@ -209,7 +278,9 @@ def main():
 
     if shutil.which("simpleFoam") is None:
         sys.exit("simpleFoam not found: run bench/openfoam/install.sh (Debian's openfoam)")
-    m = foam_case.load_map(map_path)
+    if args.foam_case == "python" and args.ranks != 1:
+        ap.error("--ranks needs --foam-case engine")
+    m = foam_case.load_map(map_path) if args.foam_case == "python" else None
     root = os.path.abspath(args.keep) if args.keep else tempfile.mkdtemp(prefix="plumekit-of-")
     os.makedirs(root, exist_ok=True)
     rows = []

@@ -194,6 +194,13 @@ void write_poly_mesh(const fs::path& dir, const FoamMesh& m) {
             std::to_string(p.start) + ";\n    }\n";
   }
   write_text(dir / loc / "boundary", text + ")\n");
+  // Not OpenFOAM's: which plumekit cell (row-major, j * nx + i) each OpenFOAM
+  // cell is, for anyone reading a kept case's fields (bench/flow_vs_openfoam.py).
+  text = header("labelList", "constant", "plumekit_cells") + std::to_string(m.cell_of.size()) +
+         "\n(\n";
+  for (std::size_t c : m.cell_of)
+    text += std::to_string(c) + "\n";
+  write_text(dir / "constant" / "plumekit_cells", text + ")\n");
 }
 
 // The inlet faces' velocities: the grid's fixed normal component.
