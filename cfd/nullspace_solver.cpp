@@ -50,15 +50,17 @@ FaceEnds face_ends(const GridShape& s, int c, int a, int b) {
   return {node(b + 1, a), node(b, a), 1.0 / s.dx()};              // v = -d psi / dx
 }
 
-// Node groups: nodes joined by a fixed face share their streamfunction
-// correction.
+// Node groups: nodes joined by a fixed face beside a fluid cell share their
+// streamfunction correction. Faces inside solid (or between solid and the
+// outside) join nothing: an outlet on an obstacle's edge lets flux into the
+// obstacle, so the obstacle's outline either side of it must stay apart.
 NodeGroups fixed_face_groups(const StaggeredGrid& grid) {
   const GridShape& s = grid.shape();
   NodeGroups groups(static_cast<std::size_t>(s.nx + 1) * (s.ny + 1));
   for (int c = 0; c < 2; ++c)
     for (int b = 0; b < grid.n_across(c); ++b)
       for (int a = 0; a <= grid.n_along(c); ++a)
-        if (grid.column(c, grid.face(c, a, b)) < 0) {
+        if (grid.column(c, grid.face(c, a, b)) < 0 && grid.fluid_side(c, a, b) != 0) {
           const FaceEnds e = face_ends(s, c, a, b);
           groups.unite(e.first, e.second);
         }
@@ -174,12 +176,25 @@ bool NullSpaceSolver::build_tree(const StaggeredGrid& grid,
 void NullSpaceSolver::build_curl(const StaggeredGrid& grid) {
   const GridShape& s = grid.shape();
   NodeGroups groups = fixed_face_groups(grid);
-  // The group of the bottom-left corner (the walls) is the gauge.
-  const int gauge = groups.find(0);
+  // Only groups at the ends of some unknown face carry a correction (nodes
+  // inside solid carry none). The first of them in node order, the walls'
+  // group unless an obstacle fills the bottom-left corner, is the gauge.
+  std::vector<char> used(groups.parent.size(), 0);
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < grid.n_across(c); ++b)
+      for (int a = 0; a <= grid.n_along(c); ++a) {
+        if (grid.column(c, grid.face(c, a, b)) < 0) continue;
+        const FaceEnds e = face_ends(s, c, a, b);
+        const int g1 = groups.find(e.first), g2 = groups.find(e.second);
+        if (g1 != g2) used[g1] = used[g2] = 1;
+      }
+  int gauge = -1;
   std::vector<int> group_col(groups.parent.size(), -1);
   int n_groups = 0;
   for (std::size_t k = 0; k < groups.parent.size(); ++k) {
     const int g = groups.find(static_cast<int>(k));
+    if (!used[g]) continue;
+    if (gauge < 0) gauge = g;
     if (g != gauge && group_col[g] < 0) group_col[g] = n_groups++;
   }
   std::vector<Eigen::Triplet<double>> triplets;
