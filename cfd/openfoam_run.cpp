@@ -121,7 +121,10 @@ double run_foam_program(const std::vector<std::string>& args, const fs::path& di
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const std::string how = WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
                                               : "signal " + std::to_string(WTERMSIG(status));
-    throw InputError("OpenFOAM's " + args[0] + " failed (" + how + "); the end of its log:\n" +
+    std::string command;
+    for (const std::string& a : args)
+      command += (command.empty() ? "" : " ") + a;
+    throw InputError("OpenFOAM's `" + command + "` failed (" + how + "); the end of its log:\n" +
                      file_tail(log, 15));
   }
   return seconds;

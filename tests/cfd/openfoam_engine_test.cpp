@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cfd/flow_solver.hpp"
@@ -178,6 +179,35 @@ TEST_F(OpenFoamEngine, RefusesBadInputAndLeavesNothing) {
   foam.max_iterations = 5;
   EXPECT_THROW(solve_openfoam(map, flow_options(0.05), foam, dir), ConvergenceError);
   EXPECT_TRUE(work_dir_empty());
+}
+
+// Stand-ins for OpenFOAM's programs, first on PATH: each prints `says` and exits `code`.
+void fake_program(const fs::path& dir, const std::string& name, const std::string& says, int code) {
+  fs::create_directories(dir);
+  std::ofstream(dir / name) << "#!/bin/sh\necho '" << says << "'\nexit " << code << "\n";
+  fs::permissions(dir / name, fs::perms::owner_all);
+}
+
+TEST_F(OpenFoamEngine, ReportsAFailingRankWithItsLog) {
+  const fs::path bin = dir / "fake-bin";
+  const fs::path work = dir / "work";
+  fs::create_directories(work);
+  fake_program(bin, "simpleFoam", "unused", 0);
+  fake_program(bin, "decomposePar", "decomposed", 0);
+  fake_program(bin, "reconstructPar", "unused", 0);
+  fake_program(bin, "mpirun", "mpirun noticed that process rank 1 exited on signal 9", 137);
+  const std::string path = std::getenv("PATH");
+  setenv("PATH", bin.c_str(), 1);
+  try {
+    solve_openfoam(parse_map(kObstacle, "test"), flow_options(0.05), foam_options(2), work);
+    ADD_FAILURE() << "a failing rank was not reported";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("`mpirun -np 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("exit 137"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("process rank 1 exited"), std::string::npos) << e.what();
+  }
+  setenv("PATH", path.c_str(), 1);
+  EXPECT_TRUE(fs::is_empty(work));
 }
 
 TEST_F(OpenFoamEngine, CommandWritesTheWindOrExitsTwoWithNoOutput) {
