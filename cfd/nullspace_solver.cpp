@@ -70,12 +70,18 @@ NodeGroups fixed_face_groups(const StaggeredGrid& grid) {
 }  // namespace
 
 NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
-                                 const Eigen::SparseMatrix<double>& jacobian)
+                                 const Eigen::SparseMatrix<double>& jacobian, ReducedLU lu)
     : n_(static_cast<int>(jacobian.rows())), n_mom_(grid.velocity_unknowns()) {
   if (!read_continuity_rows(jacobian) || !build_tree(grid, jacobian)) return;
   build_curl(grid);
-  const Eigen::SparseMatrix<double> projected = build_projection(jacobian);
-  applicable_ = operators_check(grid.shape(), jacobian, projected);
+  {
+    const Eigen::SparseMatrix<double> projected = build_projection(jacobian);
+    applicable_ = operators_check(grid.shape(), jacobian, projected);
+  }
+  const bool single = lu == ReducedLU::Single ||
+                      (lu == ReducedLU::BySize && reduced_size() >= kSinglePrecisionFrom);
+  if (applicable_ && single && single_precision_lu_available())
+    single_ = std::make_unique<SinglePrecisionLU>();
 }
 
 bool NullSpaceSolver::read_continuity_rows(const Eigen::SparseMatrix<double>& jacobian) {
@@ -255,12 +261,16 @@ bool NullSpaceSolver::factorize(const Eigen::SparseMatrix<double>& jacobian) {
   // The product keeps explicit zeros, so K's pattern is J's pattern's and
   // never changes; the check only guards the reuse of the symbolic analysis.
   if (reduced_.nonZeros() != analysed_nonzeros_) {
-    lu_.control(UMFPACK_IRSTEP) = 0;
-    lu_.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
-    lu_.analyze(reduced_);
+    if (single_) {
+      single_->analyze(reduced_);
+    } else {
+      lu_.control(UMFPACK_IRSTEP) = 0;
+      lu_.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+      lu_.analyze(reduced_);
+    }
     analysed_nonzeros_ = reduced_.nonZeros();
   }
-  return lu_.factorize(reduced_);
+  return single_ ? single_->factorize(reduced_) : lu_.factorize(reduced_);
 }
 
 void NullSpaceSolver::solve(const Eigen::SparseMatrix<double>& jacobian, const double* b,
@@ -298,7 +308,10 @@ void NullSpaceSolver::solve(const Eigen::SparseMatrix<double>& jacobian, const d
   z_.resize(curl_.cols());
   Eigen::Map<Eigen::VectorXd>(rz_.data(), rz_.size()) =
       left_ * Eigen::Map<const Eigen::VectorXd>(r_.data(), n_);
-  lu_.solve(reduced_, rz_.data(), z_.data());
+  if (single_)
+    single_->solve(rz_.data(), z_.data());
+  else
+    lu_.solve(reduced_, rz_.data(), z_.data());
   Eigen::Map<Eigen::VectorXd>(du_.data(), n_) +=
       curl_ * Eigen::Map<const Eigen::VectorXd>(z_.data(), z_.size());
   // The pressure from the tree faces' momentum rows, roots first.

@@ -19,23 +19,39 @@
 // to reach the outlet (or, in a closed box, the pinned cell) through fluid;
 // applicable() says whether it does.
 #include <Eigen/SparseCore>
+#include <memory>
 #include <vector>
 
 #include "cfd/linear_solver.hpp"
+#include "cfd/single_precision_lu.hpp"
 #include "cfd/staggered_grid.hpp"
 #include "core/umfpack_lu.hpp"
 
 namespace plumekit::cfd {
 
+// K's LU: UMFPACK in double, or MUMPS in single precision (single_precision_lu.hpp).
+enum class ReducedLU {
+  BySize,  // single precision from kSinglePrecisionFrom unknowns, where MUMPS is built in
+  Double,
+  Single,  // where MUMPS is built in (else double)
+};
+// K's size from which BySize factorizes in single precision: above every grid of
+// a 10 x 4 m map at 2 cm, so the flows of the shipped and random maps (and the
+// evaluations made with them) are those of the double LU, bit for bit.
+constexpr int kSinglePrecisionFrom = 100000;
+
 class NullSpaceSolver : public LinearSolver {
  public:
   // `jacobian` holds the values of some Newton matrix of `grid`'s equations
   // (the continuity and pressure entries, which never change, are read here).
-  NullSpaceSolver(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian);
+  NullSpaceSolver(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian,
+                  ReducedLU lu = ReducedLU::BySize);
 
   bool applicable() const { return applicable_; }
   // Unknowns of the reduced matrix K (node groups).
   int reduced_size() const { return static_cast<int>(curl_.cols()); }
+  // Whether K is factorized in single precision.
+  bool single_precision() const { return single_ != nullptr; }
 
   const char* name() const override { return "nullspace"; }
   // Factorizes K for this Jacobian (same pattern as the constructor's). False
@@ -92,6 +108,7 @@ class NullSpaceSolver : public LinearSolver {
   Eigen::SparseMatrix<double> reduced_;    // K = L' J C
   Eigen::Index analysed_nonzeros_ = -1;    // K's pattern size at the last analysis
   UmfpackLU lu_;
+  std::unique_ptr<SinglePrecisionLU> single_;  // instead of lu_, when chosen
   std::vector<double> du_, t_, r_, z_, rz_;
 };
 

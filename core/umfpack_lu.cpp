@@ -37,13 +37,12 @@ bool blas_needs_turns() {
 
 std::mutex blas_mutex;
 
-// Holds the BLAS lock for the duration of one UMFPACK call when needed.
+}  // namespace
+
 std::unique_lock<std::mutex> blas_turn() {
   return blas_needs_turns() ? std::unique_lock<std::mutex>(blas_mutex)
                             : std::unique_lock<std::mutex>();
 }
-
-}  // namespace
 
 UmfpackLU::UmfpackLU() : control_(UMFPACK_CONTROL), info_(UMFPACK_INFO), solve_info_(UMFPACK_INFO) {
   umfpack_di_defaults(control_.data());

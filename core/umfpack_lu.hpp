@@ -5,9 +5,15 @@
 // flops) and allocates workspace on every solve.
 #include <Eigen/SparseCore>
 #include <array>
+#include <mutex>
 #include <vector>
 
 namespace plumekit {
+
+// Holds the BLAS lock for the duration of one call into a library that runs
+// BLAS (UMFPACK, MUMPS) where the BLAS is not reentrant, and pins OpenBLAS to
+// one thread on first use (umfpack_lu.cpp says why).
+std::unique_lock<std::mutex> blas_turn();
 
 class UmfpackLU {
  public:

@@ -15,6 +15,9 @@ packages=(
   clang-14 libclang-rt-14-dev
   # numerics and geometry
   libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
+  # MUMPS's sequential library: the single-precision LU of large flow systems (cfd/README.md,
+  # "Building scale"); without it the build uses UMFPACK for them
+  libmumps-seq-dev
   # an optimised BLAS: UMFPACK's dense kernels run ~2.4x faster than with netlib BLAS. The pthread
   # build, which plumekit pins to one thread: the serial build is not reentrant (cfd/README.md).
   libopenblas0-pthread

@@ -1,5 +1,6 @@
 // The LinearSolver interface: make_linear_solver picks the implementation the
-// options name, and both implementations give the same Newton step.
+// options name, and both implementations give the same Newton step; the
+// nullspace solver's single-precision LU, refined, gives that step too.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include "cfd/linear_solver.hpp"
 #include "cfd/navier_stokes.hpp"
+#include "cfd/nullspace_solver.hpp"
 #include "core/map_json.hpp"
 
 namespace plumekit::cfd {
@@ -81,6 +83,64 @@ TEST(LinearSolver, ReusedFactorizationSolvesFurtherRightHandSides) {
       EXPECT_LT(residual.lpNorm<Eigen::Infinity>(), 1e-9) << solver->name() << " rhs " << r;
     }
   }
+}
+
+// A Newton matrix of cluttered-1 at 10 cm at a non-trivial state.
+struct System {
+  Map map = read_map(kMaps / "cluttered-1.json");
+  FlowOptions options;
+  StaggeredGrid grid;
+  NavierStokes equations;
+  System()
+      : grid(map, GridShape::with_cell(map.width, map.height, 0.1), options),
+        equations(grid, Convection::Central) {
+    Eigen::VectorXd state(grid.unknowns());
+    for (int k = 0; k < state.size(); ++k)
+      state[k] = 0.4 + 0.3 * std::sin(0.13 * k);
+    equations.update_jacobian(state.data());
+  }
+};
+
+TEST(NullSpaceSolver, SinglePrecisionStepRefinesToTheDoubleStep) {
+  if (!single_precision_lu_available()) GTEST_SKIP() << "built without MUMPS";
+  System s;
+  const Eigen::SparseMatrix<double>& j = s.equations.jacobian();
+  NullSpaceSolver single(s.grid, j, ReducedLU::Single), exact(s.grid, j, ReducedLU::Double);
+  ASSERT_TRUE(single.applicable());
+  EXPECT_TRUE(single.single_precision());
+  EXPECT_FALSE(exact.single_precision());
+  ASSERT_TRUE(single.factorize(j));
+  ASSERT_TRUE(exact.factorize(j));
+  const int n = s.grid.unknowns();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd x(n), reference(n), correction(n);
+  exact.solve(j, b.data(), reference.data());
+  single.solve(j, b.data(), x.data());
+  const double scale = reference.lpNorm<Eigen::Infinity>();
+  // Float's LU: a step to a few parts in 1e5, not to round-off...
+  const double first = (x - reference).lpNorm<Eigen::Infinity>() / scale;
+  EXPECT_LT(first, 1e-2);
+  EXPECT_GT(first, 1e-14);
+  // ...which refinement with double residuals (as Newton's next residual does)
+  // takes to the double step.
+  for (int it = 0; it < 4; ++it) {
+    const Eigen::VectorXd r = b - j * x;
+    single.solve(j, r.data(), correction.data());
+    x += correction;
+  }
+  EXPECT_LT((x - reference).lpNorm<Eigen::Infinity>(), 1e-10 * scale);
+}
+
+TEST(NullSpaceSolver, SmallGridsFactorizeInDouble) {
+  // By size: every grid of a 10 x 4 m map down to 2 cm stays in double, so the
+  // shipped maps' flows are unchanged. K has at most one unknown per interior
+  // node plus one per obstacle.
+  System s;
+  NullSpaceSolver by_size(s.grid, s.equations.jacobian());
+  ASSERT_TRUE(by_size.applicable());
+  EXPECT_FALSE(by_size.single_precision());
+  const GridShape two_cm = GridShape::with_cell(10.0, 4.0, 0.02);
+  EXPECT_LT((two_cm.nx - 1) * (two_cm.ny - 1) + 16, kSinglePrecisionFrom);
 }
 
 }  // namespace
