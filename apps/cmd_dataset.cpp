@@ -80,7 +80,8 @@ void add_families_option(CLI::App* cmd, RandomMapOptions& o) {
       cmd,
       cmd->add_option("--families", o.families,
                       "Random-map families, comma-separated: rectangle, two-rectangles, l-shape, "
-                      "u-shape (the thesis's, the default), three-rectangles, shape-and-rectangle"),
+                      "u-shape (the thesis's, the default), three-rectangles, shape-and-rectangle, "
+                      "building (floor plans)"),
       "maps.families")
       ->delimiter(',')
       ->default_str(CLI::detail::join(o.families, ","));
@@ -114,6 +115,18 @@ void add_maps_random(CLI::App& app) {
   bind_field(cmd, cmd->add_option("--min-gap", m.min_gap, "Narrowest passage, m"), "maps.min_gap")
       ->capture_default_str();
   add_families_option(cmd, m);
+  bind_field(cmd, cmd->add_option("--building-min-size", m.building_min_size,
+                                  "building: smallest side of a floor, m"),
+             "maps.building_min_size")
+      ->capture_default_str();
+  bind_field(cmd, cmd->add_option("--building-max-size", m.building_max_size,
+                                  "building: largest side of a floor, m"),
+             "maps.building_max_size")
+      ->capture_default_str();
+  bind_field(cmd, cmd->add_option("--building-passage", m.building_passage,
+                                  "building: narrowest door, corridor or gap by furniture, m"),
+             "maps.building_passage")
+      ->capture_default_str();
   bind_field(cmd,
              cmd->add_option("--margin", m.robot_margin,
                              "Robot radius + safety that must pass from inlet to outlet, m"),

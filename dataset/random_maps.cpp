@@ -10,6 +10,7 @@
 #include "core/option_check.hpp"
 #include "core/rasterize.hpp"
 #include "core/seed.hpp"
+#include "dataset/building_maps.hpp"
 #include "dataset/features.hpp"
 
 namespace plumekit::dataset {
@@ -25,6 +26,7 @@ class Draw {
   explicit Draw(std::uint64_t seed) : rng_(seed) {}
   double uniform(double a, double b) { return a + (b - a) * unit_uniform(rng_()); }
   int pick(int n) { return std::min(n - 1, static_cast<int>(uniform(0.0, n))); }
+  std::mt19937_64& engine() { return rng_; }
 
  private:
   std::mt19937_64 rng_;
@@ -128,6 +130,7 @@ std::vector<std::string> RandomMapOptions::known_families() {
   std::vector<std::string> all = thesis_families();
   all.push_back("three-rectangles");
   all.push_back("shape-and-rectangle");
+  all.push_back("building");
   return all;
 }
 
@@ -161,7 +164,7 @@ bool robot_can_cross(const Map& map, double margin) {
 std::string family_of(const std::string& name) {
   // Longest first: "rectangle" is also the tail of the others.
   for (const char* f : {"shape-and-rectangle", "three-rectangles", "two-rectangles", "rectangle",
-                        "l-shape", "u-shape"}) {
+                        "l-shape", "u-shape", "building"}) {
     const std::string tail = std::string("-") + f;
     if (name.size() >= tail.size() &&
         name.compare(name.size() - tail.size(), tail.size(), tail) == 0)
@@ -193,6 +196,20 @@ void RandomMapOptions::validate() const {
                       "thesis's rectangle, two-rectangles, l-shape, u-shape)");
   for (const std::string& f : families)
     check_name("maps.families", f, known_families());
+  validate_building();
+}
+
+void RandomMapOptions::validate_building() const {
+  // At most 100 m: the building's checks rasterize it at 5 cm.
+  check_range("maps.building_min_size", building_min_size, 4.0, 100.0, "m",
+              "the default is 6 m; a floor needs outer walls, a room and a door");
+  check_range("maps.building_max_size", building_max_size, 4.0, 100.0, "m", "the default is 30 m");
+  if (building_max_size < building_min_size)
+    throw OptionError("maps.building_max_size", compact(building_max_size) +
+                                                    " m is less than maps.building_min_size (" +
+                                                    compact(building_min_size) + " m)");
+  check_range("maps.building_passage", building_passage, 0.3, 1.5, "m",
+              "the default is 0.8 m: a door a robot passes");
 }
 
 RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_t index,
@@ -201,14 +218,17 @@ RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_
   Draw d(derive_seed(seed, index, redraw, Stream::MapGeometry));
   RandomMap r;
   r.family = o.families[d.pick(static_cast<int>(o.families.size()))];
+  const std::string name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" +
+                           (redraw > 0 ? "r" + std::to_string(redraw) + "-" : std::string()) +
+                           r.family;
+  if (r.family == "building") return random_building(o, d.engine(), name);
   for (r.attempts = 1; r.attempts <= o.max_attempts; ++r.attempts) {
     Map map = default_arena(o.width, o.height);
     map.openings[0].speed = o.inlet_speed;
     // These families fit plumekit-map/1, which keeps the files of datasets
     // made before /2 byte for byte.
     map.format_version = 1;
-    map.name = "random-" + std::to_string(seed) + "-" + std::to_string(index) + "-" +
-               (redraw > 0 ? "r" + std::to_string(redraw) + "-" : std::string()) + r.family;
+    map.name = name;
     if (r.family == "two-rectangles" || r.family == "three-rectangles") {
       const int n = r.family == "two-rectangles" ? 2 : 3;
       for (int k = 0; k < n; ++k)

@@ -3,7 +3,8 @@
 // Fig. 14.1): one rectangle, two separate rectangles, an L-shape, a U-shape,
 // axis-aligned, at random sizes, positions and orientations; on request also
 // two more cluttered families beyond the thesis's: three rectangles, and an L
-// or U with a rectangle. Every map keeps
+// or U with a rectangle; and building floor plans (building_maps.hpp), whose
+// arena is the building, not the 10 x 4 m one. Every map keeps
 // its inlet and outlet open, lets air and a robot through (see the checks in
 // random_map()), and is a pure function of (seed, index).
 #include <cstdint>
@@ -27,18 +28,28 @@ struct RandomMapOptions {
   double robot_margin = 0.15;
   double min_gap = 0.4;
   int max_attempts = 10000;
+  // The "building" family (building_maps.hpp): each side of the floor is drawn
+  // uniformly from [building_min_size, building_max_size], and every door,
+  // corridor and gap beside furniture is at least building_passage wide: a
+  // robot of the planner's 0.15 m margin with room to spare, and a door.
+  double building_min_size = 6.0;   // m
+  double building_max_size = 30.0;  // m
+  double building_passage = 0.8;    // m
   // The families drawn from, each equally likely. The default is the thesis's four; with
   // them, map i is the same as before the extra families existed.
   std::vector<std::string> families = thesis_families();
   static std::vector<std::string> thesis_families() {
     return {"rectangle", "two-rectangles", "l-shape", "u-shape"};
   }
-  // Every family random_map() knows: the thesis's and three-rectangles, shape-and-rectangle.
+  // Every family random_map() knows: the thesis's and three-rectangles, shape-and-rectangle,
+  // building.
   static std::vector<std::string> known_families();
 
   // Throws OptionError naming the field ("maps.width", "maps.families", ...):
   // an unknown family names it and lists the known ones. random_map() calls it.
   void validate() const;
+  // The building_* fields ("maps.building_min_size", ...).
+  void validate_building() const;
 };
 
 struct RandomMap {
