@@ -3,7 +3,12 @@
 // determinism, its options, and a flow through one.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -235,6 +240,51 @@ TEST(BuildingMaps, ASmallBuildingSolvesAFlowThatBalancesMass) {
   EXPECT_NEAR(r.summary.inflow, inflow, 1e-9 * inflow);
   EXPECT_NEAR(r.summary.outflow, inflow, 1e-9 * inflow);
   EXPECT_LT(r.summary.mass_imbalance, 1e-10);
+}
+
+namespace fs = std::filesystem;
+
+int run(const std::string& cmd) {
+  const int rc = std::system(cmd.c_str());
+  return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+}
+
+TEST(BuildingMapsCli, MapsRandomWritesMap2FilesThatADatasetAccepts) {
+  const fs::path dir = fs::temp_directory_path() / "plumekit-building-cli";
+  fs::remove_all(dir);
+  const std::string exe = PLUMEKIT_EXE;
+  const std::string maps = (dir / "maps").string(), data = (dir / "data").string();
+  ASSERT_EQ(run(exe + " maps random --families building --count 2 --sources 1 --seed 7 " +
+                "--building-min-size 6 --building-max-size 7 --out " + maps + " > /dev/null"),
+            0);
+  for (const char* f : {"map-00000.json", "map-00001.json"}) {
+    const fs::path file = fs::path(maps) / f;
+    std::ifstream in(file);
+    std::string first_lines((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(first_lines.find("\"plumekit-map/2\""), std::string::npos) << f;
+    const Map m = read_map(file);
+    EXPECT_EQ(family_of(m.name), "building");
+    EXPECT_LE(m.width, 7.0);
+    EXPECT_EQ(m.sources.size(), 1u);
+  }
+  // The same maps from the library: the CLI only binds the fields.
+  RandomMapOptions o = buildings();
+  o.building_min_size = 6.0;
+  o.building_max_size = 7.0;
+  EXPECT_EQ(read_map(fs::path(maps) / "map-00001.json").obstacles,
+            random_map(o, 7, 1).map.obstacles);
+  // A coarse dataset over them.
+  ASSERT_EQ(run(exe + " dataset generate --map-dir " + maps + " --cell 0.2 --threads 1 --out " +
+                data + " > /dev/null 2>&1"),
+            0);
+  EXPECT_TRUE(fs::exists(fs::path(data) / "manifest.json"));
+  // A bad field is refused before anything is written.
+  const std::string bad = (dir / "bad").string();
+  EXPECT_EQ(run(exe + " maps random --families building --building-passage 0.1 --out " + bad +
+                " 2> /dev/null"),
+            2);
+  EXPECT_FALSE(fs::exists(bad));
+  fs::remove_all(dir);
 }
 
 }  // namespace
