@@ -13,6 +13,7 @@
 #include "core/output_target.hpp"
 #include "core/rasterize.hpp"
 #include "core/ros_import.hpp"
+#include "core/ros_import_report.hpp"
 
 namespace plumekit::cli {
 
@@ -126,7 +127,8 @@ void add_render(CLI::App& map_cmd) {
 
 void add_import_ros(CLI::App& map_cmd) {
   auto* cmd = map_cmd.add_subcommand(
-      "import-ros", "Convert a ROS map_server map (YAML + PGM/PNG) to a plumekit-map/1 file");
+      "import-ros",
+      "Convert a ROS map_server map (YAML + PGM/PNG) to a plumekit-map/2 file in its map frame");
   struct Args {
     std::string yaml;
     std::string out;
@@ -141,57 +143,55 @@ void add_import_ros(CLI::App& map_cmd) {
              cmd->add_option("--simplify", a->options.simplify_px,
                              "Douglas-Peucker tolerance for obstacle outlines, in pixels"),
              "ros.simplify_px")
-      ->capture_default_str()
-      ->check(CLI::Range(0.0, 10.0));
-  cmd->add_option("--unknown", a->unknown, "How to treat unknown (unexplored) pixels")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"occupied", "free"}));
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--unknown", a->unknown, "How to treat unknown (unexplored) pixels")
+                 ->capture_default_str()
+                 ->check(CLI::IsMember({"occupied", "free"})),
+             "ros.unknown");
   bind_field(cmd,
              cmd->add_option("--min-area", a->options.min_area_px,
                              "Drop occupied specks with fewer pixels than this"),
              "ros.min_area_px")
-      ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--close-gaps", a->options.close_gaps_m,
+                             "Close free gaps narrower than this (m) between occupied regions "
+                             "or the image's edge (0: none)"),
+             "ros.close_gaps_m")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--inlet", a->options.inlets,
+                             "Inlet X1,Y1,X2,Y2[,SPEED[,PROFILE]] in the map frame (m; m/s, "
+                             "default 1; uniform|parabolic), snapped onto the free space's "
+                             "boundary; repeat for more")
+                 ->expected(1)
+                 ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll),
+             "ros.inlets");
+  bind_field(cmd,
+             cmd->add_option("--outlet", a->options.outlets,
+                             "Outlet X1,Y1,X2,Y2 in the map frame (m), snapped likewise; repeat "
+                             "for more")
+                 ->expected(1)
+                 ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll),
+             "ros.outlets");
+  bind_field(cmd,
+             cmd->add_option("--snap", a->options.snap_px,
+                             "How far (pixels) a given opening may move onto the boundary"),
+             "ros.snap_px")
+      ->capture_default_str();
   cmd->add_option("--name", a->options.name, "Map name (default: the YAML file's stem)");
   add_common_flags(cmd);
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     a->options.unknown_is_occupied = a->unknown == "occupied";
     check_output_file(a->out, {a->yaml});
     RosImport in = import_ros_map(a->yaml, a->options);
     in.map.generated_by = "plumekit map import-ros";
-
-    // Check the result: rasterize the polygons back at the image's resolution.
-    const GridShape shape{in.cols, in.rows, in.map.width, in.map.height};
-    const auto solid = rasterize_occupancy(in.map, shape);
-    int mismatched = 0;
-    for (int r = 0; r < in.rows; ++r)
-      for (int c = 0; c < in.cols; ++c)
-        mismatched += (solid(c, in.rows - 1 - r) != 0) != (in.occupied.at<uchar>(r, c) != 0);
-
     write_output_file(a->out, map_file_text(in.map, a->out));
-    ordered_json j{{"ok", true},
-                   {"yaml", a->yaml},
-                   {"out", a->out},
-                   {"image_px", {in.cols, in.rows}},
-                   {"resolution_m", in.resolution},
-                   {"size_m", {in.map.width, in.map.height}},
-                   {"ros_origin", {in.ros_origin.x, in.ros_origin.y, in.ros_yaw}},
-                   {"occupied_pixels", in.occupied_pixels},
-                   {"obstacles", in.map.obstacles.size()},
-                   {"obstacle_vertices", vertex_count(in.map)},
-                   {"pinches_filled", in.stats.pinches_filled},
-                   {"enclosures_cut", in.stats.cuts},
-                   {"specks_dropped", in.stats.specks_dropped},
-                   {"raster_mismatch_pixels", mismatched}};
-    std::ostringstream human;
-    human << "wrote " << a->out << ": " << in.map.width << " x " << in.map.height << " m, "
-          << in.map.obstacles.size() << " obstacles (" << vertex_count(in.map) << " vertices) from "
-          << in.occupied_pixels << " occupied pixels; " << mismatched
-          << " pixels differ when rasterized back.\n"
-          << "plumekit's origin is the image's lower-left corner, which is (" << in.ros_origin.x
-          << ", " << in.ros_origin.y << ") in the ROS map frame. Inlet and outlet default to the "
-          << "whole left and right walls at 1 m/s: edit them in " << a->out << '.';
-    report(j, human.str());
+    ordered_json j = ros_import_json(in, a->yaml, a->out);
+    for (auto& w : j["warnings"])
+      w = with_flag_names(*cmd, w.get<std::string>());
+    report(j, with_flag_names(*cmd, ros_import_text(in, a->out)));
   });
 }
 

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
+#include <tuple>
 #include <unordered_map>
 
 #include <yaml-cpp/yaml.h>
@@ -15,13 +18,10 @@
 #include "core/map_json.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
+#include "core/rasterize.hpp"
 
 namespace plumekit {
 
-namespace {
-
-// Sets one free pixel of each 2x2 window whose occupied pixels touch only
-// diagonally, until none is left. Returns the number of pixels set.
 int fill_diagonal_pinches(cv::Mat& m) {
   int filled = 0;
   for (bool changed = true; changed;) {
@@ -45,9 +45,57 @@ int fill_diagonal_pinches(cv::Mat& m) {
   return filled;
 }
 
+namespace {
+
+// Opening stretches in pixel-corner coordinates (x = column edge, y = row edge
+// from the top), whose outline points tracing keeps.
+struct PixelSegment {
+  bool vertical = false;
+  int line = 0;
+  int lo = 0, hi = 0;
+  bool holds(cv::Point p) const {
+    const int across = vertical ? p.x : p.y, along = vertical ? p.y : p.x;
+    return across == line && along >= lo && along <= hi;
+  }
+};
+
+// What tracing needs besides the region.
+struct Tracing {
+  double resolution = 0.0;
+  int rows = 0;
+  const RosImportOptions& options;
+  MaskPolygonStats& stats;
+  std::vector<PixelSegment> keep;
+  bool holds(cv::Point p) const {
+    for (const PixelSegment& k : keep)
+      if (k.holds(p)) return true;
+    return false;
+  }
+};
+
+std::vector<PixelSegment> pixel_segments(const std::vector<Opening>& openings, double resolution,
+                                         int rows) {
+  std::vector<PixelSegment> out;
+  for (const Opening& o : openings) {
+    PixelSegment k;
+    k.vertical = o.vertical();
+    if (k.vertical) {
+      k.line = static_cast<int>(std::lround(o.line() / resolution));
+      k.lo = rows - static_cast<int>(std::lround(o.hi() / resolution));
+      k.hi = rows - static_cast<int>(std::lround(o.lo() / resolution));
+    } else {
+      k.line = rows - static_cast<int>(std::lround(o.line() / resolution));
+      k.lo = static_cast<int>(std::lround(o.lo() / resolution));
+      k.hi = static_cast<int>(std::lround(o.hi() / resolution));
+    }
+    out.push_back(k);
+  }
+  return out;
+}
+
 // The outline of a 4-connected, hole-free, pinch-free region (CV_8U, non-zero
 // inside), as pixel-corner coordinates (x = column, y = row), collinear
-// vertices removed. Each pixel side facing the outside is one directed edge,
+// vertices kept. Each pixel side facing the outside is one directed edge,
 // oriented the same way round every pixel, so the edges chain into one loop.
 std::vector<cv::Point> trace_outline(const cv::Mat& region) {
   auto inside = [&](int r, int c) {
@@ -77,14 +125,54 @@ std::vector<cv::Point> trace_outline(const cv::Mat& region) {
   } while (p != start && loop.size() <= next.size());
   if (loop.size() != next.size())
     throw std::logic_error("outline tracing: region has more than one boundary loop");
+  return loop;
+}
 
-  std::vector<cv::Point> corners;
+// The loop's corners, and every point `keep` holds.
+std::vector<cv::Point> corners(const std::vector<cv::Point>& loop, const Tracing& t,
+                               bool with_kept) {
+  std::vector<cv::Point> out;
   const std::size_t n = loop.size();
   for (std::size_t i = 0; i < n; ++i) {
-    const cv::Point in = loop[i] - loop[(i + n - 1) % n], out = loop[(i + 1) % n] - loop[i];
-    if (in.x * out.y - in.y * out.x != 0) corners.push_back(loop[i]);
+    const cv::Point in = loop[i] - loop[(i + n - 1) % n], next = loop[(i + 1) % n] - loop[i];
+    if (in.x * next.y - in.y * next.x != 0 || (with_kept && t.holds(loop[i])))
+      out.push_back(loop[i]);
   }
-  return corners;
+  return out;
+}
+
+// Douglas-Peucker between consecutive kept points (each chain alone, so every
+// kept point stays), then collinear points dropped. Plain Douglas-Peucker
+// when the outline holds no kept point.
+std::vector<cv::Point> simplify_keeping(const std::vector<cv::Point>& outline, const Tracing& t,
+                                        double eps) {
+  std::vector<cv::Point> simple;
+  std::size_t first = outline.size();
+  for (std::size_t i = 0; i < outline.size() && first == outline.size(); ++i)
+    if (t.holds(outline[i])) first = i;
+  if (first == outline.size()) {
+    cv::approxPolyDP(outline, simple, eps, true);
+    return simple;
+  }
+  const std::size_t n = outline.size();
+  std::vector<cv::Point> chain{outline[first]};
+  for (std::size_t k = 1; k <= n; ++k) {
+    const cv::Point p = outline[(first + k) % n];
+    chain.push_back(p);
+    if (!t.holds(p)) continue;
+    std::vector<cv::Point> part;
+    cv::approxPolyDP(chain, part, eps, false);
+    simple.insert(simple.end(), part.begin(), part.end() - 1);
+    chain = {p};
+  }
+  std::vector<cv::Point> out;
+  const std::size_t m = simple.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    const cv::Point in = simple[i] - simple[(i + m - 1) % m],
+                    next = simple[(i + 1) % m] - simple[i];
+    if (in.x * next.y - in.y * next.x != 0) out.push_back(simple[i]);
+  }
+  return out;
 }
 
 Polygon to_world(const std::vector<cv::Point>& pts, double resolution, int rows) {
@@ -95,24 +183,21 @@ Polygon to_world(const std::vector<cv::Point>& pts, double resolution, int rows)
 }
 
 // Outline, then Douglas-Peucker with a tolerance small enough to keep it simple.
-Polygon simplified_outline(const cv::Mat& region, cv::Point offset, double resolution, int rows,
-                           double simplify_px) {
-  std::vector<cv::Point> outline = trace_outline(region);
-  for (cv::Point& p : outline)
+Polygon simplified_outline(const cv::Mat& region, cv::Point offset, const Tracing& t) {
+  std::vector<cv::Point> loop = trace_outline(region);
+  for (cv::Point& p : loop)
     p += offset;
-  for (double eps = simplify_px; eps >= 0.25; eps *= 0.5) {
-    std::vector<cv::Point> simple;
-    cv::approxPolyDP(outline, simple, eps, true);
-    Polygon poly = to_world(simple, resolution, rows);
-    if (!simplicity_fault(poly)) return poly;
+  const std::vector<cv::Point> outline = corners(loop, t, true);
+  for (double eps = t.options.simplify_px; eps >= 0.25; eps *= 0.5) {
+    Polygon poly = to_world(simplify_keeping(outline, t, eps), t.resolution, t.rows);
+    if (poly.size() >= 3 && !simplicity_fault(poly)) return poly;
   }
-  return to_world(outline, resolution, rows);
+  return to_world(corners(loop, t, false), t.resolution, t.rows);
 }
 
 // Splits `region` (one 4-connected component, CV_8U) until no piece encloses
 // free space, then appends each piece's outline to `out`.
-void region_to_polygons(const cv::Mat& region, cv::Point offset, double resolution, int rows,
-                        const RosImportOptions& options, MaskPolygonStats& stats,
+void region_to_polygons(const cv::Mat& region, cv::Point offset, Tracing& t,
                         std::vector<Polygon>& out) {
   // Flood the outside from a one-pixel frame; free pixels it misses are enclosed.
   cv::Mat padded;
@@ -127,14 +212,14 @@ void region_to_polygons(const cv::Mat& region, cv::Point offset, double resoluti
         break;
       }
   if (hole.x < 0) {
-    out.push_back(simplified_outline(region, offset, resolution, rows, options.simplify_px));
+    out.push_back(simplified_outline(region, offset, t));
     return;
   }
   // Cut along the middle row of this enclosed area: both halves open it.
   cv::Rect extent;
   cv::floodFill(flooded, hole, 3, &extent, 0, 0, 4);
   const int cut = extent.y + extent.height / 2 - 1;  // last row of the upper half (unpadded)
-  ++stats.cuts;
+  ++t.stats.cuts;
   for (const cv::Range rows_part : {cv::Range(0, cut + 1), cv::Range(cut + 1, region.rows)}) {
     if (rows_part.empty()) continue;
     const cv::Mat part = region.rowRange(rows_part);
@@ -144,8 +229,7 @@ void region_to_polygons(const cv::Mat& region, cv::Point offset, double resoluti
       const cv::Mat piece = labels == k;
       const cv::Rect box = cv::boundingRect(piece);
       cv::Mat sub = piece(box) / 255;
-      region_to_polygons(sub, offset + cv::Point(box.x, box.y + rows_part.start), resolution, rows,
-                         options, stats, out);
+      region_to_polygons(sub, offset + cv::Point(box.x, box.y + rows_part.start), t, out);
     }
   }
 }
@@ -193,12 +277,15 @@ T yaml_value(const YAML::Node& doc, const char* key, const std::string& origin) 
 
 std::vector<Polygon> occupancy_to_polygons(const cv::Mat& occupied, double resolution,
                                            const RosImportOptions& options,
-                                           MaskPolygonStats* stats_out) {
+                                           MaskPolygonStats* stats_out,
+                                           const std::vector<Opening>& keep_straight) {
   MaskPolygonStats stats;
   cv::Mat mask = occupied != 0;
   mask /= 255;
   stats.pinches_filled = fill_diagonal_pinches(mask);
 
+  Tracing t{resolution, occupied.rows, options, stats,
+            pixel_segments(keep_straight, resolution, occupied.rows)};
   std::vector<Polygon> polygons;
   cv::Mat labels, boxes, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, boxes, centroids, 4, CV_32S);
@@ -211,15 +298,26 @@ std::vector<Polygon> occupancy_to_polygons(const cv::Mat& occupied, double resol
                        boxes.at<int>(k, cv::CC_STAT_WIDTH), boxes.at<int>(k, cv::CC_STAT_HEIGHT));
     cv::Mat region = labels(box) == k;
     region /= 255;
-    region_to_polygons(region, box.tl(), resolution, occupied.rows, options, stats, polygons);
+    region_to_polygons(region, box.tl(), t, polygons);
   }
   if (stats_out) *stats_out = stats;
   return polygons;
 }
 
-RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImportOptions& options) {
-  check_non_negative("ros.simplify_px", options.simplify_px, 10.0, "px", "the default is 0.75");
-  check_non_negative("ros.min_area_px", options.min_area_px, 1e12, "px", "0 keeps every speck");
+namespace {
+
+// What a map_server YAML file says.
+struct RosYaml {
+  std::filesystem::path image;  // resolved against the YAML's folder
+  double resolution = 0.0;
+  Vec2 origin;
+  double yaw = 0.0;
+  bool negate = false;
+  double occupied_thresh = 0.65, free_thresh = 0.196;
+  std::string mode = "trinary";
+};
+
+RosYaml read_ros_yaml(const std::filesystem::path& yaml_path) {
   const std::string origin = yaml_path.string();
   std::error_code ec;
   if (std::filesystem::is_directory(yaml_path, ec))
@@ -234,60 +332,183 @@ RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImport
   }
   if (!doc.IsMap()) throw InputError(origin + ": expected a map_server YAML mapping");
 
-  RosImport result;
-  const auto image_name = yaml_value<std::string>(doc, "image", origin);
-  result.resolution = yaml_value<double>(doc, "resolution", origin);
-  if (!(std::isfinite(result.resolution) && result.resolution > 0))
+  RosYaml y;
+  y.image = yaml_value<std::string>(doc, "image", origin);
+  if (y.image.is_relative()) y.image = yaml_path.parent_path() / y.image;
+  y.resolution = yaml_value<double>(doc, "resolution", origin);
+  if (!(std::isfinite(y.resolution) && y.resolution > 0))
     throw InputError(origin + ": resolution: must be a positive number of metres per pixel");
   const auto ros_origin = yaml_value<std::vector<double>>(doc, "origin", origin);
   if (ros_origin.size() != 3) throw InputError(origin + ": origin: expected [x, y, yaw]");
-  result.ros_origin = {ros_origin[0], ros_origin[1]};
-  result.ros_yaw = ros_origin[2];
-  const bool negate = yaml_value<int>(doc, "negate", origin) != 0;
-  const double occupied_thresh = yaml_value<double>(doc, "occupied_thresh", origin);
-  const double free_thresh = yaml_value<double>(doc, "free_thresh", origin);
-  if (!(free_thresh >= 0 && free_thresh <= occupied_thresh && occupied_thresh <= 1))
+  for (double v : ros_origin)
+    if (!std::isfinite(v)) throw InputError(origin + ": origin: expected finite numbers");
+  y.origin = {ros_origin[0], ros_origin[1]};
+  y.yaw = ros_origin[2];
+  y.negate = yaml_value<int>(doc, "negate", origin) != 0;
+  y.occupied_thresh = yaml_value<double>(doc, "occupied_thresh", origin);
+  y.free_thresh = yaml_value<double>(doc, "free_thresh", origin);
+  if (!(y.free_thresh >= 0 && y.free_thresh <= y.occupied_thresh && y.occupied_thresh <= 1))
     throw InputError(origin + ": free_thresh, occupied_thresh: need 0 <= free <= occupied <= 1");
-  const std::string mode = doc["mode"] ? yaml_value<std::string>(doc, "mode", origin) : "trinary";
-  if (mode != "trinary" && mode != "scale" && mode != "raw")
-    throw InputError(origin + ": mode: '" + mode + "' is not trinary, scale or raw");
+  if (doc["mode"]) y.mode = yaml_value<std::string>(doc, "mode", origin);
+  if (y.mode != "trinary" && y.mode != "scale" && y.mode != "raw")
+    throw InputError(origin + ": mode: '" + y.mode + "' is not trinary, scale or raw");
+  return y;
+}
 
-  std::filesystem::path image_path(image_name);
-  if (image_path.is_relative()) image_path = yaml_path.parent_path() / image_path;
-  const auto [cols, rows] = image_dimensions(image_path);
-  check_memory(cols * rows * kImportBytesPerPixel,
-               origin + ": importing the " + compact(cols) + " x " + compact(rows) + " px image",
-               "crop or downsample the image");
-  const cv::Mat image = read_gray_image(image_path);
-  if (image.empty())
-    throw InputError(origin + ": image: cannot read '" + image_path.string() + "' as PGM/PNG");
-
-  // map_server's rule: occupancy probability from the grey level.
+// map_server's rule: occupancy probability from the grey level. Counts the unknown pixels.
+cv::Mat threshold(const cv::Mat& image, const RosYaml& y, bool unknown_is_occupied, int& unknown) {
   cv::Mat occupied(image.size(), CV_8U);
+  unknown = 0;
   for (int r = 0; r < image.rows; ++r) {
     for (int c = 0; c < image.cols; ++c) {
       const int v = image.at<uchar>(r, c);
       double p = 0.0;
       bool known = true;
-      if (mode == "raw") {
+      if (y.mode == "raw") {
         known = v <= 100;
         p = v / 100.0;
       } else {
-        p = negate ? v / 255.0 : (255 - v) / 255.0;
-        known = p > occupied_thresh || p < free_thresh;
+        p = y.negate ? v / 255.0 : (255 - v) / 255.0;
+        known = p > y.occupied_thresh || p < y.free_thresh;
       }
-      occupied.at<uchar>(r, c) = known ? (p > occupied_thresh) : options.unknown_is_occupied;
+      unknown += !known;
+      occupied.at<uchar>(r, c) = known ? (p > y.occupied_thresh) : unknown_is_occupied;
     }
   }
+  return occupied;
+}
+
+void check_options(const RosImportOptions& o) {
+  check_non_negative("ros.simplify_px", o.simplify_px, 10.0, "px", "the default is 0.75");
+  check_non_negative("ros.min_area_px", o.min_area_px, 1e12, "px", "0 keeps every speck");
+  check_non_negative("ros.close_gaps_m", o.close_gaps_m, 100.0, "m", "0 closes none");
+  check_non_negative("ros.snap_px", o.snap_px, 100.0, "px", "the default is 2");
+  if (o.inlets.empty() != o.outlets.empty())
+    throw OptionError(o.inlets.empty() ? "ros.inlets" : "ros.outlets",
+                      "give at least one inlet and one outlet, or neither (the default: the whole "
+                      "left wall an inlet, the whole right wall an outlet)");
+}
+
+std::string segment_text(const Map& map, const Opening& o) {
+  std::ostringstream s;
+  const Vec2 a = map.to_frame(o.from), b = map.to_frame(o.to);
+  s << std::setprecision(6) << a.x << ',' << a.y << ',' << b.x << ',' << b.y;
+  return s.str();
+}
+
+// The typed openings, snapped onto the occupancy's free-space boundary.
+void add_typed_openings(RosImport& result, const RosImportOptions& options) {
+  if (options.inlets.empty()) return;
+  result.default_openings = false;
+  Map& map = result.map;
+  map.openings.clear();
+  const OccupancyImage image{result.occupied, result.resolution, map.frame.origin};
+  for (const auto& [list, field, kind] :
+       {std::tuple{&options.inlets, "ros.inlets", OpeningKind::Inlet},
+        std::tuple{&options.outlets, "ros.outlets", OpeningKind::Outlet}}) {
+    for (const std::string& text : *list) {
+      SnappedOpening s = snap_opening(image, parse_opening(text, kind, field), options.snap_px);
+      for (const SnappedOpening& t : result.snapped) {
+        const Opening &a = s.opening, &b = t.opening;
+        if (a.vertical() == b.vertical() && a.line() == b.line() &&
+            std::min(a.hi(), b.hi()) > std::max(a.lo(), b.lo()))
+          throw OptionError(field, "'" + text + "' snaps to " + segment_text(map, a) +
+                                       ", which overlaps " + t.request.field + " '" +
+                                       t.request.text + "' (snapped to " + segment_text(map, b) +
+                                       ")");
+      }
+      if (s.opening.length() < 0.5 * (s.opening.length() + s.trimmed_m))
+        result.warnings.push_back(std::string(field) + " '" + text + "': only " +
+                                  segment_text(map, s.opening) +
+                                  " of it lies on the free space's boundary");
+      map.openings.push_back(s.opening);
+      result.snapped.push_back(std::move(s));
+    }
+  }
+}
+
+bool valid(const Map& map) {
+  try {
+    validate_map(map, "");
+  } catch (const InputError&) {
+    return false;
+  }
+  return true;
+}
+
+// Rasterizes the map back at the image's resolution: the pixels that differ,
+// and whether air can cross it (with advice when it cannot).
+void check_result(RosImport& result, const RosImportOptions& options) {
+  if (result.ros_yaw != 0.0) {
+    std::ostringstream s;
+    s << "the YAML origin's yaw (" << result.ros_yaw << " rad) is ignored, as map_server "
+      << "ignores it: map-frame coordinates are those of the unrotated image";
+    result.warnings.push_back(s.str());
+  }
+  const Map& map = result.map;
+  const GridShape shape{result.cols, result.rows, map.width, map.height};
+  const Grid<std::uint8_t> labels = rasterize_labels(map, shape);
+  result.raster_mismatch_pixels = 0;
+  for (int r = 0; r < result.rows; ++r)
+    for (int c = 0; c < result.cols; ++c)
+      result.raster_mismatch_pixels +=
+          (labels(c, result.rows - 1 - r) == kObstacle) != (result.occupied.at<uchar>(r, c) != 0);
+  result.free_space = free_regions(labels);
+  const bool unknown_hint = options.unknown_is_occupied && result.unknown_pixels > 0;
+  for (std::string& w : sealed_map_advice(map, result.free_space, unknown_hint, true))
+    result.warnings.push_back(std::move(w));
+}
+
+}  // namespace
+
+RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImportOptions& options) {
+  check_options(options);
+  const RosYaml yaml = read_ros_yaml(yaml_path);
+  const std::string origin = yaml_path.string();
+  const auto [cols, rows] = image_dimensions(yaml.image);
+  check_memory(cols * rows * kImportBytesPerPixel,
+               origin + ": importing the " + compact(cols) + " x " + compact(rows) + " px image",
+               "crop or downsample the image");
+  const cv::Mat image = read_gray_image(yaml.image);
+  if (image.empty())
+    throw InputError(origin + ": image: cannot read '" + yaml.image.string() + "' as PGM/PNG");
+
+  RosImport result;
+  result.resolution = yaml.resolution;
+  result.ros_origin = yaml.origin;
+  result.ros_yaw = yaml.yaw;
   result.cols = image.cols;
   result.rows = image.rows;
+  cv::Mat occupied = threshold(image, yaml, options.unknown_is_occupied, result.unknown_pixels);
+  // Specks first: noise is not worth joining to its neighbours.
+  result.specks = drop_specks(occupied, options.min_area_px);
+  result.gaps = close_gaps(occupied, options.close_gaps_m / yaml.resolution);
+  result.stats.pinches_filled = fill_diagonal_pinches(occupied);
+  result.stats.specks_dropped = result.specks.specks;
   result.occupied_pixels = cv::countNonZero(occupied);
   result.occupied = occupied;
 
-  result.map = default_arena(image.cols * result.resolution, image.rows * result.resolution);
-  result.map.name = options.name.empty() ? yaml_path.stem().string() : options.name;
-  result.map.obstacles = occupancy_to_polygons(occupied, result.resolution, options, &result.stats);
-  validate_map(result.map, origin);
+  Map& map = result.map;
+  map = default_arena(image.cols * yaml.resolution, image.rows * yaml.resolution);
+  map.name = options.name.empty() ? yaml_path.stem().string() : options.name;
+  map.frame.origin = yaml.origin;
+  add_typed_openings(result, options);
+  RosImportOptions tracing = options;
+  tracing.min_area_px = 0;  // dropped above, on the pixels
+  const std::vector<Opening> keep = result.default_openings ? std::vector<Opening>{} : map.openings;
+  MaskPolygonStats stats;
+  map.obstacles = occupancy_to_polygons(occupied, yaml.resolution, tracing, &stats, keep);
+  if (!result.default_openings && !valid(map)) {
+    // A simplified edge of a neighbouring obstacle reached an opening: trace exactly.
+    tracing.simplify_px = 0.0;
+    map.obstacles = occupancy_to_polygons(occupied, yaml.resolution, tracing, &stats, keep);
+    result.warnings.push_back(
+        "outlines traced without simplification, to keep the openings on "
+        "the obstacles' edges");
+  }
+  result.stats.cuts = stats.cuts;
+  validate_map(map, origin);
+  check_result(result, options);
   return result;
 }
 

@@ -134,4 +134,75 @@ TEST_F(Cli, ImportRosWritesAValidMap) {
   EXPECT_FALSE(fs::exists(out.string() + ".2"));
 }
 
+TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {
+  const fs::path out = dir / "office.json";
+  const Result r =
+      run("map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("warning: no free path from any inlet to any outlet"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("largest sealed free region (48.8 m²"), std::string::npos) << r.out;
+  // The advice names the command's flags, not the library's fields.
+  EXPECT_NE(r.out.find("import with --unknown free"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--inlet / --outlet"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("ros."), std::string::npos) << r.out;
+  const Result v = run("map validate " + out.string());
+  EXPECT_EQ(v.code, 0);
+  EXPECT_NE(v.out.find("valid plumekit-map/2"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("warning: no free path"), std::string::npos) << v.out;
+}
+
+TEST_F(Cli, ImportRosTakesSeveralOpeningsInTheMapFrameAndSnapsThem) {
+  const fs::path out = dir / "office.json";
+  const Result r =
+      run("map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " + out.string() +
+          " --inlet 0,1.8,0,3.4,0.5,parabolic --outlet 11.25,1.0,11.25,2.5"
+          " --outlet 11.25,2.6,11.25,4.2 --close-gaps 0.5 --min-area 4 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["format"], "plumekit-map/2");
+  EXPECT_EQ(j["frame_origin"], nlohmann::json::array({-0.4, -0.4}));
+  ASSERT_EQ(j["openings"].size(), 3u);
+  EXPECT_EQ(j["openings"][0]["kind"], "inlet");
+  EXPECT_EQ(j["openings"][0]["speed"], 0.5);
+  EXPECT_EQ(j["openings"][0]["requested"], "0,1.8,0,3.4,0.5,parabolic");
+  EXPECT_NEAR(j["openings"][0]["from"][1].get<double>(), 1.85, 1e-9);
+  EXPECT_NEAR(j["openings"][1]["from"][0].get<double>(), 11.2, 1e-9);
+  EXPECT_NEAR(j["openings"][2]["to"][1].get<double>(), 4.1, 1e-9);
+  EXPECT_EQ(j["inlet_reaches_outlet"], true);
+  EXPECT_EQ(j["warnings"].size(), 0u) << j["warnings"];
+  // The office has a table 0.45 m from a wall and a one-pixel speck.
+  EXPECT_GT(j["gaps"]["gaps_closed"].get<int>(), 0);
+  EXPECT_GT(j["gaps"]["pixels_filled"].get<int>(), 0);
+  EXPECT_GT(j["specks"]["dropped"].get<int>(), 0);
+  const Result v = run("map validate " + out.string() + " --json");
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_EQ(nlohmann::json::parse(v.out)["warnings"].size(), 0u) << v.out;
+  // Text: the snapped segments and what was changed.
+  const Result t =
+      run("map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " + out.string() +
+          " --inlet 0,1.8,0,3.4 --outlet 11.25,1.0,11.25,4.2 --close-gaps 0.5");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("inlet 0,1.85,0,3.35 at 1 m/s uniform (--inlet '0,1.8,0,3.4'"),
+            std::string::npos)
+      << t.out;
+  EXPECT_NE(t.out.find("gaps closed"), std::string::npos) << t.out;
+}
+
+TEST_F(Cli, ImportRosRefusesAnOpeningFarFromAnyBoundary) {
+  const fs::path out = dir / "office.json";
+  const std::string yaml = (kData / "ros" / "office.yaml").string();
+  const Result r = run("map import-ros " + yaml + " --out " + out.string() +
+                       " --inlet 0,1.8,0,3.4 --outlet 5,1,6,1");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--outlet: '5,1,6,1': no boundary of the free space"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  const Result half =
+      run("map import-ros " + yaml + " --out " + out.string() + " --inlet 0,1.8,0,3.4");
+  EXPECT_EQ(half.code, 2);
+  EXPECT_NE(half.err.find("--outlet"), std::string::npos) << half.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 }  // namespace

@@ -1,0 +1,16 @@
+#pragma once
+// What `plumekit map import-ros` reports: the JSON summary and the text for
+// people. Both name option fields ("ros.unknown"); the CLI puts its flags in.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/ros_import.hpp"
+
+namespace plumekit {
+
+nlohmann::ordered_json ros_import_json(const RosImport& in, const std::string& yaml,
+                                       const std::string& out);
+std::string ros_import_text(const RosImport& in, const std::string& out);
+
+}  // namespace plumekit
