@@ -256,21 +256,88 @@ bool NullSpaceSolver::operators_check(const GridShape& s,
   return d_max < 1e-9 * scale && max_abs(left_g, n_mom_, n_) < 1e-9 * scale;
 }
 
+void NullSpaceSolver::build_reduced_pattern(const Eigen::SparseMatrix<double>& jacobian) {
+  // Column g of K holds the groups that L' J reaches from g's curl faces.
+  const int groups = reduced_size();
+  const int* j_outer = jacobian.outerIndexPtr();
+  const int* j_inner = jacobian.innerIndexPtr();
+  std::vector<int> mark(groups, -1), outer(groups + 1, 0), inner, rows;
+  for (int col = 0; col < groups; ++col) {
+    rows.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator c(curl_, col); c; ++c)
+      for (int k = j_outer[c.row()]; k < j_outer[c.row() + 1]; ++k)
+        for (Eigen::SparseMatrix<double>::InnerIterator l(left_, j_inner[k]); l; ++l)
+          if (mark[l.row()] != col) {
+            mark[l.row()] = col;
+            rows.push_back(static_cast<int>(l.row()));
+          }
+    std::sort(rows.begin(), rows.end());
+    inner.insert(inner.end(), rows.begin(), rows.end());
+    outer[col + 1] = static_cast<int>(inner.size());
+  }
+  const std::vector<double> zeros(inner.size(), 0.0);
+  reduced_ = Eigen::Map<const Eigen::SparseMatrix<double>>(
+      groups, groups, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(),
+      zeros.data());
+  slot_.assign(groups, -1);
+  jc_.assign(n_, 0.0);
+  in_column_.assign(n_, 0);
+}
+
+void NullSpaceSolver::form_reduced(const Eigen::SparseMatrix<double>& jacobian) {
+  // K = L' (J C), one column at a time: J C's column in a dense accumulator,
+  // then L' of it into K's column.
+  const int* j_outer = jacobian.outerIndexPtr();
+  const int* j_inner = jacobian.innerIndexPtr();
+  const double* j_value = jacobian.valuePtr();
+  const int* k_outer = reduced_.outerIndexPtr();
+  const int* k_inner = reduced_.innerIndexPtr();
+  double* k_value = reduced_.valuePtr();
+  std::fill(k_value, k_value + reduced_.nonZeros(), 0.0);
+  for (int col = 0; col < reduced_size(); ++col) {
+    for (int k = k_outer[col]; k < k_outer[col + 1]; ++k)
+      slot_[k_inner[k]] = k;
+    touched_.clear();
+    for (Eigen::SparseMatrix<double>::InnerIterator c(curl_, col); c; ++c)
+      for (int k = j_outer[c.row()]; k < j_outer[c.row() + 1]; ++k) {
+        const int row = j_inner[k];
+        if (!in_column_[row]) {
+          in_column_[row] = 1;
+          touched_.push_back(row);
+        }
+        jc_[row] += j_value[k] * c.value();
+      }
+    for (const int row : touched_) {
+      for (Eigen::SparseMatrix<double>::InnerIterator l(left_, row); l; ++l)
+        k_value[slot_[l.row()]] += l.value() * jc_[row];
+      jc_[row] = 0.0;
+      in_column_[row] = 0;
+    }
+  }
+}
+
+bool NullSpaceSolver::factorize_single(const Eigen::SparseMatrix<double>& jacobian) {
+  if (analysed_nonzeros_ < 0) {
+    build_reduced_pattern(jacobian);
+    single_->analyze(reduced_);
+    analysed_nonzeros_ = reduced_.nonZeros();
+  }
+  form_reduced(jacobian);
+  return single_->factorize(reduced_);
+}
+
 bool NullSpaceSolver::factorize(const Eigen::SparseMatrix<double>& jacobian) {
+  if (single_) return factorize_single(jacobian);
   reduced_ = left_ * (jacobian * curl_);
   // The product keeps explicit zeros, so K's pattern is J's pattern's and
   // never changes; the check only guards the reuse of the symbolic analysis.
   if (reduced_.nonZeros() != analysed_nonzeros_) {
-    if (single_) {
-      single_->analyze(reduced_);
-    } else {
-      lu_.control(UMFPACK_IRSTEP) = 0;
-      lu_.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
-      lu_.analyze(reduced_);
-    }
+    lu_.control(UMFPACK_IRSTEP) = 0;
+    lu_.control(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+    lu_.analyze(reduced_);
     analysed_nonzeros_ = reduced_.nonZeros();
   }
-  return single_ ? single_->factorize(reduced_) : lu_.factorize(reduced_);
+  return lu_.factorize(reduced_);
 }
 
 void NullSpaceSolver::solve(const Eigen::SparseMatrix<double>& jacobian, const double* b,

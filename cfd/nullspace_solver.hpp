@@ -98,6 +98,14 @@ class NullSpaceSolver : public LinearSolver {
                        const Eigen::SparseMatrix<double>& projected) const;
   // The coefficient of velocity column `col` in continuity row `p`.
   double continuity_coef(int p, int col) const;
+  // The single-precision path forms K in place (form_reduced) into a pattern
+  // built once (build_reduced_pattern): Eigen's products would hold J C and a
+  // row-major copy of K beside the LU (about 100 MB on tb3_world at 5 cm). The
+  // double path keeps Eigen's products, whose sums the shipped maps' flows
+  // were made with, bit for bit.
+  bool factorize_single(const Eigen::SparseMatrix<double>& jacobian);
+  void build_reduced_pattern(const Eigen::SparseMatrix<double>& jacobian);
+  void form_reduced(const Eigen::SparseMatrix<double>& jacobian);
 
   int n_ = 0, n_mom_ = 0;
   bool applicable_ = false;
@@ -109,6 +117,9 @@ class NullSpaceSolver : public LinearSolver {
   Eigen::Index analysed_nonzeros_ = -1;    // K's pattern size at the last analysis
   UmfpackLU lu_;
   std::unique_ptr<SinglePrecisionLU> single_;  // instead of lu_, when chosen
+  std::vector<int> slot_, touched_;            // form_reduced's workspace
+  std::vector<double> jc_;
+  std::vector<char> in_column_;
   std::vector<double> du_, t_, r_, z_, rz_;
 };
 
