@@ -159,7 +159,7 @@ void add_plume(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `plume` output")
       ->required();
   add_seed_flag(cmd, a->seed, "Seed of the filament model");
-  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, "Flow cell size, m"), "flow.cell")
+  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, cfd::kCellHelp), "flow.cell")
       ->capture_default_str();
   add_plume_options(cmd, a->p);
   add_common_flags(cmd);
@@ -212,7 +212,7 @@ void add_generate(CLI::App* group) {
              "dataset.map_dir");
   add_deprecated_alias(cmd, "--from-maps", "--map-dir", a->map_dir);
   add_families_option(cmd, a->o.map);
-  bind_field(cmd, cmd->add_option("--cell", a->o.flow.cell, "Flow cell size, m"), "flow.cell")
+  bind_field(cmd, cmd->add_option("--cell", a->o.flow.cell, cfd::kCellHelp), "flow.cell")
       ->capture_default_str();
   add_plume_options(cmd, a->o.plume);
   add_common_flags(cmd);

@@ -69,8 +69,13 @@ void bind_engine_options(CLI::App* cmd, FlowArgs& a) {
 
 void bind_flow_options(CLI::App* cmd, FlowArgs& a) {
   cfd::FlowOptions& o = a.options;
-  bind_field(cmd, cmd->add_option("--cell", o.cell, "Cell size in metres"), "flow.cell")
+  bind_field(cmd, cmd->add_option("--cell", o.cell, cfd::kCellHelp), "flow.cell")
       ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_flag("--strict-gaps", o.strict_gaps,
+                           "Refuse a map with gaps open in it but narrower than a cell, instead "
+                           "of closing them with a warning"),
+             "flow.strict_gaps");
   bind_field(cmd, cmd->add_option("--nu", o.nu, "Kinematic (effective) viscosity, m^2/s"),
              "flow.nu")
       ->capture_default_str();

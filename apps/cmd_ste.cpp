@@ -125,7 +125,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
   bind_to(cmd, "--max-samples", o.stop.max_samples, "Stop after this many samples",
           "ste.stop.max_samples");
-  bind_to(cmd, "--cell", o.flow.cell, "Flow cell of the wind the plume runs in, m", "flow.cell");
+  bind_to(cmd, "--cell", o.flow.cell, cfd::kCellHelp, "flow.cell");
 }
 
 void add_ste_options(CLI::App* cmd, ste::SteOptions& o) {

@@ -23,7 +23,17 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
                {"convention",
                 "arrays (ny, nx), row-major, row 0 at y = 0, cell-centred: value [j][i] at "
                 "((i + 0.5) dx, (j + 0.5) dy); zero inside obstacles"}};
-  j["cell"] = options.cell;
+  j["cell"] = s.cell != 0.0 ? s.cell : options.cell;  // the default resolved (resolved_cell)
+  // Only when some were closed, so that earlier outputs (and caches) keep their bytes.
+  if (s.closed_gaps.count > 0) {
+    nlohmann::ordered_json narrowest = nlohmann::ordered_json::array();
+    for (const ClosedGap& g : s.closed_gaps.narrowest)
+      narrowest.push_back({{"between", g.between}, {"width", g.width}, {"at", {g.at.x, g.at.y}}});
+    j["closed_gaps"] = {{"count", s.closed_gaps.count},
+                        {"frame", "map"},
+                        {"narrowest", narrowest},
+                        {"cell_keeping_them_open", s.closed_gaps.open_cell}};
+  }
   j["viscosity"] = s.nu;
   j["turbulence"] = to_string(s.turbulence);
   j["convection"] = to_string(s.convection);
@@ -69,6 +79,7 @@ std::string flow_report_text(const WindResult& w) {
        << " factorizations), residuals " << std::scientific << s.momentum_residual << " / "
        << s.continuity_residual << ", mass imbalance " << s.mass_imbalance << std::defaultfloat
        << ", max speed " << s.max_speed << " m/s, " << s.seconds << " s";
+  if (s.closed_gaps.count > 0) text << "\nwarning: " << closed_gaps_text(s.closed_gaps, s.cell);
   return text.str();
 }
 

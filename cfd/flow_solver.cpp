@@ -71,6 +71,9 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
   coarse.cell = 2.0 * std::max(shape.dx(), shape.dy());
   // A start needs no more accuracy than the coarse grid's own discretisation error.
   coarse.tolerance = std::max(options.tolerance, kCoarseTolerance);
+  // A coarse grid closes its own narrow gaps (it is only a start), even when
+  // the fine grid must refuse them.
+  coarse.strict_gaps = false;
   // The coarsest grid starts from rest, where first-order upwinding makes
   // Newton converge in a few steps; its flow is only a start for the next grid.
   const GridShape cs = GridShape::with_cell(map.width, map.height, coarse.cell);
@@ -84,8 +87,9 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
 }
 
 // The summary's description of the grid and the options.
-FlowSummary initial_summary(const GridShape& shape, const FlowOptions& options) {
+FlowSummary initial_summary(const GridShape& shape, const FlowOptions& options, double cell) {
   FlowSummary summary;
+  summary.cell = cell;
   summary.nx = shape.nx;
   summary.ny = shape.ny;
   summary.dx = shape.dx();
@@ -150,10 +154,12 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   options.validate();
   check_grid_size(map, options);  // before any grid is made: the size and the memory
-  const GridShape shape = GridShape::with_cell(map.width, map.height, options.cell);
-  check_grid(map, shape, options);
+  const double cell = resolved_cell(map, options);
+  const GridShape shape = GridShape::with_cell(map.width, map.height, cell);
+  const std::vector<GapReport> gaps = check_grid(map, shape, options);
   const StaggeredGrid grid(map, shape, options);
-  FlowSummary summary = initial_summary(shape, options);
+  FlowSummary summary = initial_summary(shape, options, cell);
+  summary.closed_gaps = summarize_gaps(map, gaps);
 
   const auto t_coarse = std::chrono::steady_clock::now();
   const std::optional<WindField> coarse = coarse_start(map, options, shape);

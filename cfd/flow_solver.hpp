@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cfd/gap_closing.hpp"
 #include "cfd/options.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/error.hpp"
@@ -30,6 +31,10 @@ struct IterationRecord {
 struct FlowSummary {
   int nx = 0, ny = 0;
   double dx = 0.0, dy = 0.0;
+  double cell = 0.0;  // m, the cell asked for (resolved_cell: the default resolved)
+  // The gaps open in the map but narrower than a cell, which the grid closed
+  // (gap_closing.hpp); positions in the map frame.
+  ClosedGaps closed_gaps;
   double nu = 0.0;
   Turbulence turbulence = Turbulence::None;
   Convection convection = Convection::Central;

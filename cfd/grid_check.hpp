@@ -1,10 +1,13 @@
 #pragma once
 // Refuses grids that cannot represent the map's flow, or that would not fit
 // in memory: too few or too many cells, a solve whose estimated peak memory
-// exceeds the limit (core/memory_limit.hpp), a gap between obstacles (or an
-// obstacle and a wall) that is open in the map but narrower than one cell, or
-// an inlet with no way to the outlet. Faults of the cell size are OptionErrors
-// on "flow.cell".
+// exceeds the limit (core/memory_limit.hpp), an inlet with no way to the
+// outlet; and closes (or, strictly, refuses) gaps between obstacles that are
+// open in the map but narrower than one cell. Faults of the cell size are
+// OptionErrors on "flow.cell".
+#include <vector>
+
+#include "cfd/gap_closing.hpp"
 #include "cfd/options.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
@@ -27,7 +30,13 @@ double flow_memory_estimate(double cells);
 // "flow.cell" or MemoryLimitError.
 void check_grid_size(const Map& map, const FlowOptions& options);
 
-// The checks that need the grid: narrow gaps and inlet-to-outlet connectivity.
-void check_grid(const Map& map, const GridShape& shape, const FlowOptions& options);
+// The checks that need the grid: narrow gaps (closed, or refused under
+// flow.strict_gaps: gap_closing.hpp) and inlet-to-outlet connectivity on the
+// grid with those gaps closed, which the solver uses. Returns the closed gaps,
+// narrowest first. Throws OptionError on "flow.cell" (strict gaps, or closed
+// gaps that seal the flow: naming the narrowest gap and a cell that keeps the
+// gaps open) or InputError (no path from an inlet to an outlet at all).
+std::vector<GapReport> check_grid(const Map& map, const GridShape& shape,
+                                  const FlowOptions& options);
 
 }  // namespace plumekit::cfd

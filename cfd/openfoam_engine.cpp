@@ -124,8 +124,9 @@ OpenFoamResult solve_openfoam(const Map& map, const FlowOptions& flow, const Ope
   check_flow_options(flow);
   foam.validate();
   require_programs(foam.ranks);
-  const GridShape shape = GridShape::with_cell(map.width, map.height, flow.cell);
-  check_grid(map, shape, flow);
+  const double cell = resolved_cell(map, flow);  // flow.cell, or the default from the size
+  const GridShape shape = GridShape::with_cell(map.width, map.height, cell);
+  const std::vector<GapReport> gaps = check_grid(map, shape, flow);  // closed, as cfd::solve
   const StaggeredGrid grid(map, shape, flow);
 
   OpenFoamResult r;
@@ -155,6 +156,8 @@ OpenFoamResult solve_openfoam(const Map& map, const FlowOptions& flow, const Ope
   if (guard.keep) r.run.kept_case = guard.dir.string();
 
   FlowSummary& s = r.flow.summary;
+  s.cell = cell;
+  s.closed_gaps = summarize_gaps(map, gaps);
   s.tolerance = foam.tolerance;
   s.converged = true;
   s.iterations = log.iterations;

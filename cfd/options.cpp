@@ -1,9 +1,11 @@
 #include "cfd/options.hpp"
 
+#include <cmath>
 #include <string>
 
 #include "cfd/grid_check.hpp"
 #include "core/error.hpp"
+#include "core/map.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::cfd {
@@ -76,11 +78,32 @@ LinearSolverKind parse_linear_solver(const std::string& name) {
   return parse(kLinearSolver, name, "flow.linear_solver");
 }
 
+double resolved_cell(double width, double height, const FlowOptions& options) {
+  if (options.cell != 0.0) return options.cell;
+  auto cells = [&](double cell) { return std::round(width / cell) * std::round(height / cell); };
+  if (cells(kDefaultCell) <= kAutoCellMaxCells) return kDefaultCell;
+  // The next "nice" cell up from the one that gives exactly the limit.
+  const double exact = std::sqrt(width * height / kAutoCellMaxCells);
+  double decade = std::pow(10.0, std::floor(std::log10(exact)));
+  constexpr double kSteps[] = {1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8};
+  for (int guard = 0; guard < 40; ++guard, decade *= 10.0)
+    for (double step : kSteps)
+      if (step * decade >= exact * (1 - 1e-12) && cells(step * decade) <= kAutoCellMaxCells)
+        return step * decade;
+  return exact;  // not reached: some step of a decade always fits
+}
+
+double resolved_cell(const Map& map, const FlowOptions& options) {
+  return resolved_cell(map.width, map.height, options);
+}
+
 // The upper bounds are far beyond any useful setting; they catch unit
 // mistakes and typos (a cell of 50 m, a viscosity of 1e9) before a solve that
 // cannot succeed. cfd/README.md lists them.
 void FlowOptions::validate() const {
-  check_positive("flow.cell", cell, kMaxCell, "m", "the default is 0.05 m");
+  if (cell != 0.0)  // 0: the default, chosen from the arena's size
+    check_positive("flow.cell", cell, kMaxCell, "m",
+                   "0 (the default) is 0.05 m, or coarser on arenas over 640000 such cells");
   check_positive("flow.nu", nu, 10.0, "m^2/s",
                  "the default is 0.01 m^2/s (air's molecular value is 1.5e-05)");
   check_range("flow.tolerance", tolerance, 1e-14, 0.1, "", "the default is 1e-08");

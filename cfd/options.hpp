@@ -5,6 +5,10 @@
 #include <functional>
 #include <string>
 
+namespace plumekit {
+struct Map;
+}
+
 namespace plumekit::cfd {
 
 enum class Turbulence { None, MixingLength };
@@ -35,9 +39,23 @@ Turbulence parse_turbulence(const std::string& name);
 Convection parse_convection(const std::string& name);
 LinearSolverKind parse_linear_solver(const std::string& name);
 
+// The default cell (FlowOptions::cell = 0): 5 cm on every arena whose 5 cm
+// grid has at most kAutoCellMaxCells cells (every building-scale map: the
+// 10 x 4 m arenas, tb3_world, depot, warehouse); on larger arenas the
+// smallest of 1, 1.2, 1.5, 2, 2.5, 3, 4, 5, 6, 8 x 10^k m that gives at most
+// that many cells. It depends on the arena's size only, never on the machine.
+inline constexpr double kDefaultCell = 0.05;
+inline constexpr double kAutoCellMaxCells = 640000;
+// The help text of every --cell that sets FlowOptions::cell.
+inline constexpr const char* kCellHelp =
+    "Flow cell size, m; 0 (the default): 0.05 m, or on arenas whose 5 cm grid would exceed "
+    "640000 cells, the round size that gives at most that many";
+
 struct FlowOptions {
-  double cell = 0.05;  // m; cells per side = round(extent / cell)
-  double nu = 0.01;    // m^2/s, (effective) kinematic viscosity
+  // m; cells per side = round(extent / cell). 0 (the default) chooses from the
+  // arena's size: resolved_cell() below.
+  double cell = 0.0;
+  double nu = 0.01;  // m^2/s, (effective) kinematic viscosity
   Turbulence turbulence = Turbulence::None;
   Convection convection = Convection::Central;
   // Mixing-length closure: nu_t = lm^2 |S|, lm = min(kappa d, lm_max), d the
@@ -70,6 +88,11 @@ struct FlowOptions {
   // converge with central or van Leer convection, solve again with first-order
   // upwind, and report it. cfd::solve itself ignores this.
   bool upwind_fallback = true;
+  // A gap between two obstacles (or an obstacle and a wall) that is open in
+  // the map but narrower than a cell is closed on the grid, with a warning
+  // (cfd/gap_closing.hpp). true refuses such a grid instead (OptionError on
+  // flow.cell naming the narrowest gap and a cell that keeps it open).
+  bool strict_gaps = false;
   bool verbose = false;  // a line per iteration on stderr
   // Called after each iteration with (iteration, momentum, continuity residual).
   std::function<void(int, double, double)> on_iteration;
@@ -78,5 +101,10 @@ struct FlowOptions {
   // allowed range (cfd/README.md, "Options"). cfd::solve calls it.
   void validate() const;
 };
+
+// The cell a grid is made with: options.cell, or the default rule above when
+// it is 0. Every grid of a flow solve is made from this.
+double resolved_cell(double width, double height, const FlowOptions& options);
+double resolved_cell(const Map& map, const FlowOptions& options);
 
 }  // namespace plumekit::cfd

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "cfd/gap_closing.hpp"
 #include "core/rasterize.hpp"
 
 namespace plumekit::cfd {
@@ -31,6 +32,10 @@ StaggeredGrid::StaggeredGrid(const Map& map, const GridShape& shape, const FlowO
       map_(&map),
       wall_speed_(options.wall_speed),
       closed_(options.closed) {
+  // Gaps open in the map but narrower than a cell are closed (solid), so that
+  // no one-cell channel depends on how the cells fall (gap_closing.hpp);
+  // check_grid has reported them, or refused them under flow.strict_gaps.
+  close_narrow_gaps(map, shape, solid_);
   seal_pockets();
   for (int c = 0; c < 2; ++c) {
     kind_[c].assign(face_count(c), kFixed);
@@ -68,9 +73,10 @@ int StaggeredGrid::opening_at(int c, int a, int b) const {
 }
 
 // Marks as solid the fluid cells that no path of fluid cells joins to an
-// opening (or, in a closed box, to the first fluid cell): a pocket sealed by
+// outlet (or, in a closed box, to the first fluid cell): a pocket sealed by
 // obstacles has no flow and no pressure level, and would leave the Newton
-// matrix singular.
+// matrix singular; so does a region that only an inlet opens (air comes in
+// and cannot leave), as a real map's inlet along a whole wall can make.
 void StaggeredGrid::seal_pockets() {
   const GridShape& s = shape_;
   std::vector<char> reached(s.size(), 0);
@@ -82,12 +88,13 @@ void StaggeredGrid::seal_pockets() {
     for (std::size_t k = 0; k < s.size() && queue.empty(); ++k)
       seed(k);
   } else {
-    // The fluid cell beside each boundary face that lies on an opening.
+    // The fluid cell beside each boundary face that lies on an outlet.
     for (int c = 0; c < 2; ++c)
       for (int b = 0; b < n_across(c); ++b)
         for (int a = 0; a <= n_along(c); ++a) {
           const int side = fluid_side(c, a, b);
-          if ((side == 1 || side == -1) && opening_at(c, a, b) >= 0)
+          const int k = side == 1 || side == -1 ? opening_at(c, a, b) : -1;
+          if (k >= 0 && !map_->openings[static_cast<std::size_t>(k)].is_inlet())
             seed(cell(c, side > 0 ? a : a - 1, b));
         }
   }

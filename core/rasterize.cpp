@@ -40,6 +40,33 @@ void check_raster_memory(const GridShape& shape) {
                "use larger cells");
 }
 
+// The edges (index of their first vertex) that covers(poly, p) can consult
+// for a point at height y: those whose y-range, widened by within_box's
+// tolerance (core/geometry.cpp), holds y. A real map's outline has thousands
+// of edges, of which a row meets a few.
+void row_edges(const Polygon& poly, double y, std::vector<std::size_t>& edges) {
+  edges.clear();
+  for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % n];
+    const double tol =
+        2e-12 * std::max({std::abs(a.x), std::abs(a.y), std::abs(b.x), std::abs(b.y), 1.0});
+    if (y >= std::min(a.y, b.y) - tol && y <= std::max(a.y, b.y) + tol) edges.push_back(i);
+  }
+}
+
+// covers(poly, p) over the row's edges only: the same answer, since an edge
+// off the row can neither hold p nor cross its ray (locate's rules).
+bool covers_on_row(const Polygon& poly, const std::vector<std::size_t>& edges, Vec2 p) {
+  bool inside = false;
+  for (std::size_t i : edges) {
+    const Vec2 a = poly[i], b = poly[(i + 1) % poly.size()];
+    if (point_on_segment(p, a, b)) return true;
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+      inside = !inside;
+  }
+  return inside;
+}
+
 }  // namespace
 
 Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape) {
@@ -52,9 +79,11 @@ Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape) {
     const int i1 = std::min(shape.nx - 1, static_cast<int>(std::ceil(box.hi.x / shape.dx() - 0.5)));
     const int j0 = std::max(0, static_cast<int>(std::floor(box.lo.y / shape.dy() - 0.5)));
     const int j1 = std::min(shape.ny - 1, static_cast<int>(std::ceil(box.hi.y / shape.dy() - 0.5)));
+    std::vector<std::size_t> edges;
     for (int j = j0; j <= j1; ++j) {
+      row_edges(poly, shape.centre(0, j).y, edges);
       for (int i = i0; i <= i1; ++i) {
-        if (!grid(i, j) && covers(poly, shape.centre(i, j))) grid(i, j) = 1;
+        if (!grid(i, j) && covers_on_row(poly, edges, shape.centre(i, j))) grid(i, j) = 1;
       }
     }
   }
@@ -70,7 +99,11 @@ std::uint8_t opening_label(const Map& map, int k) {
 }  // namespace
 
 Grid<std::uint8_t> rasterize_labels(const Map& map, const GridShape& shape) {
-  const Grid<std::uint8_t> solid = rasterize_occupancy(map, shape);
+  return rasterize_labels(map, rasterize_occupancy(map, shape));
+}
+
+Grid<std::uint8_t> rasterize_labels(const Map& map, const Grid<std::uint8_t>& solid) {
+  const GridShape& shape = solid.shape;
   Grid<std::uint8_t> labels(shape, kFree);
   const double hx = 0.5 * shape.dx(), hy = 0.5 * shape.dy();
   for (int j = 0; j < shape.ny; ++j) {

@@ -23,6 +23,10 @@ enum Label : std::uint8_t {
 };
 
 Grid<std::uint8_t> rasterize_labels(const Map& map, const GridShape& shape);
+// The labels of a given occupancy (1 solid) on its grid, e.g. one whose narrow
+// gaps the flow solver closed (cfd/gap_closing.hpp), so that checks see the
+// grid the solver uses.
+Grid<std::uint8_t> rasterize_labels(const Map& map, const Grid<std::uint8_t>& solid);
 
 // 1 for solid cells, 0 for free ones (same rule as the labels).
 Grid<std::uint8_t> rasterize_occupancy(const Map& map, const GridShape& shape);

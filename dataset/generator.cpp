@@ -73,7 +73,8 @@ void check_run_options(const DatasetOptions& o, const RunOptions& run) {
                                            "/" + std::to_string(run.part_n));
   double cells = 0.0;
   auto grid_cells = [&](const Map& m) {
-    return std::round(m.width / o.flow.cell) * std::round(m.height / o.flow.cell);
+    const double cell = cfd::resolved_cell(m, o.flow);  // 0: the default from the map's size
+    return std::round(m.width / cell) * std::round(m.height / cell);
   };
   if (o.given_maps.empty()) cells = grid_cells(default_arena(o.map.width, o.map.height));
   for (const Map& m : o.given_maps)

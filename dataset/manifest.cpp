@@ -12,6 +12,23 @@ std::string shard_name(int map_index) {
   return buf;
 }
 
+namespace {
+
+// The flow cell the maps are solved with: flow.cell, or the default resolved
+// on the maps (cfd::resolved_cell), which is 0.05 m on every map up to
+// building scale, so that such datasets record what they always did; "auto"
+// only where maps of different sizes resolve differently.
+nlohmann::ordered_json flow_cell_json(const DatasetOptions& o) {
+  if (o.flow.cell != 0.0) return o.flow.cell;
+  if (o.given_maps.empty()) return cfd::resolved_cell(o.map.width, o.map.height, o.flow);
+  const double first = cfd::resolved_cell(o.given_maps.front(), o.flow);
+  for (const Map& m : o.given_maps)
+    if (cfd::resolved_cell(m, o.flow) != first) return "auto";
+  return first;
+}
+
+}  // namespace
+
 nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
   const FilamentOptions& f = o.plume.filament;
   const AdvectionDiffusionOptions& a = o.plume.advection_diffusion;
@@ -37,7 +54,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
     j["map_files"] = o.map_files;
     j["sources_per_map"] = "each map's own sources";
   }
-  j["flow"] = {{"cell", o.flow.cell},
+  j["flow"] = {{"cell", flow_cell_json(o)},
                {"nu", o.flow.nu},
                {"turbulence", cfd::to_string(o.flow.turbulence)},
                {"convection", cfd::to_string(o.flow.convection)},

@@ -39,7 +39,8 @@ TEST(FlowOptions, EveryFieldIsRangeChecked) {
     void (*set)(FlowOptions&);
     const char* range;
   } cases[] = {
-      {"flow.cell", [](FlowOptions& o) { o.cell = 0.0; }, "more than 0 and at most 10 m"},
+      {"flow.cell", [](FlowOptions& o) { o.cell = -0.05; }, "more than 0 and at most 10 m"},
+      {"flow.cell", [](FlowOptions& o) { o.cell = 11.0; }, "0 (the default) is 0.05 m"},
       {"flow.cell", [](FlowOptions& o) { o.cell = NAN; }, "got nan"},
       {"flow.nu", [](FlowOptions& o) { o.nu = 1e9; }, "at most 10 m^2/s, got 1e+09"},
       {"flow.nu", [](FlowOptions& o) { o.nu = -1.0; }, "got -1"},
@@ -97,7 +98,9 @@ TEST(FlowGridSize, HundredMetreArenaAtFiveCentimetresIsRefusedQuickly) {
   const MemoryLimitScope scope(parse_memory_size("8G"));
   const Map map = default_arena(100.0, 100.0);
   const auto t0 = std::chrono::steady_clock::now();
-  const auto e = error_of<MemoryLimitError>([&] { solve(map, FlowOptions{}); });
+  FlowOptions five_cm;
+  five_cm.cell = 0.05;  // the default would be 0.15 m on this arena
+  const auto e = error_of<MemoryLimitError>([&] { solve(map, five_cm); });
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
   const std::string m = e.what();
   expect_has(m, "the flow solve on 2000 x 2000 cells of 0.05 m needs about");
@@ -135,10 +138,12 @@ TEST(FlowMessages, NarrowGapNamesTheFieldAndAFinerCell) {
   Map map = default_arena();
   map.obstacles.push_back({{3.0, 0.0}, {4.0, 0.0}, {4.0, 1.9}, {3.0, 1.9}});
   map.obstacles.push_back({{3.0, 1.93}, {4.0, 1.93}, {4.0, 4.0}, {3.0, 4.0}});
-  const auto e = error_of<OptionError>([&] { solve(map, FlowOptions{}); });
+  FlowOptions strict;
+  strict.strict_gaps = true;  // by default the grid closes the gap, with a warning
+  const auto e = error_of<OptionError>([&] { solve(map, strict); });
   EXPECT_EQ(e.field(), "flow.cell");
   expect_has(e.message(), "0.03 m apart");
-  expect_has(e.message(), "use a cell of 0.015 m or finer");
+  expect_has(e.message(), "use a cell of 0.029 m or finer");  // 0.03 m: 333 cells of 0.03003 m
   EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace plumekit {
 namespace {
@@ -24,6 +25,40 @@ TEST(Rasterize, GridShapeRoundsToWholeCells) {
   EXPECT_EQ(odd.ny, 13);
   const GridShape s64{64, 64, 10.0, 4.0};  // the CNN's grid: non-square cells
   EXPECT_DOUBLE_EQ(s64.centre(0, 63).y, 4.0 - 0.5 * 4.0 / 64);
+}
+
+// rasterize_occupancy consults only the edges near each row; the answer must
+// be covers() at every centre, bit for bit, on stair-step outlines whose edges
+// and vertices lie on the cell centres, and on slanted ones.
+TEST(Rasterize, RowFilteredOccupancyIsCoversAtEveryCentre) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> step(-3, 3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Map map = default_arena(10.0, 4.0);
+  for (int k = 0; k < 12; ++k) {
+    Polygon p;  // a staircase on the 0.025 m lattice (cell centres and faces of 5 cm cells)
+    double x = 0.025 * std::round((0.5 + 8.5 * u(rng)) / 0.025),
+           y = 0.025 * std::round((0.3 + 3.0 * u(rng)) / 0.025);
+    for (int v = 0; v < 8; ++v) {
+      p.push_back({x, y});
+      (v % 2 ? y : x) += 0.025 * (step(rng) == 0 ? 1 : step(rng));
+    }
+    if (k % 3 == 0)
+      for (Vec2& q : p)
+        q = {q.x + 0.013 * q.y, q.y + 0.007 * q.x};  // slanted edges
+    map.obstacles.push_back(p);
+  }
+  for (double cell : {0.05, 0.025, 0.07}) {
+    const GridShape shape = GridShape::with_cell(10.0, 4.0, cell);
+    const Grid<std::uint8_t> grid = rasterize_occupancy(map, shape);
+    for (int j = 0; j < shape.ny; ++j)
+      for (int i = 0; i < shape.nx; ++i) {
+        bool solid = false;
+        for (const Polygon& p : map.obstacles)
+          solid = solid || covers(p, shape.centre(i, j));
+        ASSERT_EQ(grid(i, j) != 0, solid) << cell << " at " << i << ", " << j;
+      }
+  }
 }
 
 TEST(Rasterize, CellIsSolidWhenItsCentreIsInsideOrOnTheBoundary) {
