@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "cfd/flow_output.hpp"
+#include "cfd/gap_closing.hpp"
 
 namespace plumekit::cfd {
 
@@ -51,6 +52,7 @@ std::string openfoam_report_text(const OpenFoamResult& r) {
   text << ", mass imbalance " << std::scientific << s.mass_imbalance << std::defaultfloat
        << ", max speed " << s.max_speed << " m/s, " << s.seconds << " s";
   if (!r.run.kept_case.empty()) text << "; case kept in " << r.run.kept_case;
+  if (s.closed_gaps.count > 0) text << "\nwarning: " << closed_gaps_text(s.closed_gaps, s.cell);
   return text.str();
 }
 
