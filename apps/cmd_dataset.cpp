@@ -165,7 +165,7 @@ void add_plume(CLI::App& app) {
   add_common_flags(cmd);
   cmd->callback([a] {
     const Map map = read_map(a->map);
-    const Vec2 src = parse_point(a->source, "--source");
+    const Vec2 src = map.from_frame(parse_point(a->source, "--source"));  // typed in the map's frame
     check_source(map, src);  // before the output folder is checked
     OutputDirectory out(a->out, "plume", {a->map});
     const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed);
@@ -177,7 +177,7 @@ void add_plume(CLI::App& app) {
     write_file_atomic(dir / "std.npy", npy_float32(t.std.values, {64, 64}));
     write_png(img, dir / "plume.png");
     out.commit();
-    const PlumeRun run{a->map, a->out, src, a->p.model, plume.flow_s, plume.plume_s};
+    const PlumeRun run{a->map, a->out, map.to_frame(src), a->p.model, plume.flow_s, plume.plume_s};
     const Report r = plume_report(run, t);
     report(r.json, r.text);
   });

@@ -47,10 +47,12 @@ void add_plan_commands(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Also draw the path over the map to this PNG");
   add_common_flags(cmd);
   cmd->callback([a] {
-    const Vec2 from = parse_point(a->from, "--from"), to = parse_point(a->to, "--to");
+    // Points are typed in the map's frame (its file's coordinates).
+    const Vec2 from_typed = parse_point(a->from, "--from"), to_typed = parse_point(a->to, "--to");
     const pl::PlannerKind kind = pl::parse_planner_kind(a->planner);
     a->options.validate();
     const Map map = read_map(a->map);
+    const Vec2 from = map.from_frame(from_typed), to = map.from_frame(to_typed);
     if (!a->out.empty()) check_output_file(a->out, {a->map});
 
     using Clock = std::chrono::steady_clock;
@@ -66,12 +68,12 @@ void add_plan_commands(CLI::App& app) {
       const pl::FreeSpace space(map, a->options.margin, a->options.arc_segments);
       write_png(pl::draw_plan(map, space, r, pl::to_string(kind)), a->out);
     }
-    Report rep = pl::plan_report(r, kind, a->options, from, to, timing);
+    Report rep = pl::plan_report(r, kind, a->options, from, to, timing, map.frame);
     ordered_json j{{"ok", true}, {"map", a->map}};
     j.update(rep.json);
     if (r.start_moved) {
-      add_moved_start(j, r.requested_start, r.start);
-      rep.text += "\n" + moved_start_text(r.requested_start, r.start);
+      add_moved_start(j, map.to_frame(r.requested_start), map.to_frame(r.start));
+      rep.text += "\n" + moved_start_text(map.to_frame(r.requested_start), map.to_frame(r.start));
     }
     if (!a->out.empty()) {
       j["out"] = a->out;

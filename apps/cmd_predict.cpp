@@ -52,7 +52,7 @@ void add_predict_commands(CLI::App& app) {
   add_common_flags(cmd);
   cmd->callback([a] {
     const auto start = std::chrono::steady_clock::now();
-    const Vec2 source = parse_point(a->source, "--source");
+    const Vec2 source_typed = parse_point(a->source, "--source");  // in the map's frame
     std::error_code ec;
     if (!fs::exists(a->cnn, ec)) {
       throw InputError(a->cnn + ": no such model file" +
@@ -62,6 +62,7 @@ void add_predict_commands(CLI::App& app) {
                                        : ""));
     }
     const Map map = read_map(a->map);
+    const Vec2 source = map.from_frame(source_typed);
     OutputDirectory out(a->out, "predict", {a->map, a->cnn});
     auto network =
         std::make_shared<const surrogate::Network>(surrogate::Network::load(a->cnn, a->engine));
@@ -90,7 +91,7 @@ void add_predict_commands(CLI::App& app) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const Report r = surrogate::prediction_report(
-        {a->cnn, a->map, a->out, source, predict_s, seconds}, p, *network);
+        {a->cnn, a->map, a->out, source, map.frame, predict_s, seconds}, p, *network);
     report(r.json, r.text);
   });
 }

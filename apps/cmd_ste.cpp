@@ -133,11 +133,12 @@ void add_ste_options(CLI::App* cmd, ste::SteOptions& o) {
   add_run_options(cmd, o);
 }
 
-// The JSON and text of a run, with the start's move when it was moved off an obstacle.
-void report_run(Report r, const std::optional<Vec2>& requested, Vec2 used) {
+// The JSON and text of a run, with the start's move when it was moved off an
+// obstacle (arena coordinates in, the map's frame out).
+void report_run(Report r, const Map& map, const std::optional<Vec2>& requested, Vec2 used) {
   if (requested && (requested->x != used.x || requested->y != used.y)) {
-    add_moved_start(r.json, *requested, used);
-    r.text += "\n" + moved_start_text(*requested, used);
+    add_moved_start(r.json, map.to_frame(*requested), map.to_frame(used));
+    r.text += "\n" + moved_start_text(map.to_frame(*requested), map.to_frame(used));
   }
   report(r.json, r.text);
 }
@@ -165,11 +166,14 @@ void add_localize(CLI::App& app) {
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a] {
-    const Vec2 source = parse_point(a->source, "--source");
+    // Points are typed in the map's frame (its file's coordinates).
+    const Vec2 source_typed = parse_point(a->source, "--source");
     std::optional<Vec2> requested;
     if (!a->start.empty()) requested = parse_point(a->start, "--start");
     a->ste.validate();
     const Map map = read_map(a->map);
+    const Vec2 source = map.from_frame(source_typed);
+    if (requested) requested = map.from_frame(*requested);
     std::optional<OutputDirectory> out;
     if (!a->out.empty())
       out.emplace(a->out, "localize", std::vector<fs::path>{a->map, a->ste.table_cache});
@@ -199,7 +203,7 @@ void add_localize(CLI::App& app) {
       rep.text += "\nwrote " + (o / "trajectory.png").string() + ", " +
                   (o / "posterior.png").string() + ", " + (o / "run.json").string();
     }
-    report_run(rep, requested, start);
+    report_run(rep, map, requested, start);
   });
 }
 
@@ -278,7 +282,8 @@ void add_demo(CLI::App& app) {
     OutputDirectory out(a->out, "demo", {map_file});
     const ste::Scenario sc(map, d.ste);
     const Vec2 source = map.sources.at(d.source_index);
-    const Vec2 start = sc.check_start(d.start);
+    const Vec2 requested = map.from_frame(d.start);
+    const Vec2 start = sc.check_start(requested);
     const ste::LocalizationResult r = sc.run(source, start, ste::run_seed(d.seed, 0, 0, 0));
     ste::write_run_pictures(sc, source, r, out.open());
     out.commit();
@@ -293,7 +298,7 @@ void add_demo(CLI::App& app) {
     j["out"] = {{"trajectory", traj.string()}, {"posterior", post.string()}};
     rep.json = j;
     rep.text += "\npictures: " + traj.string() + " (trajectory), " + post.string() + " (posterior)";
-    report_run(rep, d.start, start);
+    report_run(rep, map, requested, start);
   });
 }
 

@@ -52,6 +52,11 @@ struct Opening {
 // plumekit arenas are axis-aligned).
 struct MapFrame {
   Vec2 origin;  // map-frame position of the arena's lower-left corner
+
+  bool is_identity() const { return origin.x == 0.0 && origin.y == 0.0; }
+  // Arena <-> map frame; the identity, bit for bit, when the origin is (0, 0).
+  Vec2 to_frame(Vec2 arena) const { return is_identity() ? arena : arena + origin; }
+  Vec2 from_frame(Vec2 framed) const { return is_identity() ? framed : framed - origin; }
 };
 
 struct Map {
@@ -78,10 +83,10 @@ struct Map {
   int obstacle_at(Vec2 p) const;
   bool is_free(Vec2 p) const { return in_arena(p) && obstacle_at(p) < 0; }
 
-  // Arena <-> map frame.
-  Vec2 to_frame(Vec2 arena) const { return arena + frame.origin; }
-  Vec2 from_frame(Vec2 framed) const { return framed - frame.origin; }
-  bool has_frame() const { return frame.origin.x != 0.0 || frame.origin.y != 0.0; }
+  // Arena <-> map frame (MapFrame).
+  bool has_frame() const { return !frame.is_identity(); }
+  Vec2 to_frame(Vec2 arena) const { return frame.to_frame(arena); }
+  Vec2 from_frame(Vec2 framed) const { return frame.from_frame(framed); }
 
   // The arena wall an opening lies on, if any.
   std::optional<Side> wall_of(const Opening& o) const;

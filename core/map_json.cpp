@@ -252,16 +252,18 @@ void parse_shapes(const Reader& r, const json& doc, Map& map) {
 using ordered_json = nlohmann::ordered_json;
 
 // The largest frame offset and arena a framed map may have: its file
-// coordinates are written to the micrometre, which doubles keep exactly only
-// below about 1e9 m.
+// coordinates are written to the micrometre, which doubles hold with room to
+// spare below this.
 constexpr double kMaxFramedExtent = 1e7;
-constexpr double kFramedQuantum = 1e-6;
+constexpr double kMicrometresPerMetre = 1e6;
 
 // A coordinate as a file holds it: in the map frame; for a framed map rounded
 // to the micrometre, so that reading and writing again gives the same text.
 double file_coordinate(double arena, double origin) {
   if (origin == 0.0) return arena;
-  return std::round((arena + origin) / kFramedQuantum) * kFramedQuantum;
+  // Integer micrometres over 1e6: the double nearest the decimal, so "-9.1"
+  // reads and writes back as "-9.1".
+  return std::round((arena + origin) * kMicrometresPerMetre) / kMicrometresPerMetre;
 }
 
 ordered_json json_point(const Map& map, Vec2 p) {

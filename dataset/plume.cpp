@@ -31,8 +31,8 @@ void PlumeOptions::validate() const {
 
 void check_source(const Map& map, Vec2 source) {
   if (!map.is_free(source))
-    throw OptionError("plume.source",
-                      to_string(source) + " is outside the arena or inside an obstacle");
+    throw OptionError("plume.source", to_string(map.to_frame(source)) +
+                                          " is outside the arena or inside an obstacle");
 }
 
 MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape& sensors,

@@ -15,7 +15,7 @@ namespace plumekit::dataset {
 // One plume (`plumekit plume`): where and how it was made, its peak and its timings.
 struct PlumeRun {
   std::string map, out;
-  Vec2 source;
+  Vec2 source;  // in the map's frame, as reported
   PlumeSimulator model = PlumeSimulator::Filament;
   double flow_s = 0.0, plume_s = 0.0;
 };

@@ -9,20 +9,23 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::string fmt(Vec2 p) {
+std::string text_of(Vec2 p) {
   std::ostringstream s;
   s << std::setprecision(6) << '(' << p.x << ", " << p.y << ')';
   return s.str();
 }
 
-ordered_json point_json(Vec2 p) {
+ordered_json json_of(Vec2 p) {
   return ordered_json::array({p.x, p.y});
 }
 
 }  // namespace
 
 Report plan_report(const PlanResult& r, PlannerKind kind, const PlannerOptions& options, Vec2 from,
-                   Vec2 to, const PlanTiming& timing) {
+                   Vec2 to, const PlanTiming& timing, const MapFrame& frame) {
+  // Every position is reported in the map's frame.
+  auto point_json = [&](Vec2 p) { return json_of(frame.to_frame(p)); };
+  auto fmt = [&](Vec2 p) { return text_of(frame.to_frame(p)); };
   ordered_json path = ordered_json::array();
   for (Vec2 v : r.path)
     path.push_back(point_json(v));

@@ -118,6 +118,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
     });
     MapReport report;
     report.name = maps[mi].name;
+    report.frame = maps[mi].frame;
     report.wind_s = scenario.wind_s();
     report.table_build_s = scenario.model_build_s();
     report.stats = summarise(pointers(records));
@@ -137,11 +138,18 @@ std::string runs_csv(const EvaluationResult& result) {
   s << "map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,estimate_y,error_m,"
        "samples,distance_m,mission_s,compute_s,median_step_s,stopped_by\n";
   s << std::setprecision(6);
-  for (const RunRecord& r : result.runs)
-    s << r.map << ',' << r.source_index << ',' << r.run << ',' << r.source.x << ',' << r.source.y
-      << ',' << r.start.x << ',' << r.start.y << ',' << r.estimate.x << ',' << r.estimate.y << ','
-      << r.error_m << ',' << r.samples << ',' << r.distance_m << ',' << r.mission_s << ','
-      << r.compute_s << ',' << r.median_step_s << ',' << r.stopped_by << '\n';
+  // Positions in each map's own frame, as its file and the user's robot hold them.
+  for (const RunRecord& r : result.runs) {
+    const MapFrame& frame = result.maps.at(r.map_index).frame;
+    const Vec2 source = frame.to_frame(r.source), start = frame.to_frame(r.start),
+               estimate = frame.to_frame(r.estimate);
+    // Far from the frame's origin 6 digits would lose the millimetres.
+    s << r.map << ',' << r.source_index << ',' << r.run << ','
+      << std::setprecision(frame.is_identity() ? 6 : 12) << source.x << ',' << source.y << ','
+      << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
+      << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
+      << r.mission_s << ',' << r.compute_s << ',' << r.median_step_s << ',' << r.stopped_by << '\n';
+  }
   return s.str();
 }
 

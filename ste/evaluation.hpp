@@ -49,6 +49,7 @@ Stats summarise(const std::vector<const RunRecord*>& runs);
 
 struct MapReport {
   std::string name;
+  MapFrame frame;  // for reporting positions in the map's frame
   Stats stats;
   double wind_s = 0, table_build_s = 0, wall_s = 0;
 };

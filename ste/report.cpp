@@ -38,14 +38,15 @@ ordered_json source_cell_json(const SteOptions& o) {
   return cell > 0.0 ? ordered_json(cell) : ordered_json(nullptr);
 }
 
-ordered_json steps_json(const std::vector<Step>& steps) {
+// Every position a report holds is in the map's frame (MapFrame).
+ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
   ordered_json out = ordered_json::array();
   for (const Step& s : steps)
-    out.push_back({{"position", point_json(s.position)},
+    out.push_back({{"position", point_json(f.to_frame(s.position))},
                    {"value", s.value},
                    {"time_s", s.time_s},
                    {"distance_m", s.distance_m},
-                   {"estimate", point_json(s.estimate)},
+                   {"estimate", point_json(f.to_frame(s.estimate))},
                    {"entropy", s.entropy},
                    {"compute_s", s.compute_s}});
   return out;
@@ -56,7 +57,13 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
   const auto& params = sc.model().parameters();
   for (std::size_t k = 0; k < params.size() && k < r.expected.size(); ++k)
     expected[params[k].name] = r.expected[k];
-  return {{"estimate", point_json(r.estimate)},
+  const MapFrame& f = sc.map().frame;
+  if (!f.is_identity() && expected.contains("x") && expected.contains("y")) {
+    const Vec2 at = f.to_frame({expected["x"].get<double>(), expected["y"].get<double>()});
+    expected["x"] = at.x;
+    expected["y"] = at.y;
+  }
+  return {{"estimate", point_json(f.to_frame(r.estimate))},
           {"error_m", norm(r.estimate - source)},
           {"samples", r.samples},
           {"distance_m", r.distance_m},
@@ -64,25 +71,26 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
           {"stopped_by", r.stopped_by},
           {"median_step_s", r.median_step_s},
           {"mission_s", r.time_s},
-          {"map_estimate", point_json(r.map)},
+          {"map_estimate", point_json(f.to_frame(r.map))},
           {"source_cell", source_cell_json(sc.options())},
           {"expected_parameters", expected},
           {"entropy", r.posterior.entropy},
           {"max_entropy", r.posterior.max_entropy},
-          {"start", point_json(r.start)},
-          {"source", point_json(source)},
+          {"start", point_json(f.to_frame(r.start))},
+          {"source", point_json(f.to_frame(source))},
           {"wind_s", sc.wind_s()},
           {"table_build_s", sc.model_build_s()},
-          {"steps", steps_json(r.steps)}};
+          {"steps", steps_json(f, r.steps)}};
 }
 
 std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
+  const MapFrame& f = sc.map().frame;
   std::ostringstream h;
   h << sc.map().name << ", " << to_string(sc.options().model) << " plume model: source "
-    << fmt(source) << ", start " << fmt(r.start) << "\n"
-    << "estimate " << fmt(r.estimate) << ", error " << fmt(norm(r.estimate - source)) << " m after "
-    << r.samples << " samples and " << fmt(r.distance_m, 1) << " m (stopped by " << r.stopped_by
-    << ")\ncompute " << fmt(r.compute_s, 3) << " s in all, median "
+    << fmt(f.to_frame(source)) << ", start " << fmt(f.to_frame(r.start)) << "\n"
+    << "estimate " << fmt(f.to_frame(r.estimate)) << ", error " << fmt(norm(r.estimate - source))
+    << " m after " << r.samples << " samples and " << fmt(r.distance_m, 1) << " m (stopped by "
+    << r.stopped_by << ")\ncompute " << fmt(r.compute_s, 3) << " s in all, median "
     << fmt(r.median_step_s * 1000, 1) << " ms per decision step; wind " << fmt(sc.wind_s(), 1)
     << " s, model build " << fmt(sc.model_build_s(), 1) << " s";
   return h.str();

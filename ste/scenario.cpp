@@ -134,27 +134,32 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
 
 Scenario::~Scenario() = default;
 
-Vec2 Scenario::check_source(Vec2 source) const {
-  if (!map_.in_arena(source))
-    throw OptionError("ste.source", to_string(source) + " is outside the arena (0..." +
-                                        compact(map_.width) + " x 0..." + compact(map_.height) +
-                                        ")");
-  const int o = map_.obstacle_at(source);
+namespace {
+
+// Why `p` (arena coordinates) cannot be a source or start, in the map's frame; "" if it can.
+std::string point_fault(const Map& map, Vec2 p) {
+  const Vec2 lo = map.to_frame({0.0, 0.0}), hi = map.to_frame({map.width, map.height});
+  if (!map.in_arena(p))
+    return to_string(map.to_frame(p)) + " is outside the arena (" + compact(lo.x) + "..." +
+           compact(hi.x) + " x " + compact(lo.y) + "..." + compact(hi.y) + ")";
+  const int o = map.obstacle_at(p);
   if (o >= 0)
-    throw OptionError("ste.source", to_string(source) + " is inside obstacles[" +
-                                        std::to_string(o) + "] of map " + map_.name);
+    return to_string(map.to_frame(p)) + " is inside obstacles[" + std::to_string(o) + "] of map " +
+           map.name;
+  return "";
+}
+
+}  // namespace
+
+Vec2 Scenario::check_source(Vec2 source) const {
+  if (const std::string fault = point_fault(map_, source); !fault.empty())
+    throw OptionError("ste.source", fault);
   return source;
 }
 
 Vec2 Scenario::check_start(Vec2 start) const {
-  if (!map_.in_arena(start))
-    throw OptionError("ste.start", to_string(start) + " is outside the arena (0..." +
-                                       compact(map_.width) + " x 0..." + compact(map_.height) +
-                                       ")");
-  const int o = map_.obstacle_at(start);
-  if (o >= 0)
-    throw OptionError("ste.start", to_string(start) + " is inside obstacles[" + std::to_string(o) +
-                                       "] of map " + map_.name);
+  if (const std::string fault = point_fault(map_, start); !fault.empty())
+    throw OptionError("ste.start", fault);
   return space_->contains(start) ? start : space_->nearest_free(start);
 }
 

@@ -15,7 +15,9 @@ std::string mean_unit(const Network& network) {
 Report prediction_report(const PredictRun& run, const PlumePrediction& p, const Network& network) {
   const GridShape& g = p.grid;
   const auto peak = std::max_element(p.mean.begin(), p.mean.end()) - p.mean.begin();
-  const Vec2 peak_at = g.centre(static_cast<int>(peak % g.nx), static_cast<int>(peak / g.nx));
+  const Vec2 peak_at =
+      run.frame.to_frame(g.centre(static_cast<int>(peak % g.nx), static_cast<int>(peak / g.nx)));
+  const Vec2 source = run.frame.to_frame(run.source);
   const float peak_std = *std::max_element(p.std.begin(), p.std.end());
   const std::string unit = mean_unit(network);
   Report r;
@@ -23,7 +25,7 @@ Report prediction_report(const PredictRun& run, const PlumePrediction& p, const 
             {"model", run.model},
             {"model_sha256", network.file().sha256_hex},
             {"map", run.map},
-            {"source", {run.source.x, run.source.y}},
+            {"source", {source.x, source.y}},
             {"out", run.out},
             {"grid", {g.ny, g.nx}},
             {"unit", unit},

@@ -10,9 +10,10 @@ namespace plumekit::surrogate {
 
 struct PredictRun {
   std::string model, map, out;  // as the user named them
-  Vec2 source;
-  double predict_s = 0.0;  // the network's forward pass
-  double seconds = 0.0;    // the whole command
+  Vec2 source;                  // arena coordinates
+  MapFrame frame;               // the map's: the report's positions are in it
+  double predict_s = 0.0;       // the network's forward pass
+  double seconds = 0.0;         // the whole command
 };
 
 // The unit of the model's "mean" output (model file `outputs[].unit`), "" when none is named.
