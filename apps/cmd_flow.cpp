@@ -166,6 +166,7 @@ void add_flow_commands(CLI::App& app) {
     o.linear_solver = cfd::parse_linear_solver(a->linear_solver);
     a->foam.engine = cfd::parse_engine(a->engine);
     a->foam.turbulence = cfd::parse_foam_turbulence(a->foam_turbulence);
+    a->foam.validate();
     const Map map = read_map(a->map);
     OutputDirectory out(a->out, "flow", {a->map});
     if (a->foam.engine == cfd::Engine::OpenFoam) return run_openfoam(*a, map, out);

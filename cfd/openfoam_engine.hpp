@@ -45,7 +45,8 @@ struct OpenFoamOptions {
   // is a temporary inside the work folder, removed after the run.
   std::string keep_case;  // flow.openfoam_case
 
-  // OptionError naming the field and its allowed range.
+  // OptionError naming the field and its allowed range, or an OpenFOAM-only
+  // field set (ranks, turbulence, case) with the built-in engine.
   void validate() const;
 };
 

@@ -33,6 +33,12 @@ void OpenFoamOptions::validate() const {
   check_range("flow.openfoam_tolerance", tolerance, 1e-14, 0.1, "", "the default is 1e-06");
   check_count("flow.openfoam_max_iterations", max_iterations, 1, 10000000,
               "the default is 5000 SIMPLE iterations");
+  if (engine == Engine::OpenFoam) return;
+  // The OpenFOAM engine's own options would be ignored by the built-in one: say so.
+  const char* const needs = "applies to flow.engine openfoam only";
+  if (ranks != 1) throw OptionError("flow.ranks", needs);
+  if (turbulence != FoamTurbulence::Laminar) throw OptionError("flow.openfoam_turbulence", needs);
+  if (!keep_case.empty()) throw OptionError("flow.openfoam_case", needs);
 }
 
 }  // namespace plumekit::cfd

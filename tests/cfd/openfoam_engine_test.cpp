@@ -185,6 +185,14 @@ TEST_F(OpenFoamEngine, RefusesBadInputAndLeavesNothing) {
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "flow.ranks");
   }
+  OpenFoamOptions builtin;  // the built-in engine with an OpenFOAM-only option
+  builtin.ranks = 2;
+  try {
+    builtin.validate();
+    FAIL() << "flow.ranks accepted with the built-in engine";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "flow.ranks");
+  }
   FlowOptions mixing = flow_options(0.05);
   mixing.turbulence = Turbulence::MixingLength;
   try {
