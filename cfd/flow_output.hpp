@@ -19,7 +19,9 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
 // history, plus "convection_requested" and "fell_back_to_upwind" (the flow
 // policy, flow_policy.hpp; "convection" is the scheme used).
 nlohmann::ordered_json flow_report_json(const WindResult& w, const FlowOptions& options);
-// The same in one line of text: grid, scheme, iterations, residuals, speed, time.
+// The same in one line of text: grid, scheme, iterations, residuals, speed,
+// time; then, when the grid closed gaps narrower than a cell, a "warning:" line
+// naming the narrowest (closed_gaps_text, gap_closing.hpp).
 std::string flow_report_text(const WindResult& w);
 
 // VTK XML ImageData with cell data: velocity (3 components), pressure, speed, solid.

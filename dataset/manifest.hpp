@@ -24,7 +24,7 @@ struct DatasetOptions {
   std::uint64_t seed = kDefaultSeed;
   PlumeOptions plume;
   RandomMapOptions map;
-  cfd::FlowOptions flow;  // cell 0.05 m, nu 0.01 m^2/s, central convection
+  cfd::FlowOptions flow;  // cell 0 (0.05 m up to building scale), nu 0.01 m^2/s, central
   // Sources lie at least this far from every obstacle and wall.
   double source_clearance = 0.1;
   // Instead of random maps: these maps, each with its own `sources` (the test
