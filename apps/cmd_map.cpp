@@ -7,6 +7,7 @@
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
+#include "core/connectivity.hpp"
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
@@ -56,9 +57,16 @@ ordered_json map_summary(const Map& map, const std::string& file) {
   if (check.coarsened)
     out["warnings"].push_back("the arena is too large to check at 5 cm cells; checked at " +
                               cell.str() + ", where passages narrower than that may look closed");
-  if (!check.inlet_reaches_outlet)
+  if (!check.inlet_reaches_outlet) {
     out["warnings"].push_back("no free path from the inlet to the outlet at " + cell.str() +
                               " cells: the map cannot carry a flow");
+    // Which region is sealed and how to open it, as import-ros says (its
+    // first line repeats the warning above).
+    const std::vector<std::string> advice =
+        sealed_map_advice(map, free_regions(rasterize_labels(map, check.shape)), false, false);
+    for (std::size_t k = 1; k < advice.size(); ++k)
+      out["warnings"].push_back(advice[k]);
+  }
   return out;
 }
 

@@ -150,6 +150,7 @@ TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {
   EXPECT_EQ(v.code, 0);
   EXPECT_NE(v.out.find("valid plumekit-map/2"), std::string::npos) << v.out;
   EXPECT_NE(v.out.find("warning: no free path"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("largest sealed free region (48.8 m²"), std::string::npos) << v.out;
 }
 
 TEST_F(Cli, ImportRosTakesSeveralOpeningsInTheMapFrameAndSnapsThem) {
