@@ -98,9 +98,8 @@ AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
           {-face_v_[j * nx + i] * dx, D * dx / dy, i, j - 1},
       };
       for (const Face& f : faces) {
-        if (shape_.contains(f.ni, f.nj)) {
-          const int q = unknown_[shape_.index(f.ni, f.nj)];
-          if (q < 0) continue;  // obstacle surface: no flux
+        const int q = shape_.contains(f.ni, f.nj) ? unknown_[shape_.index(f.ni, f.nj)] : -1;
+        if (q >= 0) {
           const double a = hybrid(f.F, f.Dc);
           diag += a + f.F;
           t.emplace_back(p, q, -a);
@@ -111,7 +110,8 @@ AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
           // Inflow of clean air: C = 0 on the face, half a cell away.
           diag += 2.0 * f.Dc;
         }
-        // F == 0 at the arena edge: a wall, no flux.
+        // F == 0 on the arena's edge or an obstacle's: a wall, no flux. An
+        // opening (the arena's or one on an obstacle's edge) has F != 0.
       }
       t.emplace_back(p, p, diag);
     }
@@ -163,12 +163,17 @@ double AdvectionDiffusion::face_flux(const Grid<double>& c, int i, int j) const 
   const double dx = shape_.dx(), dy = shape_.dy();
   const double F = face_u_[j * (nx + 1) + i] * dy;
   const double Dc = options_.diffusivity * dy / dx;
-  // Arena edges, as in the operator: outflow upwind, inflow of C = 0 half a cell away.
-  if (i == 0) return F > 0.0 ? -2.0 * Dc * c(0, j) : F * c(0, j);
-  if (i == nx) return F > 0.0 ? F * c(nx - 1, j) : 2.0 * Dc * c(nx - 1, j);
-  if (solid_[shape_.index(i - 1, j)] || solid_[shape_.index(i, j)]) return 0.0;
-  const double a = hybrid(F, Dc);
-  return (a + F) * c(i - 1, j) - a * c(i, j);
+  const bool low = i > 0 && !solid_[shape_.index(i - 1, j)];
+  const bool high = i < nx && !solid_[shape_.index(i, j)];
+  if (low && high) {
+    const double a = hybrid(F, Dc);
+    return (a + F) * c(i - 1, j) - a * c(i, j);
+  }
+  // The free space's boundary, as in the operator: a wall (F = 0) passes
+  // nothing; an opening lets out upwind and lets in C = 0 half a cell away.
+  if (F == 0.0 || (!low && !high)) return 0.0;
+  if (high) return F > 0.0 ? -2.0 * Dc * c(i, j) : F * c(i, j);
+  return F > 0.0 ? F * c(i - 1, j) : 2.0 * Dc * c(i - 1, j);
 }
 
 double AdvectionDiffusion::flux_through_column(const Grid<double>& c, int i) const {
