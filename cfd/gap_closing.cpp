@@ -94,23 +94,48 @@ Vec2 closest_on_segment(Vec2 p, Vec2 a, Vec2 b) {
 struct Closest {
   double d = HUGE_VAL;
   Vec2 at;
+  double overlap = 0.0;  // m: how long two parallel edges face each other
 };
 
 // The shortest distance between segments ab and cd, and the point midway
-// between their closest points.
+// between their closest points: for parallel edges that face each other, the
+// middle of the stretch they share (a gap's middle rather than its end).
 Closest segment_pair(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  if (segments_intersect(a, b, c, d)) return {0.0, a};
+  if (segments_intersect(a, b, c, d)) return {0.0, a, 0.0};
   Closest best;
   auto consider = [&](Vec2 p, Vec2 s0, Vec2 s1) {
     const Vec2 q = closest_on_segment(p, s0, s1);
     const double dist = norm(q - p);
-    if (dist < best.d) best = {dist, 0.5 * (p + q)};
+    if (dist < best.d) best = {dist, 0.5 * (p + q), 0.0};
   };
   consider(a, c, d);
   consider(b, c, d);
   consider(c, a, b);
   consider(d, a, b);
+  const Vec2 ab = b - a, cd = d - c;
+  const double len2 = dot(ab, ab);
+  if (len2 > 0.0 && std::abs(cross(ab, cd)) <= 1e-12 * std::sqrt(len2 * dot(cd, cd))) {
+    const double tc = dot(c - a, ab) / len2, td = dot(d - a, ab) / len2;
+    const double lo = std::max(0.0, std::min(tc, td)), hi = std::min(1.0, std::max(tc, td));
+    if (hi > lo) {
+      const Vec2 p = a + 0.5 * (lo + hi) * ab;
+      best.at = 0.5 * (p + closest_on_segment(p, c, d));
+      best.overlap = (hi - lo) * std::sqrt(len2);
+    }
+  }
   return best;
+}
+
+// Keeps the shortest distance; among edge pairs at the same distance (to
+// round-off), the place where edges face each other longest.
+void merge(Closest& best, const Closest& c) {
+  const bool tie = best.d < HUGE_VAL && std::abs(c.d - best.d) <= 1e-12 * std::max(c.d, best.d);
+  if (!tie) {
+    if (c.d < best.d) best = c;
+    return;
+  }
+  if (c.overlap > best.overlap) best.at = c.at, best.overlap = c.overlap;
+  best.d = std::min(best.d, c.d);
 }
 
 // A map-frame coordinate to the millimetre, without trailing zeros:
@@ -151,20 +176,31 @@ GapReport make_report(const Map& map, int fa, int fb, const Closest& c) {
 }
 
 // The shortest distance from an obstacle to one wall (at a vertex), with the
-// point midway between the vertex and the wall.
+// point midway between the wall and the middle of the nearest vertices (an
+// edge along the wall: its middle).
 Closest wall_gap(const Map& map, const Polygon& poly, Side side) {
+  const bool vertical = side == Side::Left || side == Side::Right;
+  auto distance = [&](Vec2 v) {
+    return side == Side::Left     ? v.x
+           : side == Side::Right  ? map.width - v.x
+           : side == Side::Bottom ? v.y
+                                  : map.height - v.y;
+  };
   Closest best;
-  for (Vec2 v : poly) {
-    const double d = side == Side::Left     ? v.x
-                     : side == Side::Right  ? map.width - v.x
-                     : side == Side::Bottom ? v.y
-                                            : map.height - v.y;
-    const Vec2 on_wall = side == Side::Left     ? Vec2{0.0, v.y}
-                         : side == Side::Right  ? Vec2{map.width, v.y}
-                         : side == Side::Bottom ? Vec2{v.x, 0.0}
-                                                : Vec2{v.x, map.height};
-    if (d < best.d) best = {d, 0.5 * (v + on_wall)};
-  }
+  for (Vec2 v : poly)
+    best.d = std::min(best.d, distance(v));
+  double lo = HUGE_VAL, hi = -HUGE_VAL;  // along the wall, over the nearest vertices
+  for (Vec2 v : poly)
+    if (distance(v) <= best.d + 1e-12 * std::max(1.0, std::abs(best.d))) {
+      lo = std::min(lo, vertical ? v.y : v.x);
+      hi = std::max(hi, vertical ? v.y : v.x);
+    }
+  const double along = 0.5 * (lo + hi);
+  const double across = side == Side::Left     ? 0.5 * best.d
+                        : side == Side::Right  ? map.width - 0.5 * best.d
+                        : side == Side::Bottom ? 0.5 * best.d
+                                               : map.height - 0.5 * best.d;
+  best.at = vertical ? Vec2{across, along} : Vec2{along, across};
   return best;
 }
 
@@ -203,8 +239,7 @@ std::unordered_map<std::uint64_t, Closest> close_pairs(const SegmentBuckets& buc
       stamp[static_cast<std::size_t>(t)] = static_cast<int>(s);
       const Closest c = segment_pair(e.p, e.q, f.p, f.q);
       if (c.d >= h) return;
-      Closest& best = pairs.try_emplace(pair_key(e.obstacle, f.obstacle)).first->second;
-      if (c.d < best.d) best = c;
+      merge(pairs.try_emplace(pair_key(e.obstacle, f.obstacle)).first->second, c);
     });
   }
   return pairs;
@@ -311,8 +346,7 @@ std::vector<GapReport> find_narrow_gaps_brute_force(const Map& map, const GridSh
       Closest best;
       for (std::size_t i = 0; i < p.size(); ++i)
         for (std::size_t j = 0; j < q.size(); ++j) {
-          const Closest c = segment_pair(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()]);
-          if (c.d < best.d) best = c;
+          merge(best, segment_pair(p[i], p[(i + 1) % p.size()], q[j], q[(j + 1) % q.size()]));
         }
       if (narrow(best.d, h) && !nested(map, a, b)) gaps.push_back(make_report(map, a, b, best));
     }

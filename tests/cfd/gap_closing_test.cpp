@@ -53,7 +53,8 @@ TEST(GapClosing, GapsNarrowerThanACellAreReportedNarrowestFirst) {
   EXPECT_EQ(gaps[0].a, 2);
   EXPECT_EQ(gaps[0].b, 3);
   EXPECT_NEAR(gaps[0].width, 0.012, 1e-12);
-  EXPECT_NEAR(gaps[0].at.x, 3.006, 1e-12);  // midway between the closest points
+  EXPECT_NEAR(gaps[0].at.x, 3.006, 1e-12);  // midway across the gap,
+  EXPECT_NEAR(gaps[0].at.y, 0.7, 1e-12);    // and along the edges facing each other
   EXPECT_EQ(gaps[1].a, 0);
   EXPECT_NEAR(gaps[1].width, 0.03, 1e-12);
   // An obstacle 0.02 m from the top wall is a gap too.
@@ -65,6 +66,8 @@ TEST(GapClosing, GapsNarrowerThanACellAreReportedNarrowestFirst) {
   ASSERT_TRUE(w[1].wall.has_value());
   EXPECT_EQ(*w[1].wall, Side::Top);
   EXPECT_NEAR(w[1].width, 0.02, 1e-12);
+  EXPECT_NEAR(w[1].at.x, 0.4, 1e-12);  // the middle of the edge along the wall
+  EXPECT_NEAR(w[1].at.y, 1.99, 1e-12);
 }
 
 TEST(GapClosing, ClosedGapCellsAreSolidWhereverTheCellsFall) {
@@ -98,8 +101,7 @@ TEST(GapClosing, TheSolverClosesTheGapAndReportsItInTheMapFrame) {
   EXPECT_EQ(g.between, "obstacles[2] and obstacles[3]");
   EXPECT_NEAR(g.width, 0.012, 1e-12);
   EXPECT_NEAR(g.at.x, 103.006, 1e-9);
-  EXPECT_GE(g.at.y, -20.0 + 0.4 - 1e-9);  // on the blocks' facing edges
-  EXPECT_LE(g.at.y, -20.0 + 1.0 + 1e-9);
+  EXPECT_NEAR(g.at.y, -19.3, 1e-9);
   // 0.012 m gives 333 cells on 4 m, 0.012012 m each: too wide.
   EXPECT_NEAR(r.summary.closed_gaps.open_cell, 0.011, 1e-12);
   // The cell centred in the 0.03 m gap, (1.25, 0.95): free in the plain
@@ -109,7 +111,7 @@ TEST(GapClosing, TheSolverClosesTheGapAndReportsItInTheMapFrame) {
   EXPECT_LT(r.summary.mass_imbalance, 1e-6);
   expect_has(closed_gaps_text(r.summary.closed_gaps, 0.1),
              "closed 2 gaps narrower than the 0.1 m cell (open in the map): obstacles[2] and "
-             "obstacles[3], 0.012 m apart at (103.006, ");
+             "obstacles[3], 0.012 m apart at (103.006, -19.3)");
 }
 
 TEST(GapClosing, AGapOfExactlyOneCellIsNotNarrower) {
@@ -129,7 +131,7 @@ TEST(GapClosing, StrictOptionRefusesNamingTheNarrowestGapAndACellThatWorks) {
   const std::string m = option_error(map, o);
   expect_has(m, "2 gaps between obstacles");
   expect_has(m, "flow.strict_gaps");
-  expect_has(m, "the narrowest: obstacles[2] and obstacles[3], 0.012 m apart at (3.006, ");
+  expect_has(m, "the narrowest: obstacles[2] and obstacles[3], 0.012 m apart at (3.006, 0.7)");
   expect_has(m, "use a cell of 0.011 m or finer");
   // The advised cell keeps every gap open.
   const std::size_t at = m.find("use a cell of ") + 14;
