@@ -373,6 +373,28 @@ TEST(RosImport, OfficeByDefaultSaysWhichRegionIsSealedAndHowToOpenIt) {
   expect_opening(through.map, through.map.openings[1], {11.2, 1.1}, {11.2, 4.1});
 }
 
+TEST(RosImport, AnOpeningOnARaggedFaceSurvivesSimplification) {
+  // A block whose top face has a one-pixel jog: Douglas-Peucker at 0.75 px
+  // smooths the face into one slanted edge, which would take the inlet on
+  // the face's left half off the outline. The inlet's stretch must stay.
+  TempDir tmp;
+  cv::Mat img(60, 100, CV_8U, cv::Scalar(254));
+  img(cv::Rect(10, 30, 30, 30)).setTo(0);  // top face y = 1.5 m, x in [0.5, 2]
+  img(cv::Rect(40, 29, 30, 31)).setTo(0);  // top face y = 1.55 m, x in [2, 3.5]
+  const fs::path yaml = write_ros_map(tmp.path, img);
+  std::ofstream(yaml) << "image: room.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
+                         "occupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  RosImportOptions options;
+  options.inlets = {"0.75,1.5,1.75,1.5"};
+  options.outlets = {"5,0.5,5,2.5"};  // the right wall
+  const RosImport in = import_ros_map(yaml, options);
+  expect_opening(in.map, in.map.openings[0], {0.75, 1.5}, {1.75, 1.5});
+  // No fallback to exact outlines was needed.
+  EXPECT_TRUE(in.warnings.empty()) << in.warnings.front();
+  EXPECT_TRUE(in.free_space.inlet_reaches_outlet());
+  EXPECT_EQ(in.map.inward_normal(in.map.openings[0]), (Vec2{0.0, 1.0}));
+}
+
 TEST(RosImport, NonZeroYawIsIgnoredWithAWarning) {
   TempDir tmp;
   const fs::path yaml = write_ros_map(tmp.path, building());
