@@ -83,7 +83,7 @@ std::string flow_report_text(const WindResult& w) {
   return text.str();
 }
 
-std::string wind_vti(const WindField& wind) {
+std::string wind_vti(const WindField& wind, const MapFrame& frame) {
   const GridShape& g = wind.shape();
   VtiArray velocity{"velocity", 3, {}}, pressure{"pressure", 1, {}}, speed{"speed", 1, {}},
       solid{"solid", 1, {}};
@@ -96,7 +96,7 @@ std::string wind_vti(const WindField& wind) {
       speed.values.push_back(static_cast<float>(norm(v)));
       solid.values.push_back(wind.solid(i, j) ? 1.0f : 0.0f);
     }
-  return vti_cell_data(g, {velocity, pressure, speed, solid}, "velocity", "speed");
+  return vti_cell_data(g, {velocity, pressure, speed, solid}, "velocity", "speed", frame.origin);
 }
 
 void write_flow(const std::filesystem::path& dir, const Map& map, const FlowResult& result,
@@ -109,14 +109,22 @@ void write_flow(const std::filesystem::path& dir, const Map& map, const WindFiel
   const std::vector<std::size_t> shape{static_cast<std::size_t>(wind.shape().ny),
                                        static_cast<std::size_t>(wind.shape().nx)};
   const std::string png = encode_png(render_wind(map, wind));
+  // A framed map's grid sits at its origin in the map frame.
+  nlohmann::ordered_json json = summary;
+  if (map.has_frame() && json.contains("grid")) {
+    json["grid"]["origin"] = {map.frame.origin.x, map.frame.origin.y};
+    json["grid"]["convention"] =
+        "arrays (ny, nx), row-major, row 0 at the lowest y, cell-centred: value [j][i] at origin "
+        "+ ((i + 0.5) dx, (j + 0.5) dy) in the map frame; zero inside obstacles";
+  }
   // Everything is produced in memory first, so a failure leaves no partial set.
   const std::pair<const char*, std::string> files[] = {
       {"u.npy", npy_float32(wind.u(), shape)},
       {"v.npy", npy_float32(wind.v(), shape)},
       {"p.npy", npy_float32(wind.p(), shape)},
-      {"wind.vti", wind_vti(wind)},
+      {"wind.vti", wind_vti(wind, map.frame)},
       {"wind.png", png},
-      {"wind.json", summary.dump(2) + "\n"},
+      {"wind.json", json.dump(2) + "\n"},
   };
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

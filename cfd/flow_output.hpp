@@ -24,8 +24,9 @@ nlohmann::ordered_json flow_report_json(const WindResult& w, const FlowOptions& 
 // naming the narrowest (closed_gaps_text, gap_closing.hpp).
 std::string flow_report_text(const WindResult& w);
 
-// VTK XML ImageData with cell data: velocity (3 components), pressure, speed, solid.
-std::string wind_vti(const WindField& wind);
+// VTK XML ImageData with cell data: velocity (3 components), pressure, speed,
+// solid; its origin is the map frame's position of the arena's corner.
+std::string wind_vti(const WindField& wind, const MapFrame& frame = {});
 
 // All five files; each appears whole or not at all, and none is written
 // unless all could be produced.

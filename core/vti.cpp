@@ -26,14 +26,15 @@ std::string base64(const std::string& bytes) {
 }  // namespace
 
 std::string vti_cell_data(const GridShape& shape, const std::vector<VtiArray>& arrays,
-                          const std::string& vectors, const std::string& scalars) {
+                          const std::string& vectors, const std::string& scalars, Vec2 origin) {
   std::ostringstream s;
   s.precision(10);
   s << "<?xml version=\"1.0\"?>\n"
     << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" "
        "header_type=\"UInt32\">\n"
-    << "  <ImageData WholeExtent=\"0 " << shape.nx << " 0 " << shape.ny
-    << " 0 0\" Origin=\"0 0 0\" Spacing=\"" << shape.dx() << ' ' << shape.dy() << " 1\">\n"
+    << "  <ImageData WholeExtent=\"0 " << shape.nx << " 0 " << shape.ny << " 0 0\" Origin=\""
+    << origin.x << ' ' << origin.y << " 0\" Spacing=\"" << shape.dx() << ' ' << shape.dy()
+    << " 1\">\n"
     << "    <Piece Extent=\"0 " << shape.nx << " 0 " << shape.ny << " 0 0\">\n"
     << "      <CellData Vectors=\"" << vectors << "\" Scalars=\"" << scalars << "\">\n";
   for (const VtiArray& a : arrays) {

@@ -17,7 +17,9 @@ struct VtiArray {
 
 // The file text for a 2-D grid (one cell thick in z); `vectors` and `scalars`
 // name the default arrays ParaView shows.
+// `origin`: where the grid's lower-left corner lies (the map frame's position
+// of the arena), so that ParaView shows the user's coordinates.
 std::string vti_cell_data(const GridShape& shape, const std::vector<VtiArray>& arrays,
-                          const std::string& vectors, const std::string& scalars);
+                          const std::string& vectors, const std::string& scalars, Vec2 origin = {});
 
 }  // namespace plumekit

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "cfd/flow_output.hpp"
 #include "cfd/flow_solver.hpp"
 #include "cfd/staggered_grid.hpp"
 #include "core/map_json.hpp"
@@ -67,6 +68,13 @@ TEST(OpeningsFlow, EveryOutletCarriesFlowOutAndTheVentIsNotAWall) {
   // No flow inside the outer wall band.
   EXPECT_EQ(w.cell_velocity(45, 38).x, 0.0);
   EXPECT_EQ(w.cell_velocity(45, 38).y, 0.0);
+}
+
+TEST(OpeningsFlow, ParaViewFilesSitAtTheMapFramesOrigin) {
+  const Map map = read_map(kBuilding);  // framed at (-3, -2)
+  const FlowResult r = solve(map, coarse());
+  EXPECT_NE(wind_vti(r.wind, map.frame).find("Origin=\"-3 -2 0\""), std::string::npos);
+  EXPECT_NE(wind_vti(r.wind).find("Origin=\"0 0 0\""), std::string::npos);
 }
 
 TEST(OpeningsFlow, NullspaceAndCoupledSolversAgree) {
