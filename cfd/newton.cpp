@@ -160,13 +160,28 @@ void Newton::assemble() {
 bool Newton::factor() {
   assemble();
   const auto t = Clock::now();
-  const bool factored = linear_solver_->factorize(equations_.jacobian());
+  const bool first = summary_.factorizations == 0;
+  bool factored = linear_solver_->factorize(equations_.jacobian());
+  if (!factored && first) factored = switch_to_coupled();
   summary_.factor_seconds += since(t);
   ++summary_.factorizations;
   if (factored) return true;
   cfl_ /= 10.0;
   if (cfl_ < 1e-3) fail("the Newton matrix is singular");
   return false;
+}
+
+bool Newton::switch_to_coupled() {
+  // A reduced matrix K that is singular at the grid's first Newton matrix, whose
+  // coupled matrix is not, means the nullspace basis is short for this
+  // geometry (depot at 5 cm, cfd/README.md "Building scale"); the coupled
+  // solver gives the same steps there.
+  if (std::string(linear_solver_->name()) != "nullspace") return false;
+  auto coupled = make_linear_solver(LinearSolverKind::Coupled, grid_, equations_.jacobian());
+  if (!coupled->factorize(equations_.jacobian())) return false;
+  linear_solver_ = std::move(coupled);
+  summary_.linear_solver = linear_solver_->name();
+  return true;
 }
 
 void Newton::solve_step() {

@@ -53,6 +53,9 @@ class Newton {
   // Assembles and factors; false (after shortening the pseudo-time step) when
   // the matrix is singular.
   bool factor();
+  // The coupled solver instead of a nullspace one whose first K is singular;
+  // false (keeping the solver) when the coupled matrix is singular too.
+  bool switch_to_coupled();
   void solve_step();
   // Backtracks along `step_` from x; the step length taken, or 0 when no
   // cut-back lowers the merit. `take_whole`: the first step from rest.
