@@ -117,9 +117,12 @@ int Map::opening_on_wall(Side side, double s) const {
 }
 
 int Map::opening_on_line(bool vertical, double line, double half_cell, double s) const {
+  // An opening exactly half a cell off (an odd pixel edge at an even cell)
+  // must not miss by round-off.
+  const double reach = half_cell * (1.0 + 1e-9);
   for (std::size_t k = 0; k < openings.size(); ++k) {
     const Opening& o = openings[k];
-    if (o.vertical() == vertical && std::abs(o.line() - line) <= half_cell && s >= o.lo() &&
+    if (o.vertical() == vertical && std::abs(o.line() - line) <= reach && s >= o.lo() &&
         s <= o.hi())
       return static_cast<int>(k);
   }
