@@ -29,7 +29,7 @@ TEST_F(SteFlags, HelpShowsTheLibraryDefaults) {
     EXPECT_TRUE(has(r.out, "--plume-model TEXT=surrogate")) << command << r.out;
     EXPECT_TRUE(has(r.out, "--seed UINT=1")) << command;
     EXPECT_TRUE(has(r.out, "--threads INT=0")) << command;
-    EXPECT_TRUE(has(r.out, "--cell FLOAT=0.05")) << command;
+    EXPECT_TRUE(has(r.out, "--cell FLOAT=0 ")) << command;  // 0: 0.05 m up to building scale
     EXPECT_TRUE(has(r.out, "--reward TEXT=expected")) << command;
     EXPECT_TRUE(has(r.out, "--cnn TEXT=")) << command;
     EXPECT_TRUE(has(r.out, "default: 200 for the surrogate")) << command;
@@ -96,7 +96,7 @@ TEST_F(SteFlags, LocalizeAndPlanReportAMovedStartAlike) {
 
 TEST_F(SteFlags, CellReachesTheWindAndErrorsNameTheFlag) {
   const std::string map = write_map();
-  CliResult r = run("localize " + map + " --source 4.5,0.5 --plume-model physics --cell 0");
+  CliResult r = run("localize " + map + " --source 4.5,0.5 --plume-model physics --cell -1");
   EXPECT_EQ(r.code, 2);
   EXPECT_TRUE(has(r.err, "--cell: ")) << r.err;
   EXPECT_FALSE(has(r.err, "flow.cell")) << r.err;

@@ -53,8 +53,8 @@ DatasetOptions small() {
 
 TEST(DatasetOptions, DefectsAreRefusedBeforeAnythingIsWritten) {
   DatasetOptions o = small();
-  o.flow.cell = 0.0;
-  expect_refused(o, "flow.cell", "more than 0 and at most 10 m, got 0");
+  o.flow.cell = -0.05;  // 0 is the default: from the map's size
+  expect_refused(o, "flow.cell", "more than 0 and at most 10 m, got -0.05");
   o.flow.cell = NAN;
   expect_refused(o, "flow.cell", "got nan");
   o = small();
@@ -144,7 +144,7 @@ TEST_F(DatasetOptionsCli, BadValuesExitTwoAndLeaveNoOutput) {
     const char* args;
     const char* says;
   } cases[] = {
-      {"--cell 0", "more than 0 and at most 10 m, got 0"},
+      {"--cell -1", "more than 0 and at most 10 m, got -1"},
       {"--cell nan", "got nan"},
       {"--families l-shape,U", "unknown name 'U'"},
       {"--filaments-per-second 0", "got 0"},
