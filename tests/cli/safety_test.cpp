@@ -285,7 +285,7 @@ TEST_F(Safety, LibraryRangeErrorsNameTheFlagAndWriteNothing) {
   const struct {
     std::string args, flag;
   } cases[] = {
-      {"flow " + map + " --cell 0 --out " + out.string(), "--cell"},
+      {"flow " + map + " --cell -1 --out " + out.string(), "--cell"},  // 0 is the default
       {"flow " + map + " --nu 1e9 --out " + out.string(), "--nu"},
       {"dataset generate --maps 1 --sources 1 --cell nan --out " + out.string(), "--cell"},
       {"dataset generate --maps 1 --sources 1 --families l-shape,U --out " + out.string(),
