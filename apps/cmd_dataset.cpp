@@ -115,16 +115,19 @@ void add_maps_random(CLI::App& app) {
   bind_field(cmd, cmd->add_option("--min-gap", m.min_gap, "Narrowest passage, m"), "maps.min_gap")
       ->capture_default_str();
   add_families_option(cmd, m);
-  bind_field(cmd, cmd->add_option("--building-min-size", m.building_min_size,
-                                  "building: smallest side of a floor, m"),
+  bind_field(cmd,
+             cmd->add_option("--building-min-size", m.building_min_size,
+                             "building: smallest side of a floor, m"),
              "maps.building_min_size")
       ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--building-max-size", m.building_max_size,
-                                  "building: largest side of a floor, m"),
+  bind_field(cmd,
+             cmd->add_option("--building-max-size", m.building_max_size,
+                             "building: largest side of a floor, m"),
              "maps.building_max_size")
       ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--building-passage", m.building_passage,
-                                  "building: narrowest door, corridor or gap by furniture, m"),
+  bind_field(cmd,
+             cmd->add_option("--building-passage", m.building_passage,
+                             "building: narrowest door, corridor or gap by furniture, m"),
              "maps.building_passage")
       ->capture_default_str();
   bind_field(cmd,
@@ -165,8 +168,9 @@ void add_plume(CLI::App& app) {
   add_common_flags(cmd);
   cmd->callback([a] {
     const Map map = read_map(a->map);
-    const Vec2 src = map.from_frame(parse_point(a->source, "--source"));  // typed in the map's frame
-    check_source(map, src);  // before the output folder is checked
+    const Vec2 src =
+        map.from_frame(parse_point(a->source, "--source"));  // typed in the map's frame
+    check_source(map, src);                                  // before the output folder is checked
     OutputDirectory out(a->out, "plume", {a->map});
     const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed);
     const PlumeTargets& t = plume.targets;
