@@ -22,13 +22,6 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::size_t vertex_count(const Map& map) {
-  std::size_t n = 0;
-  for (const Polygon& p : map.obstacles)
-    n += p.size();
-  return n;
-}
-
 // Resolution of the checks that need a grid (free share, inlet-to-outlet path).
 constexpr double kCheckCell = 0.05;
 

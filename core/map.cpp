@@ -129,6 +129,13 @@ int Map::opening_on_line(bool vertical, double line, double half_cell, double s)
   return -1;
 }
 
+std::size_t vertex_count(const Map& map) {
+  std::size_t n = 0;
+  for (const Polygon& p : map.obstacles)
+    n += p.size();
+  return n;
+}
+
 Opening wall_opening(const Map& map, Side side, double from, double to, OpeningKind kind,
                      double speed, Profile profile) {
   Opening o;

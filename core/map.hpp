@@ -108,6 +108,9 @@ struct Map {
   int opening_on_line(bool vertical, double line, double half_cell, double s) const;
 };
 
+// The number of obstacle vertices, for summaries.
+std::size_t vertex_count(const Map& map);
+
 // An opening along part of an arena wall, [from, to] metres along it.
 Opening wall_opening(const Map& map, Side side, double from, double to, OpeningKind kind,
                      double speed = 1.0, Profile profile = Profile::Uniform);

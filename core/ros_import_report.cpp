@@ -9,13 +9,6 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::size_t vertex_count(const Map& map) {
-  std::size_t n = 0;
-  for (const Polygon& p : map.obstacles)
-    n += p.size();
-  return n;
-}
-
 ordered_json point(const Map& map, Vec2 arena) {
   const Vec2 p = map.to_frame(arena);
   return ordered_json::array({p.x, p.y});
