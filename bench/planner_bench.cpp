@@ -30,13 +30,6 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-std::size_t vertex_count(const Map& m) {
-  std::size_t n = 0;
-  for (const Polygon& p : m.obstacles)
-    n += p.size();
-  return n;
-}
-
 // 15 obstacles in two rows (4 rectangles, 4 Ls, 7 Us, seeded jitter): 96 vertices.
 Map dense_map() {
   std::mt19937 rng(42);

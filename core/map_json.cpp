@@ -183,6 +183,32 @@ void parse_v1_openings(const Reader& r, const json& doc, Map& map) {
                   wall_opening(map, out.side, out.from, out.to, OpeningKind::Outlet)};
 }
 
+// The largest frame offset and arena a framed map may have: its file
+// coordinates are written to the micrometre, which doubles hold with room to
+// spare below this.
+constexpr double kMaxFramedExtent = 1e7;
+constexpr double kMicrometresPerMetre = 1e6;
+
+// A framed map's file coordinates are micrometres: integer micrometres over
+// 1e6, the double nearest the decimal, so "-9.1" reads and writes back as
+// "-9.1". Rounded on reading too, so that a map read, written and read again
+// is the same map (and is checked as the one written).
+double micrometres(double v) {
+  return std::round(v * kMicrometresPerMetre) / kMicrometresPerMetre;
+}
+
+// A coordinate as a file holds it: in the map frame, to the micrometre when framed.
+double file_coordinate(double arena, double origin) {
+  if (origin == 0.0) return arena;
+  return micrometres(arena + origin);
+}
+
+// A point read from a file, in the arena frame.
+Vec2 from_file(const Map& map, Vec2 p) {
+  if (!map.has_frame()) return p;
+  return map.from_frame({micrometres(p.x), micrometres(p.y)});
+}
+
 // Snaps a coordinate that lies within round-off of an arena wall onto it, so
 // that an opening on a wall written in the map frame is on that wall.
 double snap_to_wall(double v, double wall, double slack) {
@@ -212,8 +238,8 @@ void parse_v2_openings(const Reader& r, const json& doc, Map& map) {
     } else {
       r.fail(Reader::join(key, "kind"), "'" + kind + "' is not an opening; use inlet or outlet");
     }
-    o.from = map.from_frame(r.point(r.required(v, key, "from"), Reader::join(key, "from")));
-    o.to = map.from_frame(r.point(r.required(v, key, "to"), Reader::join(key, "to")));
+    o.from = from_file(map, r.point(r.required(v, key, "from"), Reader::join(key, "from")));
+    o.to = from_file(map, r.point(r.required(v, key, "to"), Reader::join(key, "to")));
     for (Vec2* p : {&o.from, &o.to})
       *p = {snap_to_wall(p->x, map.width, slack), snap_to_wall(p->y, map.height, slack)};
     map.openings.push_back(o);
@@ -238,33 +264,18 @@ void parse_shapes(const Reader& r, const json& doc, Map& map) {
                "polygon has " + std::to_string(poly.size()) + " vertices; it needs at least 3");
       Polygon p;
       for (std::size_t v = 0; v < poly.size(); ++v)
-        p.push_back(map.from_frame(r.point(poly[v], Reader::index(key, v))));
+        p.push_back(from_file(map, r.point(poly[v], Reader::index(key, v))));
       map.obstacles.push_back(std::move(p));
     }
   }
   if (doc.contains("sources")) {
     const json& sources = r.array(doc["sources"], "sources");
     for (std::size_t k = 0; k < sources.size(); ++k)
-      map.sources.push_back(map.from_frame(r.point(sources[k], Reader::index("sources", k))));
+      map.sources.push_back(from_file(map, r.point(sources[k], Reader::index("sources", k))));
   }
 }
 
 using ordered_json = nlohmann::ordered_json;
-
-// The largest frame offset and arena a framed map may have: its file
-// coordinates are written to the micrometre, which doubles hold with room to
-// spare below this.
-constexpr double kMaxFramedExtent = 1e7;
-constexpr double kMicrometresPerMetre = 1e6;
-
-// A coordinate as a file holds it: in the map frame; for a framed map rounded
-// to the micrometre, so that reading and writing again gives the same text.
-double file_coordinate(double arena, double origin) {
-  if (origin == 0.0) return arena;
-  // Integer micrometres over 1e6: the double nearest the decimal, so "-9.1"
-  // reads and writes back as "-9.1".
-  return std::round((arena + origin) * kMicrometresPerMetre) / kMicrometresPerMetre;
-}
 
 ordered_json json_point(const Map& map, Vec2 p) {
   return ordered_json::array(
