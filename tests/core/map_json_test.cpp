@@ -1,4 +1,5 @@
 #include "core/map_json.hpp"
+#include "support/map_errors.hpp"
 
 #include <gtest/gtest.h>
 
@@ -18,23 +19,8 @@ std::string map_text(const std::string& body) {
 const std::string kHead =
     R"("size": [10, 4], "inlet": {"side": "left", "speed": 1.0}, "outlet": {"side": "right"})";
 
-// The InputError message for parsing `text`, or "" if it parsed.
-std::string error_of(const std::string& text) {
-  try {
-    parse_map(text, "bad.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_rejected(const std::string& text, const std::string& key, const std::string& fault) {
-  const std::string msg = error_of(text);
-  ASSERT_FALSE(msg.empty()) << "accepted: " << text;
-  EXPECT_EQ(msg.rfind("bad.json: ", 0), 0u) << msg;
-  EXPECT_NE(msg.find(key), std::string::npos) << "key '" << key << "' not named in: " << msg;
-  EXPECT_NE(msg.find(fault), std::string::npos) << "fault '" << fault << "' not named in: " << msg;
-}
+using test::expect_map_rejected;
+using test::map_error_of;
 
 TEST(MapJson, ShippedMapsAreValid) {
   int n = 0;
@@ -76,40 +62,41 @@ TEST(MapJson, WriteThenReadGivesTheSameMap) {
 }
 
 TEST(MapJson, RejectsSelfIntersectingPolygon) {
-  expect_rejected(map_text(kHead + R"(, "obstacles": [[[2,1],[4,3],[4,1],[2,3]]])"), "obstacles[0]",
-                  "not simple");
+  expect_map_rejected(map_text(kHead + R"(, "obstacles": [[[2,1],[4,3],[4,1],[2,3]]])"),
+                      "obstacles[0]", "not simple");
 }
 
 TEST(MapJson, RejectsPolygonOutsideArena) {
-  expect_rejected(map_text(kHead + R"(, "obstacles": [[[9,1],[10.5,1],[10.5,2],[9,2]]])"),
-                  "obstacles[0][1]", "outside");
+  expect_map_rejected(map_text(kHead + R"(, "obstacles": [[[9,1],[10.5,1],[10.5,2],[9,2]]])"),
+                      "obstacles[0][1]", "outside");
 }
 
 TEST(MapJson, RejectsPolygonWithTwoVertices) {
-  expect_rejected(map_text(kHead + R"(, "obstacles": [[[2,1],[3,1]]])"), "obstacles[0]",
-                  "at least 3");
+  expect_map_rejected(map_text(kHead + R"(, "obstacles": [[[2,1],[3,1]]])"), "obstacles[0]",
+                      "at least 3");
 }
 
 TEST(MapJson, RejectsUnknownKeys) {
-  expect_rejected(map_text(kHead + R"(, "obstacle": [])"), "obstacle", "unknown key");
-  expect_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "sped": 1},
+  expect_map_rejected(map_text(kHead + R"(, "obstacle": [])"), "obstacle", "unknown key");
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "sped": 1},
                               "outlet": {"side": "right"})"),
-                  "inlet.sped", "unknown key");
+                      "inlet.sped", "unknown key");
 }
 
 TEST(MapJson, RejectsMissingSize) {
-  expect_rejected(map_text(R"("inlet": {"side": "left", "speed": 1}, "outlet": {"side": "right"})"),
-                  "size", "missing");
+  expect_map_rejected(
+      map_text(R"("inlet": {"side": "left", "speed": 1}, "outlet": {"side": "right"})"), "size",
+      "missing");
 }
 
 TEST(MapJson, RejectsNaNAndInfinity) {
   // Bare NaN, as Python's json.dump writes it.
-  expect_rejected(map_text(kHead + R"(, "obstacles": [[[2,0],[3,NaN],[3,2]]])"),
-                  "obstacles[0][1][1]", "NaN");
-  expect_rejected(map_text(kHead + R"(, "sources": [[-Infinity, 1]])"), "sources[0][0]",
-                  "Infinity");
+  expect_map_rejected(map_text(kHead + R"(, "obstacles": [[[2,0],[3,NaN],[3,2]]])"),
+                      "obstacles[0][1][1]", "NaN");
+  expect_map_rejected(map_text(kHead + R"(, "sources": [[-Infinity, 1]])"), "sources[0][0]",
+                      "Infinity");
   // Too large for a double: the parser names the number, not the key.
-  expect_rejected(map_text(kHead + R"(, "sources": [[1e999, 1]])"), "1e999", "overflow");
+  expect_map_rejected(map_text(kHead + R"(, "sources": [[1e999, 1]])"), "1e999", "overflow");
   // NaN inside a string is just text.
   const Map named = parse_map(
       R"({"format": "plumekit-map/1", "name": "NaN \"Infinity\" room", )" + kHead + "}", "x");
@@ -117,47 +104,49 @@ TEST(MapJson, RejectsNaNAndInfinity) {
 }
 
 TEST(MapJson, RejectsSourceInsideObstacleOrOutsideArena) {
-  expect_rejected(map_text(kHead + R"(, "obstacles": [[[2,0],[3,0],[3,2],[2,2]]],
+  expect_map_rejected(map_text(kHead + R"(, "obstacles": [[[2,0],[3,0],[3,2],[2,2]]],
                                          "sources": [[0.5, 0.5], [2.5, 1]])"),
-                  "sources[1]", "inside obstacles[0]");
-  expect_rejected(map_text(kHead + R"(, "obstacles": [[[2,0],[3,0],[3,2],[2,2]]],
+                      "sources[1]", "inside obstacles[0]");
+  expect_map_rejected(map_text(kHead + R"(, "obstacles": [[[2,0],[3,0],[3,2],[2,2]]],
                                          "sources": [[3, 1]])"),
-                  "sources[0]", "inside obstacles[0]");  // on the boundary counts as inside
-  expect_rejected(map_text(kHead + R"(, "sources": [[11, 1]])"), "sources[0]", "outside the arena");
+                      "sources[0]", "inside obstacles[0]");  // on the boundary counts as inside
+  expect_map_rejected(map_text(kHead + R"(, "sources": [[11, 1]])"), "sources[0]",
+                      "outside the arena");
 }
 
 TEST(MapJson, RejectsImpossibleOrOverlappingSpans) {
-  expect_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "from": 3, "to": 1,
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "from": 3, "to": 1,
                               "speed": 1}, "outlet": {"side": "right"})"),
-                  "inlet", "empty");
-  expect_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 5, "speed": 1},
+                      "inlet", "empty");
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 5, "speed": 1},
                               "outlet": {"side": "right"})"),
-                  "inlet", "outside the wall");
-  expect_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 2.5, "speed": 1},
+                      "inlet", "outside the wall");
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 2.5, "speed": 1},
                               "outlet": {"side": "left", "from": 2})"),
-                  "outlet", "overlaps");
-  expect_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "west", "speed": 1},
+                      "outlet", "overlaps");
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "west", "speed": 1},
                               "outlet": {"side": "right"})"),
-                  "inlet.side", "not a side");
-  expect_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "speed": -1},
+                      "inlet.side", "not a side");
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "speed": -1},
                               "outlet": {"side": "right"})"),
-                  "inlet.speed", "positive");
+                      "inlet.speed", "positive");
   // Inlet and outlet may share a wall when their spans only touch.
-  EXPECT_EQ(error_of(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 2, "speed": 1},
+  EXPECT_EQ(
+      map_error_of(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 2, "speed": 1},
                                  "outlet": {"side": "left", "from": 2})")),
-            "");
+      "");
 }
 
 TEST(MapJson, RejectsBadSyntaxTypesAndVersions) {
-  expect_rejected("{\n  \"format\": \"plumekit-map/1\",\n  \"size\": [10 4]\n}", "", "line 3");
-  expect_rejected(map_text(R"("size": [10, "4"], "inlet": {"side": "left", "speed": 1},
+  expect_map_rejected("{\n  \"format\": \"plumekit-map/1\",\n  \"size\": [10 4]\n}", "", "line 3");
+  expect_map_rejected(map_text(R"("size": [10, "4"], "inlet": {"side": "left", "speed": 1},
                               "outlet": {"side": "right"})"),
-                  "size[1]", "expected a number");
-  expect_rejected(R"({"format": "plumekit-map/3"})", "format", "not supported");
-  expect_rejected(map_text(kHead + R"(, "sources": [], "sources": [])"), "sources", "twice");
-  expect_rejected(map_text(R"("size": [0, 4], "inlet": {"side": "left", "speed": 1},
+                      "size[1]", "expected a number");
+  expect_map_rejected(R"({"format": "plumekit-map/3"})", "format", "not supported");
+  expect_map_rejected(map_text(kHead + R"(, "sources": [], "sources": [])"), "sources", "twice");
+  expect_map_rejected(map_text(R"("size": [0, 4], "inlet": {"side": "left", "speed": 1},
                               "outlet": {"side": "right"})"),
-                  "size", "positive");
+                      "size", "positive");
 }
 
 TEST(MapJson, MissingFileIsAnInputError) {

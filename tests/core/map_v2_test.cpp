@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/rasterize.hpp"
+#include "support/map_errors.hpp"
 
 namespace plumekit {
 namespace {
@@ -27,22 +28,8 @@ std::string v2_text(const std::string& openings, const std::string& extra = "") 
 const std::string kInletJson = R"({"kind": "inlet", "from": [10, 21], "to": [10, 22], "speed": 1})";
 const std::string kOutletJson = R"({"kind": "outlet", "from": [12, 23.6], "to": [13, 23.6]})";
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_map(text, "bad.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_rejected(const std::string& text, const std::string& key, const std::string& fault) {
-  const std::string msg = error_of(text);
-  ASSERT_FALSE(msg.empty()) << "accepted: " << text;
-  EXPECT_EQ(msg.rfind("bad.json: ", 0), 0u) << msg;
-  EXPECT_NE(msg.find(key), std::string::npos) << "key '" << key << "' not named in: " << msg;
-  EXPECT_NE(msg.find(fault), std::string::npos) << "fault '" << fault << "' not named in: " << msg;
-}
+using test::expect_map_rejected;
+using test::map_error_of;
 
 TEST(MapV2, ReadsOpeningsAndFrameIntoArenaCoordinates) {
   const Map map =
@@ -114,67 +101,72 @@ TEST(MapV2, AMapThatOutgrowsVersionOneIsNotWrittenAsVersionOne) {
 }
 
 TEST(MapV2, RefusesBadOpenings) {
-  expect_rejected(v2_text(kInletJson), "openings", "no outlet");
-  expect_rejected(v2_text(kOutletJson), "openings", "no inlet");
-  expect_rejected(v2_text(R"({"kind": "vent", "from": [10, 21], "to": [10, 22]}, )" + kOutletJson),
-                  "openings[0].kind", "not an opening");
-  expect_rejected(v2_text(R"({"kind": "inlet", "from": [10, 21], "to": [10, 22]}, )" + kOutletJson),
-                  "openings[0].speed", "missing");
-  expect_rejected(
+  expect_map_rejected(v2_text(kInletJson), "openings", "no outlet");
+  expect_map_rejected(v2_text(kOutletJson), "openings", "no inlet");
+  expect_map_rejected(
+      v2_text(R"({"kind": "vent", "from": [10, 21], "to": [10, 22]}, )" + kOutletJson),
+      "openings[0].kind", "not an opening");
+  expect_map_rejected(
+      v2_text(R"({"kind": "inlet", "from": [10, 21], "to": [10, 22]}, )" + kOutletJson),
+      "openings[0].speed", "missing");
+  expect_map_rejected(
       v2_text(R"({"kind": "inlet", "from": [10, 21], "to": [10, 22], "speed": 0}, )" + kOutletJson),
       "openings[0].speed", "positive");
-  expect_rejected(v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 23.6], "to": [13, 23.6],
+  expect_map_rejected(
+      v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 23.6], "to": [13, 23.6],
                                         "speed": 1})"),
-                  "openings[1].speed", "unknown key");
-  expect_rejected(
+      "openings[1].speed", "unknown key");
+  expect_map_rejected(
       v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 23.6], "to": [13, 23]})"),
       "openings[1]", "not parallel to an axis");
-  expect_rejected(
+  expect_map_rejected(
       v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 23.6], "to": [12, 23.6]})"),
       "openings[1]", "same point");
-  expect_rejected(
+  expect_map_rejected(
       v2_text(kInletJson + R"(, {"kind": "outlet", "from": [15, 23.6], "to": [17, 23.6]})"),
       "openings[1]", "outside the arena");
   // In the open, inside the band, and with free space on one side then the other.
-  expect_rejected(v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 22], "to": [13, 22]})"),
-                  "openings[1]", "crosses free space");
-  expect_rejected(
+  expect_map_rejected(
+      v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 22], "to": [13, 22]})"),
+      "openings[1]", "crosses free space");
+  expect_map_rejected(
       v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 23.8], "to": [13, 23.8]})"),
       "openings[1]", "inside an obstacle");
-  expect_rejected(R"({"format": "plumekit-map/2", "name": "t", "size": [6, 4], "openings": [)" +
-                      std::string(R"({"kind": "inlet", "from": [0, 1], "to": [0, 2], "speed": 1},
+  expect_map_rejected(
+      R"({"format": "plumekit-map/2", "name": "t", "size": [6, 4], "openings": [)" +
+          std::string(R"({"kind": "inlet", "from": [0, 1], "to": [0, 2], "speed": 1},
                                   {"kind": "outlet", "from": [2, 1], "to": [4, 1]}],
                       "obstacles": [[[1, 0], [3, 0], [3, 1], [1, 1]],
                                     [[3, 1], [5, 1], [5, 2], [3, 2]]]})"),
-                  "openings[1]", "free side changes");
+      "openings[1]", "free side changes");
 }
 
 TEST(MapV2, RefusesOverlapsButAllowsOpeningsEndToEnd) {
   const std::string second_outlet = R"({"kind": "outlet", "from": [12.5, 23.6], "to": [14, 23.6]})";
-  expect_rejected(v2_text(kInletJson + ", " + kOutletJson + ", " + second_outlet), "openings[2]",
-                  "overlaps openings[1]");
-  expect_rejected(
+  expect_map_rejected(v2_text(kInletJson + ", " + kOutletJson + ", " + second_outlet),
+                      "openings[2]", "overlaps openings[1]");
+  expect_map_rejected(
       v2_text(kInletJson + ", " + kOutletJson +
               R"(, {"kind": "inlet", "from": [12.5, 23.6], "to": [14, 23.6], "speed": 1})"),
       "openings[2]", "an inlet and an outlet cannot share a stretch");
-  EXPECT_EQ(error_of(v2_text(kInletJson + ", " + kOutletJson +
-                             R"(, {"kind": "outlet", "from": [13, 23.6], "to": [14, 23.6]})")),
+  EXPECT_EQ(map_error_of(v2_text(kInletJson + ", " + kOutletJson +
+                                 R"(, {"kind": "outlet", "from": [13, 23.6], "to": [14, 23.6]})")),
             "");
 }
 
 TEST(MapV2, RefusesBadFramesAndUnknownKeys) {
-  expect_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "frame": {"origin": [1]},
+  expect_map_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "frame": {"origin": [1]},
                       "openings": []})",
-                  "frame.origin", "expected a point");
-  expect_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "frame": {"origin": [0, 0],
+                      "frame.origin", "expected a point");
+  expect_map_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "frame": {"origin": [0, 0],
                       "yaw": 0.1}, "openings": []})",
-                  "frame.yaw", "unknown key");
-  expect_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "frame": {"origin": [1e8, 0]},
+                      "frame.yaw", "unknown key");
+  expect_map_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "frame": {"origin": [1e8, 0]},
                       "openings": []})",
-                  "frame.origin", "within 1e7 m");
-  expect_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "inlet": {"side": "left"}})",
-                  "inlet", "unknown key");
-  expect_rejected(R"({"format": "plumekit-map/2", "size": [6, 4]})", "openings", "missing");
+                      "frame.origin", "within 1e7 m");
+  expect_map_rejected(R"({"format": "plumekit-map/2", "size": [6, 4], "inlet": {"side": "left"}})",
+                      "inlet", "unknown key");
+  expect_map_rejected(R"({"format": "plumekit-map/2", "size": [6, 4]})", "openings", "missing");
 }
 
 TEST(MapV2, OpeningsOnObstacleEdgesLabelTheCellsBesideThem) {
