@@ -85,8 +85,7 @@ Vec2 Map::inward_normal(const Opening& o) const {
   // The free side of an obstacle's edge: probe a little off its middle.
   const double mid = 0.5 * (o.lo() + o.hi());
   const Vec2 at = o.vertical() ? Vec2{o.line(), mid} : Vec2{mid, o.line()};
-  const double probe = 1e-6 * std::max({width, height, 1.0});
-  return is_free(at + probe * n) ? n : -1.0 * n;
+  return is_free(at + probe_distance() * n) ? n : -1.0 * n;
 }
 
 const Opening& Map::first_inlet() const {

@@ -8,6 +8,7 @@
 // corner is (0, 0). `origin` is where that corner lies in the user's map frame
 // (a ROS map's `origin`); files and every coordinate a user types or reads are
 // in the map frame, and to_frame/from_frame convert.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -83,6 +84,10 @@ struct Map {
   int obstacle_at(Vec2 p) const;
   bool is_free(Vec2 p) const { return in_arena(p) && obstacle_at(p) < 0; }
 
+  // Lengths below this are round-off (coordinates equal within it).
+  double round_off() const { return 1e-9 * std::max({width, height, 1.0}); }
+  // How far off a boundary a point is probed to see which side is free.
+  double probe_distance() const { return 1e-6 * std::max({width, height, 1.0}); }
   // Arena <-> map frame (MapFrame).
   bool has_frame() const { return !frame.is_identity(); }
   Vec2 to_frame(Vec2 arena) const { return frame.to_frame(arena); }

@@ -220,7 +220,7 @@ double snap_to_wall(double v, double wall, double slack) {
 // plumekit-map/2: any number of openings, each from/to in the map frame.
 void parse_v2_openings(const Reader& r, const json& doc, Map& map) {
   const json& list = r.array(r.required(doc, "", "openings"), "openings");
-  const double slack = 1e-9 * std::max({map.width, map.height, 1.0});
+  const double slack = map.round_off();
   for (std::size_t k = 0; k < list.size(); ++k) {
     const std::string key = Reader::index("openings", k);
     const json& v = r.object(list[k], key);
@@ -319,8 +319,8 @@ std::vector<double> boundary_events(const Map& map, const Opening& o, double sla
 // Why opening o is not on the boundary of the free space (free space on one
 // side of it all along, an obstacle or the outside on the other), or "".
 std::string boundary_fault(const Map& map, const Opening& o) {
-  const double slack = 1e-9 * std::max({map.width, map.height, 1.0});
-  const double probe = 1e-6 * std::max({map.width, map.height, 1.0});
+  const double slack = map.round_off();
+  const double probe = map.probe_distance();
   const Vec2 normal = o.vertical() ? Vec2{1.0, 0.0} : Vec2{0.0, 1.0};
   const std::vector<double> events = boundary_events(map, o, slack);
   int free_side = 0;
@@ -384,7 +384,7 @@ void validate_openings(const Reader& r, const Map& map) {
                            std::string(inlet    ? "no outlet"
                                        : outlet ? "no inlet"
                                                 : "neither"));
-  const double slack = 1e-9 * std::max({map.width, map.height, 1.0});
+  const double slack = map.round_off();
   for (std::size_t k = 0; k < map.openings.size(); ++k) {
     const Opening& a = map.openings[k];
     for (std::size_t i = 0; i < k; ++i) {
