@@ -81,8 +81,19 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
   coarse.on_iteration = nullptr;
   try {
     return solve(map, coarse).wind;
+  } catch (const ConvergenceError&) {
+    if (coarse.convection == Convection::Upwind) return std::nullopt;
   } catch (const InputError&) {
-    return std::nullopt;  // the coarse grid closes a gap, or does not converge
+    return std::nullopt;  // the coarse grid closes a gap, or seals the openings
+  }
+  // No steady flow with this scheme on the coarse grid, whose cell Peclet
+  // number is twice the fine grid's: an upwind flow is still a far better
+  // start than rest (depot at 5 cm, cfd/README.md "Building scale").
+  coarse.convection = Convection::Upwind;
+  try {
+    return solve(map, coarse).wind;
+  } catch (const InputError&) {
+    return std::nullopt;
   }
 }
 

@@ -118,7 +118,7 @@ void Newton::run(Eigen::VectorXd& x, bool from_coarse) {
     // Stokes-like solve); it is taken whole even if momentum grows.
     const double lambda = line_search(fresh, it == 0 && !from_coarse);
     if (lambda > 0.0)
-      accept_step(fresh, lambda);
+      accept_step(lambda);
     else
       after_failed_step(fresh);
   }
@@ -226,12 +226,14 @@ void Newton::after_failed_step(bool fresh) {
   anderson_.reset();
 }
 
-void Newton::accept_step(bool fresh, double lambda) {
-  // The pseudo-time step grows with the merit's fall (SER) after a full step
-  // on a fresh factorization.
+void Newton::accept_step(double lambda) {
+  // The pseudo-time step grows with the merit's fall (SER) after every full
+  // step, chord steps included, and the next factorization uses it. (Growing
+  // it only after fresh factorizations kept it near 1 for 60 steps and 47
+  // factorizations on depot's 10 cm grid: 13.6 s against 4.4 s.)
   const double ratio = trial_merit_ / current_merit_;
   refactor_ = ratio > (options_.turbulence == Turbulence::None ? kChordRatio : kChordRatioLagged);
-  if (fresh && lambda == 1.0) cfl_ = std::min(cfl_ / std::max(ratio, 0.1), 1e15);
+  if (lambda == 1.0) cfl_ = std::min(cfl_ / std::max(ratio, 0.1), 1e15);
   x_.swap(trial_);
   f_.swap(f_trial_);
   current_ = norms(f_);

@@ -64,7 +64,7 @@ class Newton {
   double line_search(bool fresh, bool take_whole);
   // Pseudo-transient continuation after a failed or an accepted step.
   void after_failed_step(bool fresh);
-  void accept_step(bool fresh, double lambda);
+  void accept_step(double lambda);
   [[noreturn]] void fail(const std::string& why) const;
 
   const StaggeredGrid& grid_;
