@@ -1,7 +1,9 @@
 #include "cfd/navier_stokes.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #include "cfd/dual.hpp"
 
@@ -9,27 +11,12 @@ namespace plumekit::cfd {
 
 namespace {
 
-template <class T>
-T load(const Ref& r, const double* x);
-
-template <>
-double load<double>(const Ref& r, const double* x) {
-  return r.col >= 0 ? r.scale * x[r.col] + r.offset : r.offset;
-}
-
-template <>
-Dual load<Dual>(const Ref& r, const double* x) {
-  Dual d(load<double>(r, x));
-  if (r.col >= 0) d.d[r.local] = r.scale;
-  return d;
-}
-
 // Lists the distinct unknowns the refs read, in order of first use, and
 // gives each ref its slot in that list.
 // cols holds kMaxLocal entries, count of them in use.
-template <std::size_t N>
-void assign_slots(Ref* (&refs)[N], int* cols, int& count) {
-  for (Ref* r : refs) {
+template <class Term, std::size_t N>
+void assign_slots(Term* (&refs)[N], int* cols, int& count) {
+  for (Term* r : refs) {
     if (r->col < 0) continue;
     int k = 0;
     while (k < count && cols[k] != r->col)
@@ -58,20 +45,51 @@ NavierStokes::NavierStokes(const StaggeredGrid& grid, Convection convection)
   nu_corner_.assign(static_cast<std::size_t>(grid.nx() + 1) * (grid.ny() + 1), 0.0);
 }
 
-NavierStokes::MomentumRow NavierStokes::momentum_row(int c, int a, int b) const {
+template <class T>
+T NavierStokes::load(const Term& t, const double* x) const {
+  const Coef& c = coefs_[t.coef];
+  const double v = t.col >= 0 ? c.scale * x[t.col] + c.offset : c.offset;
+  if constexpr (std::is_same_v<T, double>) {
+    return v;
+  } else {
+    Dual d(v);
+    if (t.col >= 0) d.d[t.local] = c.scale;
+    return d;
+  }
+}
+
+NavierStokes::Term NavierStokes::term(const Ref& r) {
+  std::uint64_t bits[2];
+  std::memcpy(&bits[0], &r.scale, sizeof(double));
+  std::memcpy(&bits[1], &r.offset, sizeof(double));
+  const auto [at, added] =
+      coef_index_.try_emplace({bits[0], bits[1]}, static_cast<std::uint32_t>(coefs_.size()));
+  if (added) {
+    if (coefs_.size() >= (1u << 24))
+      throw std::logic_error("flow equations: more than 2^24 distinct boundary values");
+    coefs_.push_back({r.scale, r.offset});
+  }
+  Term t;
+  t.col = r.col;
+  t.coef = at->second;
+  t.local = 0;
+  return t;
+}
+
+NavierStokes::MomentumRow NavierStokes::momentum_row(int c, int a, int b) {
   const StaggeredGrid& grid = grid_;
   const std::size_t f = grid.face(c, a, b);
   MomentumRow m;
   m.row = grid.column(c, f);
   for (int k = -2; k <= 2; ++k)
-    m.w[k + 2] = k == 0 ? grid.real_face(c, f) : grid.along(c, a, b, k);
-  m.wb[1] = grid.across(c, a, b, -1);
-  m.wb[2] = grid.across(c, a, b, 1);
+    m.w[k + 2] = term(k == 0 ? grid.real_face(c, f) : grid.along(c, a, b, k));
+  m.wb[1] = term(grid.across(c, a, b, -1));
+  m.wb[2] = term(grid.across(c, a, b, 1));
   // Only the limited scheme reads two faces upwind; the others keep a
   // compact stencil, which makes the factorization cheaper.
   const bool wide = convection_ == Convection::VanLeer;
-  m.wb[0] = wide ? grid.across(c, a, b, -2) : m.wb[1];
-  m.wb[3] = wide ? grid.across(c, a, b, 2) : m.wb[2];
+  m.wb[0] = wide ? term(grid.across(c, a, b, -2)) : m.wb[1];
+  m.wb[3] = wide ? term(grid.across(c, a, b, 2)) : m.wb[2];
   if (!wide) {
     m.w[0] = m.w[1];
     m.w[4] = m.w[3];
@@ -86,12 +104,12 @@ NavierStokes::MomentumRow NavierStokes::momentum_row(int c, int a, int b) const 
     high = a - 1;
   // The other component's faces at the CV's north (b+1) and south (b)
   // sides, in the cells beside it.
-  m.o[0] = grid.other(c, b + 1, low);
-  m.o[1] = grid.other(c, b + 1, high);
-  m.o[2] = grid.other(c, b, low);
-  m.o[3] = grid.other(c, b, high);
-  m.p[0] = grid.pressure(c, a, b, false);
-  m.p[1] = grid.pressure(c, a, b, true);
+  m.o[0] = term(grid.other(c, b + 1, low));
+  m.o[1] = term(grid.other(c, b + 1, high));
+  m.o[2] = term(grid.other(c, b, low));
+  m.o[3] = term(grid.other(c, b, high));
+  m.p[0] = term(grid.pressure(c, a, b, false));
+  m.p[1] = term(grid.pressure(c, a, b, true));
   m.cell_w = static_cast<int>(grid.cell(c, low, b));
   m.cell_e = static_cast<int>(grid.cell(c, high, b));
   // Corners of the cell grid, (nx+1) x (ny+1), at along a, across b / b+1.
@@ -116,15 +134,15 @@ void NavierStokes::add_continuity_rows() {
       if (grid.solid(cell)) continue;
       ContinuityRow r;
       r.row = grid.pressure_column(cell);
-      r.f[0] = grid.real_face(0, grid.face(0, i + 1, j));
-      r.f[1] = grid.real_face(0, grid.face(0, i, j));
-      r.f[2] = grid.real_face(1, grid.face(1, j + 1, i));
-      r.f[3] = grid.real_face(1, grid.face(1, j, i));
+      r.f[0] = term(grid.real_face(0, grid.face(0, i + 1, j)));
+      r.f[1] = term(grid.real_face(0, grid.face(0, i, j)));
+      r.f[2] = term(grid.real_face(1, grid.face(1, j + 1, i)));
+      r.f[3] = term(grid.real_face(1, grid.face(1, j, i)));
       r.inv_dx = 1.0 / grid.shape().dx();
       r.inv_dy = 1.0 / grid.shape().dy();
       r.pinned = !grid.has_outflow() && !pinned;
       pinned = pinned || r.pinned;
-      if (r.pinned) r.f[0] = Ref{r.row, 1.0, 0.0, -1};
+      if (r.pinned) r.f[0] = term(Ref{r.row, 1.0, 0.0, -1});
       continuity_.push_back(r);
     }
   }
@@ -135,13 +153,13 @@ void NavierStokes::build_pattern() {
   // Row r's distinct unknowns: cols_of_row[r * kMaxLocal + k], k < count_of_row[r].
   std::vector<int> cols_of_row(static_cast<std::size_t>(n) * kMaxLocal), count_of_row(n, 0);
   for (MomentumRow& m : momentum_) {
-    Ref* refs[] = {&m.w[0],  &m.w[1], &m.w[2], &m.w[3], &m.w[4], &m.wb[0], &m.wb[1], &m.wb[2],
-                   &m.wb[3], &m.o[0], &m.o[1], &m.o[2], &m.o[3], &m.p[0],  &m.p[1]};
+    Term* refs[] = {&m.w[0],  &m.w[1], &m.w[2], &m.w[3], &m.w[4], &m.wb[0], &m.wb[1], &m.wb[2],
+                    &m.wb[3], &m.o[0], &m.o[1], &m.o[2], &m.o[3], &m.p[0],  &m.p[1]};
     assign_slots(refs, &cols_of_row[static_cast<std::size_t>(m.row) * kMaxLocal],
                  count_of_row[m.row]);
   }
   for (ContinuityRow& r : continuity_) {
-    Ref* refs[] = {&r.f[0], &r.f[1], &r.f[2], &r.f[3]};
+    Term* refs[] = {&r.f[0], &r.f[1], &r.f[2], &r.f[3]};
     assign_slots(refs, &cols_of_row[static_cast<std::size_t>(r.row) * kMaxLocal],
                  count_of_row[r.row]);
   }
@@ -152,7 +170,6 @@ void NavierStokes::build_pattern() {
   for (int row = 0; row < n; ++row)
     slot_begin_[row + 1] = slot_begin_[row] + count_of_row[row];
   const int nnz = slot_begin_[n];
-  slot_cols_.resize(nnz);
   slot_value_.resize(nnz);
   std::vector<int> col_start(n + 1, 0);
   for (int row = 0; row < n; ++row)
@@ -170,7 +187,6 @@ void NavierStokes::build_pattern() {
       const int at = next[col]++;
       jacobian_.innerIndexPtr()[at] = row;
       jacobian_.valuePtr()[at] = 1.0;
-      slot_cols_[slot_begin_[row] + k] = col;
       slot_value_[slot_begin_[row] + k] = at;
     }
 }

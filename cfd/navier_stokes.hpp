@@ -14,6 +14,9 @@
 // component averaged to cell corners), and face values w_e, w_n... from the
 // convection scheme. Continuity: (u_e - u_w)/dx + (v_n - v_s)/dy = 0.
 #include <Eigen/SparseCore>
+#include <cstdint>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include "cfd/staggered_grid.hpp"
@@ -37,28 +40,43 @@ class NavierStokes {
   void add_to_momentum_diagonal(double s);
 
  private:
+  // A grid Ref as a row stores it: the unknown, its slot in the row, and the
+  // index of its (scale, offset) pair in coefs_. The pairs are few (+-1, 0
+  // and the fixed faces' values), and two doubles in every entry were 60 %
+  // of the equations' memory (250 MB on tb3_world's 5 cm grid).
+  struct Term {
+    int col;
+    std::uint32_t coef : 24;
+    std::uint32_t local : 8;
+  };
+  struct Coef {
+    double scale, offset;
+  };
   struct MomentumRow {
     int row;
-    Ref w[5];   // own component along: a-2, a-1, a, a+1, a+2
-    Ref wb[4];  // own component across: b-2, b-1, b+1, b+2
-    Ref o[4];   // other component: north pair, south pair
-    Ref p[2];   // pressure in cells a-1 and a
+    Term w[5];   // own component along: a-2, a-1, a, a+1, a+2
+    Term wb[4];  // own component across: b-2, b-1, b+1, b+2
+    Term o[4];   // other component: north pair, south pair
+    Term p[2];   // pressure in cells a-1 and a
     int cell_w, cell_e, corner_s, corner_n;
     double inv_ha, inv_hb;
   };
   struct ContinuityRow {
     int row;
-    Ref f[4];  // u east, u west, v north, v south
+    Term f[4];  // u east, u west, v north, v south
     double inv_dx, inv_dy;
     bool pinned;  // closed box: p = 0 here instead of (redundant) continuity
   };
 
   // The constructor's steps: one face's momentum row, the cells' continuity
   // rows, and the Jacobian's fixed pattern with each row's slots in it.
-  MomentumRow momentum_row(int c, int a, int b) const;
+  MomentumRow momentum_row(int c, int a, int b);
+  Term term(const Ref& r);  // interns r's (scale, offset)
   void add_continuity_rows();
   void build_pattern();
 
+  template <class T>
+  T load(const Term& t, const double* x) const;
   template <class T>
   T momentum(const MomentumRow& row, const double* x) const;
   template <class T>
@@ -71,9 +89,11 @@ class NavierStokes {
   Convection convection_;
   std::vector<MomentumRow> momentum_;
   std::vector<ContinuityRow> continuity_;
+  std::vector<Coef> coefs_;
+  std::map<std::pair<std::uint64_t, std::uint64_t>, std::uint32_t> coef_index_;  // by bit pattern
   std::vector<double> nu_cell_, nu_corner_;
-  // Row r's distinct unknowns are slot_cols_[slot_begin_[r] .. slot_begin_[r+1]).
-  std::vector<int> slot_begin_, slot_cols_, slot_value_;  // value_: index in jacobian_ values
+  // Row r's Jacobian values: jacobian_'s values[slot_value_[slot_begin_[r] + local]].
+  std::vector<int> slot_begin_, slot_value_;
   Eigen::SparseMatrix<double> jacobian_;
 };
 
