@@ -134,15 +134,15 @@ TEST(NullSpaceSolver, SinglePrecisionStepRefinesToTheDoubleStep) {
 }
 
 TEST(NullSpaceSolver, SmallGridsFactorizeInDouble) {
-  // By size: every grid of a 10 x 4 m map down to 2 cm stays in double, so the
-  // shipped maps' flows are unchanged. K has at most one unknown per interior
-  // node plus one per obstacle.
+  // By size: every grid of a 10 x 4 m map at the default 5 cm stays in double,
+  // so the shipped maps' default flows are unchanged. K has at most one unknown
+  // per interior node plus one per obstacle.
   System s;
   NullSpaceSolver by_size(s.grid, s.equations.jacobian());
   ASSERT_TRUE(by_size.applicable());
   EXPECT_FALSE(by_size.single_precision());
-  const GridShape two_cm = GridShape::with_cell(10.0, 4.0, 0.02);
-  EXPECT_LT((two_cm.nx - 1) * (two_cm.ny - 1) + 16, kSinglePrecisionFrom);
+  const GridShape five_cm = GridShape::with_cell(10.0, 4.0, 0.05);
+  EXPECT_LT((five_cm.nx - 1) * (five_cm.ny - 1) + 16, kSinglePrecisionFrom);
 }
 
 }  // namespace
