@@ -12,6 +12,7 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/flow_policy.hpp"
+#include "cfd/wind_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
@@ -149,7 +150,7 @@ void add_plume(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "plume", "One source's plume on the 64x64 sensor grid: mean.npy, std.npy, plume.png");
   struct Args {
-    std::string map, source, out;
+    std::string map, source, out, wind;
     std::uint64_t seed = kDefaultSeed;
     PlumeOptions p;
     cfd::FlowOptions flow;
@@ -164,6 +165,7 @@ void add_plume(CLI::App& app) {
   add_seed_flag(cmd, a->seed, "Seed of the filament model");
   bind_field(cmd, cmd->add_option("--cell", a->flow.cell, cfd::kCellHelp), "flow.cell")
       ->capture_default_str();
+  cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
   add_plume_options(cmd, a->p);
   add_common_flags(cmd);
   cmd->callback([a] {
@@ -171,8 +173,8 @@ void add_plume(CLI::App& app) {
     const Vec2 src =
         map.from_frame(parse_point(a->source, "--source"));  // typed in the map's frame
     check_source(map, src);                                  // before the output folder is checked
-    OutputDirectory out(a->out, "plume", {a->map});
-    const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed);
+    OutputDirectory out(a->out, "plume", {a->map, a->wind});
+    const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed, a->wind);
     const PlumeTargets& t = plume.targets;
     const Picture img =
         draw_plume(map, t.mean, t.std, src, std::string(to_string(a->p.model)) + " plume", "");

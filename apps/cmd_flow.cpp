@@ -135,7 +135,7 @@ void show_progress(cfd::FlowOptions& o, ProgressBar& bar, double& first) {
   };
 }
 
-const char* const kWrote = "/{u,v,p}.npy, wind.json, wind.vti, wind.png: ";
+const char* const kWrote = "/{u,v,p,face_u,face_v,solid}.npy, wind.json, wind.vti, wind.png: ";
 
 void run_openfoam(const FlowArgs& a, const Map& map, OutputDirectory& out) {
   const cfd::OpenFoamResult r = cfd::solve_openfoam(map, a.options, a.foam, out.open());

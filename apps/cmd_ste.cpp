@@ -9,6 +9,7 @@
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
+#include "cfd/wind_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/map_json.hpp"
 #include "core/option_check.hpp"
@@ -162,6 +163,7 @@ void add_localize(CLI::App& app) {
   add_seed_flag(cmd, a->seed, "Seed of the plume, noise and random start");
   cmd->add_option("--out,-o", a->out, "Write run.json, trajectory.png, posterior.png here");
   add_ste_options(cmd, a->ste);
+  cmd->add_option("--wind", a->ste.wind_dir, cfd::kWindHelp)->check(CLI::ExistingDirectory);
   add_threads_flag(cmd, a->ste.threads, "ste.threads",
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
@@ -176,7 +178,8 @@ void add_localize(CLI::App& app) {
     if (requested) requested = map.from_frame(*requested);
     std::optional<OutputDirectory> out;
     if (!a->out.empty())
-      out.emplace(a->out, "localize", std::vector<fs::path>{a->map, a->ste.table_cache});
+      out.emplace(a->out, "localize",
+                  std::vector<fs::path>{a->map, a->ste.table_cache, a->ste.wind_dir});
     const ste::Scenario sc(map, a->ste);
     sc.check_source(source);
     const std::uint64_t seed = ste::run_seed(a->seed, 0, 0, 0);

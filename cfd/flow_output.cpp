@@ -3,10 +3,12 @@
 #include <sstream>
 
 #include "cfd/flow_render.hpp"
+#include "cfd/wind_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/image_io.hpp"
 #include "core/npy.hpp"
+#include "core/sha256.hpp"
 #include "core/vti.hpp"
 
 namespace plumekit::cfd {
@@ -118,14 +120,26 @@ void write_flow(const std::filesystem::path& dir, const Map& map, const WindFiel
         "+ ((i + 0.5) dx, (j + 0.5) dy) in the map frame; zero inside obstacles";
   }
   // Everything is produced in memory first, so a failure leaves no partial set.
-  const std::pair<const char*, std::string> files[] = {
+  const std::size_t nx = shape[1], ny = shape[0];
+  const std::vector<double> solid(wind.solid_cells().begin(), wind.solid_cells().end());
+  std::vector<std::pair<const char*, std::string>> files = {
       {"u.npy", npy_float32(wind.u(), shape)},
       {"v.npy", npy_float32(wind.v(), shape)},
       {"p.npy", npy_float32(wind.p(), shape)},
-      {"wind.vti", wind_vti(wind, map.frame)},
-      {"wind.png", png},
-      {"wind.json", json.dump(2) + "\n"},
+      // The faces as solved (float64), so `plume --wind` and `localize --wind`
+      // read back exactly this wind (wind_file.hpp).
+      {"face_u.npy", npy_float64(wind.face_u(), {ny, nx + 1})},
+      {"face_v.npy", npy_float64(wind.face_v(), {ny + 1, nx})},
+      {"solid.npy", npy_float32(solid, shape)},
   };
+  json["map_sha256"] = map_identity(map);
+  nlohmann::ordered_json sums = nlohmann::ordered_json::object();
+  for (const auto& [name, bytes] : files)
+    sums[name] = sha256_hex(bytes);
+  json["arrays_sha256"] = sums;
+  files.emplace_back("wind.vti", wind_vti(wind, map.frame));
+  files.emplace_back("wind.png", png);
+  files.emplace_back("wind.json", json.dump(2) + "\n");  // last: marks the set complete
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir.string() + ": cannot create the output directory: " + ec.message());

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "cfd/flow_policy.hpp"
+#include "cfd/wind_file.hpp"
 #include "core/error.hpp"
 #include "dataset/features.hpp"
 
@@ -69,14 +70,16 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
 }
 
 SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
-                         const cfd::FlowOptions& flow, std::uint64_t seed) {
+                         const cfd::FlowOptions& flow, std::uint64_t seed,
+                         const std::filesystem::path& wind_dir) {
   using Clock = std::chrono::steady_clock;
   check_source(map, source);  // before the flow is solved
   SinglePlume r;
   const auto t0 = Clock::now();
-  const cfd::FlowResult solved = cfd::solve_wind(map, flow).flow;
+  const cfd::WindField wind =
+      wind_dir.empty() ? cfd::solve_wind(map, flow).flow.wind : cfd::read_wind(wind_dir, map);
   const auto t1 = Clock::now();
-  const MapPlumes plumes(map, solved.wind, feature_grid(map), options);
+  const MapPlumes plumes(map, wind, feature_grid(map), options);
   r.targets = plumes.run(source, seed);
   r.flow_s = std::chrono::duration<double>(t1 - t0).count();
   r.plume_s = std::chrono::duration<double>(Clock::now() - t1).count();

@@ -3,6 +3,7 @@
 // dataset generator and `plumekit plume` share. The advection-diffusion
 // operator is factored once here, in the constructor, for all sources.
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <utility>
@@ -72,12 +73,14 @@ class MapPlumes {
 };
 
 // `plumekit plume`: one source's plume in a map whose wind is solved by the flow policy
-// (cfd::solve_wind), with the time each part took.
+// (cfd::solve_wind), or read from `wind_dir` (a `plumekit flow` output for this map,
+// cfd/wind_file.hpp) when one is given, with the time each part took.
 struct SinglePlume {
   PlumeTargets targets;
   double flow_s = 0.0, plume_s = 0.0;
 };
 SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
-                         const cfd::FlowOptions& flow, std::uint64_t seed);
+                         const cfd::FlowOptions& flow, std::uint64_t seed,
+                         const std::filesystem::path& wind_dir = {});
 
 }  // namespace plumekit::dataset

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cfd/flow_policy.hpp"
+#include "cfd/wind_file.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
@@ -118,7 +119,8 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
-  wind_ = cfd::solve_wind(map_, options.flow).flow.wind;  // the flow policy
+  wind_ = options.wind_dir.empty() ? cfd::solve_wind(map_, options.flow).flow.wind  // the policy
+                                   : cfd::read_wind(options.wind_dir, map_);
   wind_s_ = since(t0);
   t0 = Clock::now();
   model_ = make_model(map_, wind_, options, table_from_cache_);

@@ -58,6 +58,9 @@ struct SteOptions {
   WorldOptions world;
   // The wind every run of a map shares (the flow's defaults: 5 cm cells).
   cfd::FlowOptions flow;
+  // A `plumekit flow` output folder for this map (either engine) whose wind is
+  // used instead of solving one (cfd/wind_file.hpp); empty: solve it.
+  std::string wind_dir;
   // The diffusivity of the physics model, and the release-scale prior [scale_lo, scale_hi] of
   // the surrogate and physics models. Its source_cell is the physics default of `source_cell`.
   PhysicsPlumeOptions physics;

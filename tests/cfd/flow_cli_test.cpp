@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <sstream>
@@ -102,6 +104,48 @@ TEST_F(FlowCli, BadInputExitsTwoAndWritesNothing) {
                            "/bad-maps/self-intersecting.json --out " + out.string());
   EXPECT_EQ(bad_map.code, 2);
   EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+
+namespace {
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST_F(FlowCli, PlumeAndLocalizeUseAFlowOutputAsTheirWind) {
+  const std::string map = (kMaps / "cluttered-3.json").string();
+  const fs::path wind = dir / "wind";
+  auto r = run("flow " + map + " --cell 0.1 --out " + wind.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The wind read back is the one solved: the same plume, byte for byte.
+  r = run("plume " + map + " --source 1,2 --cell 0.1 --out " + (dir / "solved").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("plume " + map + " --source 1,2 --wind " + wind.string() + " --out " +
+          (dir / "read").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(file_bytes(dir / "solved" / "mean.npy"), file_bytes(dir / "read" / "mean.npy"));
+
+  const std::string localize = "localize " + map +
+                               " --source 8,2 --start 1,1 --plume-model gaussian " +
+                               "--max-samples 15 --json ";
+  r = run(localize + "--cell 0.1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto solved = nlohmann::json::parse(r.out);
+  r = run(localize + "--wind " + wind.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto read = nlohmann::json::parse(r.out);
+  EXPECT_EQ(solved["estimate"], read["estimate"]);
+  EXPECT_EQ(solved["samples"], read["samples"]);
+
+  // Another map's wind: exit 2, naming the file and the field, and no output.
+  r = run("plume " + (kMaps / "cluttered-1.json").string() + " --source 1,2 --wind " +
+          wind.string() + " --out " + (dir / "other").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find((wind / "wind.json").string() + ": map_sha256"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "other"));
 }
 
 }  // namespace

@@ -250,6 +250,13 @@ TEST_F(OpenFoamEngine, CommandWritesTheWindOrExitsTwoWithNoOutput) {
   for (const char* f : {"u.npy", "v.npy", "p.npy", "wind.json", "wind.vti", "wind.png"})
     EXPECT_TRUE(fs::exists(dir / "wind" / f)) << f;
   EXPECT_FALSE(fs::exists(dir / "wind" / "openfoam-case"));
+  // Later stages read OpenFOAM's wind back (cfd/wind_file.hpp).
+  const fs::path plume = dir / "plume";
+  r = run("plume " + map.string() + " --source 0.5,0.5 --wind " + (dir / "wind").string() +
+          " --out " + plume.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(plume / "mean.npy"));
+  fs::remove_all(plume);
 
   r = run(args + (dir / "bad").string() + " --ranks 0");
   EXPECT_EQ(r.code, 2);
