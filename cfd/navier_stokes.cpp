@@ -296,4 +296,20 @@ void NavierStokes::add_to_momentum_diagonal(double s) {
     values[slot_value_[slot_begin_[r.row] + r.w[2].local]] += s;
 }
 
+Eigen::SparseMatrix<double> NavierStokes::continuity_matrix() const {
+  const int n_mom = momentum_rows();
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(4 * continuity_.size());
+  for (const ContinuityRow& r : continuity_) {
+    if (r.pinned) continue;
+    const double sign[4] = {r.inv_dx, -r.inv_dx, r.inv_dy, -r.inv_dy};
+    for (int k = 0; k < 4; ++k)
+      if (r.f[k].col >= 0)
+        entries.emplace_back(r.row - n_mom, r.f[k].col, sign[k] * coefs_[r.f[k].coef].scale);
+  }
+  Eigen::SparseMatrix<double> d(size() - n_mom, n_mom);
+  d.setFromTriplets(entries.begin(), entries.end());
+  return d;
+}
+
 }  // namespace plumekit::cfd

@@ -38,6 +38,9 @@ class NavierStokes {
   Eigen::SparseMatrix<double>& jacobian() { return jacobian_; }
   // Adds s to the Jacobian's diagonal in the momentum rows (pseudo-time term).
   void add_to_momentum_diagonal(double s);
+  // The continuity rows' (constant) coefficients: D, (unknowns - momentum
+  // rows) x momentum rows, D u + c being the continuity residual.
+  Eigen::SparseMatrix<double> continuity_matrix() const;
 
  private:
   // A grid Ref as a row stores it: the unknown, its slot in the row, and the

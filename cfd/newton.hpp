@@ -44,6 +44,8 @@ class Newton {
   IterationRecord norms(const Eigen::VectorXd& r) const;
   double merit(const Eigen::VectorXd& r) const;
   void evaluate_residual();
+  // A coarse grid's interpolated flow made to satisfy continuity (kProjectFrom).
+  void project_start();
   // Mixing length: the lagged eddy viscosity, recomputed from the latest flow.
   void lag_viscosity();
   void record(int it);

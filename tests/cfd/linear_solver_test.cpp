@@ -101,6 +101,36 @@ struct System {
   }
 };
 
+TEST(NavierStokes, ContinuityMatrixIsTheContinuityRowsOfTheJacobian) {
+  // The projection of a coarse start (Newton::project_start) relies on D u + c
+  // being the continuity residual: D must be the Jacobian's continuity rows on
+  // the velocity columns, and the residual must change by D du.
+  System s;
+  const Eigen::SparseMatrix<double> d = s.equations.continuity_matrix();
+  const int n = s.grid.unknowns(), n_mom = s.equations.momentum_rows();
+  ASSERT_EQ(d.rows(), n - n_mom);
+  ASSERT_EQ(d.cols(), n_mom);
+  const Eigen::SparseMatrix<double> from_jacobian =
+      s.equations.jacobian().block(n_mom, 0, n - n_mom, n_mom);
+  const Eigen::SparseMatrix<double> difference = d - from_jacobian;
+  double largest = 0.0;
+  for (int k = 0; k < difference.nonZeros(); ++k)
+    largest = std::max(largest, std::abs(difference.valuePtr()[k]));
+  EXPECT_EQ(largest, 0.0);
+  EXPECT_GT(d.nonZeros(), 3 * d.rows());
+  Eigen::VectorXd u(n), du = Eigen::VectorXd::Zero(n), r0(n), r1(n);
+  for (int k = 0; k < n; ++k)
+    u[k] = std::cos(0.7 * k);
+  for (int k = 0; k < n_mom; ++k)
+    du[k] = std::sin(0.31 * k);
+  s.equations.residual(u.data(), r0.data());
+  const Eigen::VectorXd moved = u + du;
+  s.equations.residual(moved.data(), r1.data());
+  const Eigen::VectorXd change = (r1 - r0).tail(n - n_mom);
+  EXPECT_LT((change - d * du.head(n_mom)).cwiseAbs().maxCoeff(),
+            1e-9 * change.cwiseAbs().maxCoeff());
+}
+
 TEST(NullSpaceSolver, SinglePrecisionStepRefinesToTheDoubleStep) {
   if (!single_precision_lu_available()) GTEST_SKIP() << "built without MUMPS";
   System s;
