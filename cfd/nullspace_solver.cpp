@@ -75,8 +75,8 @@ NullSpaceSolver::NullSpaceSolver(const StaggeredGrid& grid,
   if (!read_continuity_rows(jacobian) || !build_tree(grid, jacobian)) return;
   build_curl(grid);
   {
-    const Eigen::SparseMatrix<double> projected = build_projection(jacobian);
-    applicable_ = operators_check(grid.shape(), jacobian, projected);
+    const Eigen::SparseMatrix<double> curl_g = build_projection(jacobian);
+    applicable_ = operators_check(grid.shape(), jacobian, curl_g);
   }
   const bool single = lu == ReducedLU::Single ||
                       (lu == ReducedLU::BySize && reduced_size() >= kSinglePrecisionFrom);
@@ -223,37 +223,52 @@ Eigen::SparseMatrix<double> NullSpaceSolver::build_projection(
     const Eigen::SparseMatrix<double>& jacobian) {
   // L' = C' (I - G R): C' plus, for each outlet face, minus the curl
   // projection of its cell's pressure column over the face's coefficient.
+  // Only C' G is formed: the whole C' J took 0.1 s on a 5 cm building grid.
   const Eigen::SparseMatrix<double> curl_t = curl_.transpose();
-  Eigen::SparseMatrix<double> projected = curl_t * jacobian;  // groups x n
+  Eigen::SparseMatrix<double> curl_g = curl_t * jacobian.rightCols(n_ - n_mom_);  // groups x cells
   std::vector<Eigen::Triplet<double>> triplets;
   for (int col = 0; col < n_mom_; ++col)
     for (Eigen::SparseMatrix<double>::InnerIterator it(curl_t, col); it; ++it)
       triplets.emplace_back(static_cast<int>(it.row()), col, it.value());
   for (const TreeCell& t : tree_) {
     if (t.parent >= 0 || t.face < 0) continue;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(projected, t.p); it; ++it)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(curl_g, t.p - n_mom_); it; ++it)
       triplets.emplace_back(static_cast<int>(it.row()), t.face, -it.value() / t.g_own);
   }
   left_.resize(curl_.cols(), n_);
   left_.setFromTriplets(triplets.begin(), triplets.end());
-  return projected;
+  return curl_g;
 }
 
 bool NullSpaceSolver::operators_check(const GridShape& s,
                                       const Eigen::SparseMatrix<double>& jacobian,
-                                      const Eigen::SparseMatrix<double>& projected) const {
-  // C is divergence-free, and L' removes the pressure.
-  const Eigen::SparseMatrix<double> divergence = jacobian * curl_;
+                                      const Eigen::SparseMatrix<double>& curl_g) const {
+  // C is divergence-free: each continuity row of D C, summed group by group
+  // over the row's (at most four) faces' curl entries.
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> curl_rows = curl_;
   double d_max = 0.0;
-  for (int k = 0; k < divergence.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(divergence, k); it; ++it) {
-      const int row = static_cast<int>(it.row());
-      if (row >= n_mom_ && entry(jacobian, row, row) == 0.0)  // not the pinned row
-        d_max = std::max(d_max, std::abs(it.value()));
-    }
-  const Eigen::SparseMatrix<double> left_g = left_ * jacobian;
-  const double scale = max_abs(projected, n_mom_, n_) + 1.0 / (s.dx() * s.dy());
-  return d_max < 1e-9 * scale && max_abs(left_g, n_mom_, n_) < 1e-9 * scale;
+  std::vector<std::pair<int, double>> sums;
+  for (int p = n_mom_; p < n_; ++p) {
+    if (entry(jacobian, p, p) != 0.0) continue;  // the pinned row
+    const ContinuityRow& row = continuity_[p - n_mom_];
+    sums.clear();
+    for (int e = 0; e < row.count; ++e)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(curl_rows, row.col[e]);
+           it; ++it) {
+        const int g = static_cast<int>(it.col());
+        auto at =
+            std::find_if(sums.begin(), sums.end(), [g](const auto& s) { return s.first == g; });
+        if (at == sums.end()) at = sums.insert(sums.end(), {g, 0.0});
+        at->second += row.coef[e] * it.value();
+      }
+    for (const auto& [g, sum] : sums)
+      d_max = std::max(d_max, std::abs(sum));
+  }
+  // L' removes the pressure: L' G = 0.
+  const Eigen::SparseMatrix<double> left_g = left_ * jacobian.rightCols(n_ - n_mom_);
+  const double scale =
+      max_abs(curl_g, 0, static_cast<int>(curl_g.cols())) + 1.0 / (s.dx() * s.dy());
+  return d_max < 1e-9 * scale && max_abs(left_g, 0, static_cast<int>(left_g.cols())) < 1e-9 * scale;
 }
 
 void NullSpaceSolver::build_reduced_pattern(const Eigen::SparseMatrix<double>& jacobian) {

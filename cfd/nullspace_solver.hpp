@@ -94,11 +94,11 @@ class NullSpaceSolver : public LinearSolver {
   void add_root(const StaggeredGrid& grid, const Eigen::SparseMatrix<double>& jacobian,
                 std::vector<char>& reached, std::size_t cell, int face);
   void build_curl(const StaggeredGrid& grid);
-  // Makes L'; returns C' J, which the check reuses.
+  // Makes L'; returns C' G (G: J's pressure columns), which the check reuses.
   Eigen::SparseMatrix<double> build_projection(const Eigen::SparseMatrix<double>& jacobian);
   // D C = 0 and L' G = 0, to round-off.
   bool operators_check(const GridShape& s, const Eigen::SparseMatrix<double>& jacobian,
-                       const Eigen::SparseMatrix<double>& projected) const;
+                       const Eigen::SparseMatrix<double>& curl_g) const;
   // The coefficient of velocity column `col` in continuity row `p`.
   double continuity_coef(int p, int col) const;
   // The single-precision path forms K in place (form_reduced) into a pattern
