@@ -5,10 +5,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
 
 #include "core/option_check.hpp"
-#include "core/umfpack_lu.hpp"
 
 namespace plumekit::cfd {
 
@@ -29,6 +28,13 @@ constexpr int kAndersonDepth = 4;
 // fields (project_start) on grids with at least this many unknowns: above every
 // 10 x 4 m map's 5 cm grid (44 150), whose flows keep their bytes.
 constexpr int kProjectFrom = 50000;
+// The projection's conjugate-gradient iterations (Jacobi preconditioner). The
+// divergence to remove sits where the fine grid's obstacles differ from the
+// coarse grid's, and the first iterations remove it: 40 leave 3 % (depot) to
+// 26 % (tb3_world) of it, and Newton then needs no more steps than after the
+// exact projection (CHOLMOD), fewer on tb3_world (16 against 21), for a fifth
+// of its time (0.08 s against 0.45 s at 5 cm).
+constexpr int kProjectIterations = 40;
 
 double since(Newton::Clock::time_point t) {
   return std::chrono::duration<double>(Newton::Clock::now() - t).count();
@@ -140,22 +146,17 @@ void Newton::project_start() {
   // momentum one), and the line search then cuts the first steps short or
   // rejects them: depot at 5 cm lost three fine factorizations, and its 10 cm
   // grid found no central flow at all. The nearest velocity that satisfies
-  // continuity is u - D'l with D D' l = D u + c (a cell Laplacian, CHOLMOD).
+  // continuity is u - D'l with D D' l = D u + c, a cell Laplacian, solved
+  // only roughly (kProjectIterations): Newton's first step satisfies
+  // continuity exactly anyway.
   if (!grid_.has_outflow()) return;  // a closed box pins one pressure instead
   const Eigen::SparseMatrix<double> d = equations_.continuity_matrix();
   const Eigen::SparseMatrix<double> dd = d * d.transpose();
-  Eigen::VectorXd lambda;
-  {
-    const auto turn = blas_turn();
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> llt;
-    // AMD alone: METIS's nested dissection was no faster to factor and took
-    // 0.6 s more to order (depot, 5 cm).
-    llt.cholmod().nmethods = 1;
-    llt.cholmod().method[0].ordering = CHOLMOD_AMD;
-    llt.compute(dd);
-    if (llt.info() != Eigen::Success) return;  // keep the start as it is
-    lambda = llt.solve(f_.tail(n_ - n_mom_));
-  }
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+  cg.setMaxIterations(kProjectIterations);
+  cg.compute(dd);
+  const Eigen::VectorXd lambda = cg.solve(f_.tail(n_ - n_mom_));
+  if (!lambda.allFinite()) return;  // keep the start as it is
   x_.head(n_mom_) -= d.transpose() * lambda;
   evaluate_residual();
 }
