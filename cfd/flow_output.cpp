@@ -16,7 +16,7 @@ namespace plumekit::cfd {
 nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
                                     const FlowOptions& options) {
   nlohmann::ordered_json j;
-  j["format"] = "plumekit-wind/1";
+  j["format"] = kWindFormat;
   j["grid"] = {{"nx", s.nx},
                {"ny", s.ny},
                {"dx", s.dx},

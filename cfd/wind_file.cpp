@@ -20,8 +20,6 @@ std::string map_identity(const Map& map) {
 
 namespace {
 
-constexpr const char* kWindFormat = "plumekit-wind/1";
-
 [[noreturn]] void refuse(const fs::path& file, const std::string& why) {
   throw InputError(file.string() + ": " + why);
 }
@@ -34,10 +32,12 @@ std::vector<double> read_array(const fs::path& dir, const nlohmann::json& sums,
   if (!fs::is_regular_file(file, ec)) refuse(file, "missing (every plumekit flow output has it)");
   if (!sums.contains(name) || !sums.at(name).is_string())
     refuse(dir / "wind.json", "arrays_sha256." + name + " is missing");
-  if (sha256_file(file) != sums.at(name).get<std::string>())
+  // One read: the bytes checked are the bytes parsed.
+  const std::string bytes = read_file(file);
+  if (sha256_hex(bytes) != sums.at(name).get<std::string>())
     refuse(file, "does not match its SHA-256 in wind.json (arrays_sha256." + name +
                      "): the file is damaged or was changed; solve the wind again");
-  NpyArray a = read_npy(file);
+  NpyArray a = parse_npy(bytes, file);
   if (a.shape != std::vector<std::size_t>{rows, cols})
     refuse(file, "shape does not match the grid in wind.json (expected (" + std::to_string(rows) +
                      ", " + std::to_string(cols) + "))");

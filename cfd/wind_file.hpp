@@ -12,6 +12,9 @@
 
 namespace plumekit::cfd {
 
+// wind.json's "format", which `plumekit flow` writes and read_wind requires.
+inline constexpr const char* kWindFormat = "plumekit-wind/1";
+
 // The `--wind DIR` option's help (plume, localize).
 inline constexpr const char* kWindHelp =
     "Use the wind in this folder (what `plumekit flow MAP --out DIR` wrote for this map, with "

@@ -62,13 +62,16 @@ std::string npy_float32(const std::vector<double>& values, const std::vector<std
 }
 
 NpyArray read_npy(const std::filesystem::path& path) {
-  const std::string bytes = read_file(path);
+  return parse_npy(read_file(path), path);
+}
+
+NpyArray parse_npy(std::string_view bytes, const std::filesystem::path& path) {
   auto bad = [&](const std::string& what) { throw InputError(path.string() + ": " + what); };
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) bad("not an .npy file");
   const std::size_t len =
       static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8);
   if (bytes[6] != 1 || bytes.size() < 10 + len) bad("unsupported .npy version or truncated header");
-  const std::string dict = bytes.substr(10, len);
+  const std::string dict(bytes.substr(10, len));
   const bool f4 = dict.find("'descr': '<f4'") != std::string::npos;
   const bool f8 = dict.find("'descr': '<f8'") != std::string::npos;
   if (!f4 && !f8) bad("only little-endian float32/float64 arrays are read");

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace plumekit {
@@ -23,5 +24,8 @@ struct NpyArray {
 
 // Reads a float32 or float64 C-order array; InputError naming the file otherwise.
 NpyArray read_npy(const std::filesystem::path& path);
+// The same from a file's bytes already read (to check them and parse the very
+// bytes checked); `path` only names the file in messages.
+NpyArray parse_npy(std::string_view bytes, const std::filesystem::path& path);
 
 }  // namespace plumekit

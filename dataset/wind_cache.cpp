@@ -62,16 +62,21 @@ std::optional<cfd::WindField> read_wind_cache(const fs::path& dir, const Map& ma
     const auto j = nlohmann::json::parse(read_file(dir / "wind.json"));
     // An older cache carries no checksums: it cannot be trusted, so it is solved again.
     if (j.at("format") != kWindCacheFormat) return std::nullopt;
-    for (const char* name : {"face_u.npy", "face_v.npy", "u.npy", "v.npy", "solid.npy"})
-      if (!fs::is_regular_file(dir / name, ec) ||
-          sha256_file(dir / name) != j.at("sha256").at(name).get<std::string>())
+    // Each file is read once: the bytes checked are the bytes parsed.
+    std::map<std::string, std::string> bytes;
+    for (const char* name : {"face_u.npy", "face_v.npy", "u.npy", "v.npy", "solid.npy"}) {
+      if (!fs::is_regular_file(dir / name, ec)) return std::nullopt;
+      bytes[name] = read_file(dir / name);
+      if (sha256_hex(bytes[name]) != j.at("sha256").at(name).get<std::string>())
         return std::nullopt;
+    }
     const GridShape g{j.at("grid").at("nx").get<int>(), j.at("grid").at("ny").get<int>(),
                       j.at("grid").at("width").get<double>(),
                       j.at("grid").at("height").get<double>()};
     if (g.nx < 1 || g.ny < 1 || g.width != map.width || g.height != map.height) return std::nullopt;
-    NpyArray fu = read_npy(dir / "face_u.npy"), fv = read_npy(dir / "face_v.npy");
-    NpyArray solid = read_npy(dir / "solid.npy");
+    NpyArray fu = parse_npy(bytes["face_u.npy"], dir / "face_u.npy");
+    NpyArray fv = parse_npy(bytes["face_v.npy"], dir / "face_v.npy");
+    NpyArray solid = parse_npy(bytes["solid.npy"], dir / "solid.npy");
     if (fu.shape != std::vector<std::size_t>{std::size_t(g.ny), std::size_t(g.nx) + 1} ||
         fv.shape != std::vector<std::size_t>{std::size_t(g.ny) + 1, std::size_t(g.nx)} ||
         solid.shape != std::vector<std::size_t>{std::size_t(g.ny), std::size_t(g.nx)})
