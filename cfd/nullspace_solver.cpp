@@ -256,8 +256,8 @@ bool NullSpaceSolver::operators_check(const GridShape& s,
       for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(curl_rows, row.col[e]);
            it; ++it) {
         const int g = static_cast<int>(it.col());
-        auto at =
-            std::find_if(sums.begin(), sums.end(), [g](const auto& s) { return s.first == g; });
+        auto at = std::find_if(sums.begin(), sums.end(),
+                               [g](const auto& slot) { return slot.first == g; });
         if (at == sums.end()) at = sums.insert(sums.end(), {g, 0.0});
         at->second += row.coef[e] * it.value();
       }
