@@ -83,6 +83,8 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
                     compact(ste::SurrogatePlumeOptions{}.source_cell) + " for the surrogate, " +
                     compact(o.physics.source_cell) + " for physics)",
                 "ste.source_cell");
+  bind_to(cmd, "--diffusivity", o.physics.advection_diffusion.diffusivity,
+          "Eddy diffusivity of the physics model, m^2/s", "plume.diffusivity");
   bind_field(cmd,
              bind_field(cmd,
                         cmd->add_option_function<std::string>(
@@ -123,9 +125,25 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              "expected information gain over the posterior's sources)")
           ->default_str(ste::to_string(o.navigation.reward)),
       "ste.navigation.reward");
+  bind_field(
+      cmd,
+      cmd->add_option_function<std::string>(
+             "--candidates",
+             [&o](const std::string& s) { o.navigation.candidates = ste::parse_candidates(s); },
+             "Where the robot may go next: lattice (moves around it, the thesis's) or "
+             "floor (goals over the whole reachable floor, ranked by expected gain per "
+             "second of travel and sampling)")
+          ->default_str(ste::to_string(o.navigation.candidates)),
+      "ste.navigation.candidates");
+  bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,
+          "Spacing of the floor's goals, m (--candidates floor)", "ste.navigation.floor_spacing");
   bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
   bind_to(cmd, "--max-samples", o.stop.max_samples, "Stop after this many samples",
           "ste.stop.max_samples");
+  bind_to(cmd, "--seen-mass", o.stop.seen_mass,
+          "Stop on entropy only with this share of the posterior on sources the samples could "
+          "tell from no source (0: also declare sources whose plume reached no sample)",
+          "ste.stop.seen_mass");
   bind_to(cmd, "--cell", o.flow.cell, cfd::kCellHelp, "flow.cell");
 }
 

@@ -140,7 +140,7 @@ Posterior GridEstimator::posterior() {
   const GridShape& g = model_.candidates();
   Posterior post;
   post.marginal = Grid<double>(g, 0.0);
-  double ex = 0.0, ey = 0.0, es = 0.0, best = -kInf;
+  double ex = 0.0, ey = 0.0, es = 0.0, best = -kInf, seen = 0.0;
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
       const std::size_t k = g.index(i, j);
@@ -154,10 +154,12 @@ Posterior GridEstimator::posterior() {
                      ? scale_lo_
                      : mean_scale(sums_.a[k], sums_.b[k], 1.0, scale_lo_, scale_hi_));
       if (l[k] > best) best = l[k], post.map = c;
+      if (sums_.a[k] >= Posterior::kSeenSigmas * Posterior::kSeenSigmas) seen += w;
     }
   post.expected = {ex, ey, es};
   post.entropy = entropy_on_bins(post.marginal, bins_);
   post.max_entropy = max_entropy_;
+  post.seen_mass = seen;
   return post;
 }
 
@@ -177,9 +179,35 @@ double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
   return std::max(0.0, kl);
 }
 
+std::vector<std::pair<std::size_t, double>> GridEstimator::gain_support(
+    const std::vector<double>& w, int max_cells) {
+  std::vector<std::pair<std::size_t, double>> support;
+  for (std::size_t k = 0; k < w.size(); ++k)
+    if (w[k] > 0.0) support.emplace_back(k, w[k]);
+  if (support.size() <= static_cast<std::size_t>(max_cells)) return support;
+  // Systematic resampling: the cells at the quantiles (j + 1/2) / N of the cumulative mass, each
+  // weighted by the quantiles it takes.
+  std::vector<std::pair<std::size_t, double>> picked;
+  double cum = 0.0;
+  int j = 0;
+  for (const auto& [k, weight] : support) {
+    cum += weight;
+    int hits = 0;
+    while (j < max_cells && (j + 0.5) / max_cells <= cum)
+      ++j, ++hits;
+    if (hits > 0) picked.emplace_back(k, static_cast<double>(hits) / max_cells);
+  }
+  return picked;
+}
+
 double GridEstimator::expected_information_gain(Vec2 p, const Posterior& current) const {
-  const std::vector<double> r = model_.readings_at(p);
-  const std::vector<double> spread = spreads_at(p);
+  return expected_information_gains({p}, current, 0).front();
+}
+
+std::vector<double> GridEstimator::expected_information_gains(const std::vector<Vec2>& points,
+                                                              const Posterior& current,
+                                                              int max_cells) const {
+  std::vector<double> gains(points.size(), 0.0);
   const std::vector<double>& w = current.marginal.values;
   const double s = current.expected.at(2);
   // The hypotheses: the cells at the quantiles (j + 1/2) / J of the cumulative mass; a cell hit
@@ -194,40 +222,58 @@ double GridEstimator::expected_information_gain(Vec2 p, const Posterior& current
       ++j, ++hits;
     if (hits > 0) picks.emplace_back(k, hits);
   }
-  if (picks.empty()) return 0.0;
+  if (picks.empty() || points.empty()) return gains;
+  const auto support = gain_support(w, max_cells > 0 ? max_cells : static_cast<int>(w.size()));
   // For a reading z, Q_k = P_k L_k(z) / Z and KL(Q || P) = sum_k Q_k log L_k - log Z. A cell's
-  // prediction and variance do not depend on z: they are computed once, for the cells with mass.
+  // prediction and variance do not depend on z: they are computed once per point.
   struct Cell {
     double weight, mean, inv_var, log_var;
   };
   std::vector<Cell> cells;
-  for (std::size_t k = 0; k < w.size(); ++k) {
-    if (w[k] <= 0.0) continue;
-    const double mean = s * r[k];
-    const double var = likelihood_.variance(mean, spread.empty() ? 0.0 : s * spread[k]);
-    cells.push_back({w[k], mean, 1.0 / var, likelihood_.variance_varies() ? std::log(var) : 0.0});
-  }
-  std::vector<double> ll(cells.size());
-  double gain = 0.0;
-  int counted = 0;
-  for (const auto& [pick, hits] : picks) {
-    const double z = s * r[pick];
-    double top = -kInf;
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const double d = z - cells[k].mean;
-      ll[k] = -0.5 * (d * d * cells[k].inv_var + cells[k].log_var);
-      top = std::max(top, ll[k]);
+  std::vector<double> ll(support.size());
+  const double var0 = likelihood_.variance(0.0, 0.0);
+  const Cell silent{0.0, 0.0, 1.0 / var0, likelihood_.variance_varies() ? std::log(var0) : 0.0};
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::vector<double> r = model_.readings_at(points[i]);
+    const std::vector<double> spread = spreads_at(points[i]);
+    cells.clear();
+    // Approximate (max_cells > 0): the cells whose plume does not reach the point (a prediction
+    // and spread below 1e-4 sigma) are one cell, the silent one, of their summed weight.
+    Cell quiet = silent;
+    const double faint = 1e-4 * std::sqrt(var0);
+    for (const auto& [k, weight] : support) {
+      const double mean = s * r[k], sd = spread.empty() ? 0.0 : s * spread[k];
+      if (max_cells > 0 && std::abs(mean) < faint && sd < faint) {
+        quiet.weight += weight;
+        continue;
+      }
+      const double var = likelihood_.variance(mean, sd);
+      cells.push_back(
+          {weight, mean, 1.0 / var, likelihood_.variance_varies() ? std::log(var) : 0.0});
     }
-    double z_sum = 0.0, q_ll = 0.0;
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const double q = cells[k].weight * std::exp(ll[k] - top);
-      z_sum += q;
-      q_ll += q * (ll[k] - top);
+    if (quiet.weight > 0.0) cells.push_back(quiet);
+    double gain = 0.0;
+    int counted = 0;
+    for (const auto& [pick, hits] : picks) {
+      const double z = s * r[pick];
+      double top = -kInf;
+      for (std::size_t k = 0; k < cells.size(); ++k) {
+        const double d = z - cells[k].mean;
+        ll[k] = -0.5 * (d * d * cells[k].inv_var + cells[k].log_var);
+        top = std::max(top, ll[k]);
+      }
+      double z_sum = 0.0, q_ll = 0.0;
+      for (std::size_t k = 0; k < cells.size(); ++k) {
+        const double q = cells[k].weight * std::exp(ll[k] - top);
+        z_sum += q;
+        q_ll += q * (ll[k] - top);
+      }
+      gain += hits * std::max(0.0, q_ll / z_sum - std::log(z_sum));
+      counted += hits;
     }
-    gain += hits * std::max(0.0, q_ll / z_sum - std::log(z_sum));
-    counted += hits;
+    gains[i] = gain / counted;
   }
-  return gain / counted;
+  return gains;
 }
 
 }  // namespace plumekit::ste

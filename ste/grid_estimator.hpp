@@ -31,6 +31,16 @@ class GridEstimator final : public Estimator {
   // mass (deterministic), each reading its noise-free prediction at p at the expected scale.
   double expected_information_gain(Vec2 p, const Posterior& current) const override;
   static constexpr int hypotheses = 32;
+  // The expected gains of a set of points. With max_cells > 0 (scoring hundreds of goals over a
+  // floor), approximately: over at most max_cells cells, drawn from the posterior by systematic
+  // resampling when it has more (each weighted by its share of the draws), and with the cells
+  // whose plume does not reach a point merged into one. With 0, exactly (every cell with mass).
+  std::vector<double> expected_information_gains(const std::vector<Vec2>& points,
+                                                 const Posterior& current,
+                                                 int max_cells) const override;
+  // The cells an expected gain sums over, with their weights (the posterior's, or the draws').
+  static std::vector<std::pair<std::size_t, double>> gain_support(const std::vector<double>& w,
+                                                                  int max_cells);
 
   // The normalised log-likelihood of each cell for given sufficient statistics
   // (-inf where the prior is zero). Exposed for tests.

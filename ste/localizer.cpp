@@ -19,6 +19,13 @@ double thread_cpu_s() {
 
 }  // namespace
 
+std::string stop_reason(const Posterior& posterior, int samples, const StopOptions& stop) {
+  if (posterior.entropy < stop.entropy_fraction * posterior.max_entropy &&
+      posterior.seen_mass >= stop.seen_mass)
+    return "entropy";
+  return samples >= stop.max_samples ? "max_samples" : "";
+}
+
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,
                             const StopOptions& stop) {
@@ -43,10 +50,7 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
     s.estimate = r.posterior.expected_source();
     s.map = r.posterior.map;
     s.entropy = r.posterior.entropy;
-    if (r.posterior.entropy < stop.entropy_fraction * r.posterior.max_entropy)
-      r.stopped_by = "entropy";
-    else if (estimator.samples() >= stop.max_samples)
-      r.stopped_by = "max_samples";
+    r.stopped_by = stop_reason(r.posterior, estimator.samples(), stop);
     planner::PlanResult path;
     if (r.stopped_by.empty()) {
       const Decision d = navigator.decide(pos, estimator, r.posterior);

@@ -16,6 +16,10 @@ namespace plumekit::ste {
 
 struct StopOptions {
   double entropy_fraction = 0.02;  // stop below 2 % of the maximum entropy
+  // ... and only when at least this share of the posterior's mass is on sources the samples
+  // could tell from no source (Posterior::seen_mass): a certain posterior on sources whose plume
+  // reaches no sample says only that nothing was read.
+  double seen_mass = 0.95;
   int max_samples = 50;
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
@@ -46,6 +50,10 @@ struct LocalizationResult {
   std::vector<Step> steps;
   Posterior posterior;
 };
+
+// Why the run stops after `samples` samples with this posterior: "entropy", "max_samples", or ""
+// (it goes on).
+std::string stop_reason(const Posterior& posterior, int samples, const StopOptions& stop);
 
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,

@@ -8,35 +8,107 @@
 
 namespace plumekit::ste {
 
+namespace {
+
+// The roadmap under the floor's goals is this much finer than they are spread, so that doors and
+// corridors a little wider than the planner's margin still carry a path.
+constexpr double kRoadmapCell = 0.25;  // m, at most
+// Floor goals this close to the robot are its own position, not a move.
+constexpr double kSamePlace = 0.25;  // m
+
+}  // namespace
+
 Navigator::Navigator(const planner::FreeSpace& space, const GridShape& bins,
-                     const NavigationOptions& options)
-    : space_(space), bins_(bins), options_(options), region_(bins.size(), -1) {
+                     const NavigationOptions& options, const MissionPace& pace)
+    : space_(space), bins_(bins), options_(options), pace_(pace), region_(bins.size(), -1) {
   options.validate();
   for (int j = 0; j < bins.ny; ++j)
     for (int i = 0; i < bins.nx; ++i)
       region_[bins.index(i, j)] = space.region_of(bins.centre(i, j));
+  if (options.candidates != NavigationOptions::Candidates::Floor) return;
+  const int stride = std::max(1, static_cast<int>(std::ceil(options.floor_spacing / kRoadmapCell)));
+  roadmap_ = std::make_unique<planner::GridRoadmap>(space, options.floor_spacing / stride);
+  for (std::size_t k = 0; k < roadmap_->size(); ++k)
+    if (roadmap_->column(k) % stride == stride / 2 && roadmap_->row(k) % stride == stride / 2) {
+      floor_goals_.push_back(roadmap_->node(k));
+      floor_goal_node_.push_back(static_cast<int>(k));
+    }
+}
+
+Navigator::~Navigator() = default;
+
+std::vector<double> Navigator::gains(const std::vector<Vec2>& points, const Estimator& estimator,
+                                     const Posterior& posterior, int max_cells) const {
+  if (options_.reward == NavigationOptions::Reward::ExpectedGain)
+    return estimator.expected_information_gains(points, posterior, max_cells);
+  std::vector<double> g;
+  for (const Vec2& p : points)
+    g.push_back(estimator.information_gain(p, posterior));
+  return g;
+}
+
+std::vector<Vec2> Navigator::lattice_moves(Vec2 robot) const {
+  const int home = space_.region_of(robot);
+  std::vector<Vec2> moves;
+  const int n = options_.lattice;
+  for (int dj = -n; dj <= n; ++dj)
+    for (int di = -n; di <= n; ++di) {
+      const Vec2 c{robot.x + di * options_.step, robot.y + dj * options_.step};
+      if ((di == 0 && dj == 0) || !space_.contains(c) || space_.region_of(c) != home) continue;
+      moves.push_back(c);
+    }
+  return moves;
 }
 
 Decision Navigator::decide(Vec2 robot, const Estimator& estimator,
                            const Posterior& posterior) const {
+  return roadmap_ ? decide_on_floor(robot, estimator, posterior)
+                  : decide_on_lattice(robot, estimator, posterior);
+}
+
+Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
+                                    const Posterior& posterior) const {
+  Decision d;
+  // The floor's goals, reached along the roadmap. (Not the lattice's moves as well: they are new
+  // points at every step, and for the physics model each would cost an adjoint solve.)
+  std::vector<double> travel;
+  const std::vector<double> roadmap = roadmap_->distances_from(robot);
+  for (std::size_t g = 0; g < floor_goals_.size(); ++g) {
+    const double t = roadmap[floor_goal_node_[g]];
+    if (t == planner::GridRoadmap::kUnreachable || norm(floor_goals_[g] - robot) < kSamePlace)
+      continue;
+    d.candidates.push_back(floor_goals_[g]);
+    travel.push_back(t);
+  }
+  d.gains = gains(d.candidates, estimator, posterior, options_.floor_gain_cells);
+  double best = -1.0, best_gain = 0.0;
+  d.kld_target = robot;
+  for (std::size_t c = 0; c < d.candidates.size(); ++c) {
+    const double per_second = d.gains[c] / (travel[c] / pace_.speed + pace_.sample_s);
+    if (per_second > best)
+      best = per_second, best_gain = d.gains[c], d.kld_target = d.candidates[c];
+  }
+  // Nothing to learn anywhere (every hypothesis predicts the same everywhere): the MAP.
+  if (!(best_gain > 0.0)) {
+    const Vec2 m =
+        space_.contains(posterior.map) ? posterior.map : space_.nearest_free(posterior.map);
+    if (space_.region_of(m) == space_.region_of(robot)) d.kld_target = m;
+  }
+  d.source_target = d.goal = d.kld_target;
+  return d;
+}
+
+Decision Navigator::decide_on_lattice(Vec2 robot, const Estimator& estimator,
+                                      const Posterior& posterior) const {
   Decision d;
   const int home = space_.region_of(robot);
   // V_KLD: the most informative reachable candidate.
+  d.candidates = lattice_moves(robot);
+  d.gains = gains(d.candidates, estimator, posterior, 0);
   double best = -1.0;
   d.kld_target = robot;
-  const int n = options_.lattice;
-  for (int dj = -n; dj <= n; ++dj)
-    for (int di = -n; di <= n; ++di) {
-      if (di == 0 && dj == 0) continue;
-      const Vec2 c{robot.x + di * options_.step, robot.y + dj * options_.step};
-      if (!space_.contains(c) || space_.region_of(c) != home) continue;
-      const double g = options_.reward == NavigationOptions::Reward::Kl
-                           ? estimator.information_gain(c, posterior)
-                           : estimator.expected_information_gain(c, posterior);
-      d.candidates.push_back(c);
-      d.gains.push_back(g);
-      if (g > best) best = g, d.kld_target = c;
-    }
+  for (std::size_t c = 0; c < d.candidates.size(); ++c)
+    if (d.gains[c] > best) best = d.gains[c], d.kld_target = d.candidates[c];
 
   // V_source: the MAP, or the best of beta P_M + (1 - beta) D_I.
   d.source_target = posterior.map;

@@ -17,9 +17,19 @@
 // grid D_I would always pick the cell next to the robot, D_I the normalised inverse
 // distance from the robot (0 on its own cell); or the MAP (section 7.3). A
 // goal that falls outside free space is moved to the nearest free point.
+//
+// On a floor of rooms the lattice is not enough: a robot that reads nothing
+// scores every nearby move alike and stays in its room. With `candidates =
+// Floor` the robot instead considers goals spread over the whole reachable
+// floor (a lattice of `floor_spacing` metres, on a roadmap of the free space),
+// and goes straight to the goal with the most expected information per second
+// of mission, gain / (travel time + sampling time), with the travel along the
+// roadmap (ste/README.md, "Floors").
+#include <memory>
 #include <vector>
 
 #include "planner/free_space.hpp"
+#include "planner/grid_roadmap.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::ste {
@@ -36,6 +46,13 @@ struct NavigationOptions {
   // expected source (eq. 7.6), or the expected information gain over sources drawn from the
   // posterior (Estimator::expected_information_gain).
   enum class Reward { Kl, ExpectedGain } reward = Reward::ExpectedGain;
+  // Where candidates come from: the lattice of moves around the robot (the thesis's), or goals
+  // spread over the whole reachable floor, each ranked by expected gain per second (Floor).
+  enum class Candidates { Lattice, Floor } candidates = Candidates::Lattice;
+  double floor_spacing = 1.0;  // m, between the floor's goals (Floor)
+  // Floor: each goal's expected gain sums over at most this many of the posterior's cells (drawn
+  // from it), so that a decision over hundreds of goals stays within 0.1 s.
+  int floor_gain_cells = 512;
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
 };
@@ -47,19 +64,43 @@ struct Decision {
   std::vector<double> gains;     // their KL divergences, nats
 };
 
+// What a move costs in mission time (Floor candidates): travel at `speed`, then a sample.
+struct MissionPace {
+  double speed = 0.5;     // m/s
+  double sample_s = 5.0;  // s per sample
+};
+
 class Navigator {
  public:
   // `bins`: where P_M and D_I are combined (the posterior bins).
   Navigator(const planner::FreeSpace& space, const GridShape& bins,
-            const NavigationOptions& options);
+            const NavigationOptions& options, const MissionPace& pace = {});
+  ~Navigator();
   Decision decide(Vec2 robot, const Estimator& estimator, const Posterior& posterior) const;
   const NavigationOptions& options() const { return options_; }
+  // The floor's goals (Floor candidates; empty otherwise): fixed points, so a plume model can
+  // tabulate its readings there once per map.
+  const std::vector<Vec2>& floor_goals() const { return floor_goals_; }
 
  private:
+  Decision decide_on_lattice(Vec2 robot, const Estimator& estimator,
+                             const Posterior& posterior) const;
+  Decision decide_on_floor(Vec2 robot, const Estimator& estimator,
+                           const Posterior& posterior) const;
+  // The lattice's moves around the robot that stay in its piece of free space.
+  std::vector<Vec2> lattice_moves(Vec2 robot) const;
+  // max_cells: the estimator's budget per point (0: exact).
+  std::vector<double> gains(const std::vector<Vec2>& points, const Estimator& estimator,
+                            const Posterior& posterior, int max_cells) const;
+
   const planner::FreeSpace& space_;
   GridShape bins_;
   NavigationOptions options_;
+  MissionPace pace_;
   std::vector<int> region_;  // per bin: the free-space piece its centre lies in, or -1
+  std::unique_ptr<planner::GridRoadmap> roadmap_;  // Floor: travel distances
+  std::vector<Vec2> floor_goals_;
+  std::vector<int> floor_goal_node_;  // per floor goal: its roadmap node
 };
 
 }  // namespace plumekit::ste

@@ -44,12 +44,17 @@ void NavigationOptions::validate() const {
   check_count("ste.navigation.lattice", lattice, 1, 20, "the default is 2 (5 x 5 candidates)");
   check_non_negative("ste.navigation.alpha", alpha, 1.0, "", "the default is 0.5");
   check_non_negative("ste.navigation.beta", beta, 1.0, "", "the default is 0.75");
+  check_positive("ste.navigation.floor_spacing", floor_spacing, 100.0, "m", "the default is 1 m");
+  check_count("ste.navigation.floor_gain_cells", floor_gain_cells, 16, 1'000'000,
+              "the default is 512");
 }
 
 void StopOptions::validate() const {
   // 1 or more stops after the first sample (a test uses it).
   check_non_negative("ste.stop.entropy_fraction", entropy_fraction, 100.0, "",
                      "the default is 0.02; 1 or more stops after the first sample");
+  check_non_negative("ste.stop.seen_mass", seen_mass, 1.0, "",
+                     "the default is 0.95; 0 declares unseen sources too");
   check_count("ste.stop.max_samples", max_samples, 1, 100'000, "the default is 50");
 }
 

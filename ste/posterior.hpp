@@ -65,6 +65,13 @@ struct Posterior {
   Grid<double> marginal;
   double entropy = 0.0;      // nats, of the marginal aggregated on the bins
   double max_entropy = 0.0;  // log of the number of bins the prior reaches
+  // The posterior's mass on sources that the samples so far could tell from no source at all:
+  // those whose predicted readings at the samples add up to at least kSeenSigmas standard
+  // deviations (sum_i C_i(m)^2 / var_i >= kSeenSigmas^2). A source whose plume reaches none of the
+  // samples is unseen; the stopping rule does not declare one (localizer.hpp). 1 when the
+  // estimator cannot tell (MH).
+  double seen_mass = 1.0;
+  static constexpr double kSeenSigmas = 3.0;
   Vec2 expected_source() const { return {expected.at(0), expected.at(1)}; }
 };
 
@@ -89,6 +96,17 @@ class Estimator {
   // information_gain().
   virtual double expected_information_gain(Vec2 p, const Posterior& current) const {
     return information_gain(p, current);
+  }
+  // The expected information gain at each of `points`, for one decision. max_cells > 0 lets the
+  // estimator approximate within that many hypotheses per point (hundreds of goals over a floor);
+  // 0 asks for the exact gains.
+  virtual std::vector<double> expected_information_gains(const std::vector<Vec2>& points,
+                                                         const Posterior& current,
+                                                         int /*max_cells*/) const {
+    std::vector<double> gains;
+    for (const Vec2& p : points)
+      gains.push_back(expected_information_gain(p, current));
+    return gains;
   }
 };
 

@@ -76,6 +76,7 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
           {"expected_parameters", expected},
           {"entropy", r.posterior.entropy},
           {"max_entropy", r.posterior.max_entropy},
+          {"seen_mass", r.posterior.seen_mass},
           {"start", point_json(f.to_frame(r.start))},
           {"source", point_json(f.to_frame(source))},
           {"wind_s", sc.wind_s()},
@@ -161,8 +162,10 @@ MapFolder read_map_folder(const fs::path& dir) {
   if (!fs::is_directory(dir, ec))
     throw OptionError("evaluation.map_dir", dir.string() + " is not a directory");
   MapFolder f;
+  // Hidden files are not maps: `plumekit maps random --out DIR` leaves its output marker there.
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.path().extension() == ".json") f.files.push_back(e.path());
+    if (e.path().extension() == ".json" && e.path().filename().string()[0] != '.')
+      f.files.push_back(e.path());
   std::sort(f.files.begin(), f.files.end());
   if (f.files.empty())
     throw OptionError("evaluation.map_dir", "no *.json map files in " + dir.string());

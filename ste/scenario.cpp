@@ -10,6 +10,7 @@
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/random.hpp"
+#include "ste/cached_readings.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/seeds.hpp"
 #include "ste/surrogate_plume.hpp"
@@ -111,6 +112,17 @@ NavigationOptions::Reward parse_reward(const std::string& name) {
   throw OptionError("ste.navigation.reward", "unknown reward '" + name + "' (kl or expected)");
 }
 
+const char* to_string(NavigationOptions::Candidates candidates) {
+  return candidates == NavigationOptions::Candidates::Floor ? "floor" : "lattice";
+}
+
+NavigationOptions::Candidates parse_candidates(const std::string& name) {
+  if (name == "lattice") return NavigationOptions::Candidates::Lattice;
+  if (name == "floor") return NavigationOptions::Candidates::Floor;
+  throw OptionError("ste.navigation.candidates",
+                    "unknown candidates '" + name + "' (lattice or floor)");
+}
+
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
   options.validate();
   if (options.model == PlumeModelKind::Physics)
@@ -131,7 +143,24 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
   space_ = std::make_unique<planner::FreeSpace>(map_, po.margin, po.arc_segments);
   if (space_->empty()) throw InputError("map " + map_.name + ": no free space at the margin");
   bins_ = make_bins(map_, options.bins);
-  navigator_ = std::make_unique<Navigator>(*space_, bins_, options.navigation);
+  navigator_ = std::make_unique<Navigator>(
+      *space_, bins_, options.navigation, MissionPace{options.world.speed, options.world.sample_s});
+  // The floor's goals are scored at every decision: their readings are tabulated once here, as
+  // part of the model's build.
+  const auto* table_model = dynamic_cast<const SourceTableModel*>(model_.get());
+  if (!navigator_->floor_goals().empty() && table_model) {
+    t0 = Clock::now();
+    const double goals = static_cast<double>(navigator_->floor_goals().size());
+    const double cells = static_cast<double>(table_model->candidates().size());
+    check_memory(goals * cells * 4.0 * (table_model->has_spreads() ? 2.0 : 1.0),
+                 "the readings at " + compact(goals) + " floor goals for " + compact(cells) +
+                     " source cells",
+                 "use a larger ste.navigation.floor_spacing or ste.source_cell");
+    std::unique_ptr<SourceTableModel> table(static_cast<SourceTableModel*>(model_.release()));
+    model_ = std::make_unique<CachedReadings>(std::move(table), navigator_->floor_goals(),
+                                              options.threads);
+    model_build_s_ += since(t0);
+  }
 }
 
 Scenario::~Scenario() = default;

@@ -88,6 +88,9 @@ struct SteOptions {
 const char* to_string(NavigationOptions::Reward reward);
 // "kl", "expected"; OptionError on ste.navigation.reward otherwise.
 NavigationOptions::Reward parse_reward(const std::string& name);
+const char* to_string(NavigationOptions::Candidates candidates);
+// "lattice", "floor"; OptionError on ste.navigation.candidates otherwise.
+NavigationOptions::Candidates parse_candidates(const std::string& name);
 
 class Scenario {
  public:
@@ -102,7 +105,8 @@ class Scenario {
   const ForwardModel& model() const { return *model_; }
   const planner::FreeSpace& free_space() const { return *space_; }
   double wind_s() const { return wind_s_; }
-  double model_build_s() const { return model_build_s_; }  // plume model / table build
+  // The plume model's build: the surrogate's table, and the readings at the floor's goals.
+  double model_build_s() const { return model_build_s_; }
   bool table_from_cache() const { return table_from_cache_; }
 
   // Checks a true source and a start (OptionError on ste.source / ste.start naming the fault);

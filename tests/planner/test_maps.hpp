@@ -23,6 +23,13 @@ inline Map map_with(std::vector<Polygon> obstacles, double w = 10.0, double h = 
   return m;
 }
 
+// 8 x 4 m, a wall at x = 4 from the floor to y = 3: a 1 m door at the top.
+inline Map two_rooms() {
+  Map m = map_with({rect(3.9, 0.0, 4.1, 3.0)}, 8.0, 4.0);
+  m.name = "two rooms";
+  return m;
+}
+
 // Distance between closed segments [a, b] and [c, d].
 inline double segment_distance(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   if (segments_intersect(a, b, c, d)) return 0.0;

@@ -112,6 +112,14 @@ TEST(SteOptions, DefaultsAreTheSurrogatesAndFollowTheModel) {
   EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.3);
   EXPECT_EQ(parse_reward(to_string(NavigationOptions::Reward::Kl)), NavigationOptions::Reward::Kl);
   expect_option_error([] { parse_reward("greedy"); }, "ste.navigation.reward", "'greedy'");
+  EXPECT_EQ(o.navigation.candidates, NavigationOptions::Candidates::Lattice);
+  EXPECT_EQ(parse_candidates(to_string(NavigationOptions::Candidates::Floor)),
+            NavigationOptions::Candidates::Floor);
+  expect_option_error([] { parse_candidates("rooms"); }, "ste.navigation.candidates", "'rooms'");
+  o.navigation.floor_gain_cells = 8;
+  expect_option_error([&] { o.navigation.validate(); }, "ste.navigation.floor_gain_cells", "got 8");
+  o.stop.seen_mass = 1.5;
+  expect_option_error([&] { o.stop.validate(); }, "ste.stop.seen_mass", "got 1.5");
   expect_option_error([] { parse_plume_model_kind("kriging"); }, "ste.model", "'kriging'");
 }
 

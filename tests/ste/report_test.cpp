@@ -54,6 +54,8 @@ TEST(Report, MapFolderIsReadInNameOrderWithPictureNamesFromTheFiles) {
   std::ofstream(dir / "b map.json") << map;
   std::ofstream(dir / "a.json") << map;
   std::ofstream(dir / "notes.txt") << "not a map";
+  // The output marker `plumekit maps random --out` leaves is not a map.
+  std::ofstream(dir / ".plumekit-output.json") << R"({"format": "plumekit-output/1"})";
   const MapFolder f = read_map_folder(dir);
   ASSERT_EQ(f.maps.size(), 2u);
   EXPECT_EQ(f.files[0].filename(), "a.json");

@@ -53,6 +53,23 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --reward greedy");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--reward: unknown reward 'greedy'"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --candidates rooms");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--candidates: unknown candidates 'rooms' (lattice or floor)"),
+            std::string::npos)
+      << r.err;
+  r = run("localize " + map +
+          " --source 4.2,1.3 --plume-model physics --candidates floor --floor-spacing -1");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--floor-spacing: must be a finite number more than 0"), std::string::npos)
+      << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --seen-mass 2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--seen-mass:"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --diffusivity 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--diffusivity: must be a finite number more than 0"), std::string::npos)
+      << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --lattice 0");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--lattice: must be a whole number from 1 to 20, got 0"), std::string::npos)

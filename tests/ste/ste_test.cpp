@@ -281,7 +281,8 @@ TEST(Localize, EntropyStopTriggersAtTheThreshold) {
   const Map map = small_map();
   SteOptions o;
   o.model = PlumeModelKind::Physics;
-  o.stop.entropy_fraction = 1.01;  // above the maximum: the first sample stops it
+  o.stop.entropy_fraction = 1.01;  // above the maximum: the first sample stops it ...
+  o.stop.seen_mass = 0.0;          // ... even where its plume reaches no sample
   const Scenario sc(map, o);
   const LocalizationResult r = sc.run({4.2, 1.3}, {0.8, 2.2}, 5);
   EXPECT_EQ(r.samples, 1);

@@ -1,0 +1,66 @@
+// The grid roadmap: travel distances over a floor, through doors, and none
+// into a sealed room.
+#include "planner/grid_roadmap.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/map.hpp"
+#include "test_maps.hpp"
+
+namespace plumekit::planner {
+namespace {
+
+using testing::two_rooms;
+
+std::size_t nearest_node(const GridRoadmap& r, Vec2 p) {
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < r.size(); ++k)
+    if (norm(r.node(k) - p) < norm(r.node(best) - p)) best = k;
+  return best;
+}
+
+TEST(GridRoadmap, OpenFloorDistancesAreWithinTheLatticeBoundOfStraightLines) {
+  const FreeSpace space(default_arena(6.0, 4.0), 0.15, 8);
+  const GridRoadmap roadmap(space, 0.25);
+  ASSERT_GT(roadmap.size(), 300u);
+  const Vec2 from{0.6, 0.7};
+  const std::vector<double> d = roadmap.distances_from(from);
+  for (std::size_t k = 0; k < roadmap.size(); ++k) {
+    const double straight = norm(roadmap.node(k) - from);
+    EXPECT_GE(d[k], straight - 1e-12);
+    // Eight directions: at most 1 / cos(22.5 deg) of the straight line, plus the first hop.
+    EXPECT_LE(d[k], 1.0824 * straight + 0.25 * std::sqrt(2.0)) << k;
+  }
+}
+
+TEST(GridRoadmap, TheWayIntoTheNextRoomGoesThroughTheDoor) {
+  const FreeSpace space(two_rooms(), 0.15, 8);
+  const GridRoadmap roadmap(space, 0.25);
+  const std::vector<double> d = roadmap.distances_from({2.0, 0.5});
+  const std::size_t across = nearest_node(roadmap, {6.0, 0.5});
+  // Straight across is 4 m. The shortest path rounds the wall's end, inflated by the 0.15 m
+  // margin: up to (3.75, 3.15), across to (4.25, 3.15), down again.
+  const double shortest = 2.0 * std::hypot(1.75, 2.65) + 0.5;
+  EXPECT_GT(d[across], shortest - 1e-9);
+  EXPECT_LT(d[across], 1.0824 * shortest + 0.25 * std::sqrt(2.0));
+}
+
+TEST(GridRoadmap, ASealedRoomIsUnreachable) {
+  Map m = two_rooms();
+  m.obstacles[0] = {{3.9, 0.0}, {4.1, 0.0}, {4.1, 4.0}, {3.9, 4.0}};  // no door
+  const FreeSpace space(m, 0.15, 8);
+  const GridRoadmap roadmap(space, 0.25);
+  const std::vector<double> d = roadmap.distances_from({2.0, 2.0});
+  for (std::size_t k = 0; k < roadmap.size(); ++k) {
+    if (roadmap.node(k).x > 4.0)
+      EXPECT_EQ(d[k], GridRoadmap::kUnreachable);
+    else
+      EXPECT_LT(d[k], 8.0);
+  }
+  EXPECT_THROW(GridRoadmap(space, 0.0), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace plumekit::planner
