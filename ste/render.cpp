@@ -42,10 +42,10 @@ std::string source_label(const RunToDraw& run) {
 
 // "<map>: <model>, source S1 run 3", the part every picture of a run shares.
 std::string run_heading(const Map& map, const RunToDraw& run) {
-  std::string s =
-      (map.name.empty() ? "map" : map.name) + ": " + run.model + ", source " +
-      (run.source_index >= 0 ? source_label(run)
-                             : "(" + fmt(run.source.x) + ", " + fmt(run.source.y) + ")");
+  const Vec2 source = map.to_frame(run.source);  // what the user typed: the map's frame
+  std::string s = (map.name.empty() ? "map" : map.name) + ": " + run.model + ", source " +
+                  (run.source_index >= 0 ? source_label(run)
+                                         : "(" + fmt(source.x) + ", " + fmt(source.y) + ")");
   if (run.run >= 0) s += " run " + std::to_string(run.run);
   return s;
 }

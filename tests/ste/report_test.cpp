@@ -1,6 +1,7 @@
 // What the STE commands report: the picture of a map's median run says which
 // run it shows and the map's median apart (test-8 once read "S1 ... 1.88 m"
-// over a median of 3.07 m), and a map folder is read in name order.
+// over a median of 3.07 m), a single run's title gives its source in the map frame, and a map
+// folder is read in name order.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/error.hpp"
+#include "ste/render.hpp"
 #include "ste/report.hpp"
 
 namespace plumekit::ste {
@@ -61,6 +63,29 @@ TEST(Report, MapFolderIsReadInNameOrderWithPictureNamesFromTheFiles) {
   EXPECT_EQ(f.files[0].filename(), "a.json");
   EXPECT_EQ(f.picture_names, (std::vector<std::string>{"a.png", "b_map.png"}));
   fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace plumekit::ste
+
+namespace plumekit::ste {
+namespace {
+
+TEST(Report, ATrajectoryTitleGivesTheSourceInTheMapFrame) {
+  Map map = default_arena(30.0, 15.0);
+  map.name = "depot";
+  map.frame.origin = {-7.0, -8.0};
+  LocalizationResult result;
+  result.estimate = {8.0, 10.0};  // arena coordinates, as the loop keeps them
+  result.samples = 3;
+  result.stopped_by = "entropy";
+  RunToDraw run;
+  run.result = &result;
+  run.source = {8.0, 10.0};  // (1, 2) in the map's frame
+  run.model = "physics";
+  EXPECT_EQ(
+      trajectory_title(map, run).rfind("depot: physics, source (1.00, 2.00): error 0.00 m", 0), 0u)
+      << trajectory_title(map, run);
 }
 
 }  // namespace
