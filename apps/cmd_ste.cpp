@@ -131,8 +131,8 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              "--candidates",
              [&o](const std::string& s) { o.navigation.candidates = ste::parse_candidates(s); },
              "Where the robot may go next: lattice (moves around it, the thesis's) or "
-             "floor (goals over the whole reachable floor, ranked by expected gain per "
-             "second of travel and sampling)")
+             "floor (also goals over the whole reachable floor, taken when one offers more "
+             "than twice the moves' expected gain per second of travel and sampling)")
           ->default_str(ste::to_string(o.navigation.candidates)),
       "ste.navigation.candidates");
   bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,

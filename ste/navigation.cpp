@@ -15,6 +15,9 @@ namespace {
 constexpr double kRoadmapCell = 0.25;  // m, at most
 // Floor goals this close to the robot are its own position, not a move.
 constexpr double kSamePlace = 0.25;  // m
+// The robot leaves its lattice's moves for a floor goal that offers this many times their best
+// expected gain per second.
+constexpr double kLeaveFactor = 2.0;
 
 }  // namespace
 
@@ -68,33 +71,34 @@ Decision Navigator::decide(Vec2 robot, const Estimator& estimator,
 
 Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
                                     const Posterior& posterior) const {
-  Decision d;
-  // The floor's goals, reached along the roadmap. (Not the lattice's moves as well: they are new
-  // points at every step, and for the physics model each would cost an adjoint solve.)
+  // The thesis's decision first: its moves, and its pull towards the posterior's peak.
+  Decision d = decide_on_lattice(robot, estimator, posterior);
+  double local_rate = 0.0;
+  for (std::size_t c = 0; c < d.candidates.size(); ++c)
+    local_rate = std::max(
+        local_rate, d.gains[c] / (norm(d.candidates[c] - robot) / pace_.speed + pace_.sample_s));
+  // The floor's goals, reached along the roadmap.
+  std::vector<Vec2> goals;
   std::vector<double> travel;
   const std::vector<double> roadmap = roadmap_->distances_from(robot);
   for (std::size_t g = 0; g < floor_goals_.size(); ++g) {
     const double t = roadmap[floor_goal_node_[g]];
     if (t == planner::GridRoadmap::kUnreachable || norm(floor_goals_[g] - robot) < kSamePlace)
       continue;
-    d.candidates.push_back(floor_goals_[g]);
+    goals.push_back(floor_goals_[g]);
     travel.push_back(t);
   }
-  d.gains = gains(d.candidates, estimator, posterior, options_.floor_gain_cells);
-  double best = -1.0, best_gain = 0.0;
-  d.kld_target = robot;
-  for (std::size_t c = 0; c < d.candidates.size(); ++c) {
-    const double per_second = d.gains[c] / (travel[c] / pace_.speed + pace_.sample_s);
-    if (per_second > best)
-      best = per_second, best_gain = d.gains[c], d.kld_target = d.candidates[c];
+  const std::vector<double> g = gains(goals, estimator, posterior, options_.floor_gain_cells);
+  double best = 0.0;
+  Vec2 away = robot;
+  for (std::size_t c = 0; c < goals.size(); ++c) {
+    const double rate = g[c] / (travel[c] / pace_.speed + pace_.sample_s);
+    if (rate > best) best = rate, away = goals[c];
   }
-  // Nothing to learn anywhere (every hypothesis predicts the same everywhere): the MAP.
-  if (!(best_gain > 0.0)) {
-    const Vec2 m =
-        space_.contains(posterior.map) ? posterior.map : space_.nearest_free(posterior.map);
-    if (space_.region_of(m) == space_.region_of(robot)) d.kld_target = m;
-  }
-  d.source_target = d.goal = d.kld_target;
+  d.candidates.insert(d.candidates.end(), goals.begin(), goals.end());
+  d.gains.insert(d.gains.end(), g.begin(), g.end());
+  // Leave the neighbourhood only for clearly more information per second than it offers.
+  if (best > kLeaveFactor * local_rate) d.kld_target = d.source_target = d.goal = away;
   return d;
 }
 

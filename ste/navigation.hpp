@@ -20,11 +20,11 @@
 //
 // On a floor of rooms the lattice is not enough: a robot that reads nothing
 // scores every nearby move alike and stays in its room. With `candidates =
-// Floor` the robot instead considers goals spread over the whole reachable
-// floor (a lattice of `floor_spacing` metres, on a roadmap of the free space),
-// and goes straight to the goal with the most expected information per second
-// of mission, gain / (travel time + sampling time), with the travel along the
-// roadmap (ste/README.md, "Floors").
+// Floor` the robot also scores goals spread over the whole reachable floor (a
+// lattice of `floor_spacing` metres, on a roadmap of the free space) by expected
+// information per second of mission, gain / (travel time + sampling time), and
+// leaves the lattice's decision for the best goal when it offers clearly more
+// than the best move (ste/README.md, "Floors").
 #include <memory>
 #include <vector>
 
@@ -46,8 +46,8 @@ struct NavigationOptions {
   // expected source (eq. 7.6), or the expected information gain over sources drawn from the
   // posterior (Estimator::expected_information_gain).
   enum class Reward { Kl, ExpectedGain } reward = Reward::ExpectedGain;
-  // Where candidates come from: the lattice of moves around the robot (the thesis's), or goals
-  // spread over the whole reachable floor, each ranked by expected gain per second (Floor).
+  // Where candidates come from: the lattice of moves around the robot (the thesis's), or also
+  // goals spread over the whole reachable floor, ranked by expected gain per second (Floor).
   enum class Candidates { Lattice, Floor } candidates = Candidates::Lattice;
   double floor_spacing = 1.0;  // m, between the floor's goals (Floor)
   // Floor: each goal's expected gain sums over at most this many of the posterior's cells (drawn
