@@ -22,6 +22,9 @@ Report plume_report(const PlumeRun& run, const PlumeTargets& t) {
     r.json["filament"] = {{"spinup_s", t.filament.spinup_s},
                           {"steady", t.filament.steady},
                           {"filaments_at_end", t.filament.filaments_at_end},
+                          {"released", t.filament.released},
+                          {"left_through_outlet", t.filament.left_through_outlet},
+                          {"dropped_too_wide", t.filament.dropped_too_wide},
                           {"rejected_moves", t.filament.rejected_moves}};
   std::ostringstream text;
   text.precision(3);

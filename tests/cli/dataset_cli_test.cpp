@@ -61,6 +61,20 @@ TEST_F(DatasetCli, PlumeDefaultsToSeedOne) {
   EXPECT_FALSE(same_file(at("none/mean.npy"), at("zero/mean.npy")));
 }
 
+// Where the filaments went: every one released is still alive, left through an outlet, or was
+// dropped once too wide (the world's only mass sink besides the outlets).
+TEST_F(DatasetCli, PlumeJsonAccountsForEveryFilament) {
+  const Result r = run("plume --source 1,1 --cell 0.1 --json --out " + at("count"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto f = nlohmann::json::parse(r.out).at("filament");
+  const long long released = f.at("released").get<long long>();
+  EXPECT_GT(released, 1000);
+  EXPECT_GT(f.at("left_through_outlet").get<long long>(), 0);
+  EXPECT_EQ(released, f.at("filaments_at_end").get<long long>() +
+                          f.at("left_through_outlet").get<long long>() +
+                          f.at("dropped_too_wide").get<long long>());
+}
+
 TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
   const std::string common = " --source 1,1 --cell 0.1 --json --out ";
   const Result now = run("plume " + kMap + " --plume-model advection-diffusion" + common + at("a"));
