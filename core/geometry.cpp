@@ -1,9 +1,21 @@
 #include "core/geometry.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <functional>
 #include <sstream>
 
 namespace plumekit {
+
+std::size_t Vec2Hash::operator()(Vec2 p) const {
+  // + 0.0 folds -0.0 into 0.0, which compare equal.
+  const double x = p.x + 0.0, y = p.y + 0.0;
+  std::uint64_t a, b;
+  std::memcpy(&a, &x, sizeof a);
+  std::memcpy(&b, &y, sizeof b);
+  return std::hash<std::uint64_t>()(a * 0x9E3779B97F4A7C15ull ^ (b + (a << 6) + (a >> 2)));
+}
 
 namespace {
 

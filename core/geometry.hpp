@@ -30,6 +30,11 @@ inline bool operator==(Vec2 a, Vec2 b) {
 inline bool operator!=(Vec2 a, Vec2 b) {
   return !(a == b);
 }
+// Hash of a point's exact coordinates, consistent with operator== (-0.0 and 0.0 hash alike):
+// for maps keyed by points that are copied, never recomputed.
+struct Vec2Hash {
+  std::size_t operator()(Vec2 p) const;
+};
 inline double dot(Vec2 a, Vec2 b) {
   return a.x * b.x + a.y * b.y;
 }

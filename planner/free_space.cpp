@@ -1,7 +1,6 @@
 #include "planner/free_space.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <limits>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -90,15 +89,6 @@ bool clean_ring(Polygon& ring) {
 }
 
 }  // namespace
-
-std::size_t FreeSpace::PointHash::operator()(const Vec2& p) const {
-  // + 0.0 folds -0.0 into 0.0, which compare equal.
-  const double x = p.x + 0.0, y = p.y + 0.0;
-  std::uint64_t a, b;
-  std::memcpy(&a, &x, sizeof a);
-  std::memcpy(&b, &y, sizeof b);
-  return std::hash<std::uint64_t>()(a * 0x9E3779B97F4A7C15ull ^ (b + (a << 6) + (a >> 2)));
-}
 
 FreeSpace::FreeSpace(const Map& map, double margin, int arc_segments)
     : map_(map),

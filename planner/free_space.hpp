@@ -68,9 +68,6 @@ class FreeSpace {
     double xlo, xhi, ylo, yhi;
     std::int32_t start;  // index of s in points_
   };
-  struct PointHash {
-    std::size_t operator()(const Vec2& p) const;
-  };
 
   static void finish(Cone& cone, Vec2 p);
   static bool direction_free(const Cone& cone, Vec2 p, Vec2 q);
@@ -84,7 +81,7 @@ class FreeSpace {
   std::vector<Edge> edges_;
   std::vector<Vec2> points_;
   std::vector<Cone> cones_;  // per point
-  std::unordered_map<Vec2, std::int32_t, PointHash> point_index_;
+  std::unordered_map<Vec2, std::int32_t, Vec2Hash> point_index_;
 };
 
 }  // namespace plumekit::planner

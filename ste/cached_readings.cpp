@@ -1,18 +1,8 @@
 #include "ste/cached_readings.hpp"
 
-#include <cstring>
-#include <functional>
-
 #include "core/thread_pool.hpp"
 
 namespace plumekit::ste {
-
-std::size_t CachedReadings::PointHash::operator()(const Vec2& p) const {
-  std::uint64_t x = 0, y = 0;
-  std::memcpy(&x, &p.x, sizeof x);
-  std::memcpy(&y, &p.y, sizeof y);
-  return std::hash<std::uint64_t>()(x * 0x9E3779B97F4A7C15ULL ^ y);
-}
 
 CachedReadings::CachedReadings(std::unique_ptr<SourceTableModel> model,
                                const std::vector<Vec2>& points, int threads)

@@ -31,16 +31,10 @@ class CachedReadings final : public SourceTableModel {
   const SourceTableModel& wrapped() const { return *model_; }
 
  private:
-  struct PointHash {
-    std::size_t operator()(const Vec2& p) const;
-  };
-  struct PointEqual {
-    bool operator()(const Vec2& a, const Vec2& b) const { return a.x == b.x && a.y == b.y; }
-  };
   std::vector<double> row(const std::vector<float>& table, std::size_t k) const;
 
   std::unique_ptr<SourceTableModel> model_;
-  std::unordered_map<Vec2, std::size_t, PointHash, PointEqual> index_;
+  std::unordered_map<Vec2, std::size_t, Vec2Hash> index_;
   std::size_t cells_ = 0;
   std::vector<float> readings_, spreads_;  // [point][cell]
 };
