@@ -14,12 +14,12 @@ GridRoadmap::GridRoadmap(const FreeSpace& space, double spacing)
   nx_ = std::max(1, static_cast<int>(std::floor(map.width / spacing)));
   ny_ = std::max(1, static_cast<int>(std::floor(map.height / spacing)));
   // Centre the lattice in the arena, so that the leftover is split evenly.
-  const double x0 = 0.5 * (map.width - nx_ * spacing) + 0.5 * spacing;
-  const double y0 = 0.5 * (map.height - ny_ * spacing) + 0.5 * spacing;
+  first_ = {0.5 * (map.width - nx_ * spacing) + 0.5 * spacing,
+            0.5 * (map.height - ny_ * spacing) + 0.5 * spacing};
   node_of_.assign(static_cast<std::size_t>(nx_) * ny_, -1);
   for (int j = 0; j < ny_; ++j)
     for (int i = 0; i < nx_; ++i) {
-      const Vec2 p{x0 + i * spacing, y0 + j * spacing};
+      const Vec2 p{first_.x + i * spacing, first_.y + j * spacing};
       if (!space.contains(p)) continue;
       node_of_[j * nx_ + i] = static_cast<int>(nodes_.size());
       nodes_.push_back(p);
@@ -50,11 +50,8 @@ std::vector<double> GridRoadmap::distances_from(Vec2 from) const {
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
   // Seeds: the nodes of the lattice cells around `from` that it sees free.
-  const Map& map = space_.map();
-  const double x0 = 0.5 * (map.width - nx_ * spacing_) + 0.5 * spacing_;
-  const double y0 = 0.5 * (map.height - ny_ * spacing_) + 0.5 * spacing_;
-  const int ci = static_cast<int>(std::floor((from.x - x0) / spacing_));
-  const int cj = static_cast<int>(std::floor((from.y - y0) / spacing_));
+  const int ci = static_cast<int>(std::floor((from.x - first_.x) / spacing_));
+  const int cj = static_cast<int>(std::floor((from.y - first_.y) / spacing_));
   for (int j = cj - 1; j <= cj + 2; ++j)
     for (int i = ci - 1; i <= ci + 2; ++i) {
       if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;

@@ -41,6 +41,7 @@ class GridRoadmap {
   const FreeSpace& space_;
   double spacing_;
   int nx_ = 0, ny_ = 0;
+  Vec2 first_;  // the lattice's first point, (column 0, row 0)
   std::vector<Vec2> nodes_;
   std::vector<int> cell_;        // per node: its lattice cell j * nx + i
   std::vector<int> node_of_;     // per lattice cell: its node, or -1
