@@ -73,10 +73,13 @@ Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
                                     const Posterior& posterior) const {
   // The thesis's decision first: its moves, and its pull towards the posterior's peak.
   Decision d = decide_on_lattice(robot, estimator, posterior);
+  // Expected gain per second of mission: travel, then the sample.
+  auto rate = [&](double gain, double travel) {
+    return gain / (travel / pace_.speed + pace_.sample_s);
+  };
   double local_rate = 0.0;
   for (std::size_t c = 0; c < d.candidates.size(); ++c)
-    local_rate = std::max(
-        local_rate, d.gains[c] / (norm(d.candidates[c] - robot) / pace_.speed + pace_.sample_s));
+    local_rate = std::max(local_rate, rate(d.gains[c], norm(d.candidates[c] - robot)));
   // The floor's goals, reached along the roadmap.
   std::vector<Vec2> goals;
   std::vector<double> travel;
@@ -92,8 +95,8 @@ Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
   double best = 0.0;
   Vec2 away = robot;
   for (std::size_t c = 0; c < goals.size(); ++c) {
-    const double rate = g[c] / (travel[c] / pace_.speed + pace_.sample_s);
-    if (rate > best) best = rate, away = goals[c];
+    const double r = rate(g[c], travel[c]);
+    if (r > best) best = r, away = goals[c];
   }
   d.candidates.insert(d.candidates.end(), goals.begin(), goals.end());
   d.gains.insert(d.gains.end(), g.begin(), g.end());
