@@ -131,4 +131,15 @@ void report(const nlohmann::ordered_json& summary, const std::string& human) {
   }
 }
 
+CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion) {
+  return bind_field(command,
+                    command
+                        ->add_option("--occlusion", occlusion,
+                                     "Filament plume: gas stops at walls (a filament counts at a "
+                                     "sensor only with a line of sight), on or off")
+                        ->type_name("on|off")
+                        ->default_str(occlusion ? "on" : "off"),
+                    "plume.occlusion");
+}
+
 }  // namespace plumekit::cli

@@ -54,6 +54,10 @@ CLI::Option* add_seed_flag(CLI::App* command, std::uint64_t& seed,
 CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string& field,
                               const std::string& what = "Worker threads (0: one per core)");
 
+// --occlusion on|off: the filament world's line of sight (plume.occlusion,
+// dataset/line_of_sight.hpp), for the dataset's plumes and the robot's world alike.
+CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion);
+
 // A spelling kept for one release: `old_flag` sets the same value as
 // `new_flag` (already added), is hidden from --help, warns on stderr when
 // used, and may not be given together with `new_flag`.

@@ -73,6 +73,7 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
                              "filament: filaments released per second"),
              "plume.filaments_per_second")
       ->capture_default_str();
+  add_occlusion_option(cmd, p.filament.occlusion);
 }
 
 // --families: which random-map families to draw from (default: the thesis's four).

@@ -109,6 +109,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per 10 Hz reading (simulated)",
           "ste.world.noise");
   bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
+  add_occlusion_option(cmd, o.world.filament.occlusion);
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
   bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",

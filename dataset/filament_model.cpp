@@ -98,6 +98,7 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
       }
       clear_[s.index(i, j)] = clear;
     }
+  if (o_.occlusion) sight_ = std::make_unique<LineOfSight>(map);
 }
 
 bool FilamentSimulation::free_at(Vec2 p) const {
@@ -172,7 +173,9 @@ void FilamentSimulation::step() {
 
 void FilamentSimulation::concentration(const GridShape& shape, std::vector<double>& out) const {
   const double dx = shape.dx(), dy = shape.dy();
-  std::vector<double> ex, ey;
+  std::vector<double> ex, ey, mask;
+  std::vector<std::uint8_t> masked;  // per window row: some sensor in it is hidden
+  std::vector<Edge> edges;
   for (const Filament& f : filaments_) {
     const double r = o_.cutoff * std::sqrt(f.radius2);
     const int i0 = std::max(0, static_cast<int>(std::ceil((f.position.x - r) / dx - 0.5)));
@@ -195,11 +198,58 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
       const double d = (j + 0.5) * dy - f.position.y;
       ey[j - j0] = amp * std::exp(-d * d * inv);
     }
+    edges.clear();
+    if (sight_) {
+      // The sensors' centres and the filament: every segment between them lies inside.
+      const Vec2 lo{(i0 + 0.5) * dx, (j0 + 0.5) * dy}, hi{(i1 + 0.5) * dx, (j1 + 0.5) * dy};
+      const Box window{{std::min(lo.x, f.position.x), std::min(lo.y, f.position.y)},
+                       {std::max(hi.x, f.position.x), std::max(hi.y, f.position.y)}};
+      sight_->facing_edges(f.position, window, edges);
+    }
+    if (edges.empty()) {
+      for (int j = j0; j <= j1; ++j) {
+        double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
+        const double a = ey[j - j0];
+        for (int i = i0; i <= i1; ++i)
+          row[i] += a * ex[i - i0];
+      }
+      continue;
+    }
+    // Some edge may hide part of the window: zero each edge's shadow in a
+    // mask over the rows it reaches, then add the kernel where the filament is seen.
+    const std::size_t width = ex.size();
+    mask.resize(width * ey.size());
+    masked.assign(ey.size(), 0);
+    for (const Edge& e : edges) {
+      const EdgeShadow shadow(f.position, e);
+      const double from_j = std::max<double>(j0, std::ceil(shadow.y_lo() / dy - 0.5));
+      const double to_j = std::min<double>(j1, std::floor(shadow.y_hi() / dy - 0.5));
+      if (from_j > to_j) continue;
+      for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
+        double lo, hi;
+        if (!shadow.on_row((j + 0.5) * dy, lo, hi)) continue;
+        // Columns whose centres lie in [lo, hi], clamped in double (lo, hi may be infinite).
+        const double from_i = std::max<double>(i0, std::ceil(lo / dx - 0.5));
+        const double to_i = std::min<double>(i1, std::floor(hi / dx - 0.5));
+        if (from_i > to_i) continue;
+        double* row_mask = mask.data() + (j - j0) * width;
+        if (!masked[j - j0]) std::fill(row_mask, row_mask + width, 1.0);
+        masked[j - j0] = 1;
+        std::fill(row_mask + (static_cast<int>(from_i) - i0),
+                  row_mask + (static_cast<int>(to_i) - i0 + 1), 0.0);
+      }
+    }
     for (int j = j0; j <= j1; ++j) {
       double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
       const double a = ey[j - j0];
+      if (!masked[j - j0]) {
+        for (int i = i0; i <= i1; ++i)
+          row[i] += a * ex[i - i0];
+        continue;
+      }
+      const double* row_mask = mask.data() + (j - j0) * width;
       for (int i = i0; i <= i1; ++i)
-        row[i] += a * ex[i - i0];
+        row[i] += a * ex[i - i0] * row_mask[i - i0];
     }
   }
 }
@@ -227,11 +277,20 @@ bool spin_up(FilamentSimulation& sim, const FilamentOptions& options) {
 double FilamentSimulation::concentration_at(Vec2 p) const {
   // The same kernel and cutoff as concentration(), at one point.
   // (a square of half-side cutoff * R, as there).
+  // With occlusion, the edges that face the sensor within any filament's reach.
+  std::vector<Edge> edges;
+  if (sight_) {
+    const double reach = o_.cutoff * o_.max_radius;
+    sight_->facing_edges(p, {{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}}, edges);
+  }
   double c = 0.0;
   for (const Filament& f : filaments_) {
     const double dx = p.x - f.position.x, dy = p.y - f.position.y;
     const double reach = o_.cutoff * o_.cutoff * f.radius2;
     if (dx * dx > reach || dy * dy > reach) continue;
+    if (std::any_of(edges.begin(), edges.end(),
+                    [&](const Edge& e) { return hides(p, e, f.position); }))
+      continue;
     c += std::exp(-(dx * dx + dy * dy) / f.radius2) / f.radius2;
   }
   return c * mass_ / kPi;

@@ -10,6 +10,7 @@
 // meander_speed^2 * meander_time from the meander); the fluctuations about it
 // (the std) come from the meander and the finite number of filaments.
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "core/grid.hpp"
 #include "core/map.hpp"
 #include "core/random.hpp"
+#include "dataset/line_of_sight.hpp"
 
 namespace plumekit::dataset {
 
@@ -54,6 +56,11 @@ struct FilamentOptions {
   double sample_rate = 10.0;
   // Kernels are summed out to this many R (exp(-9) = 1.2e-4 of the peak).
   double cutoff = 3.0;
+  // Line of sight (issue 18): a filament adds to a sensor only when no
+  // obstacle edge cuts the segment between them, so gas stops at walls.
+  // Off by default until the test maps' ground truth and the shipped model
+  // are regenerated with it; off reproduces the thesis-style world exactly.
+  bool occlusion = false;
 
   double equivalent_diffusivity() const { return 0.5 * sigma_walk * sigma_walk + 0.25 * growth; }
 
@@ -110,7 +117,8 @@ class FilamentSimulation {
   std::mt19937_64 rng_;
   NormalSampler normal_;  // core/random.hpp: the same variates with any standard library
   std::vector<Filament> filaments_;
-  std::vector<std::uint8_t> clear_;  // per flow cell: no obstacle within it
+  std::vector<std::uint8_t> clear_;     // per flow cell: no obstacle within it
+  std::unique_ptr<LineOfSight> sight_;  // with options.occlusion only
   double time_ = 0.0;
   double release_debt_ = 0.0;
   Vec2 meander_;

@@ -60,7 +60,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                {"convection", cfd::to_string(o.flow.convection)},
                {"tolerance", o.flow.tolerance}};
   j["plume_model"] = to_string(o.plume.model);
-  if (o.plume.model == PlumeSimulator::Filament)
+  if (o.plume.model == PlumeSimulator::Filament) {
     j["filament"] = {{"release_per_second", f.release_per_second},
                      {"release_rate", f.release_rate},
                      {"initial_radius", f.initial_radius},
@@ -78,10 +78,13 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                      {"sample_rate", f.sample_rate},
                      {"cutoff", f.cutoff},
                      {"equivalent_diffusivity", f.equivalent_diffusivity()}};
-  else
+    // Only when on, so that manifests written before the option still match on resume.
+    if (f.occlusion) j["filament"]["occlusion"] = true;
+  } else {
     j["advection_diffusion"] = {{"diffusivity", a.diffusivity},
                                 {"release_rate", a.release_rate},
                                 {"scheme", "finite volumes on the flow grid, Patankar hybrid"}};
+  }
   return j;
 }
 

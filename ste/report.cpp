@@ -231,6 +231,7 @@ Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& e
                        {"sigma_std", l.sigma_std},
                        {"source_cell", source_cell_json(eo.ste)},
                        {"noise", eo.ste.world.noise},
+                       {"occlusion", eo.ste.world.filament.occlusion},
                        {"overall", stats_json(res.overall)},
                        {"maps", maps},
                        {"wall_s", res.wall_s}};
