@@ -80,7 +80,8 @@ std::string with_flag_names(const CLI::App& command, std::string message) {
 
 CLI::Option* add_map_argument(CLI::App* command, std::string& map) {
   if (map.empty()) map = default_map().string();
-  return command->add_option("MAP", map, "Map file (plumekit-map/1 JSON)")->capture_default_str();
+  return command->add_option("MAP", map, "Map file (plumekit-map JSON, format 1 or 2)")
+      ->capture_default_str();
 }
 
 CLI::Option* add_seed_flag(CLI::App* command, std::uint64_t& seed, const std::string& what) {

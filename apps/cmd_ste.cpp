@@ -110,6 +110,21 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
           "ste.world.noise");
   bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
   add_occlusion_option(cmd, o.world.filament.occlusion);
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--gas-sensor",
+                    [&o](const std::string& name) {
+                      const double baseline = o.world.sensor.baseline;
+                      o.world.sensor = dataset::gas_sensor_preset(name);
+                      o.world.sensor.baseline = baseline;
+                    },
+                    "The robot's gas sensor: ideal (reads the concentration), catalytic, "
+                    "electrochemical, infrared (seed 000, Table 4.1) or mox-fast (seed 004's "
+                    "MiCS-5521); dataset/README.md, \"Gas sensors\"")
+                 ->default_str(o.world.sensor.name),
+             "sensor.gas");
+  bind_to(cmd, "--baseline", o.world.sensor.baseline,
+          "Gas sensor baseline added to every reading, concentration units", "sensor.baseline");
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
   bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",
@@ -244,6 +259,10 @@ void add_evaluate(CLI::App& app) {
   add_deprecated_alias(cmd, "--maps", "--map-dir", a->map_dir);
   bind_to(cmd, "--runs", a->eval.runs, "Runs per source, from seeded random free starts",
           "evaluation.runs");
+  bind_to(cmd, "--seeds", a->eval.seeds,
+          "Evaluate with seeds SEED, SEED + 1, ... this many, pooled (runs.csv then has a seed "
+          "column)",
+          "evaluation.seeds");
   add_threads_flag(cmd, a->eval.threads, "evaluation.threads",
                    "Runs in parallel, and threads of each surrogate table build (0: one per core)");
   bind_to(cmd, "--sources", a->eval.source_count,

@@ -20,25 +20,28 @@ int sources_evaluated(const Map& map, const EvaluationOptions& o) {
   return o.source_count > 0 ? std::min(o.source_count, all) : all;
 }
 
-// The records of one map, in run order (source-major), before they are run.
+// The records of one map, in run order (source, then seed, then run), before they are run.
 std::vector<RunRecord> planned_runs(const Map& map, int map_index, const EvaluationOptions& o) {
   const int n_src = sources_evaluated(map, o);
-  std::vector<RunRecord> records(static_cast<std::size_t>(n_src) * o.runs);
+  std::vector<RunRecord> records;
+  records.reserve(static_cast<std::size_t>(n_src) * o.seeds * o.runs);
   for (int s = 0; s < n_src; ++s)
-    for (int r = 0; r < o.runs; ++r) {
-      RunRecord& rec = records[static_cast<std::size_t>(s) * o.runs + r];
-      rec.map = map.name;
-      rec.map_index = map_index;
-      rec.source_index = s;
-      rec.run = r;
-      rec.source = map.sources[s];
-    }
+    for (int k = 0; k < o.seeds; ++k)
+      for (int r = 0; r < o.runs; ++r) {
+        RunRecord& rec = records.emplace_back();
+        rec.map = map.name;
+        rec.map_index = map_index;
+        rec.source_index = s;
+        rec.run = r;
+        rec.seed = o.seed + static_cast<std::uint64_t>(k);
+        rec.source = map.sources[s];
+      }
   return records;
 }
 
 // One run from its seeded random start; its record's summary columns filled in.
-void run_one(const Scenario& scenario, std::uint64_t seed, RunRecord& rec) {
-  const std::uint64_t s = run_seed(seed, rec.map_index, rec.source_index, rec.run);
+void run_one(const Scenario& scenario, RunRecord& rec) {
+  const std::uint64_t s = run_seed(rec.seed, rec.map_index, rec.source_index, rec.run);
   rec.start = scenario.random_start(rec.source, stream_seed(s, SteStream::Start));
   rec.result = scenario.run(rec.source, rec.start, s);
   const LocalizationResult& r = rec.result;
@@ -78,6 +81,8 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
     s.entropy_stops += r->stopped_by == "entropy";
   }
   const double n = static_cast<double>(runs.size());
+  s.success_0_5_ci95 = wilson_interval(static_cast<int>(s.success_0_5), s.runs);
+  s.success_1_0_ci95 = wilson_interval(static_cast<int>(s.success_1_0), s.runs);
   s.median_error_m = median(err);
   s.mean_error_m = sum / n;
   s.success_0_5 /= n;
@@ -98,12 +103,13 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
   for (const Map& m : maps) {
     if (m.sources.empty())
       throw InputError("map " + m.name + " has no ground-truth \"sources\" to evaluate on");
-    total += sources_evaluated(m, o) * o.runs;
+    total += sources_evaluated(m, o) * o.runs * o.seeds;
   }
   SteOptions ste = o.ste;
   ste.threads = o.threads;  // the table build uses the evaluation's threads
   ThreadPool pool(o.threads);
   EvaluationResult result;
+  result.seeds = o.seeds;
   int done = 0;
   std::mutex lock;
   for (std::size_t mi = 0; mi < maps.size(); ++mi) {
@@ -111,7 +117,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
     const Scenario scenario(maps[mi], ste);
     std::vector<RunRecord> records = planned_runs(maps[mi], static_cast<int>(mi), o);
     pool.parallel_for(records.size(), [&](std::size_t k) {
-      run_one(scenario, o.seed, records[k]);
+      run_one(scenario, records[k]);
       std::lock_guard<std::mutex> g(lock);
       ++done;
       if (progress) progress(done, total);
@@ -136,7 +142,8 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
 std::string runs_csv(const EvaluationResult& result) {
   std::ostringstream s;
   s << "map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,estimate_y,error_m,"
-       "samples,distance_m,mission_s,compute_s,median_step_s,stopped_by\n";
+       "samples,distance_m,mission_s,compute_s,median_step_s,stopped_by"
+    << (result.seeds > 1 ? ",seed\n" : "\n");
   s << std::setprecision(6);
   // Positions in each map's own frame, as its file and the user's robot hold them.
   for (const RunRecord& r : result.runs) {
@@ -148,7 +155,9 @@ std::string runs_csv(const EvaluationResult& result) {
       << std::setprecision(frame.is_identity() ? 6 : 12) << source.x << ',' << source.y << ','
       << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
       << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
-      << r.mission_s << ',' << r.compute_s << ',' << r.median_step_s << ',' << r.stopped_by << '\n';
+      << r.mission_s << ',' << r.compute_s << ',' << r.median_step_s << ',' << r.stopped_by;
+    if (result.seeds > 1) s << ',' << r.seed;
+    s << '\n';
   }
   return s.str();
 }

@@ -11,6 +11,7 @@
 
 #include "core/map.hpp"
 #include "core/seed.hpp"
+#include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
 #include "ste/scenario.hpp"
 
@@ -20,6 +21,9 @@ struct EvaluationOptions {
   SteOptions ste;
   int runs = 3;  // per source, from seeded random free starts
   std::uint64_t seed = kDefaultSeed;
+  // Seeds seed, seed + 1, ..., each a whole set of runs, pooled: more runs from
+  // other starts and other plumes (the world's filaments and the sensor noise).
+  int seeds = 1;
   // Runs in parallel, and the threads of each map's surrogate table build (it replaces
   // ste.threads); 0: one per core. Results do not depend on it.
   int threads = kDefaultThreads;
@@ -31,6 +35,7 @@ struct EvaluationOptions {
 struct RunRecord {
   std::string map;
   int map_index = 0, source_index = 0, run = 0;
+  std::uint64_t seed = kDefaultSeed;  // the evaluation seed this run belongs to
   Vec2 source, start, estimate;
   double error_m = 0.0;
   int samples = 0;
@@ -42,6 +47,7 @@ struct RunRecord {
 struct Stats {
   int runs = 0;
   double median_error_m = 0, mean_error_m = 0, success_0_5 = 0, success_1_0 = 0;
+  Interval success_0_5_ci95, success_1_0_ci95;  // Wilson (core/statistics.hpp)
   double median_samples = 0, median_distance_m = 0, median_step_s = 0;
   double entropy_stops = 0;  // fraction stopped by the entropy rule
 };
@@ -59,6 +65,7 @@ struct EvaluationResult {
   std::vector<MapReport> maps;
   Stats overall;
   double wall_s = 0;
+  int seeds = 1;  // EvaluationOptions::seeds: runs.csv has a seed column when more than one
 };
 
 // `progress(done, total)` is called from the calling thread's perspective

@@ -62,7 +62,7 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
     r.steps.push_back(std::move(s));
     if (!r.stopped_by.empty()) break;
 
-    world.travel(path.length);
+    world.travel(path.path, path.length);
     r.distance_m += path.length;
     pos = path.goal;
     path_in = std::move(path.path);

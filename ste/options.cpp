@@ -65,6 +65,7 @@ void WorldOptions::validate() const {
   check_positive("ste.world.sample_rate", sample_rate, 1000.0, "Hz", "the thesis uses 10 Hz");
   check_non_negative("ste.world.noise", noise, 1e9, "concentration units",
                      "0 means a noise-free sensor");
+  sensor.validate();
 }
 
 void PhysicsPlumeOptions::validate() const {
@@ -149,6 +150,7 @@ void SteOptions::check_model_file() const {
 
 void EvaluationOptions::validate() const {
   check_count("evaluation.runs", runs, 1, 1'000'000, "the default is 3");
+  check_count("evaluation.seeds", seeds, 1, 1000, "the default is 1");
   check_count("evaluation.threads", threads, 0, 1024, "0 means one per core");
   check_count("evaluation.source_count", source_count, 0, 1'000'000,
               "0 means all of each map's sources");

@@ -102,7 +102,9 @@ ordered_json stats_json(const Stats& s) {
           {"median_error_m", s.median_error_m},
           {"mean_error_m", s.mean_error_m},
           {"success_0_5m", s.success_0_5},
+          {"success_0_5m_ci95", {s.success_0_5_ci95.lo, s.success_0_5_ci95.hi}},
           {"success_1_0m", s.success_1_0},
+          {"success_1_0m_ci95", {s.success_1_0_ci95.lo, s.success_1_0_ci95.hi}},
           {"median_samples", s.median_samples},
           {"median_distance_m", s.median_distance_m},
           {"median_step_compute_s", s.median_step_s},
@@ -123,14 +125,18 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
   h << "evaluated " << res.runs.size() << " runs (" << res.maps.size() << " maps, " << label
     << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
   h << std::left << std::setw(22) << "map"
-    << " median_err  mean_err  ok@0.5  ok@1.0  samples"
+    << " median_err  mean_err  ok@0.5  (95% CI)  ok@1.0  (95% CI)  samples"
     << "  dist_m  step_ms  table_s\n";
+  auto ci = [](const Interval& i) {
+    return "(" + fmt(100 * i.lo, 0) + "-" + fmt(100 * i.hi, 0) + ")";
+  };
   auto line = [&](const std::string& name, const Stats& s, double table) {
     h << std::left << std::setw(22) << name << std::right << std::setw(11) << fmt(s.median_error_m)
       << std::setw(10) << fmt(s.mean_error_m) << std::setw(8) << fmt(100 * s.success_0_5, 0) + "%"
-      << std::setw(8) << fmt(100 * s.success_1_0, 0) + "%" << std::setw(9)
-      << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1) << std::setw(9)
-      << fmt(1000 * s.median_step_s, 1) << std::setw(9)
+      << std::setw(10) << ci(s.success_0_5_ci95) << std::setw(8)
+      << fmt(100 * s.success_1_0, 0) + "%" << std::setw(10) << ci(s.success_1_0_ci95)
+      << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1)
+      << std::setw(9) << fmt(1000 * s.median_step_s, 1) << std::setw(9)
       << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
   };
   for (const MapReport& mr : res.maps)
@@ -225,6 +231,7 @@ Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& e
                        {"sources_per_map",
                         eo.source_count > 0 ? ordered_json(eo.source_count) : ordered_json("all")},
                        {"seed", eo.seed},
+                       {"seeds", eo.seeds},
                        {"threads", resolve_threads(eo.threads)},
                        {"sigma_m", l.sigma_m},
                        {"sigma_rel", l.sigma_rel},
@@ -232,6 +239,8 @@ Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& e
                        {"source_cell", source_cell_json(eo.ste)},
                        {"noise", eo.ste.world.noise},
                        {"occlusion", eo.ste.world.filament.occlusion},
+                       {"gas_sensor", eo.ste.world.sensor.name},
+                       {"sensor_baseline", eo.ste.world.sensor.baseline},
                        {"overall", stats_json(res.overall)},
                        {"maps", maps},
                        {"wall_s", res.wall_s}};

@@ -3,14 +3,19 @@
 // in the map's wind (dataset/filament_model.hpp), spun up until statistically
 // steady and then kept running in time while the robot travels and samples.
 // A sample is the mean of `sample_s` of readings at `sample_rate` Hz at
-// the robot's position, each reading optionally with Gaussian sensor noise
-// (clipped at 0: a sensor reads no negative concentration).
+// the robot's position, each reading through the gas sensor's response
+// (dataset/gas_sensor.hpp; ideal by default) and optionally with Gaussian
+// sensor noise (clipped at 0: a sensor reads no negative concentration).
+// A sensor with memory also reads on the way between stops, so it arrives
+// with what the path left in it; the ideal one only reads at stops.
 #include <cstdint>
 #include <random>
+#include <vector>
 
 #include "cfd/wind_field.hpp"
 #include "core/map.hpp"
 #include "dataset/filament_model.hpp"
+#include "dataset/gas_sensor.hpp"
 
 namespace plumekit::ste {
 
@@ -20,6 +25,7 @@ struct WorldOptions {
   double sample_s = 5.0;              // thesis: 5 s ...
   double sample_rate = 10.0;          // ... at 10 Hz
   double noise = 0.0;                 // std of each reading's sensor noise, dataset units
+  dataset::GasSensorModel sensor;     // the gas sensor's response (--gas-sensor); ideal
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
 };
@@ -28,8 +34,9 @@ class SimulatedWorld {
  public:
   SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
                  const WorldOptions& options, std::uint64_t seed);
-  // The plume runs on while the robot covers `metres` at options.speed.
-  void travel(double metres);
+  // The plume runs on while the robot covers `path` (`metres` long) at
+  // options.speed; a sensor with memory reads along it.
+  void travel(const std::vector<Vec2>& path, double metres);
   // Stays at p for sample_s and returns the mean reading.
   double sample(Vec2 p);
   double time() const { return sim_.time(); }  // simulated seconds since release
@@ -42,6 +49,7 @@ class SimulatedWorld {
   WorldOptions options_;
   dataset::FilamentSimulation sim_;
   std::mt19937_64 noise_rng_;
+  dataset::GasSensor gas_;
   double spinup_ = 0.0;
   double debt_ = 0.0;  // seconds not yet stepped (travel times are not multiples of dt)
 };

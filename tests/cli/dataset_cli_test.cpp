@@ -75,6 +75,25 @@ TEST_F(DatasetCli, PlumeJsonAccountsForEveryFilament) {
                           f.at("dropped_too_wide").get<long long>());
 }
 
+// --occlusion on|off (issue 18): behind the baffles the plume differs, the dataset records the
+// setting, and a value other than on or off is refused naming the flag.
+TEST_F(DatasetCli, OcclusionIsASwitchTheDatasetRecords) {
+  const std::string map = (kData / "test-maps" / "test-8-baffles.json").string();
+  const std::string common = " " + map + " --source 5.3,1 --cell 0.1 --out ";
+  ASSERT_EQ(run("plume" + common + at("off")).code, 0);
+  const Result on = run("plume --occlusion on" + common + at("on"));
+  ASSERT_EQ(on.code, 0) << on.err;
+  EXPECT_FALSE(same_file(at("off/mean.npy"), at("on/mean.npy")));
+  const Result bad = run("plume --occlusion maybe" + common + at("bad"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_TRUE(has(bad.err, "--occlusion")) << bad.err;
+  EXPECT_FALSE(fs::exists(at("bad")));
+
+  const Result gen = run("dataset generate --maps 1 --sources 2 --occlusion on --out " + at("d"));
+  ASSERT_EQ(gen.code, 0) << gen.err;
+  EXPECT_TRUE(has(slurp(at("d/manifest.json")), "\"occlusion\": true"));
+}
+
 TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
   const std::string common = " --source 1,1 --cell 0.1 --json --out ";
   const Result now = run("plume " + kMap + " --plume-model advection-diffusion" + common + at("a"));
