@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
@@ -123,6 +124,25 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
                     "MiCS-5521); dataset/README.md, \"Gas sensors\"")
                  ->default_str(o.world.sensor.name),
              "sensor.gas");
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--wind-noise",
+                    [&o](const std::string& text) {
+                      o.world.wind_noise_from_table35 = text == "table35";
+                      if (o.world.wind_noise_from_table35) return;
+                      std::istringstream in(text);
+                      if (!(in >> o.world.wind_direction_noise_deg) || !(in >> std::ws).eof())
+                        throw OptionError("ste.world.wind_direction_noise",
+                                          "expected degrees or table35, got '" + text + "'");
+                    },
+                    "Anemometer direction error per stop: std in degrees, or table35 (seed 000, "
+                    "Table 3.5, at the stop's length: 22.26 for 5 s, 14.02 for 20 s)")
+                 ->type_name("DEG|table35")
+                 ->default_str("0"),
+             "ste.world.wind_direction_noise");
+  bind_to(cmd, "--position-noise", o.world.position_noise,
+          "Std per axis of the position recorded with each sample, m (seed 000 Eq. 4.3: 1.17)",
+          "ste.world.position_noise");
   bind_to(cmd, "--baseline", o.world.sensor.baseline,
           "Gas sensor baseline added to every reading, concentration units", "sensor.baseline");
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",

@@ -102,6 +102,8 @@ class FilamentSimulation {
   double time() const { return time_; }
   const std::vector<Filament>& filaments() const { return filaments_; }
   const FilamentSummary& summary() const { return summary_; }
+  // The meander velocity shared by all filaments now: the wind's large-scale swing.
+  Vec2 meander() const { return meander_; }
   // Adds the concentration at the cell centres of `shape` to `out`.
   void concentration(const GridShape& shape, std::vector<double>& out) const;
   // The concentration at one point (what a robot's sensor reads there now).

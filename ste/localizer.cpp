@@ -41,11 +41,14 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
     s.position = pos;
     s.distance_m = r.distance_m;
     s.path_in = std::move(path_in);
-    s.value = world.sample(pos);
+    const Reading reading = world.stop(pos);
+    s.value = reading.gas;
+    s.wind = reading.wind;
+    s.recorded = reading.position;
     s.time_s = world.time() - t_start;
 
     const double t0 = thread_cpu_s();
-    estimator.add(pos, s.value);
+    estimator.add(reading.position, s.value);
     r.posterior = estimator.posterior();
     s.estimate = r.posterior.expected_source();
     s.map = r.posterior.map;

@@ -27,7 +27,9 @@ struct StopOptions {
 
 struct Step {
   Vec2 position;            // where the sample was taken
+  Vec2 recorded;            // where the robot recorded it (position noise), what the estimator saw
   double value = 0.0;       // its mean concentration
+  Vec2 wind;                // the anemometer's mean wind there
   double time_s = 0.0;      // simulated time since the robot started, at the sample's end
   double distance_m = 0.0;  // travelled before it
   Vec2 estimate, map;       // posterior after it

@@ -66,6 +66,10 @@ void WorldOptions::validate() const {
   check_non_negative("ste.world.noise", noise, 1e9, "concentration units",
                      "0 means a noise-free sensor");
   sensor.validate();
+  check_non_negative("ste.world.wind_direction_noise", wind_direction_noise_deg, 360.0, "degrees",
+                     "0 is an exact anemometer; seed 000 measured 14-29 degrees");
+  check_non_negative("ste.world.position_noise", position_noise, 100.0, "m",
+                     "0 is an exact position; seed 000 Eq. 4.3 uses 1.17 m");
 }
 
 void PhysicsPlumeOptions::validate() const {

@@ -43,7 +43,9 @@ ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
   ordered_json out = ordered_json::array();
   for (const Step& s : steps)
     out.push_back({{"position", point_json(f.to_frame(s.position))},
+                   {"recorded_position", point_json(f.to_frame(s.recorded))},
                    {"value", s.value},
+                   {"wind", {s.wind.x, s.wind.y}},
                    {"time_s", s.time_s},
                    {"distance_m", s.distance_m},
                    {"estimate", point_json(f.to_frame(s.estimate))},

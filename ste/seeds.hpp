@@ -22,6 +22,8 @@ enum class SteStream : std::uint64_t {
   Start = 0xA5A5,                // the random start (Scenario::random_start)
   SensorNoise = 0x5DEECE66DULL,  // the simulated sensor's noise (SimulatedWorld)
   Mh = 0x3C,                     // the Metropolis-Hastings chain, through splitmix64 (MhEstimator)
+  WindNoise = 0xA7E3,            // the anemometer's direction error (SimulatedWorld)
+  PositionNoise = 0x905E,        // the recorded position's error (SimulatedWorld)
 };
 
 inline std::uint64_t stream_seed(std::uint64_t run_seed, SteStream stream) {

@@ -9,13 +9,21 @@
 
 namespace plumekit::ste {
 
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}  // namespace
+
 SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
                                const WorldOptions& options, std::uint64_t seed)
     : source_(source),
       options_(options),
       sim_(map, wind, source, options.filament, seed),
-      // An independent stream for the sensor, so noise never shifts the plume.
+      map_(map),
+      wind_(wind),
+      // Independent streams for the sensors, so noise never shifts the plume.
       noise_rng_(stream_seed(seed, SteStream::SensorNoise)),
+      wind_rng_(stream_seed(seed, SteStream::WindNoise)),
+      position_rng_(stream_seed(seed, SteStream::PositionNoise)),
       gas_(options.sensor, 1.0 / options.sample_rate) {
   options.validate();  // the filament simulation (sim_) has checked its own options already
   dataset::spin_up(sim_, options.filament);
@@ -60,19 +68,56 @@ void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
   advance(seconds - readings * interval);
 }
 
-double SimulatedWorld::sample(Vec2 p) {
+Reading SimulatedWorld::stop(Vec2 p) {
   const int n =
       std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
   NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
   double sum = 0.0;
+  Vec2 wind_sum;
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = gas_.read(sim_.concentration_at(p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
+    wind_sum = wind_sum + (wind_.at(p) + sim_.meander());  // the flow and its meander now
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval
-  return sum / n;
+  Reading r;
+  r.gas = sum / n;
+  r.wind = (1.0 / n) * wind_sum;
+  if (const double sigma = options_.direction_noise_deg(); sigma > 0.0) {
+    NormalSampler draw;
+    const double a = normal(draw, wind_rng_, 0.0, sigma) * kPi / 180.0;
+    r.wind = {std::cos(a) * r.wind.x - std::sin(a) * r.wind.y,
+              std::sin(a) * r.wind.x + std::cos(a) * r.wind.y};
+  }
+  r.position = p;
+  if (options_.position_noise > 0.0) {
+    // Redrawn until free: a robot does not believe itself inside a wall it can see.
+    NormalSampler draw;
+    for (int attempt = 0; attempt < 1000; ++attempt) {
+      const Vec2 q{p.x + normal(draw, position_rng_, 0.0, options_.position_noise),
+                   p.y + normal(draw, position_rng_, 0.0, options_.position_noise)};
+      if (map_.is_free(q)) {
+        r.position = q;
+        break;
+      }
+    }
+  }
+  return r;
+}
+
+double WorldOptions::direction_noise_deg() const {
+  return wind_noise_from_table35 ? table35_direction_noise(sample_s) : wind_direction_noise_deg;
+}
+
+double table35_direction_noise(double averaging_s) {
+  const double t[] = {0.0, 5.0, 10.0, 20.0}, rmse[] = {29.12, 22.26, 17.76, 14.02};
+  if (averaging_s <= 0.0) return rmse[0];
+  for (int k = 1; k < 4; ++k)
+    if (averaging_s <= t[k])
+      return rmse[k - 1] + (rmse[k] - rmse[k - 1]) * (averaging_s - t[k - 1]) / (t[k] - t[k - 1]);
+  return rmse[3];
 }
 
 }  // namespace plumekit::ste

@@ -124,6 +124,85 @@ TEST_F(SteCli, EvaluateWritesEverythingAndIgnoresThreadCount) {
   EXPECT_EQ(strip(slurp(dir / "e1" / "runs.csv")), strip(slurp(dir / "e2" / "runs.csv")));
 }
 
+// Issue 18: every success rate has its 95 % interval, and --seeds K pools K seeds' runs, the
+// first of which are the --seed run's own.
+TEST_F(SteCli, EvaluateGivesIntervalsAndPoolsSeeds) {
+  write_map();
+  const std::string maps = (dir / "maps").string();
+  CliResult one = run("evaluate --map-dir " + maps +
+                      " --runs 1 --plume-model physics --json --out " + (dir / "s1").string());
+  ASSERT_EQ(one.code, 0) << one.err;
+  CliResult three =
+      run("evaluate --map-dir " + maps + " --runs 1 --seeds 3 --plume-model physics --json --out " +
+          (dir / "s3").string());
+  ASSERT_EQ(three.code, 0) << three.err;
+  const json j = json::parse(three.out);
+  EXPECT_EQ(j["seeds"].get<int>(), 3);
+  EXPECT_EQ(j["overall"]["runs"].get<int>(),
+            3 * json::parse(one.out)["overall"]["runs"].get<int>());
+  const json ci = j["overall"]["success_0_5m_ci95"];
+  const double rate = j["overall"]["success_0_5m"].get<double>();
+  EXPECT_LE(ci[0].get<double>(), rate);
+  EXPECT_GE(ci[1].get<double>(), rate);
+  EXPECT_LT(ci[1].get<double>() - ci[0].get<double>(), 1.0);
+  const std::string csv = slurp(dir / "s3" / "runs.csv");
+  EXPECT_NE(csv.find("stopped_by,seed\n"), std::string::npos);
+  // Each source's first seed-1 run is the single-seed evaluation's run.
+  std::istringstream a(slurp(dir / "s1" / "runs.csv")), b(csv);
+  std::string la, lb;
+  std::getline(a, la);
+  std::getline(b, lb);
+  ASSERT_TRUE(std::getline(a, la) && std::getline(b, lb));
+  auto first_ten_cells = [](const std::string& line) {  // before the measured compute times
+    std::string out;
+    int commas = 0;
+    for (const char c : line) {
+      if (c == ',' && ++commas == 10) break;
+      out += c;
+    }
+    return out;
+  };
+  EXPECT_EQ(first_ten_cells(lb), first_ten_cells(la));
+  EXPECT_EQ(lb.substr(lb.rfind(',') + 1), "1");
+  const CliResult none =
+      run("evaluate --map-dir " + maps + " --seeds 0 --out " + (dir / "s0").string());
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("--seeds"), std::string::npos) << none.err;
+}
+
+// The robot's gas sensor is a preset, its anemometer and position have noise settings; a bad
+// one is refused naming the flag (and, for the gas sensor, the presets).
+TEST_F(SteCli, WorldSensorPresetsAndRefusals) {
+  const std::string map = write_map();
+  CliResult r = run("localize " + map +
+                    " --source 1.5,1 --plume-model physics --gas-sensor mox-fast --json --out " +
+                    (dir / "mox").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("localize " + map + " --source 1.5,1 --plume-model physics --gas-sensor tgs9999 --out " +
+          (dir / "bad").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--gas-sensor"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("infrared"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
+  for (const std::string bad :
+       {"--baseline nan", "--wind-noise north", "--wind-noise -5", "--position-noise -1"}) {
+    r = run("localize " + map + " --source 1.5,1 --plume-model physics " + bad + " --out " +
+            (dir / "refused").string());
+    EXPECT_EQ(r.code, 2) << bad;
+    EXPECT_NE(r.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "refused")) << bad;
+  }
+  // Each step reports the anemometer's wind and the position the robot recorded.
+  r = run("localize " + map +
+          " --source 1.5,1 --plume-model physics --wind-noise table35 --position-noise 0.3 "
+          "--max-samples 3 --json --out " +
+          (dir / "noisy").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json step = json::parse(slurp(dir / "noisy" / "run.json"))["steps"][0];
+  EXPECT_EQ(step["wind"].size(), 2u);
+  EXPECT_NE(step["recorded_position"], step["position"]);
+}
+
 TEST_F(SteCli, DemoRunsAndSaysWhereThePicturesAre) {
   const CliResult r = run("demo --plume-model physics --out " + (dir / "demo").string());
   ASSERT_EQ(r.code, 0) << r.err;

@@ -2,6 +2,7 @@
 // sensor lags the plume, and it reads along the path between stops.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "dataset/uniform_wind.hpp"
@@ -14,10 +15,10 @@ namespace {
 struct PlumeWorld {
   Map map = default_arena(10.0, 4.0);
   cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  SimulatedWorld make(const std::string& sensor) const {
-    WorldOptions o;
+  SimulatedWorld make(const std::string& sensor, WorldOptions o = {},
+                      std::uint64_t seed = 17) const {
     o.sensor = dataset::gas_sensor_preset(sensor);
-    return SimulatedWorld(map, wind, {2.0, 2.0}, o, 17);
+    return SimulatedWorld(map, wind, {2.0, 2.0}, o, seed);
   }
 };
 
@@ -25,16 +26,16 @@ TEST(SimulatedWorld, ASlowSensorLagsAndCarriesWhatThePathLeftInIt) {
   const PlumeWorld w;
   const Vec2 stop{4.0, 2.0};
   SimulatedWorld ideal = w.make("ideal");
-  const double truth = ideal.sample(stop);
+  const double truth = ideal.stop(stop).gas;
   // Arriving from clean air (along y = 0.2), the catalytic sensor's 5 s dead
   // time swallows the whole 5 s stop.
   SimulatedWorld from_clean = w.make("catalytic");
   from_clean.travel({{9.0, 0.2}, {4.0, 0.2}, stop}, 6.8);
-  const double cold = from_clean.sample(stop);
+  const double cold = from_clean.stop(stop).gas;
   // Arriving along the plume's axis, it has been in gas for 10 s already.
   SimulatedWorld along_plume = w.make("catalytic");
   along_plume.travel({{9.0, 2.0}, stop}, 5.0);
-  const double warm = along_plume.sample(stop);
+  const double warm = along_plume.stop(stop).gas;
   std::printf("ideal %.1f, catalytic from clean air %.1f, along the plume %.1f\n", truth, cold,
               warm);
   EXPECT_GT(truth, 100.0);
@@ -47,8 +48,62 @@ TEST(SimulatedWorld, TheIdealSensorDoesNotReadOnTheWay) {
   SimulatedWorld a = w.make("ideal"), b = w.make("ideal");
   a.travel({{9.0, 2.0}, {4.0, 2.0}}, 5.0);
   b.travel({}, 5.0);  // only the time passes, as before there were sensors
-  EXPECT_EQ(a.sample({4.0, 2.0}), b.sample({4.0, 2.0}));
+  EXPECT_EQ(a.stop({4.0, 2.0}).gas, b.stop({4.0, 2.0}).gas);
   EXPECT_EQ(a.time(), b.time());
+}
+
+// For the noise statistics, which need many worlds but no plume to speak of.
+WorldOptions a_thin_plume() {
+  WorldOptions o;
+  o.filament.release_per_second = 10.0;
+  o.filament.min_spinup = 0.0;
+  o.filament.max_spinup = 1.0;
+  return o;
+}
+
+// The anemometer reports the flow plus its meander, averaged over the stop;
+// its direction error has the asked std, and the speed none.
+TEST(SimulatedWorld, TheAnemometerAveragesTheWindAndItsDirectionErrorHasTheAskedStd) {
+  const PlumeWorld w;
+  SimulatedWorld exact = w.make("ideal");
+  const Vec2 calm = exact.stop({6.0, 1.0}).wind;
+  EXPECT_NEAR(calm.x, 1.0, 0.2);  // 1 m/s plus a 0.15 m/s meander, averaged over 5 s
+  EXPECT_NEAR(calm.y, 0.0, 0.2);
+  WorldOptions o = a_thin_plume();
+  o.wind_noise_from_table35 = true;  // 5 s stops: 22.26 degrees
+  EXPECT_DOUBLE_EQ(o.direction_noise_deg(), 22.26);
+  double sum2 = 0.0;
+  int n = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    SimulatedWorld noisy = w.make("ideal", o, seed), clean = w.make("ideal", a_thin_plume(), seed);
+    const Vec2 a = noisy.stop({6.0, 1.0}).wind, b = clean.stop({6.0, 1.0}).wind;
+    EXPECT_NEAR(norm(a), norm(b), 1e-12);  // the speed is exact
+    const double d = std::atan2(cross(b, a), b.x * a.x + b.y * a.y) * 180.0 / 3.14159265358979;
+    sum2 += d * d;
+    ++n;
+  }
+  EXPECT_NEAR(std::sqrt(sum2 / n), 22.26, 2.5);  // 200 draws: the std within about 10 %
+}
+
+TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpace) {
+  PlumeWorld w;
+  w.map.obstacles = {{{5.0, 0.5}, {5.6, 0.5}, {5.6, 1.5}, {5.0, 1.5}}};
+  WorldOptions o = a_thin_plume();
+  o.position_noise = 1.17;  // seed 000, Eq. 4.3
+  double sum2 = 0.0;
+  int n = 0;
+  for (std::uint64_t seed = 1; seed <= 200; ++seed) {
+    SimulatedWorld noisy = w.make("ideal", o, seed), clean = w.make("ideal", a_thin_plume(), seed);
+    const Reading a = noisy.stop({4.0, 1.0}), b = clean.stop({4.0, 1.0});
+    EXPECT_EQ(a.gas, b.gas);  // the robot is where it is; only its record moves
+    EXPECT_TRUE(w.map.is_free(a.position)) << to_string(a.position);
+    sum2 += 0.5 * (a.position.x - 4.0) * (a.position.x - 4.0) +
+            0.5 * (a.position.y - 1.0) * (a.position.y - 1.0);
+    ++n;
+  }
+  // Clipped by the arena and the block, so a little under 1.17.
+  EXPECT_GT(std::sqrt(sum2 / n), 0.7);
+  EXPECT_LT(std::sqrt(sum2 / n), 1.3);
 }
 
 }  // namespace
