@@ -27,6 +27,35 @@ bool through_obstacle_outlet(const Map& map, Vec2 a, Vec2 b) {
   return false;
 }
 
+// A filament's kernel window: sensor columns i0..i1, rows j0..j1 of a grid of cell dx x dy.
+struct Window {
+  int i0, i1, j0, j1;
+  double dx, dy;
+};
+
+// Zeroes, in the window's row-major mask, the sensors in `shadow`; a row's
+// mask is set to ones the first time a shadow reaches it (masked[row] = 1).
+void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
+           std::vector<std::uint8_t>& masked) {
+  const std::size_t width = static_cast<std::size_t>(w.i1 - w.i0 + 1);
+  // Rows and columns whose centres lie in the shadow, clamped in double (bounds may be infinite).
+  const double from_j = std::max<double>(w.j0, std::ceil(shadow.y_lo() / w.dy - 0.5));
+  const double to_j = std::min<double>(w.j1, std::floor(shadow.y_hi() / w.dy - 0.5));
+  if (from_j > to_j) return;
+  for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
+    double lo, hi;
+    if (!shadow.on_row((j + 0.5) * w.dy, lo, hi)) continue;
+    const double from_i = std::max<double>(w.i0, std::ceil(lo / w.dx - 0.5));
+    const double to_i = std::min<double>(w.i1, std::floor(hi / w.dx - 0.5));
+    if (from_i > to_i) continue;
+    double* row = mask.data() + (j - w.j0) * width;
+    if (!masked[j - w.j0]) std::fill(row, row + width, 1.0);
+    masked[j - w.j0] = 1;
+    std::fill(row + (static_cast<int>(from_i) - w.i0), row + (static_cast<int>(to_i) - w.i0 + 1),
+              0.0);
+  }
+}
+
 }  // namespace
 
 // Bounds well beyond any useful setting: they catch NaN, signs and unit
@@ -198,46 +227,18 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
       const double d = (j + 0.5) * dy - f.position.y;
       ey[j - j0] = amp * std::exp(-d * d * inv);
     }
-    edges.clear();
+    // With occlusion, mark the window's rows that some obstacle edge shadows.
+    masked.assign(ey.size(), 0);
     if (sight_) {
       // The sensors' centres and the filament: every segment between them lies inside.
       const Vec2 lo{(i0 + 0.5) * dx, (j0 + 0.5) * dy}, hi{(i1 + 0.5) * dx, (j1 + 0.5) * dy};
       const Box window{{std::min(lo.x, f.position.x), std::min(lo.y, f.position.y)},
                        {std::max(hi.x, f.position.x), std::max(hi.y, f.position.y)}};
+      edges.clear();
       sight_->facing_edges(f.position, window, edges);
-    }
-    if (edges.empty()) {
-      for (int j = j0; j <= j1; ++j) {
-        double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
-        const double a = ey[j - j0];
-        for (int i = i0; i <= i1; ++i)
-          row[i] += a * ex[i - i0];
-      }
-      continue;
-    }
-    // Some edge may hide part of the window: zero each edge's shadow in a
-    // mask over the rows it reaches, then add the kernel where the filament is seen.
-    const std::size_t width = ex.size();
-    mask.resize(width * ey.size());
-    masked.assign(ey.size(), 0);
-    for (const Edge& e : edges) {
-      const EdgeShadow shadow(f.position, e);
-      const double from_j = std::max<double>(j0, std::ceil(shadow.y_lo() / dy - 0.5));
-      const double to_j = std::min<double>(j1, std::floor(shadow.y_hi() / dy - 0.5));
-      if (from_j > to_j) continue;
-      for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
-        double lo, hi;
-        if (!shadow.on_row((j + 0.5) * dy, lo, hi)) continue;
-        // Columns whose centres lie in [lo, hi], clamped in double (lo, hi may be infinite).
-        const double from_i = std::max<double>(i0, std::ceil(lo / dx - 0.5));
-        const double to_i = std::min<double>(i1, std::floor(hi / dx - 0.5));
-        if (from_i > to_i) continue;
-        double* row_mask = mask.data() + (j - j0) * width;
-        if (!masked[j - j0]) std::fill(row_mask, row_mask + width, 1.0);
-        masked[j - j0] = 1;
-        std::fill(row_mask + (static_cast<int>(from_i) - i0),
-                  row_mask + (static_cast<int>(to_i) - i0 + 1), 0.0);
-      }
+      mask.resize(ex.size() * ey.size());
+      for (const Edge& e : edges)
+        shade(EdgeShadow(f.position, e), {i0, i1, j0, j1, dx, dy}, mask, masked);
     }
     for (int j = j0; j <= j1; ++j) {
       double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
@@ -247,7 +248,7 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
           row[i] += a * ex[i - i0];
         continue;
       }
-      const double* row_mask = mask.data() + (j - j0) * width;
+      const double* row_mask = mask.data() + (j - j0) * ex.size();
       for (int i = i0; i <= i1; ++i)
         row[i] += a * ex[i - i0] * row_mask[i - i0];
     }
@@ -275,9 +276,9 @@ bool spin_up(FilamentSimulation& sim, const FilamentOptions& options) {
 }
 
 double FilamentSimulation::concentration_at(Vec2 p) const {
-  // The same kernel and cutoff as concentration(), at one point.
-  // (a square of half-side cutoff * R, as there).
-  // With occlusion, the edges that face the sensor within any filament's reach.
+  // The same kernel and cutoff as concentration(), at one point (a square of
+  // half-side cutoff * R, as there). With occlusion, the edges that face the
+  // sensor within any filament's reach decide which filaments it sees.
   std::vector<Edge> edges;
   if (sight_) {
     const double reach = o_.cutoff * o_.max_radius;

@@ -28,7 +28,6 @@ class LineOfSight {
   // `from`; each edge once. A segment inside `box` with one end at `from` can
   // only be cut by these.
   void facing_edges(Vec2 from, const Box& box, std::vector<Edge>& out) const;
-  bool empty() const { return edges_.empty(); }
 
  private:
   std::vector<Edge> edges_;
