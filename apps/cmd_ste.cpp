@@ -110,6 +110,12 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per 10 Hz reading (simulated)",
           "ste.world.noise");
   bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
+  bind_to(cmd, "--stop-s", o.world.sample_s,
+          "Length of each stop's sampling, s (seed 004 and the thesis: 5; seed 000: 20)",
+          "ste.world.sample_s");
+  bind_to(cmd, "--stop-rate", o.world.sample_rate,
+          "Readings per second during a stop, Hz (seed 004 and the thesis: 10; seed 000: 1)",
+          "ste.world.sample_rate");
   add_occlusion_option(cmd, o.world.filament.occlusion);
   bind_field(cmd,
              cmd->add_option_function<std::string>(
