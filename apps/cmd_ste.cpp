@@ -107,7 +107,7 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
 
 // The simulated world, the navigation, the stopping rule and the wind.
 void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
-  bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per 10 Hz reading (simulated)",
+  bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per reading (simulated)",
           "ste.world.noise");
   bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
   bind_to(cmd, "--stop-s", o.world.sample_s,
