@@ -35,11 +35,11 @@ TEST(GasSensor, CatalyticAndElectrochemicalStepsMatchTable41) {
     // Nothing for the rise's dead time, then 90 % after tau_r ln 10 more.
     EXPECT_NEAR(time_to(up, 1.0, 1e-9, true, dt), m.dead_rise_s + dt, 1e-6) << name;
     GasSensor rise(m, dt);
-    EXPECT_NEAR(time_to(rise, 1.0, 0.9, true, dt), m.dead_rise_s + m.rise_s * ln10, 2 * dt)
-        << name;
+    EXPECT_NEAR(time_to(rise, 1.0, 0.9, true, dt), m.dead_rise_s + m.rise_s * ln10, 2 * dt) << name;
     // Saturated, then clean air: the decay's dead time, then 10 % after tau_d ln 10.
     GasSensor fall(m, dt);
-    for (int k = 0; k < 50000; ++k) fall.read(1.0);
+    for (int k = 0; k < 50000; ++k)
+      fall.read(1.0);
     EXPECT_NEAR(time_to(fall, 0.0, 0.1, false, dt), m.dead_decay_s + m.decay_s * ln10, 2 * dt)
         << name;
   }
