@@ -30,6 +30,9 @@ inline bool operator==(Vec2 a, Vec2 b) {
 inline bool operator!=(Vec2 a, Vec2 b) {
   return !(a == b);
 }
+// One pi for every stage (C++17 has no std::numbers).
+inline constexpr double kPi = 3.14159265358979323846;
+
 // Hash of a point's exact coordinates, consistent with operator== (-0.0 and 0.0 hash alike):
 // for maps keyed by points that are copied, never recomputed.
 struct Vec2Hash {

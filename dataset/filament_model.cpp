@@ -12,8 +12,6 @@ namespace plumekit::dataset {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // Whether an outlet on an arena wall covers position s along that wall.
 bool outlet_on_wall(const Map& map, Side side, double s) {
   const int k = map.opening_on_wall(side, s);

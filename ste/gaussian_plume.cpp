@@ -2,12 +2,9 @@
 
 #include <cmath>
 
+#include "core/geometry.hpp"
+
 namespace plumekit::ste {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-
-}  // namespace
 
 GaussianPlume::GaussianPlume(const Map& map, const GaussianPlumeBounds& b)
     : parameters_{{"x", 0.0, map.width},

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/geometry.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::ste {
@@ -13,7 +14,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const double kSqrt2 = std::sqrt(2.0);
-const double kLogSqrtPi = 0.5 * std::log(3.14159265358979323846);
+const double kLogSqrtPi = 0.5 * std::log(kPi);
 
 // log(erfc(x)), also where erfc underflows (its asymptotic series).
 double log_erfc(double x) {
@@ -35,7 +36,7 @@ double log_phi_diff(double a, double b) {
 double log_marginal_scale(double a, double b, double c, double var, double lo, double hi) {
   if (a <= 1e-12 * var) return -c / (2.0 * var) + std::log(hi - lo);
   const double mu = b / a, sd = std::sqrt(var / a);
-  return -(c - b * mu) / (2.0 * var) + std::log(std::sqrt(2.0 * 3.14159265358979323846) * sd) +
+  return -(c - b * mu) / (2.0 * var) + std::log(std::sqrt(2.0 * kPi) * sd) +
          log_phi_diff((lo - mu) / sd, (hi - mu) / sd);
 }
 
@@ -45,7 +46,7 @@ double mean_scale(double a, double b, double var, double lo, double hi) {
   const double mu = b / a, sd = std::sqrt(var / a);
   const double al = (lo - mu) / sd, be = (hi - mu) / sd;
   const double lz = log_phi_diff(al, be);
-  const double log_pdf0 = -0.5 * std::log(2.0 * 3.14159265358979323846);
+  const double log_pdf0 = -0.5 * std::log(2.0 * kPi);
   const double m =
       mu + sd * (std::exp(log_pdf0 - 0.5 * al * al - lz) - std::exp(log_pdf0 - 0.5 * be * be - lz));
   return std::clamp(std::isfinite(m) ? m : mu, lo, hi);

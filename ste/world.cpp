@@ -9,10 +9,6 @@
 
 namespace plumekit::ste {
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}  // namespace
-
 SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
                                const WorldOptions& options, std::uint64_t seed)
     : source_(source),
@@ -73,18 +69,19 @@ Reading SimulatedWorld::stop(Vec2 p) {
       std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
   NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
   double sum = 0.0;
-  Vec2 wind_sum;
+  const Vec2 flow = wind_.at(p);  // steady: only the meander changes during the stop
+  Vec2 meander_sum;
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = gas_.read(sim_.concentration_at(p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
-    wind_sum = wind_sum + (wind_.at(p) + sim_.meander());  // the flow and its meander now
+    meander_sum = meander_sum + sim_.meander();
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval
   Reading r;
   r.gas = sum / n;
-  r.wind = (1.0 / n) * wind_sum;
+  r.wind = flow + (1.0 / n) * meander_sum;
   if (const double sigma = options_.direction_noise_deg(); sigma > 0.0) {
     NormalSampler draw;
     const double a = normal(draw, wind_rng_, 0.0, sigma) * kPi / 180.0;
