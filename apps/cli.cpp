@@ -143,4 +143,24 @@ CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion) {
                     "plume.occlusion");
 }
 
+CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady) {
+  return bind_field(
+      command,
+      command
+          ->add_option_function<std::string>(
+              "--wind-model",
+              [&unsteady](const std::string& name) {
+                if (name != "steady" && name != "unsteady")
+                  throw OptionError("plume.wind_model",
+                                    "unknown wind model '" + name + "'; use steady or unsteady");
+                unsteady = name == "unsteady";
+              },
+              "Filament plume's wind: steady (the flow plus a uniform meander, the thesis's) or "
+              "unsteady (a meandering field that fades at walls; dataset/README.md, \"Unsteady "
+              "wind\")")
+          ->type_name("steady|unsteady")
+          ->default_str(unsteady ? "unsteady" : "steady"),
+      "plume.wind_model");
+}
+
 }  // namespace plumekit::cli

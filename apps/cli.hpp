@@ -57,6 +57,9 @@ CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string
 // --occlusion on|off: the filament world's line of sight (plume.occlusion,
 // dataset/line_of_sight.hpp), for the dataset's plumes and the robot's world alike.
 CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion);
+// --wind-model steady|unsteady: the filament world's wind (plume.wind_model,
+// dataset/README.md, "Unsteady wind"); steady by default.
+CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady);
 
 // A spelling kept for one release: `old_flag` sets the same value as
 // `new_flag` (already added), is hidden from --help, warns on stderr when

@@ -74,6 +74,7 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
              "plume.filaments_per_second")
       ->capture_default_str();
   add_occlusion_option(cmd, p.filament.occlusion);
+  add_wind_model_option(cmd, p.filament.unsteady_wind);
 }
 
 // --families: which random-map families to draw from (default: the thesis's four).

@@ -117,6 +117,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
           "Readings per second during a stop, Hz (seed 004 and the thesis: 10; seed 000: 1)",
           "ste.world.sample_rate");
   add_occlusion_option(cmd, o.world.filament.occlusion);
+  add_wind_model_option(cmd, o.world.filament.unsteady_wind);
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--gas-sensor",

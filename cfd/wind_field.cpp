@@ -28,22 +28,27 @@ WindField::WindField(GridShape shape, std::vector<double> face_u, std::vector<do
   }
 }
 
-Vec2 WindField::at(Vec2 point) const {
-  const int nx = shape_.nx, ny = shape_.ny;
-  if (!(point.x >= 0.0 && point.x <= shape_.width && point.y >= 0.0 && point.y <= shape_.height))
+Vec2 sample_cell_velocity(const GridShape& shape, const std::vector<std::uint8_t>& solid,
+                          const std::vector<double>& u, const std::vector<double>& v, Vec2 point) {
+  const int nx = shape.nx, ny = shape.ny;
+  if (!(point.x >= 0.0 && point.x <= shape.width && point.y >= 0.0 && point.y <= shape.height))
     return {0.0, 0.0};
-  const int ci = std::min(nx - 1, static_cast<int>(point.x / shape_.dx()));
-  const int cj = std::min(ny - 1, static_cast<int>(point.y / shape_.dy()));
-  if (solid(ci, cj)) return {0.0, 0.0};
+  const int ci = std::min(nx - 1, static_cast<int>(point.x / shape.dx()));
+  const int cj = std::min(ny - 1, static_cast<int>(point.y / shape.dy()));
+  if (solid[shape.index(ci, cj)]) return {0.0, 0.0};
   // Bilinear between the four surrounding cell centres; solid cells
   // contribute zero velocity.
-  const GridShape::Bilinear b = shape_.bilinear(point);
+  const GridShape::Bilinear b = shape.bilinear(point);
   const double w00 = (1 - b.tx) * (1 - b.ty), w10 = b.tx * (1 - b.ty), w01 = (1 - b.tx) * b.ty,
                w11 = b.tx * b.ty;
-  const std::size_t k00 = shape_.index(b.i0, b.j0), k10 = shape_.index(b.i1, b.j0);
-  const std::size_t k01 = shape_.index(b.i0, b.j1), k11 = shape_.index(b.i1, b.j1);
-  return {w00 * u_[k00] + w10 * u_[k10] + w01 * u_[k01] + w11 * u_[k11],
-          w00 * v_[k00] + w10 * v_[k10] + w01 * v_[k01] + w11 * v_[k11]};
+  const std::size_t k00 = shape.index(b.i0, b.j0), k10 = shape.index(b.i1, b.j0);
+  const std::size_t k01 = shape.index(b.i0, b.j1), k11 = shape.index(b.i1, b.j1);
+  return {w00 * u[k00] + w10 * u[k10] + w01 * u[k01] + w11 * u[k11],
+          w00 * v[k00] + w10 * v[k10] + w01 * v[k01] + w11 * v[k11]};
+}
+
+Vec2 WindField::at(Vec2 point) const {
+  return sample_cell_velocity(shape_, solid_, u_, v_, point);
 }
 
 double WindField::max_speed() const {

@@ -10,6 +10,12 @@
 
 namespace plumekit::cfd {
 
+// Velocity at a point from cell-centred components u, v (row-major, ny x nx):
+// bilinear between cell centres, solid cells counting as zero; zero inside a
+// solid cell and outside the arena. WindField::at and FluctuatingWind::at.
+Vec2 sample_cell_velocity(const GridShape& shape, const std::vector<std::uint8_t>& solid,
+                          const std::vector<double>& u, const std::vector<double>& v, Vec2 point);
+
 class WindField {
  public:
   WindField() = default;

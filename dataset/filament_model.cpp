@@ -7,10 +7,14 @@
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
+#include "core/seed.hpp"
 
 namespace plumekit::dataset {
 
 namespace {
+
+// Mixed into the plume's seed for the unsteady wind's own random stream.
+constexpr std::uint64_t kFluctuationStream = 0x77696e64;  // "wind"
 
 // Whether an outlet on an arena wall covers position s along that wall.
 bool outlet_on_wall(const Map& map, Side side, double s) {
@@ -69,6 +73,8 @@ void FilamentOptions::validate() const {
                      "the default is 0.245 m/sqrt(s)");
   check_non_negative("plume.meander_speed", meander_speed, 100.0, "m/s", "the default is 0.15 m/s");
   check_positive("plume.meander_time", meander_time, 1e4, "s", "the default is 1 s");
+  check_positive("plume.meander_length", meander_length, 1e4, "m", "the default is 2 m");
+  check_positive("plume.meander_wall_layer", meander_wall_layer, 1e4, "m", "the default is 1 m");
   check_positive("plume.dt", dt, 10.0, "s", "the default is 0.05 s");
   check_range("plume.max_radius", max_radius, initial_radius, 1e3, "m",
               "it must exceed plume.initial_radius; the default is 1.5 m", true);
@@ -126,6 +132,16 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
       clear_[s.index(i, j)] = clear;
     }
   if (o_.occlusion) sight_ = std::make_unique<LineOfSight>(map);
+  if (o_.unsteady_wind) {
+    cfd::FluctuationOptions f;
+    f.intensity = o_.meander_speed;
+    f.time_scale = o_.meander_time;
+    f.length_scale = o_.meander_length;
+    f.wall_layer = o_.meander_wall_layer;
+    // Its own stream, so the filaments' walks are those of the steady world.
+    fluctuation_ =
+        std::make_unique<cfd::FluctuatingWind>(wind, f, splitmix64(seed ^ kFluctuationStream));
+  }
 }
 
 bool FilamentSimulation::free_at(Vec2 p) const {
@@ -139,11 +155,15 @@ bool FilamentSimulation::free_at(Vec2 p) const {
 void FilamentSimulation::step() {
   const double dt = o_.dt;
   const double walk = o_.sigma_walk * std::sqrt(dt);
-  // Ornstein-Uhlenbeck meander, exact update over dt.
-  const double decay = std::exp(-dt / o_.meander_time);
-  const double kick = o_.meander_speed * std::sqrt(1.0 - decay * decay);
-  meander_.x = decay * meander_.x + kick * normal_(rng_);
-  meander_.y = decay * meander_.y + kick * normal_(rng_);
+  if (fluctuation_) {
+    fluctuation_->advance(dt);
+  } else {
+    // Ornstein-Uhlenbeck meander, exact update over dt.
+    const double decay = std::exp(-dt / o_.meander_time);
+    const double kick = o_.meander_speed * std::sqrt(1.0 - decay * decay);
+    meander_.x = decay * meander_.x + kick * normal_(rng_);
+    meander_.y = decay * meander_.y + kick * normal_(rng_);
+  }
 
   release_debt_ += o_.release_per_second * dt;
   while (release_debt_ >= 1.0) {
@@ -157,7 +177,7 @@ void FilamentSimulation::step() {
   std::size_t kept = 0;
   for (std::size_t k = 0; k < filaments_.size(); ++k) {
     Filament f = filaments_[k];
-    const Vec2 w = wind_.at(f.position) + meander_;
+    const Vec2 w = wind_at(f.position);
     Vec2 p = f.position + dt * w;
     p.x += walk * normal_(rng_);
     p.y += walk * normal_(rng_);

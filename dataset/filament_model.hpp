@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cfd/wind_field.hpp"
+#include "cfd/wind_fluctuation.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
 #include "core/random.hpp"
@@ -61,6 +62,15 @@ struct FilamentOptions {
   // Off by default until the test maps' ground truth and the shipped model
   // are regenerated with it; off reproduces the thesis-style world exactly.
   bool occlusion = false;
+  // Unsteady wind (issue 18; cfd/wind_fluctuation.hpp): the meander becomes a
+  // field that varies in space, is divergence-free and fades to zero at walls
+  // and obstacles, with std meander_speed per axis and correlation time
+  // meander_time, wavelengths from meander_length to twice it, fading over
+  // meander_wall_layer; the uniform meander is then off. Off (steady) by
+  // default, which reproduces the thesis-style world exactly.
+  bool unsteady_wind = false;
+  double meander_length = 2.0;      // m
+  double meander_wall_layer = 1.0;  // m
 
   double equivalent_diffusivity() const { return 0.5 * sigma_walk * sigma_walk + 0.25 * growth; }
 
@@ -102,8 +112,13 @@ class FilamentSimulation {
   double time() const { return time_; }
   const std::vector<Filament>& filaments() const { return filaments_; }
   const FilamentSummary& summary() const { return summary_; }
-  // The meander velocity shared by all filaments now: the wind's large-scale swing.
+  // The meander velocity shared by all filaments now: the wind's large-scale
+  // swing (zero with the unsteady wind, whose swing is in the field).
   Vec2 meander() const { return meander_; }
+  // The wind that carries the gas at p now: the steady flow plus the meander,
+  // or the unsteady field. What an anemometer there reads.
+  Vec2 wind_at(Vec2 p) const { return fluctuation_ ? fluctuation_->at(p) : wind_.at(p) + meander_; }
+  bool unsteady() const { return fluctuation_ != nullptr; }
   // Adds the concentration at the cell centres of `shape` to `out`.
   void concentration(const GridShape& shape, std::vector<double>& out) const;
   // The concentration at one point (what a robot's sensor reads there now).
@@ -119,8 +134,9 @@ class FilamentSimulation {
   std::mt19937_64 rng_;
   NormalSampler normal_;  // core/random.hpp: the same variates with any standard library
   std::vector<Filament> filaments_;
-  std::vector<std::uint8_t> clear_;     // per flow cell: no obstacle within it
-  std::unique_ptr<LineOfSight> sight_;  // with options.occlusion only
+  std::vector<std::uint8_t> clear_;                    // per flow cell: no obstacle within it
+  std::unique_ptr<LineOfSight> sight_;                 // with options.occlusion only
+  std::unique_ptr<cfd::FluctuatingWind> fluctuation_;  // with options.unsteady_wind only
   double time_ = 0.0;
   double release_debt_ = 0.0;
   Vec2 meander_;

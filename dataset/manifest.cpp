@@ -80,6 +80,11 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                      {"equivalent_diffusivity", f.equivalent_diffusivity()}};
     // Only when on, so that manifests written before the option still match on resume.
     if (f.occlusion) j["filament"]["occlusion"] = true;
+    if (f.unsteady_wind) {
+      j["filament"]["wind_model"] = "unsteady";
+      j["filament"]["meander_length"] = f.meander_length;
+      j["filament"]["meander_wall_layer"] = f.meander_wall_layer;
+    }
   } else {
     j["advection_diffusion"] = {{"diffusivity", a.diffusivity},
                                 {"release_rate", a.release_rate},

@@ -241,6 +241,7 @@ Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& e
                        {"source_cell", source_cell_json(eo.ste)},
                        {"noise", eo.ste.world.noise},
                        {"occlusion", eo.ste.world.filament.occlusion},
+                       {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
                        {"gas_sensor", eo.ste.world.sensor.name},
                        {"sensor_baseline", eo.ste.world.sensor.baseline},
                        {"overall", stats_json(res.overall)},

@@ -69,19 +69,21 @@ Reading SimulatedWorld::stop(Vec2 p) {
       std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
   NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
   double sum = 0.0;
-  const Vec2 flow = wind_.at(p);  // steady: only the meander changes during the stop
-  Vec2 meander_sum;
+  // Steady wind: only the uniform meander changes during the stop; unsteady:
+  // the anemometer averages the field at p.
+  const Vec2 flow = sim_.unsteady() ? Vec2{} : wind_.at(p);
+  Vec2 swing_sum;
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = gas_.read(sim_.concentration_at(p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
-    meander_sum = meander_sum + sim_.meander();
+    swing_sum = swing_sum + (sim_.unsteady() ? sim_.wind_at(p) : sim_.meander());
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval
   Reading r;
   r.gas = sum / n;
-  r.wind = flow + (1.0 / n) * meander_sum;
+  r.wind = flow + (1.0 / n) * swing_sum;
   if (const double sigma = options_.direction_noise_deg(); sigma > 0.0) {
     NormalSampler draw;
     const double a = normal(draw, wind_rng_, 0.0, sigma) * kPi / 180.0;

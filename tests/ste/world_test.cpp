@@ -85,6 +85,31 @@ TEST(SimulatedWorld, TheAnemometerAveragesTheWindAndItsDirectionErrorHasTheAsked
   EXPECT_NEAR(std::sqrt(sum2 / n), 22.26, 2.5);  // 200 draws: the std within about 10 %
 }
 
+// With the unsteady wind the anemometer reads the meandering field where the
+// robot is: it swings in the open and hardly at all beside a wall.
+TEST(SimulatedWorld, TheUnsteadyAnemometerSwingsInTheOpenAndHardlyAtAWall) {
+  const PlumeWorld w;
+  WorldOptions o = a_thin_plume();
+  o.filament.unsteady_wind = true;
+  SimulatedWorld world = w.make("ideal", o);
+  double open2 = 0.0, wall2 = 0.0, open_x = 0.0;
+  const int stops = 200;
+  for (int k = 0; k < stops; ++k) {
+    const Vec2 open = world.stop({5.0, 2.0}).wind, wall = world.stop({5.0, 0.05}).wind;
+    open2 += open.y * open.y;
+    wall2 += wall.y * wall.y;
+    open_x += open.x;
+  }
+  const double open_sd = std::sqrt(open2 / stops), wall_sd = std::sqrt(wall2 / stops);
+  std::printf("crosswind std over 5 s stops: open %.3f m/s, at the wall %.4f m/s\n", open_sd,
+              wall_sd);
+  EXPECT_NEAR(open_x / stops, 1.0, 0.05);  // the mean is the steady flow
+  // 0.15 m/s per axis with a 1 s correlation time, averaged over 5 s: about 0.085.
+  EXPECT_GT(open_sd, 0.05);
+  EXPECT_LT(open_sd, 0.15);
+  EXPECT_LT(wall_sd, 0.2 * open_sd);
+}
+
 TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpace) {
   PlumeWorld w;
   w.map.obstacles = {{{5.0, 0.5}, {5.6, 0.5}, {5.6, 1.5}, {5.0, 1.5}}};

@@ -1,0 +1,62 @@
+#pragma once
+// Unsteady wind (issue 18): the steady flow plus a fluctuation that meanders
+// in time and space, u(x, t) = u0(x) + sum_k a_k(t) phi_k(x).
+//
+// Each mode phi_k is the discrete curl of a streamfunction m(x) psi_k(x) on
+// the flow grid's nodes: psi_k a plane wave (wavelength between L and 2L,
+// random direction and phase) and m a wall factor that rises from 0 at every
+// obstacle, wall and opening to 1 at `wall_layer` metres from them (a
+// smoothstep). So every mode is exactly divergence-free on the MAC grid, moves
+// no air through any wall, obstacle or opening (the openings' fluxes stay the
+// steady flow's), is zero inside obstacles and fades to zero at walls. The
+// amplitudes a_k are independent Ornstein-Uhlenbeck processes (coloured noise,
+// as Farrell et al. 2002 drive their meander), scaled so that away from walls
+// each velocity component fluctuates with std `intensity`.
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "cfd/wind_field.hpp"
+#include "core/random.hpp"
+
+namespace plumekit::cfd {
+
+struct FluctuationOptions {
+  double intensity = 0.15;    // m/s, std per axis away from walls
+  double time_scale = 1.0;    // s, the amplitudes' correlation time
+  double length_scale = 2.0;  // m, the shortest wavelength (the longest is twice it)
+  double wall_layer = 1.0;    // m, where the wall factor reaches 1
+  int modes = 8;
+};
+
+class FluctuatingWind {
+ public:
+  // The modes' geometry and the first amplitudes (drawn from the stationary
+  // distribution, so there is no transient) come from `seed`.
+  FluctuatingWind(const WindField& steady, const FluctuationOptions& options, std::uint64_t seed);
+
+  // Advances the amplitudes by dt (exact Ornstein-Uhlenbeck update) and
+  // updates the cell velocities.
+  void advance(double dt);
+  // The wind now: bilinear between cell centres, zero inside obstacles and
+  // outside the arena, as WindField::at.
+  Vec2 at(Vec2 p) const;
+
+  const WindField& steady() const { return steady_; }
+  // Each mode with unit amplitude: face velocities exactly divergence-free.
+  const std::vector<WindField>& modes() const { return modes_; }
+  const std::vector<double>& amplitudes() const { return amplitude_; }
+
+ private:
+  void update_cells();
+
+  const WindField& steady_;
+  FluctuationOptions o_;
+  std::vector<WindField> modes_;
+  std::vector<double> amplitude_;
+  std::vector<double> u_, v_;  // cell-centred velocity now
+  std::mt19937_64 rng_;
+  NormalSampler normal_;
+};
+
+}  // namespace plumekit::cfd
