@@ -3,11 +3,12 @@
 // --maps maps of seed 1, 100 sources each), extrapolated to 180 x 100.
 //
 //   ./build/bench/dataset_bench [--maps 10] [--threads 2] [--repeats 1] [--out DIR]
-//                               [--occlusion]
+//                               [--occlusion] [--unsteady]
 //
-// By default it compares the two plume models; with --occlusion it compares
-// the filament model with and without line of sight (issue 18), whose
-// thesis-scale target is 15 min, 1.44x the 10 min 25 s measured without.
+// By default it compares the two plume models; with --occlusion and/or
+// --unsteady it compares the filament model with line of sight and/or the
+// unsteady wind (issue 18) against the thesis-style one; the thesis-scale
+// target is 15 min, 1.44x the 10 min 25 s measured without them.
 //
 // Extrapolation is linear in the number of maps: maps are independent, each
 // costs one flow solve plus 100 plume samples, and the slice draws its maps
@@ -44,6 +45,7 @@ struct Setting {
   const char* label;
   PlumeSimulator model;
   bool occlusion;
+  bool unsteady;
 };
 
 Run run_setting(const Setting& setting, int maps, int threads, const fs::path& out) {
@@ -53,6 +55,7 @@ Run run_setting(const Setting& setting, int maps, int threads, const fs::path& o
   o.seed = 1;
   o.plume.model = setting.model;
   o.plume.filament.occlusion = setting.occlusion;
+  o.plume.filament.unsteady_wind = setting.unsteady;
   RunOptions run;
   run.threads = threads;
   const fs::path dir = out / setting.label;
@@ -66,7 +69,7 @@ Run run_setting(const Setting& setting, int maps, int threads, const fs::path& o
 
 int main(int argc, char** argv) {
   int maps = 10, threads = 2, repeats = 1;
-  bool occlusion = false;
+  bool occlusion = false, unsteady = false;
   fs::path out = fs::temp_directory_path() / "plumekit-dataset-bench";
   for (int k = 1; k + 1 < argc; k += 2) {
     if (!std::strcmp(argv[k], "--maps")) maps = std::atoi(argv[k + 1]);
@@ -74,16 +77,22 @@ int main(int argc, char** argv) {
     if (!std::strcmp(argv[k], "--repeats")) repeats = std::max(1, std::atoi(argv[k + 1]));
     if (!std::strcmp(argv[k], "--out")) out = argv[k + 1];
   }
-  for (int k = 1; k < argc; ++k)
+  for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--occlusion")) occlusion = true;
+    if (!std::strcmp(argv[k], "--unsteady")) unsteady = true;
+  }
   const int thesis_samples = 180 * 100;
   std::printf(
       "slice: %d maps x 100 sources, seed 1, %d threads, %d repeat(s); thesis scale: 180 x 100\n",
       maps, threads, repeats);
+  const bool faithful = occlusion || unsteady;
+  const char* faithful_label = occlusion && unsteady ? "filament-occl-unsteady"
+                               : occlusion           ? "filament-occlusion"
+                                                     : "filament-unsteady";
   const Setting settings[2] = {
-      {"filament", PlumeSimulator::Filament, false},
-      occlusion ? Setting{"filament-occlusion", PlumeSimulator::Filament, true}
-                : Setting{"advection-diffusion", PlumeSimulator::AdvectionDiffusion, false}};
+      {"filament", PlumeSimulator::Filament, false, false},
+      faithful ? Setting{faithful_label, PlumeSimulator::Filament, occlusion, unsteady}
+               : Setting{"advection-diffusion", PlumeSimulator::AdvectionDiffusion, false, false}};
   std::vector<Run> runs[2];
   std::vector<double> ratios, plume_ratios;
   for (int r = 0; r < repeats; ++r) {
@@ -114,11 +123,11 @@ int main(int argc, char** argv) {
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   const char* of_repeats = repeats > 1 ? " (medians of the repeats' ratios)" : "";
-  if (occlusion)
+  if (faithful)
     std::printf(
-        "filament with occlusion vs without: %.2fx the time with the flow, %.2fx per plume%s; "
+        "%s vs filament: %.2fx the time with the flow, %.2fx per plume%s; "
         "thesis scale ~%.1f min at 10 min 25 s without\n",
-        1.0 / median(ratios), 1.0 / median(plume_ratios), of_repeats,
+        faithful_label, 1.0 / median(ratios), 1.0 / median(plume_ratios), of_repeats,
         624.8 / median(ratios) / 60.0);
   else
     std::printf(

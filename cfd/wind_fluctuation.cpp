@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <opencv2/imgproc.hpp>
 
 #include "core/geometry.hpp"
@@ -87,56 +88,87 @@ FluctuatingWind::FluctuatingWind(const WindField& steady, const FluctuationOptio
                                  std::uint64_t seed)
     : steady_(steady), o_(options), rng_(seed) {
   const GridShape& s = steady.shape();
-  const std::vector<double> m = wall_factor(steady, o_.wall_layer);
-  std::vector<double> psi(m.size());
-  for (int k = 0; k < o_.modes; ++k) {
+  wall_factor_ = wall_factor(steady, o_.wall_layer);
+  constexpr int K = kModes;
+  cell_modes_.assign(s.size() * 2 * K + 16, 0.0f);
+  while (reinterpret_cast<std::uintptr_t>(cell_modes_.data() + base_) % 64 != 0)
+    ++base_;
+  for (int k = 0; k < K; ++k) {
     const double wavelength = o_.length_scale * (1.0 + uniform01(rng_));
     const double direction = kPi * uniform01(rng_);
     const double phase = 2.0 * kPi * uniform01(rng_);
-    const double kx = 2.0 * kPi / wavelength * std::cos(direction);
-    const double ky = 2.0 * kPi / wavelength * std::sin(direction);
-    for (int j = 0; j <= s.ny; ++j)
-      for (int i = 0; i <= s.nx; ++i) {
-        const std::size_t n = static_cast<std::size_t>(j) * (s.nx + 1) + i;
-        psi[n] = m[n] * std::cos(kx * i * s.dx() + ky * j * s.dy() + phase);
-      }
-    const double ms = mean_square_per_axis(curl(steady, psi, 1.0), m);
-    modes_.push_back(curl(steady, psi, ms > 0.0 ? 1.0 / std::sqrt(ms) : 0.0));
+    const double wavenumber = 2.0 * kPi / wavelength;
+    waves_.push_back(
+        {wavenumber * std::cos(direction), wavenumber * std::sin(direction), phase, 1.0});
+    const WindField unscaled = mode(k);  // the curl is linear: scale its cells
+    const double ms = mean_square_per_axis(unscaled, wall_factor_);
+    const double scale = ms > 0.0 ? 1.0 / std::sqrt(ms) : 0.0;
+    waves_.back().scale = scale;
+    for (std::size_t c = 0; c < s.size(); ++c) {
+      cell_modes_[base_ + c * 2 * K + k] = static_cast<float>(scale * unscaled.u()[c]);
+      cell_modes_[base_ + c * 2 * K + K + k] = static_cast<float>(scale * unscaled.v()[c]);
+    }
   }
   // Independent modes of unit strength: K of them with std sigma / sqrt(K)
   // give std sigma per axis.
-  const double sd = o_.modes > 0 ? o_.intensity / std::sqrt(o_.modes) : 0.0;
-  for (int k = 0; k < o_.modes; ++k)
+  const double sd = o_.intensity / std::sqrt(K);
+  for (int k = 0; k < K; ++k)
     amplitude_.push_back(sd * normal_(rng_));
-  update_cells();
+}
+
+WindField FluctuatingWind::mode(int k) const {
+  const GridShape& s = steady_.shape();
+  const Wave& w = waves_[static_cast<std::size_t>(k)];
+  std::vector<double> psi(wall_factor_.size());
+  for (int j = 0; j <= s.ny; ++j)
+    for (int i = 0; i <= s.nx; ++i) {
+      const std::size_t n = static_cast<std::size_t>(j) * (s.nx + 1) + i;
+      psi[n] = wall_factor_[n] * std::cos(w.kx * i * s.dx() + w.ky * j * s.dy() + w.phase);
+    }
+  return curl(steady_, psi, w.scale);
 }
 
 void FluctuatingWind::advance(double dt) {
   const double decay = std::exp(-dt / o_.time_scale);
-  const double kick =
-      (o_.modes > 0 ? o_.intensity / std::sqrt(o_.modes) : 0.0) * std::sqrt(1.0 - decay * decay);
+  const double kick = o_.intensity / std::sqrt(kModes) * std::sqrt(1.0 - decay * decay);
   for (double& a : amplitude_)
     a = decay * a + kick * normal_(rng_);
-  update_cells();
-}
-
-void FluctuatingWind::update_cells() {
-  u_ = steady_.u();
-  v_ = steady_.v();
-  const std::size_t n = u_.size();
-  for (std::size_t k = 0; k < modes_.size(); ++k) {
-    const double a = amplitude_[k];
-    const double* mu = modes_[k].u().data();
-    const double* mv = modes_[k].v().data();
-    for (std::size_t c = 0; c < n; ++c) {
-      u_[c] += a * mu[c];
-      v_[c] += a * mv[c];
-    }
-  }
 }
 
 Vec2 FluctuatingWind::at(Vec2 p) const {
-  return sample_cell_velocity(steady_.shape(), steady_.solid_cells(), u_, v_, p);
+  const GridShape& s = steady_.shape();
+  if (!(p.x >= 0.0 && p.x <= s.width && p.y >= 0.0 && p.y <= s.height)) return {};
+  const int ci = std::min(s.nx - 1, static_cast<int>(p.x / s.dx()));
+  const int cj = std::min(s.ny - 1, static_cast<int>(p.y / s.dy()));
+  if (steady_.solid(ci, cj)) return {};
+  // Bilinear between the four cell centres around p, as WindField::at (solid
+  // cells hold zero in the flow and in every mode), sharing the weights.
+  const GridShape::Bilinear b = s.bilinear(p);
+  const double w[4] = {(1 - b.tx) * (1 - b.ty), b.tx * (1 - b.ty), (1 - b.tx) * b.ty, b.tx * b.ty};
+  const std::size_t cells[4] = {s.index(b.i0, b.j0), s.index(b.i1, b.j0), s.index(b.i0, b.j1),
+                                s.index(b.i1, b.j1)};
+  const double *u0 = steady_.u().data(), *v0 = steady_.v().data();
+  const Vec2 base{
+      w[0] * u0[cells[0]] + w[1] * u0[cells[1]] + w[2] * u0[cells[2]] + w[3] * u0[cells[3]],
+      w[0] * v0[cells[0]] + w[1] * v0[cells[1]] + w[2] * v0[cells[2]] + w[3] * v0[cells[3]]};
+  // The corners first (independent lanes), then the amplitudes: short
+  // dependency chains, as this runs for every filament at every step.
+  constexpr int K = kModes;
+  const float* m0 = &cell_modes_[base_ + cells[0] * 2 * K];
+  const float* m1 = &cell_modes_[base_ + cells[1] * 2 * K];
+  const float* m2 = &cell_modes_[base_ + cells[2] * 2 * K];
+  const float* m3 = &cell_modes_[base_ + cells[3] * 2 * K];
+  double mixed[2 * K];
+  for (int k = 0; k < 2 * K; ++k)
+    mixed[k] = (w[0] * double(m0[k]) + w[1] * double(m1[k])) +
+               (w[2] * double(m2[k]) + w[3] * double(m3[k]));
+  const double* a = amplitude_.data();
+  const Vec2 d{((a[0] * mixed[0] + a[1] * mixed[1]) + (a[2] * mixed[2] + a[3] * mixed[3])) +
+                   ((a[4] * mixed[4] + a[5] * mixed[5]) + (a[6] * mixed[6] + a[7] * mixed[7])),
+               ((a[0] * mixed[8] + a[1] * mixed[9]) + (a[2] * mixed[10] + a[3] * mixed[11])) +
+                   ((a[4] * mixed[12] + a[5] * mixed[13]) + (a[6] * mixed[14] + a[7] * mixed[15]))};
+  static_assert(K == 8, "the sums above are written out for eight modes");
+  return base + d;
 }
 
 }  // namespace plumekit::cfd
