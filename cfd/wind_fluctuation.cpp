@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <opencv2/imgproc.hpp>
 
 #include "core/geometry.hpp"
@@ -90,9 +89,7 @@ FluctuatingWind::FluctuatingWind(const WindField& steady, const FluctuationOptio
   const GridShape& s = steady.shape();
   wall_factor_ = wall_factor(steady, o_.wall_layer);
   constexpr int K = kModes;
-  cell_modes_.assign(s.size() * 2 * K + 16, 0.0f);
-  while (reinterpret_cast<std::uintptr_t>(cell_modes_.data() + base_) % 64 != 0)
-    ++base_;
+  cell_modes_.assign(s.size() * 2 * K, 0.0f);
   for (int k = 0; k < K; ++k) {
     const double wavelength = o_.length_scale * (1.0 + uniform01(rng_));
     const double direction = kPi * uniform01(rng_);
@@ -105,8 +102,8 @@ FluctuatingWind::FluctuatingWind(const WindField& steady, const FluctuationOptio
     const double scale = ms > 0.0 ? 1.0 / std::sqrt(ms) : 0.0;
     waves_.back().scale = scale;
     for (std::size_t c = 0; c < s.size(); ++c) {
-      cell_modes_[base_ + c * 2 * K + k] = static_cast<float>(scale * unscaled.u()[c]);
-      cell_modes_[base_ + c * 2 * K + K + k] = static_cast<float>(scale * unscaled.v()[c]);
+      cell_modes_[c * 2 * K + k] = static_cast<float>(scale * unscaled.u()[c]);
+      cell_modes_[c * 2 * K + K + k] = static_cast<float>(scale * unscaled.v()[c]);
     }
   }
   // Independent modes of unit strength: K of them with std sigma / sqrt(K)
@@ -154,10 +151,10 @@ Vec2 FluctuatingWind::at(Vec2 p) const {
   // The corners first (independent lanes), then the amplitudes: short
   // dependency chains, as this runs for every filament at every step.
   constexpr int K = kModes;
-  const float* m0 = &cell_modes_[base_ + cells[0] * 2 * K];
-  const float* m1 = &cell_modes_[base_ + cells[1] * 2 * K];
-  const float* m2 = &cell_modes_[base_ + cells[2] * 2 * K];
-  const float* m3 = &cell_modes_[base_ + cells[3] * 2 * K];
+  const float* m0 = &cell_modes_[cells[0] * 2 * K];
+  const float* m1 = &cell_modes_[cells[1] * 2 * K];
+  const float* m2 = &cell_modes_[cells[2] * 2 * K];
+  const float* m3 = &cell_modes_[cells[3] * 2 * K];
   double mixed[2 * K];
   for (int k = 0; k < 2 * K; ++k)
     mixed[k] = (w[0] * double(m0[k]) + w[1] * double(m1[k])) +

@@ -42,10 +42,10 @@ class FluctuatingWind {
 
   const WindField& steady() const { return steady_; }
   // Eight plane waves: enough directions for an isotropic swing, few enough
-  // that a filament's wind costs about twice the steady flow's.
+  // that reading the wind stays a small part of a filament's step.
   static constexpr int kModes = 8;
   int modes() const { return kModes; }
-  // Mode k with unit amplitude, rebuilt on demand (for tests and pictures):
+  // Mode k with unit amplitude, rebuilt on demand (for tests):
   // its face velocities are exactly divergence-free.
   WindField mode(int k) const;
   const std::vector<double>& amplitudes() const { return amplitude_; }
@@ -62,9 +62,7 @@ class FluctuatingWind {
   // Per cell, the modes' cell-centred u then v (2K values): what at() reads,
   // laid out so that one cell's are together. Float: they are shapes of unit
   // strength, and half the memory on building-sized grids.
-  // 16 floats: one cache line per cell, from the first aligned one (base_).
   std::vector<float> cell_modes_;
-  std::size_t base_ = 0;
   std::vector<double> amplitude_;
   std::mt19937_64 rng_;
   NormalSampler normal_;

@@ -116,7 +116,8 @@ Picture draw_plume(const Map& map, const Grid<double>& mean, const Grid<double>&
                    const RenderOptions& options) {
   std::ostringstream heading;
   heading << (map.name.empty() ? "map" : map.name) << ": " << model << ", source (" << std::fixed
-          << std::setprecision(2) << source.x << ", " << source.y << ")";
+          << std::setprecision(2) << map.frame.to_frame(source).x << ", "
+          << map.frame.to_frame(source).y << ")";  // the axes are in the map frame
   const std::string u = unit.empty() ? "concentration units" : unit;
   FieldPanel m{free_cells(map, mean), "", "mean [" + u + "]", true};
   FieldPanel s{free_cells(map, std), "", "std [" + u + "]", true};

@@ -138,7 +138,7 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
     f.time_scale = o_.meander_time;
     f.length_scale = o_.meander_length;
     f.wall_layer = o_.meander_wall_layer;
-    // Its own stream, so the filaments' walks are those of the steady world.
+    // Its own stream, derived from the plume's seed.
     fluctuation_ =
         std::make_unique<cfd::FluctuatingWind>(wind, f, splitmix64(seed ^ kFluctuationStream));
   }

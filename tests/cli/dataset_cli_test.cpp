@@ -94,6 +94,29 @@ TEST_F(DatasetCli, OcclusionIsASwitchTheDatasetRecords) {
   EXPECT_TRUE(has(slurp(at("d/manifest.json")), "\"occlusion\": true"));
 }
 
+// --wind-model steady|unsteady (issue 18): the same seed gives another plume in the meandering
+// wind, the same bytes twice, the dataset records it, and an unknown model is refused.
+TEST_F(DatasetCli, TheWindModelIsASwitchTheDatasetRecords) {
+  const std::string common = " " + kMap + " --source 1.5,1 --cell 0.1 --out ";
+  ASSERT_EQ(run("plume" + common + at("steady")).code, 0);
+  for (const char* dir : {"unsteady", "again"}) {
+    const Result r = run("plume --wind-model unsteady" + common + at(dir));
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  EXPECT_FALSE(same_file(at("steady/mean.npy"), at("unsteady/mean.npy")));
+  EXPECT_TRUE(same_file(at("unsteady/mean.npy"), at("again/mean.npy")));
+  const Result bad = run("plume --wind-model gusty" + common + at("bad"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_TRUE(has(bad.err, "--wind-model")) << bad.err;
+  EXPECT_TRUE(has(bad.err, "steady or unsteady")) << bad.err;
+  EXPECT_FALSE(fs::exists(at("bad")));
+
+  const Result gen =
+      run("dataset generate --maps 1 --sources 2 --wind-model unsteady --out " + at("d"));
+  ASSERT_EQ(gen.code, 0) << gen.err;
+  EXPECT_TRUE(has(slurp(at("d/manifest.json")), "\"wind_model\": \"unsteady\"")) << gen.err;
+}
+
 TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
   const std::string common = " --source 1,1 --cell 0.1 --json --out ";
   const Result now = run("plume " + kMap + " --plume-model advection-diffusion" + common + at("a"));
