@@ -143,6 +143,29 @@ CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion) {
                     "plume.occlusion");
 }
 
+void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
+                            const std::string& whose) {
+  bind_field(command,
+             command
+                 ->add_option_function<std::string>(
+                     "--gas-sensor",
+                     [&sensor](const std::string& name) {
+                       const double baseline = sensor.baseline;
+                       sensor = dataset::gas_sensor_preset(name);
+                       sensor.baseline = baseline;
+                     },
+                     whose + " gas sensor: ideal (reads the concentration), catalytic, "
+                             "electrochemical, infrared (seed 000, Table 4.1) or mox-fast (seed "
+                             "004's MiCS-5521); dataset/README.md, \"Gas sensors\"")
+                 ->default_str(sensor.name),
+             "sensor.gas");
+  bind_field(command,
+             command->add_option("--baseline", sensor.baseline,
+                                 "Gas sensor baseline added to every reading, concentration units"),
+             "sensor.baseline")
+      ->capture_default_str();
+}
+
 CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady) {
   return bind_field(
       command,

@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/geometry.hpp"
+#include "dataset/gas_sensor.hpp"
 
 namespace plumekit::cli {
 
@@ -57,6 +58,11 @@ CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string
 // --occlusion on|off: the filament world's line of sight (plume.occlusion,
 // dataset/line_of_sight.hpp), for the dataset's plumes and the robot's world alike.
 CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion);
+// --gas-sensor NAME and --baseline B (sensor.gas, sensor.baseline): a gas
+// sensor preset (dataset/README.md, "Gas sensors"); `whose` starts the help
+// ("The robot's", "The static sensors'").
+void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
+                            const std::string& whose);
 // --wind-model steady|unsteady: the filament world's wind (plume.wind_model,
 // dataset/README.md, "Unsteady wind"); steady by default.
 CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady);

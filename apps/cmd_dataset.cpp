@@ -75,6 +75,7 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
       ->capture_default_str();
   add_occlusion_option(cmd, p.filament.occlusion);
   add_wind_model_option(cmd, p.filament.unsteady_wind);
+  add_gas_sensor_options(cmd, p.sensor, "The static sensors'");
 }
 
 // --families: which random-map families to draw from (default: the thesis's four).

@@ -118,19 +118,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
           "ste.world.sample_rate");
   add_occlusion_option(cmd, o.world.filament.occlusion);
   add_wind_model_option(cmd, o.world.filament.unsteady_wind);
-  bind_field(cmd,
-             cmd->add_option_function<std::string>(
-                    "--gas-sensor",
-                    [&o](const std::string& name) {
-                      const double baseline = o.world.sensor.baseline;
-                      o.world.sensor = dataset::gas_sensor_preset(name);
-                      o.world.sensor.baseline = baseline;
-                    },
-                    "The robot's gas sensor: ideal (reads the concentration), catalytic, "
-                    "electrochemical, infrared (seed 000, Table 4.1) or mox-fast (seed 004's "
-                    "MiCS-5521); dataset/README.md, \"Gas sensors\"")
-                 ->default_str(o.world.sensor.name),
-             "sensor.gas");
+  add_gas_sensor_options(cmd, o.world.sensor, "The robot's");
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--wind-noise",
@@ -150,8 +138,6 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--position-noise", o.world.position_noise,
           "Std per axis of the position recorded with each sample, m (seed 000 Eq. 4.3: 1.17)",
           "ste.world.position_noise");
-  bind_to(cmd, "--baseline", o.world.sensor.baseline,
-          "Gas sensor baseline added to every reading, concentration units", "sensor.baseline");
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
   bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",

@@ -317,7 +317,7 @@ double FilamentSimulation::concentration_at(Vec2 p) const {
 
 SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
                                 const GridShape& sensors, const FilamentOptions& options,
-                                std::uint64_t seed) {
+                                std::uint64_t seed, const GasSensorModel& sensor) {
   const auto t0 = std::chrono::steady_clock::now();
   FilamentSimulation sim(map, wind, source, options, seed);
   const bool steady = spin_up(sim, options);
@@ -331,15 +331,39 @@ SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2
   const int steps_per_frame =
       std::max(1, static_cast<int>(std::lround(1.0 / (options.sample_rate * options.dt))));
   std::vector<double> sum(sensors.size(), 0.0), sum2(sensors.size(), 0.0), frame(sensors.size());
-  for (int f = 0; f < frames; ++f) {
-    if (f > 0)
+  // The concentrations of the next frame, one frame's time after the last.
+  bool first = true;
+  auto next_frame = [&] {
+    if (!first)
       for (int s = 0; s < steps_per_frame; ++s)
         sim.step();
+    first = false;
     std::fill(frame.begin(), frame.end(), 0.0);
     sim.concentration(sensors, frame);
+  };
+  std::vector<GasSensor> readers;
+  if (!sensor.ideal() || sensor.baseline != 0.0) {
+    readers.assign(sensors.size(), GasSensor(sensor, 1.0 / options.sample_rate));
+    if (!sensor.ideal()) {
+      next_frame();
+      for (std::size_t k = 0; k < frame.size(); ++k)
+        readers[k].settle(frame[k]);
+      const int warmup = static_cast<int>(
+          std::lround(std::min(sensor.settling_s(), kMaxSensorWarmup) * options.sample_rate));
+      for (int w = 0; w < warmup; ++w) {
+        next_frame();
+        for (std::size_t k = 0; k < frame.size(); ++k)
+          readers[k].read(frame[k]);
+      }
+      rec.summary.sensor_warmup_s = (warmup + 1) / options.sample_rate;
+    }
+  }
+  for (int f = 0; f < frames; ++f) {
+    next_frame();
     for (std::size_t k = 0; k < frame.size(); ++k) {
-      sum[k] += frame[k];
-      sum2[k] += frame[k] * frame[k];
+      const double c = readers.empty() ? frame[k] : readers[k].read(frame[k]);
+      sum[k] += c;
+      sum2[k] += c * c;
     }
   }
   rec.mean = Grid<double>(sensors, 0.0);

@@ -19,6 +19,7 @@
 #include "core/grid.hpp"
 #include "core/map.hpp"
 #include "core/random.hpp"
+#include "dataset/gas_sensor.hpp"
 #include "dataset/line_of_sight.hpp"
 
 namespace plumekit::dataset {
@@ -96,7 +97,8 @@ struct FilamentSummary {
   long long rejected_moves = 0;  // moves into obstacles, not taken
   long long left_through_outlet = 0;
   long long dropped_too_wide = 0;
-  double seconds = 0.0;  // wall time
+  double sensor_warmup_s = 0.0;  // a gas sensor's warm-up before the record
+  double seconds = 0.0;          // wall time
 };
 
 // One plume, stepped in time. Used through simulate() for datasets; the
@@ -155,9 +157,14 @@ struct SensorRecord {
 bool spin_up(FilamentSimulation& sim, const FilamentOptions& options);
 
 // Spin up until statistically steady, then record the sensors at the cell
-// centres of `sensors`; sensors inside obstacles read 0.
+// centres of `sensors`; sensors inside obstacles read 0. With a gas sensor
+// other than the ideal one, each static sensor is switched on at the end of
+// the spin-up, settled on the concentration it is in, and reads the running
+// plume for its settling time (at most kMaxSensorWarmup) before the record;
+// the record is then what it reads.
+constexpr double kMaxSensorWarmup = 60.0;  // s
 SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
                                 const GridShape& sensors, const FilamentOptions& options,
-                                std::uint64_t seed);
+                                std::uint64_t seed, const GasSensorModel& sensor = {});
 
 }  // namespace plumekit::dataset

@@ -70,6 +70,15 @@ GasSensor::GasSensor(const GasSensorModel& model, double dt) : model_(model), dt
   decay_delay_ = static_cast<int>(std::lround(model_.dead_decay_s / dt));
 }
 
+double GasSensorModel::settling_s() const {
+  return std::max(dead_rise_s + 5.0 * std::max(rise_s, rise_slow_s), dead_decay_s + 5.0 * decay_s);
+}
+
+void GasSensor::settle(double concentration) {
+  inputs_.assign(static_cast<std::size_t>(std::max(rise_delay_, decay_delay_)) + 1, concentration);
+  fast_ = slow_ = concentration;
+}
+
 double GasSensor::delayed(int steps) const {
   return steps < static_cast<int>(inputs_.size()) ? inputs_[static_cast<std::size_t>(steps)] : 0.0;
 }

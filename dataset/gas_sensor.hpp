@@ -37,6 +37,9 @@ struct GasSensorModel {
   }
   // Throws OptionError naming the field ("sensor.rise_s", ...).
   void validate() const;
+  // How long it takes to forget where it started: the longer dead time plus
+  // five of the slowest time constant on that side (0 for the ideal sensor).
+  double settling_s() const;
 };
 
 // The presets by name: ideal; catalytic, electrochemical, infrared (seed 000,
@@ -51,6 +54,10 @@ class GasSensor {
   GasSensor(const GasSensorModel& model, double dt);
   // Feeds the true concentration of the next reading interval and returns the reading.
   double read(double concentration);
+  // As if it had been in `concentration` for ever: every stage at it, and the
+  // dead times' memory full of it (a static sensor switched on in a plume
+  // that has run for a while, before it settles on the plume's own history).
+  void settle(double concentration);
   bool has_memory() const { return !model_.ideal(); }
 
  private:

@@ -1,5 +1,6 @@
 #include "dataset/manifest.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/map_json.hpp"
@@ -90,6 +91,18 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                                 {"release_rate", a.release_rate},
                                 {"scheme", "finite volumes on the flow grid, Patankar hybrid"}};
   }
+  // Only when not the ideal sensor at 0, so that manifests written before the option still match.
+  const GasSensorModel& g = o.plume.sensor;
+  if (!g.ideal() || g.baseline != 0.0)
+    j["sensor"] = {{"gas", g.name},
+                   {"baseline", g.baseline},
+                   {"rise_s", g.rise_s},
+                   {"rise_slow_s", g.rise_slow_s},
+                   {"fast_share", g.fast_share},
+                   {"decay_s", g.decay_s},
+                   {"dead_rise_s", g.dead_rise_s},
+                   {"dead_decay_s", g.dead_decay_s},
+                   {"warmup_s", std::min(g.settling_s(), kMaxSensorWarmup)}};
   return j;
 }
 

@@ -28,6 +28,12 @@ std::vector<std::pair<std::string, PlumeSimulator>> plume_simulator_names() {
 void PlumeOptions::validate() const {
   filament.validate();
   advection_diffusion.validate();
+  sensor.validate();
+  if (model == PlumeSimulator::AdvectionDiffusion && !sensor.ideal())
+    throw OptionError("sensor.gas", "the " + sensor.name +
+                                        " sensor needs the filament model: a sensor's response "
+                                        "follows a time series, and advection-diffusion gives "
+                                        "the steady mean only (use --plume-model filament)");
 }
 
 void check_source(const Map& map, Vec2 source) {
@@ -59,10 +65,11 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
     t.mean = resampler_->apply(ad_->solve(source));
     t.std = Grid<double>(sensors_, 0.0);
     for (std::size_t k = 0; k < sensors_.size(); ++k)
-      if (in_obstacle_[k]) t.mean.values[k] = 0.0;
+      t.mean.values[k] = in_obstacle_[k] ? 0.0 : t.mean.values[k] + options_.sensor.baseline;
     return t;
   }
-  SensorRecord r = simulate_filaments(map_, wind_, source, sensors_, options_.filament, seed);
+  SensorRecord r =
+      simulate_filaments(map_, wind_, source, sensors_, options_.filament, seed, options_.sensor);
   t.mean = std::move(r.mean);
   t.std = std::move(r.std);
   t.filament = r.summary;

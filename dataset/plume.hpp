@@ -16,6 +16,7 @@
 #include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
 #include "dataset/filament_model.hpp"
+#include "dataset/gas_sensor.hpp"
 
 namespace plumekit::dataset {
 
@@ -31,6 +32,10 @@ struct PlumeOptions {
   PlumeSimulator model = PlumeSimulator::Filament;  // plume.model
   FilamentOptions filament;
   AdvectionDiffusionOptions advection_diffusion;
+  // The static sensors' gas sensor (sensor.gas, sensor.baseline; issue 18):
+  // the targets are then what that sensor reads (filament model; the
+  // advection-diffusion plume is steady, so it only takes a baseline).
+  GasSensorModel sensor;
   // Validates both models' options (the unused model's too: a dataset's
   // parameters.json records them all). OptionError naming the field.
   void validate() const;

@@ -117,6 +117,32 @@ TEST_F(DatasetCli, TheWindModelIsASwitchTheDatasetRecords) {
   EXPECT_TRUE(has(slurp(at("d/manifest.json")), "\"wind_model\": \"unsteady\"")) << gen.err;
 }
 
+// --gas-sensor and --baseline on the static sensors (issue 18): the record changes, the dataset
+// records the sensor, and the steady advection-diffusion plume refuses a sensor with a response.
+TEST_F(DatasetCli, TheStaticSensorsGasSensorIsASettingTheDatasetRecords) {
+  const std::string common = " " + kMap + " --source 1.5,1 --cell 0.1 --out ";
+  ASSERT_EQ(run("plume" + common + at("ideal")).code, 0);
+  const Result mox = run("plume --gas-sensor mox-fast" + common + at("mox"));
+  ASSERT_EQ(mox.code, 0) << mox.err;
+  EXPECT_FALSE(same_file(at("ideal/mean.npy"), at("mox/mean.npy")));
+  const Result ad =
+      run("plume --plume-model advection-diffusion --gas-sensor catalytic" + common + at("ad"));
+  EXPECT_EQ(ad.code, 2);
+  EXPECT_TRUE(has(ad.err, "--gas-sensor")) << ad.err;
+  EXPECT_TRUE(has(ad.err, "needs the filament model")) << ad.err;
+  EXPECT_FALSE(fs::exists(at("ad")));
+
+  const Result gen =
+      run("dataset generate --maps 1 --sources 2 --gas-sensor mox-fast --baseline "
+          "3 --out " +
+          at("d"));
+  ASSERT_EQ(gen.code, 0) << gen.err;
+  const nlohmann::json m = nlohmann::json::parse(slurp(at("d/manifest.json")));
+  const std::string dump = m.dump();
+  EXPECT_TRUE(has(dump, "\"gas\":\"mox-fast\"")) << dump;
+  EXPECT_TRUE(has(dump, "\"baseline\":3.0")) << dump;
+}
+
 TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
   const std::string common = " --source 1,1 --cell 0.1 --json --out ";
   const Result now = run("plume " + kMap + " --plume-model advection-diffusion" + common + at("a"));
