@@ -28,27 +28,29 @@ WindField::WindField(GridShape shape, std::vector<double> face_u, std::vector<do
   }
 }
 
-Vec2 sample_cell_velocity(const GridShape& shape, const std::vector<std::uint8_t>& solid,
-                          const std::vector<double>& u, const std::vector<double>& v, Vec2 point) {
-  const int nx = shape.nx, ny = shape.ny;
-  if (!(point.x >= 0.0 && point.x <= shape.width && point.y >= 0.0 && point.y <= shape.height))
-    return {0.0, 0.0};
-  const int ci = std::min(nx - 1, static_cast<int>(point.x / shape.dx()));
-  const int cj = std::min(ny - 1, static_cast<int>(point.y / shape.dy()));
-  if (solid[shape.index(ci, cj)]) return {0.0, 0.0};
+bool WindField::corners(Vec2 point, CellCorners& out) const {
+  const int nx = shape_.nx, ny = shape_.ny;
+  if (!(point.x >= 0.0 && point.x <= shape_.width && point.y >= 0.0 && point.y <= shape_.height))
+    return false;
+  const int ci = std::min(nx - 1, static_cast<int>(point.x / shape_.dx()));
+  const int cj = std::min(ny - 1, static_cast<int>(point.y / shape_.dy()));
+  if (solid(ci, cj)) return false;
   // Bilinear between the four surrounding cell centres; solid cells
   // contribute zero velocity.
-  const GridShape::Bilinear b = shape.bilinear(point);
-  const double w00 = (1 - b.tx) * (1 - b.ty), w10 = b.tx * (1 - b.ty), w01 = (1 - b.tx) * b.ty,
-               w11 = b.tx * b.ty;
-  const std::size_t k00 = shape.index(b.i0, b.j0), k10 = shape.index(b.i1, b.j0);
-  const std::size_t k01 = shape.index(b.i0, b.j1), k11 = shape.index(b.i1, b.j1);
-  return {w00 * u[k00] + w10 * u[k10] + w01 * u[k01] + w11 * u[k11],
-          w00 * v[k00] + w10 * v[k10] + w01 * v[k01] + w11 * v[k11]};
+  const GridShape::Bilinear b = shape_.bilinear(point);
+  out = {{shape_.index(b.i0, b.j0), shape_.index(b.i1, b.j0), shape_.index(b.i0, b.j1),
+          shape_.index(b.i1, b.j1)},
+         {(1 - b.tx) * (1 - b.ty), b.tx * (1 - b.ty), (1 - b.tx) * b.ty, b.tx * b.ty}};
+  return true;
 }
 
 Vec2 WindField::at(Vec2 point) const {
-  return sample_cell_velocity(shape_, solid_, u_, v_, point);
+  CellCorners c;
+  if (!corners(point, c)) return {0.0, 0.0};
+  const double* w = c.weight;
+  const std::size_t* k = c.cell;
+  return {w[0] * u_[k[0]] + w[1] * u_[k[1]] + w[2] * u_[k[2]] + w[3] * u_[k[3]],
+          w[0] * v_[k[0]] + w[1] * v_[k[1]] + w[2] * v_[k[2]] + w[3] * v_[k[3]]};
 }
 
 double WindField::max_speed() const {

@@ -10,11 +10,12 @@
 
 namespace plumekit::cfd {
 
-// Velocity at a point from cell-centred components u, v (row-major, ny x nx):
-// bilinear between cell centres, solid cells counting as zero; zero inside a
-// solid cell and outside the arena. WindField::at and FluctuatingWind::at.
-Vec2 sample_cell_velocity(const GridShape& shape, const std::vector<std::uint8_t>& solid,
-                          const std::vector<double>& u, const std::vector<double>& v, Vec2 point);
+// The four cell centres around a point, (i0, j0), (i1, j0), (i0, j1), (i1, j1)
+// as row-major indices, and their bilinear weights.
+struct CellCorners {
+  std::size_t cell[4];
+  double weight[4];
+};
 
 class WindField {
  public:
@@ -27,6 +28,9 @@ class WindField {
   // Velocity at any point: bilinear between cell centres; zero inside
   // obstacle cells and outside the arena.
   Vec2 at(Vec2 point) const;
+  // The cell centres and weights at(point) interpolates between; false where
+  // the wind is zero (outside the arena, inside an obstacle cell).
+  bool corners(Vec2 point, CellCorners& out) const;
   Vec2 cell_velocity(int i, int j) const {
     return {u_[shape_.index(i, j)], v_[shape_.index(i, j)]};
   }

@@ -106,11 +106,8 @@ FluctuatingWind::FluctuatingWind(const WindField& steady, const FluctuationOptio
       cell_modes_[c * 2 * K + K + k] = static_cast<float>(scale * unscaled.v()[c]);
     }
   }
-  // Independent modes of unit strength: K of them with std sigma / sqrt(K)
-  // give std sigma per axis.
-  const double sd = o_.intensity / std::sqrt(K);
   for (int k = 0; k < K; ++k)
-    amplitude_.push_back(sd * normal_(rng_));
+    amplitude_.push_back(amplitude_sd() * normal_(rng_));
 }
 
 WindField FluctuatingWind::mode(int k) const {
@@ -127,23 +124,18 @@ WindField FluctuatingWind::mode(int k) const {
 
 void FluctuatingWind::advance(double dt) {
   const double decay = std::exp(-dt / o_.time_scale);
-  const double kick = o_.intensity / std::sqrt(kModes) * std::sqrt(1.0 - decay * decay);
+  const double kick = amplitude_sd() * std::sqrt(1.0 - decay * decay);
   for (double& a : amplitude_)
     a = decay * a + kick * normal_(rng_);
 }
 
 Vec2 FluctuatingWind::at(Vec2 p) const {
-  const GridShape& s = steady_.shape();
-  if (!(p.x >= 0.0 && p.x <= s.width && p.y >= 0.0 && p.y <= s.height)) return {};
-  const int ci = std::min(s.nx - 1, static_cast<int>(p.x / s.dx()));
-  const int cj = std::min(s.ny - 1, static_cast<int>(p.y / s.dy()));
-  if (steady_.solid(ci, cj)) return {};
-  // Bilinear between the four cell centres around p, as WindField::at (solid
-  // cells hold zero in the flow and in every mode), sharing the weights.
-  const GridShape::Bilinear b = s.bilinear(p);
-  const double w[4] = {(1 - b.tx) * (1 - b.ty), b.tx * (1 - b.ty), (1 - b.tx) * b.ty, b.tx * b.ty};
-  const std::size_t cells[4] = {s.index(b.i0, b.j0), s.index(b.i1, b.j0), s.index(b.i0, b.j1),
-                                s.index(b.i1, b.j1)};
+  // The steady flow's own corners and weights serve the modes too (solid
+  // cells hold zero in every mode).
+  CellCorners c;
+  if (!steady_.corners(p, c)) return {};
+  const double* w = c.weight;
+  const std::size_t* cells = c.cell;
   const double *u0 = steady_.u().data(), *v0 = steady_.v().data();
   const Vec2 base{
       w[0] * u0[cells[0]] + w[1] * u0[cells[1]] + w[2] * u0[cells[2]] + w[3] * u0[cells[3]],

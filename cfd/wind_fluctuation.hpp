@@ -12,6 +12,7 @@
 // amplitudes a_k are independent Ornstein-Uhlenbeck processes (coloured noise,
 // as Farrell et al. 2002 drive their meander), scaled so that away from walls
 // each velocity component fluctuates with std `intensity`.
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <vector>
@@ -51,6 +52,10 @@ class FluctuatingWind {
   const std::vector<double>& amplitudes() const { return amplitude_; }
 
  private:
+  // Independent modes of unit strength: K of them with std sigma / sqrt(K)
+  // give std sigma per axis.
+  double amplitude_sd() const { return o_.intensity / std::sqrt(double(kModes)); }
+
   struct Wave {
     double kx, ky, phase, scale;
   };
