@@ -15,7 +15,6 @@ SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 
       options_(options),
       sim_(map, wind, source, options.filament, seed),
       map_(map),
-      wind_(wind),
       // Independent streams for the sensors, so noise never shifts the plume.
       noise_rng_(stream_seed(seed, SteStream::SensorNoise)),
       wind_rng_(stream_seed(seed, SteStream::WindNoise)),
@@ -69,21 +68,18 @@ Reading SimulatedWorld::stop(Vec2 p) {
       std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
   NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
   double sum = 0.0;
-  // Steady wind: only the uniform meander changes during the stop; unsteady:
-  // the anemometer averages the field at p.
-  const Vec2 flow = sim_.unsteady() ? Vec2{} : wind_.at(p);
-  Vec2 swing_sum;
+  Vec2 wind_sum;  // the wind that carries the gas at p, at each reading
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = gas_.read(sim_.concentration_at(p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
-    swing_sum = swing_sum + (sim_.unsteady() ? sim_.wind_at(p) : sim_.meander());
+    wind_sum = wind_sum + sim_.wind_at(p);
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval
   Reading r;
   r.gas = sum / n;
-  r.wind = flow + (1.0 / n) * swing_sum;
+  r.wind = (1.0 / n) * wind_sum;
   if (const double sigma = options_.direction_noise_deg(); sigma > 0.0) {
     NormalSampler draw;
     const double a = normal(draw, wind_rng_, 0.0, sigma) * kPi / 180.0;

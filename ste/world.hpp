@@ -71,7 +71,6 @@ class SimulatedWorld {
   WorldOptions options_;
   dataset::FilamentSimulation sim_;
   const Map& map_;
-  const cfd::WindField& wind_;
   std::mt19937_64 noise_rng_, wind_rng_, position_rng_;
   dataset::GasSensor gas_;
   double spinup_ = 0.0;
