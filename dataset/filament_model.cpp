@@ -348,8 +348,8 @@ SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2
       next_frame();
       for (std::size_t k = 0; k < frame.size(); ++k)
         readers[k].settle(frame[k]);
-      const int warmup = static_cast<int>(
-          std::lround(std::min(sensor.settling_s(), kMaxSensorWarmup) * options.sample_rate));
+      const int warmup =
+          static_cast<int>(std::lround(sensor_warmup_s(sensor) * options.sample_rate));
       for (int w = 0; w < warmup; ++w) {
         next_frame();
         for (std::size_t k = 0; k < frame.size(); ++k)

@@ -9,6 +9,7 @@
 // equivalent diffusivity D_eq = sigma_walk^2 / 2 + gamma / 4 (+ about
 // meander_speed^2 * meander_time from the meander); the fluctuations about it
 // (the std) come from the meander and the finite number of filaments.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <random>
@@ -163,6 +164,10 @@ bool spin_up(FilamentSimulation& sim, const FilamentOptions& options);
 // plume for its settling time (at most kMaxSensorWarmup) before the record;
 // the record is then what it reads.
 constexpr double kMaxSensorWarmup = 60.0;  // s
+// That warm-up, in seconds before frames are counted: 0 for the ideal sensor.
+inline double sensor_warmup_s(const GasSensorModel& sensor) {
+  return sensor.ideal() ? 0.0 : std::min(sensor.settling_s(), kMaxSensorWarmup);
+}
 SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
                                 const GridShape& sensors, const FilamentOptions& options,
                                 std::uint64_t seed, const GasSensorModel& sensor = {});

@@ -1,6 +1,5 @@
 #include "dataset/manifest.hpp"
 
-#include <algorithm>
 #include <cstdio>
 
 #include "core/map_json.hpp"
@@ -102,7 +101,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                    {"decay_s", g.decay_s},
                    {"dead_rise_s", g.dead_rise_s},
                    {"dead_decay_s", g.dead_decay_s},
-                   {"warmup_s", std::min(g.settling_s(), kMaxSensorWarmup)}};
+                   {"warmup_s", sensor_warmup_s(g)}};
   return j;
 }
 
