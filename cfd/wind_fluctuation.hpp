@@ -13,7 +13,9 @@
 // as Farrell et al. 2002 drive their meander), scaled so that away from walls
 // each velocity component fluctuates with std `intensity`.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <random>
 #include <vector>
 
@@ -21,6 +23,27 @@
 #include "core/random.hpp"
 
 namespace plumekit::cfd {
+
+// Storage on 64-byte boundaries: one cell's modes (16 floats) then fill
+// exactly one cache line instead of straddling two.
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlign{64};
+  CacheLineAllocator() = default;
+  template <class U>
+  CacheLineAllocator(const CacheLineAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
+  template <class U>
+  bool operator==(const CacheLineAllocator<U>&) const {
+    return true;
+  }
+  template <class U>
+  bool operator!=(const CacheLineAllocator<U>&) const {
+    return false;
+  }
+};
 
 struct FluctuationOptions {
   double intensity = 0.15;    // m/s, std per axis away from walls
@@ -67,7 +90,8 @@ class FluctuatingWind {
   // Per cell, the modes' cell-centred u then v (2K values): what at() reads,
   // laid out so that one cell's are together. Float: they are shapes of unit
   // strength, and half the memory on building-sized grids.
-  std::vector<float> cell_modes_;
+  std::vector<float, CacheLineAllocator<float>> cell_modes_;
+  static_assert(2 * kModes * sizeof(float) == 64, "one cell's modes are one cache line");
   std::vector<double> amplitude_;
   std::mt19937_64 rng_;
   NormalSampler normal_;
