@@ -9,8 +9,11 @@
 #   4. the evaluation on this dataset's validation maps and on the test maps.
 # Every step resumes where it stopped when run again. WORK (default out/finetune) holds the datasets
 # and the checkpoints. Settings (environment): MAPS (200), EPOCHS (4), THREADS (nproc), BASE,
-# MAX_MINUTES, PYTHON (/usr/bin/python3), as in train-model.sh. On the 2-core build machine the
-# data take about 10 min and an epoch about 13 min.
+# MAX_MINUTES, PYTHON (/usr/bin/python3), as in train-model.sh; SEED (2) of the maps and plumes;
+# OUT (data/models/plume-unet.pkcnn), whose log is OUT's name with .log.csv and whose evaluation
+# goes to OUT's name with -eval; WORLD: thesis (default: steady wind, gas through walls) or
+# faithful (--occlusion on --wind-model unsteady, for both the data and the test maps' truth).
+# On the 2-core build machine the data take about 10 min and an epoch about 13 min.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=${1:-out/finetune}
@@ -19,15 +22,23 @@ epochs=${EPOCHS:-4}
 threads=${THREADS:-$(nproc)}
 python=${PYTHON:-/usr/bin/python3}
 base=${BASE:-data/models/plume-unet-base.pkcnn}
+seed=${SEED:-2}
+out=${OUT:-data/models/plume-unet.pkcnn}
+case ${WORLD:-thesis} in
+  thesis) world=() ;;
+  faithful) world=(--occlusion on --wind-model unsteady) ;;
+  *) echo "finetune-model.sh: WORLD must be thesis or faithful, not '$WORLD'" >&2; exit 2 ;;
+esac
 mkdir -p "$work" data/models
 [ -x build/plumekit ] || bash scripts/build.sh
-./build/plumekit dataset generate --maps "$maps" --sources 50 --seed 2 --threads "$threads" \
+./build/plumekit dataset generate --maps "$maps" --sources 50 --seed "$seed" --threads "$threads" \
   --families rectangle,two-rectangles,l-shape,u-shape,three-rectangles,shape-and-rectangle \
-  --out "$work/dataset"
-./build/plumekit dataset generate --map-dir data/test-maps --seed 0 --threads "$threads" --out "$work/test-truth"
+  "${world[@]}" --out "$work/dataset"
+./build/plumekit dataset generate --map-dir data/test-maps --seed 0 --threads "$threads" "${world[@]}" \
+  --out "$work/test-truth"
 "$python" surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" --init "$base" \
-  --out data/models/plume-unet.pkcnn --epochs "$epochs" --lr 3e-4 --lr-schedule cosine --batch 32 \
+  --out "$out" --epochs "$epochs" --lr 3e-4 --lr-schedule cosine --batch 32 \
   --seed 1 --threads "$threads" ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}
-cp "$work/checkpoints/log.csv" data/models/plume-unet.log.csv
-"$python" surrogate/train/evaluate.py --model data/models/plume-unet.pkcnn \
-  --data "$work/dataset" --test "$work/test-truth" --out data/models/plume-unet-eval --threads "$threads"
+cp "$work/checkpoints/log.csv" "${out%.pkcnn}.log.csv"
+"$python" surrogate/train/evaluate.py --model "$out" \
+  --data "$work/dataset" --test "$work/test-truth" --out "${out%.pkcnn}-eval" --threads "$threads"
