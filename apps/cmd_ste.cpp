@@ -63,11 +63,14 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
           "ste.model_path");
   add_deprecated_alias(cmd, "--model", "--cnn", o.model_path);
   const ste::LikelihoodOptions s = ste::default_likelihood(ste::PlumeModelKind::Surrogate),
-                               p = ste::default_likelihood(ste::PlumeModelKind::Physics);
+                               p = ste::default_likelihood(ste::PlumeModelKind::Physics),
+                               g = ste::default_likelihood(ste::PlumeModelKind::Gaussian);
   bind_optional(cmd, "--sigma-m", o.likelihood.sigma_m,
                 "Model error sigma_M, concentration units (default: " + compact(s.sigma_m) +
                     " for the surrogate, about the shipped model's RMSE on the test maps; " +
-                    compact(p.sigma_m) + " for gaussian and physics, the thesis's)",
+                    compact(p.sigma_m) + " for physics, chosen on held-out maps; " +
+                    compact(g.sigma_m) +
+                    " for gaussian, the thesis's; pass 30 for the thesis's physics)",
                 "ste.likelihood.sigma_m");
   bind_to(cmd, "--sigma-d", o.likelihood.sigma_d, "Measurement error sigma_D, concentration units",
           "ste.likelihood.sigma_d");

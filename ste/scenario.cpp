@@ -90,6 +90,8 @@ LikelihoodOptions default_likelihood(PlumeModelKind kind) {
   if (kind == PlumeModelKind::Surrogate) {
     l.sigma_m = 200.0;
     l.sigma_std = 2.0;
+  } else if (kind == PlumeModelKind::Physics) {
+    l.sigma_m = 150.0;
   }
   return l;
 }

@@ -29,16 +29,18 @@ const char* to_string(PlumeModelKind kind);
 PlumeModelKind parse_plume_model_kind(const std::string& name);
 
 // The sample error each model runs with unless told otherwise: the thesis's sigma_M = 30 for the
-// Gaussian and physics models. For the surrogate, sigma_M = 200 (about the shipped model's RMSE on
-// the test maps) plus twice the CNN's own predicted std of the readings (sigma_std), since a 5 s
-// sample departs from the mean, and the CNN errs, most where the plume is intermittent; chosen on
-// held-out random maps (ste/README.md).
+// Gaussian baseline. For the physics model, sigma_M = 150: a 5 s mean of the filament world
+// scatters about its steady mean by about 100 near a plume's axis; chosen on held-out random maps
+// in the faithful world (ste/README.md). For the surrogate, sigma_M = 200 (about the shipped
+// model's RMSE on the test maps) plus twice the CNN's own predicted std of the readings
+// (sigma_std), since a 5 s sample departs from the mean, and the CNN errs, most where the plume is
+// intermittent; chosen on held-out random maps (ste/README.md).
 LikelihoodOptions default_likelihood(PlumeModelKind kind);
 
 // The likelihood's settings in SteOptions. sigma_m and sigma_std follow the plume model
 // unless set (default_likelihood): the same number cannot suit a CNN and an exact model.
 struct SteLikelihood {
-  std::optional<double> sigma_m;  // unset: 200 for the surrogate, 30 for gaussian and physics
+  std::optional<double> sigma_m;  // unset: 200 for the surrogate, 150 for physics, 30 for gaussian
   double sigma_d = 0.0;
   double sigma_rel = 0.0;
   std::optional<double> sigma_std;  // unset: 2 for the surrogate, 0 otherwise (surrogate only)

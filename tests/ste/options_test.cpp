@@ -100,10 +100,11 @@ TEST(SteOptions, DefaultsAreTheSurrogatesAndFollowTheModel) {
   EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 2.0);
   EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.2);
   o.model = PlumeModelKind::Physics;
-  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 30.0);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 150.0);
   EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 0.0);
   EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.1);
   o.model = PlumeModelKind::Gaussian;
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 30.0);
   EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.0);
   o.likelihood.sigma_m = 55.0;  // a value given wins over the model's
   o.source_cell = 0.3;
