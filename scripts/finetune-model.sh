@@ -29,7 +29,7 @@ case ${WORLD:-thesis} in
   faithful) world=(--occlusion on --wind-model unsteady) ;;
   *) echo "finetune-model.sh: WORLD must be thesis or faithful, not '$WORLD'" >&2; exit 2 ;;
 esac
-mkdir -p "$work" data/models
+mkdir -p "$work" "$(dirname "$out")"
 [ -x build/plumekit ] || bash scripts/build.sh
 ./build/plumekit dataset generate --maps "$maps" --sources 50 --seed "$seed" --threads "$threads" \
   --families rectangle,two-rectangles,l-shape,u-shape,three-rectangles,shape-and-rectangle \
