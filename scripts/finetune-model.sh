@@ -29,6 +29,11 @@ case ${WORLD:-thesis} in
   faithful) world=(--occlusion on --wind-model unsteady) ;;
   *) echo "finetune-model.sh: WORLD must be thesis or faithful, not '$WORLD'" >&2; exit 2 ;;
 esac
+# OUT is replaced, so it must be a model file or not exist: never another file of the user's.
+if [ -e "$out" ] && [ "$(head -c 8 "$out")" != PLUMECNN ]; then
+  echo "finetune-model.sh: OUT=$out exists and is not a plumekit-cnn model; not replacing it" >&2
+  exit 2
+fi
 mkdir -p "$work" "$(dirname "$out")"
 [ -x build/plumekit ] || bash scripts/build.sh
 ./build/plumekit dataset generate --maps "$maps" --sources 50 --seed "$seed" --threads "$threads" \
