@@ -132,17 +132,6 @@ void report(const nlohmann::ordered_json& summary, const std::string& human) {
   }
 }
 
-CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion) {
-  return bind_field(command,
-                    command
-                        ->add_option("--occlusion", occlusion,
-                                     "Filament plume: gas stops at walls (a filament counts at a "
-                                     "sensor only with a line of sight), on or off")
-                        ->type_name("on|off")
-                        ->default_str(occlusion ? "on" : "off"),
-                    "plume.occlusion");
-}
-
 void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
                             const std::string& whose) {
   bind_field(command,
@@ -166,8 +155,21 @@ void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
       ->capture_default_str();
 }
 
-CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady) {
-  return bind_field(
+namespace {
+
+void add_occlusion_option(CLI::App* command, bool& occlusion) {
+  bind_field(command,
+             command
+                 ->add_option("--occlusion", occlusion,
+                              "Filament plume: gas stops at walls (a filament counts at a sensor "
+                              "only with a line of sight), on or off")
+                 ->type_name("on|off")
+                 ->default_str(occlusion ? "on" : "off"),
+             "plume.occlusion");
+}
+
+void add_wind_model_option(CLI::App* command, bool& unsteady) {
+  bind_field(
       command,
       command
           ->add_option_function<std::string>(
@@ -184,6 +186,26 @@ CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady) {
           ->type_name("steady|unsteady")
           ->default_str(unsteady ? "unsteady" : "steady"),
       "plume.wind_model");
+}
+
+}  // namespace
+
+// CLI11 runs the callbacks in the order the options were added, so the preset
+// comes first and --occlusion or --wind-model, when given, override it.
+void add_world_options(CLI::App* command, dataset::FilamentOptions& filament) {
+  bind_field(command,
+             command
+                 ->add_option_function<std::string>(
+                     "--world",
+                     [&filament](const std::string& name) { dataset::set_world(filament, name); },
+                     "Filament world preset: faithful (--occlusion on --wind-model unsteady) or "
+                     "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
+                     "thesis's figures); either flag overrides its half")
+                 ->type_name("faithful|thesis")
+                 ->default_str("faithful"),
+             "plume.world");
+  add_occlusion_option(command, filament.occlusion);
+  add_wind_model_option(command, filament.unsteady_wind);
 }
 
 }  // namespace plumekit::cli

@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/geometry.hpp"
-#include "dataset/gas_sensor.hpp"
+#include "dataset/filament_model.hpp"
 
 namespace plumekit::cli {
 
@@ -55,17 +55,16 @@ CLI::Option* add_seed_flag(CLI::App* command, std::uint64_t& seed,
 CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string& field,
                               const std::string& what = "Worker threads (0: one per core)");
 
-// --occlusion on|off: the filament world's line of sight (plume.occlusion,
-// dataset/line_of_sight.hpp), for the dataset's plumes and the robot's world alike.
-CLI::Option* add_occlusion_option(CLI::App* command, bool& occlusion);
+// --world faithful|thesis, then --occlusion on|off and --wind-model
+// steady|unsteady (plume.world, plume.occlusion, plume.wind_model;
+// dataset/README.md, "Worlds"): the preset is applied first, so either flag
+// overrides its half of it. For the dataset's plumes and the robot's world alike.
+void add_world_options(CLI::App* command, dataset::FilamentOptions& filament);
 // --gas-sensor NAME and --baseline B (sensor.gas, sensor.baseline): a gas
 // sensor preset (dataset/README.md, "Gas sensors"); `whose` starts the help
 // ("The robot's", "The static sensors'").
 void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
                             const std::string& whose);
-// --wind-model steady|unsteady: the filament world's wind (plume.wind_model,
-// dataset/README.md, "Unsteady wind"); steady by default.
-CLI::Option* add_wind_model_option(CLI::App* command, bool& unsteady);
 
 // A spelling kept for one release: `old_flag` sets the same value as
 // `new_flag` (already added), is hidden from --help, warns on stderr when

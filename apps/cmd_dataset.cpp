@@ -73,8 +73,7 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
                              "filament: filaments released per second"),
              "plume.filaments_per_second")
       ->capture_default_str();
-  add_occlusion_option(cmd, p.filament.occlusion);
-  add_wind_model_option(cmd, p.filament.unsteady_wind);
+  add_world_options(cmd, p.filament);
   add_gas_sensor_options(cmd, p.sensor, "The static sensors'");
 }
 

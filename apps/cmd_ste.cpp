@@ -119,8 +119,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--stop-rate", o.world.sample_rate,
           "Readings per second during a stop, Hz (seed 004 and the thesis: 10; seed 000: 1)",
           "ste.world.sample_rate");
-  add_occlusion_option(cmd, o.world.filament.occlusion);
-  add_wind_model_option(cmd, o.world.filament.unsteady_wind);
+  add_world_options(cmd, o.world.filament);
   add_gas_sensor_options(cmd, o.world.sensor, "The robot's");
   bind_field(cmd,
              cmd->add_option_function<std::string>(

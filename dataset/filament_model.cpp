@@ -94,6 +94,12 @@ void FilamentOptions::validate() const {
                                       "1e+08; use a larger dt or shorter times");
 }
 
+void set_world(FilamentOptions& options, const std::string& name) {
+  if (name != "faithful" && name != "thesis")
+    throw OptionError("plume.world", "unknown world '" + name + "'; use faithful or thesis");
+  options.occlusion = options.unsteady_wind = name == "faithful";
+}
+
 double FilamentOptions::max_filaments() const {
   return release_per_second * (max_spinup + record_s) + 1.0;
 }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "cfd/wind_field.hpp"
@@ -59,18 +60,19 @@ struct FilamentOptions {
   double sample_rate = 10.0;
   // Kernels are summed out to this many R (exp(-9) = 1.2e-4 of the peak).
   double cutoff = 3.0;
-  // Line of sight (issue 18): a filament adds to a sensor only when no
-  // obstacle edge cuts the segment between them, so gas stops at walls.
-  // Off by default until the test maps' ground truth and the shipped model
-  // are regenerated with it; off reproduces the thesis-style world exactly.
-  bool occlusion = false;
+  // The world's two ingredients of issue 18, both on by default (the faithful
+  // world); set_world(o, "thesis") turns both off, which reproduces the
+  // thesis-style world and its committed figures exactly.
+  // Line of sight: a filament adds to a sensor only when no obstacle edge
+  // cuts the segment between them, so gas stops at walls.
+  bool occlusion = true;
   // Unsteady wind (issue 18; cfd/wind_fluctuation.hpp): the meander becomes a
   // field that varies in space, is divergence-free and fades to zero at walls
   // and obstacles, with std meander_speed per axis and correlation time
   // meander_time, wavelengths from meander_length to twice it, fading over
-  // meander_wall_layer; the uniform meander is then off. Off (steady) by
-  // default, which reproduces the thesis-style world exactly.
-  bool unsteady_wind = false;
+  // meander_wall_layer; the uniform meander is then off. Steady: the flow
+  // plus that uniform meander, the thesis-style wind.
+  bool unsteady_wind = true;
   double meander_length = 2.0;      // m
   double meander_wall_layer = 1.0;  // m
 
@@ -84,6 +86,11 @@ struct FilamentOptions {
   // longest spin-up and the recording, none dropped), for the memory guard.
   double max_filaments() const;
 };
+
+// The world presets (--world, dataset/README.md, "Worlds"): "faithful" (the
+// defaults: occlusion and the unsteady wind) or "thesis" (neither). Sets only
+// those two fields; OptionError "plume.world" for another name.
+void set_world(FilamentOptions& options, const std::string& name);
 
 struct Filament {
   Vec2 position;

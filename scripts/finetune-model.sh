@@ -11,8 +11,9 @@
 # and the checkpoints. Settings (environment): MAPS (200), EPOCHS (4), THREADS (nproc), BASE,
 # MAX_MINUTES, PYTHON (/usr/bin/python3), as in train-model.sh; SEED (2) of the maps and plumes;
 # OUT (data/models/plume-unet.pkcnn), whose log is OUT's name with .log.csv and whose evaluation
-# goes to OUT's name with -eval; WORLD: thesis (default: steady wind, gas through walls) or
-# faithful (--occlusion on --wind-model unsteady, for both the data and the test maps' truth).
+# goes to OUT's name with -eval; WORLD: thesis (default, the shipped model's: --world thesis, steady
+# wind, gas through walls) or faithful (--world faithful, the plumekit default: occlusion and the
+# unsteady wind), for both the data and the test maps' truth.
 # On the 2-core build machine the data take about 10 min and an epoch about 13 min.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,9 +25,9 @@ python=${PYTHON:-/usr/bin/python3}
 base=${BASE:-data/models/plume-unet-base.pkcnn}
 seed=${SEED:-2}
 out=${OUT:-data/models/plume-unet.pkcnn}
-case ${WORLD:-thesis} in
-  thesis) world=() ;;
-  faithful) world=(--occlusion on --wind-model unsteady) ;;
+WORLD=${WORLD:-thesis}
+case $WORLD in
+  thesis | faithful) world=(--world "$WORLD") ;;
   *) echo "finetune-model.sh: WORLD must be thesis or faithful, not '$WORLD'" >&2; exit 2 ;;
 esac
 # OUT is replaced, so it must be a model file or not exist: never another file of the user's.

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # First stage of the shipped surrogate: the base model data/models/plume-unet-base.pkcnn, from nothing
 # (scripts/finetune-model.sh then makes data/models/plume-unet.pkcnn from it):
-#   1. the training dataset (MAPS random maps x 100 sources, filament model, seed 1);
+#   1. the training dataset (MAPS random maps x 100 sources, filament model, seed 1, in the
+#      thesis-style world: --world thesis);
 #   2. the ground-truth plumes of the nine test maps;
 #   3. training (AdamW, batch 32, cosine learning rate over EPOCHS epochs; surrogate/README.md);
 #   4. the evaluation on the held-out maps and the test maps.
@@ -23,8 +24,10 @@ threads=${THREADS:-$(nproc)}
 python=${PYTHON:-/usr/bin/python3}
 mkdir -p "$work" data/models
 [ -x build/plumekit ] || bash scripts/build.sh
-./build/plumekit dataset generate --maps "$maps" --sources 100 --seed 1 --threads "$threads" --out "$work/dataset"
-./build/plumekit dataset generate --map-dir data/test-maps --seed 0 --threads "$threads" --out "$work/test-truth"
+./build/plumekit dataset generate --maps "$maps" --sources 100 --seed 1 --threads "$threads" --world thesis \
+  --out "$work/dataset"
+./build/plumekit dataset generate --map-dir data/test-maps --seed 0 --threads "$threads" --world thesis \
+  --out "$work/test-truth"
 "$python" surrogate/train/train.py --data "$work/dataset" --work "$work/checkpoints" \
   --out data/models/plume-unet-base.pkcnn --epochs "$epochs" --lr-schedule cosine --batch 32 --seed 1 \
   --threads "$threads" ${MAX_MINUTES:+--max-minutes "$MAX_MINUTES"}

@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -80,8 +82,8 @@ TEST_F(DatasetCli, PlumeJsonAccountsForEveryFilament) {
 TEST_F(DatasetCli, OcclusionIsASwitchTheDatasetRecords) {
   const std::string map = (kData / "test-maps" / "test-8-baffles.json").string();
   const std::string common = " " + map + " --source 5.3,1 --cell 0.1 --out ";
-  ASSERT_EQ(run("plume" + common + at("off")).code, 0);
-  const Result on = run("plume --occlusion on" + common + at("on"));
+  ASSERT_EQ(run("plume --occlusion off" + common + at("off")).code, 0);
+  const Result on = run("plume" + common + at("on"));  // on by default
   ASSERT_EQ(on.code, 0) << on.err;
   EXPECT_FALSE(same_file(at("off/mean.npy"), at("on/mean.npy")));
   const Result bad = run("plume --occlusion maybe" + common + at("bad"));
@@ -92,15 +94,19 @@ TEST_F(DatasetCli, OcclusionIsASwitchTheDatasetRecords) {
   const Result gen = run("dataset generate --maps 1 --sources 2 --occlusion on --out " + at("d"));
   ASSERT_EQ(gen.code, 0) << gen.err;
   EXPECT_TRUE(has(slurp(at("d/manifest.json")), "\"occlusion\": true"));
+  const Result off =
+      run("dataset generate --maps 1 --sources 2 --occlusion off --out " + at("d-off"));
+  ASSERT_EQ(off.code, 0) << off.err;
+  EXPECT_FALSE(has(slurp(at("d-off/manifest.json")), "\"occlusion\""));
 }
 
 // --wind-model steady|unsteady (issue 18): the same seed gives another plume in the meandering
 // wind, the same bytes twice, the dataset records it, and an unknown model is refused.
 TEST_F(DatasetCli, TheWindModelIsASwitchTheDatasetRecords) {
   const std::string common = " " + kMap + " --source 1.5,1 --cell 0.1 --out ";
-  ASSERT_EQ(run("plume" + common + at("steady")).code, 0);
+  ASSERT_EQ(run("plume --wind-model steady" + common + at("steady")).code, 0);
   for (const char* dir : {"unsteady", "again"}) {
-    const Result r = run("plume --wind-model unsteady" + common + at(dir));
+    const Result r = run("plume" + common + at(dir));  // unsteady by default
     ASSERT_EQ(r.code, 0) << r.err;
   }
   EXPECT_FALSE(same_file(at("steady/mean.npy"), at("unsteady/mean.npy")));
@@ -115,6 +121,34 @@ TEST_F(DatasetCli, TheWindModelIsASwitchTheDatasetRecords) {
       run("dataset generate --maps 1 --sources 2 --wind-model unsteady --out " + at("d"));
   ASSERT_EQ(gen.code, 0) << gen.err;
   EXPECT_TRUE(has(slurp(at("d/manifest.json")), "\"wind_model\": \"unsteady\"")) << gen.err;
+}
+
+// --world (issue 18): thesis turns occlusion and the unsteady wind off, and is then the same plume
+// as the two flags; a flag given with it overrides its half; an unknown world is refused.
+TEST_F(DatasetCli, TheWorldPresetSetsBothIngredientsAndAFlagOverridesIt) {
+  const std::string map = (kData / "test-maps" / "test-1-block.json").string();
+  const std::string common = " " + map + " --source 6,2 --cell 0.1 --out ";
+  const std::vector<std::pair<std::string, std::string>> runs = {
+      {"--world thesis", "thesis"},
+      {"--occlusion off --wind-model steady", "flags"},
+      {"--world faithful", "faithful"},
+      {"", "default"},
+      {"--world thesis --occlusion on", "thesis-occluded"},
+      {"--occlusion on --wind-model steady", "steady-occluded"}};
+  for (const auto& [flags, dir] : runs) {
+    const Result r = run("plume " + flags + common + at(dir));
+    ASSERT_EQ(r.code, 0) << flags << ": " << r.err;
+  }
+  EXPECT_TRUE(same_file(at("thesis/mean.npy"), at("flags/mean.npy")));
+  EXPECT_TRUE(same_file(at("faithful/mean.npy"), at("default/mean.npy")));
+  EXPECT_FALSE(same_file(at("thesis/mean.npy"), at("faithful/mean.npy")));
+  EXPECT_TRUE(same_file(at("thesis-occluded/mean.npy"), at("steady-occluded/mean.npy")));
+  EXPECT_FALSE(same_file(at("thesis-occluded/mean.npy"), at("thesis/mean.npy")));
+  const Result bad = run("plume --world real" + common + at("bad"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_TRUE(has(bad.err, "--world")) << bad.err;
+  EXPECT_TRUE(has(bad.err, "faithful or thesis")) << bad.err;
+  EXPECT_FALSE(fs::exists(at("bad")));
 }
 
 // --gas-sensor and --baseline on the static sensors (issue 18): the record changes, the dataset
