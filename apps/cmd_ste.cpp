@@ -137,9 +137,24 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
                  ->type_name("DEG|table35")
                  ->default_str("0"),
              "ste.world.wind_direction_noise");
-  bind_to(cmd, "--position-noise", o.world.position_noise,
-          "Std per axis of the position recorded with each sample, m (seed 000 Eq. 4.3: 1.17)",
-          "ste.world.position_noise");
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--position-noise",
+                    [&o](const std::string& text) {
+                      if (text == "gps") {
+                        o.world.position_noise = ste::kGpsPositionNoise;
+                        return;
+                      }
+                      std::istringstream in(text);
+                      if (!(in >> o.world.position_noise) || !(in >> std::ws).eof())
+                        throw OptionError("ste.world.position_noise",
+                                          "expected metres or gps, got '" + text + "'");
+                    },
+                    "Std per axis of the position recorded with each sample: metres, or gps "
+                    "(seed 000 Eq. 4.3: variance 1.17 m^2, so 1.08 m)")
+                 ->type_name("M|gps")
+                 ->default_str("0"),
+             "ste.world.position_noise");
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
   bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",

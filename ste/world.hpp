@@ -32,12 +32,16 @@ struct WorldOptions {
   double wind_direction_noise_deg = 0.0;
   bool wind_noise_from_table35 = false;  // use table35_direction_noise(sample_s) instead
   double direction_noise_deg() const;
-  // Std per axis of the position the robot records for a stop, m (seed 000
-  // Eq. 4.3 uses 1.17 m, its GPS); the robot still drives from where it is.
+  // Std per axis of the position the robot records for a stop, m
+  // (kGpsPositionNoise is seed 000's GPS); the robot still drives from where it is.
   double position_noise = 0.0;
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
 };
+
+// Seed 000 Eq. 4.3, its GPS: each recorded coordinate is drawn from N(x, σ²)
+// with "σ² set to 1.17", so the std per axis is sqrt(1.17) m (--position-noise gps).
+constexpr double kGpsPositionNoise = 1.0816653826391969;
 
 // Seed 000, Table 3.5 (hovering): the wind direction's RMSE after averaging
 // over 0, 5, 10 and 20 s is 29.12, 22.26, 17.76 and 14.02 degrees; linear in

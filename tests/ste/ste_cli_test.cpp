@@ -185,7 +185,8 @@ TEST_F(SteCli, WorldSensorPresetsAndRefusals) {
   EXPECT_NE(r.err.find("infrared"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
   for (const std::string bad :
-       {"--baseline nan", "--wind-noise north", "--wind-noise -5", "--position-noise -1"}) {
+       {"--baseline nan", "--wind-noise north", "--wind-noise -5", "--position-noise -1",
+        "--position-noise north"}) {
     r = run("localize " + map + " --source 1.5,1 --plume-model physics " + bad + " --out " +
             (dir / "refused").string());
     EXPECT_EQ(r.code, 2) << bad;
@@ -203,7 +204,7 @@ TEST_F(SteCli, WorldSensorPresetsAndRefusals) {
   EXPECT_NEAR(mission("", "short"), 5.0, 1e-6);
   // Each step reports the anemometer's wind and the position the robot recorded.
   r = run("localize " + map +
-          " --source 1.5,1 --plume-model physics --wind-noise table35 --position-noise 0.3 "
+          " --source 1.5,1 --plume-model physics --wind-noise table35 --position-noise gps "
           "--max-samples 3 --json --out " +
           (dir / "noisy").string());
   ASSERT_EQ(r.code, 0) << r.err;

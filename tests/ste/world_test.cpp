@@ -114,7 +114,7 @@ TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpac
   PlumeWorld w;
   w.map.obstacles = {{{5.0, 0.5}, {5.6, 0.5}, {5.6, 1.5}, {5.0, 1.5}}};
   WorldOptions o = a_thin_plume();
-  o.position_noise = 1.17;  // seed 000, Eq. 4.3
+  o.position_noise = kGpsPositionNoise;  // seed 000, Eq. 4.3: 1.08 m
   double sum2 = 0.0;
   int n = 0;
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
@@ -126,7 +126,7 @@ TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpac
             0.5 * (a.position.y - 1.0) * (a.position.y - 1.0);
     ++n;
   }
-  // Clipped by the arena and the block, so a little under 1.17.
+  // Clipped by the arena and the block, so a little under 1.08.
   EXPECT_GT(std::sqrt(sum2 / n), 0.7);
   EXPECT_LT(std::sqrt(sum2 / n), 1.3);
 }
