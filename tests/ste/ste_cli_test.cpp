@@ -184,9 +184,8 @@ TEST_F(SteCli, WorldSensorPresetsAndRefusals) {
   EXPECT_NE(r.err.find("--gas-sensor"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("infrared"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "bad"));
-  for (const std::string bad :
-       {"--baseline nan", "--wind-noise north", "--wind-noise -5", "--position-noise -1",
-        "--position-noise north"}) {
+  for (const std::string bad : {"--baseline nan", "--wind-noise north", "--wind-noise -5",
+                                "--position-noise -1", "--position-noise north"}) {
     r = run("localize " + map + " --source 1.5,1 --plume-model physics " + bad + " --out " +
             (dir / "refused").string());
     EXPECT_EQ(r.code, 2) << bad;
