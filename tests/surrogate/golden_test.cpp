@@ -61,6 +61,12 @@ TEST(Golden, ShippedModelMatchesPyTorch) {
   EXPECT_EQ(Network::load(dir + "plume-unet.pkcnn").parameter_count(), 600130u);
 }
 
+// The faithful-world fine-tuning committed beside it (issue 18; not the default).
+TEST(Golden, FaithfulWorldModelMatchesPyTorch) {
+  const std::string dir = std::string(PLUMEKIT_TEST_DATA) + "/../../data/models/";
+  check_golden("plume-unet-faithful", 2, dir);
+}
+
 TEST(Golden, OddChannelsOddGridMatchesPyTorch) {
   check_golden("odd", 1);
 }
