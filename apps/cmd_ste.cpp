@@ -108,6 +108,17 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
           "Folder caching surrogate tables (keyed by map and model hashes)", "ste.table_cache");
 }
 
+// `text` as a number, for a flag that also takes a preset's name (handled by
+// the caller); OptionError naming `field` and what it `expects` otherwise.
+double number_or_preset(const std::string& text, const std::string& field,
+                        const std::string& expects) {
+  std::istringstream in(text);
+  double value = 0.0;
+  if (!(in >> value) || !(in >> std::ws).eof())
+    throw OptionError(field, "expected " + expects + ", got '" + text + "'");
+  return value;
+}
+
 // The simulated world, the navigation, the stopping rule and the wind.
 void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per reading (simulated)",
@@ -126,11 +137,9 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
                     "--wind-noise",
                     [&o](const std::string& text) {
                       o.world.wind_noise_from_table35 = text == "table35";
-                      if (o.world.wind_noise_from_table35) return;
-                      std::istringstream in(text);
-                      if (!(in >> o.world.wind_direction_noise_deg) || !(in >> std::ws).eof())
-                        throw OptionError("ste.world.wind_direction_noise",
-                                          "expected degrees or table35, got '" + text + "'");
+                      if (!o.world.wind_noise_from_table35)
+                        o.world.wind_direction_noise_deg = number_or_preset(
+                            text, "ste.world.wind_direction_noise", "degrees or table35");
                     },
                     "Anemometer direction error per stop: std in degrees, or table35 (seed 000, "
                     "Table 3.5, at the stop's length: 22.26 for 5 s, 14.02 for 20 s)")
@@ -141,14 +150,10 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              cmd->add_option_function<std::string>(
                     "--position-noise",
                     [&o](const std::string& text) {
-                      if (text == "gps") {
-                        o.world.position_noise = ste::kGpsPositionNoise;
-                        return;
-                      }
-                      std::istringstream in(text);
-                      if (!(in >> o.world.position_noise) || !(in >> std::ws).eof())
-                        throw OptionError("ste.world.position_noise",
-                                          "expected metres or gps, got '" + text + "'");
+                      o.world.position_noise =
+                          text == "gps"
+                              ? ste::kGpsPositionNoise
+                              : number_or_preset(text, "ste.world.position_noise", "metres or gps");
                     },
                     "Std per axis of the position recorded with each sample: metres, or gps "
                     "(seed 000 Eq. 4.3: variance 1.17 m^2, so 1.08 m)")
