@@ -193,6 +193,8 @@ void add_wind_model_option(CLI::App* command, bool& unsteady) {
 // CLI11 runs the callbacks in the order the options were added, so the preset
 // comes first and --occlusion or --wind-model, when given, override it.
 void add_world_options(CLI::App* command, dataset::FilamentOptions& filament) {
+  const bool faithful = filament.occlusion && filament.unsteady_wind,
+             thesis = !filament.occlusion && !filament.unsteady_wind;
   bind_field(command,
              command
                  ->add_option_function<std::string>(
@@ -202,7 +204,9 @@ void add_world_options(CLI::App* command, dataset::FilamentOptions& filament) {
                      "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
                      "thesis's figures); either flag overrides its half")
                  ->type_name("faithful|thesis")
-                 ->default_str("faithful"),
+                 ->default_str(faithful ? "faithful"
+                               : thesis ? "thesis"
+                                        : "neither"),
              "plume.world");
   add_occlusion_option(command, filament.occlusion);
   add_wind_model_option(command, filament.unsteady_wind);
