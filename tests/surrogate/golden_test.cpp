@@ -13,6 +13,8 @@ namespace plumekit::surrogate {
 namespace {
 
 const std::string kDir = std::string(PLUMEKIT_TEST_DATA) + "/surrogate/";
+// The trained models in data/models/, each with the golden pair its training run wrote.
+const std::string kModels = std::string(PLUMEKIT_TEST_DATA) + "/../../data/models/";
 
 Tensor load_tensor(const std::string& path) {
   const NpyArray a = read_npy(path);
@@ -55,16 +57,14 @@ TEST(Golden, RealArchitectureMatchesPyTorch) {
 // The shipped model and the golden pair its training run wrote (two held-out samples, in
 // concentration units; train.py picks the samples with the widest max-pool margins).
 TEST(Golden, ShippedModelMatchesPyTorch) {
-  const std::string dir = std::string(PLUMEKIT_TEST_DATA) + "/../../data/models/";
-  check_golden("plume-unet", 1, dir);
-  check_golden("plume-unet", 2, dir);
-  EXPECT_EQ(Network::load(dir + "plume-unet.pkcnn").parameter_count(), 600130u);
+  check_golden("plume-unet", 1, kModels);
+  check_golden("plume-unet", 2, kModels);
+  EXPECT_EQ(Network::load(kModels + "plume-unet.pkcnn").parameter_count(), 600130u);
 }
 
 // The faithful-world fine-tuning committed beside it (issue 18; not the default).
 TEST(Golden, FaithfulWorldModelMatchesPyTorch) {
-  const std::string dir = std::string(PLUMEKIT_TEST_DATA) + "/../../data/models/";
-  check_golden("plume-unet-faithful", 2, dir);
+  check_golden("plume-unet-faithful", 2, kModels);
 }
 
 TEST(Golden, OddChannelsOddGridMatchesPyTorch) {
