@@ -135,6 +135,7 @@ void add_import_ros(CLI::App& map_cmd) {
     std::string out;
     std::string unknown = "occupied";
     RosImportOptions options;
+    std::vector<std::string> sources, starts;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MAP_YAML", a->yaml, "map_server YAML file")->required();
@@ -181,12 +182,25 @@ void add_import_ros(CLI::App& map_cmd) {
                              "How far (pixels) a given opening may move onto the boundary"),
              "ros.snap_px")
       ->capture_default_str();
+  cmd->add_option("--source", a->sources,
+                  "Ground-truth source X,Y in the map frame (m), for `evaluate`; repeat for more")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--start", a->starts,
+                  "Robot start X,Y in the map frame (m): `evaluate` starts its runs from these in "
+                  "turn instead of random points; repeat for more")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--name", a->options.name, "Map name (default: the YAML file's stem)");
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
     a->options.unknown_is_occupied = a->unknown == "occupied";
     check_output_file(a->out, {a->yaml});
     RosImport in = import_ros_map(a->yaml, a->options);
+    for (const std::string& text : a->sources)
+      in.map.sources.push_back(in.map.from_frame(parse_point(text, "--source")));
+    for (const std::string& text : a->starts)
+      in.map.starts.push_back(in.map.from_frame(parse_point(text, "--start")));
     in.map.generated_by = "plumekit map import-ros";
     write_output_file(a->out, map_file_text(in.map, a->out));
     ordered_json j = ros_import_json(in, a->yaml, a->out);

@@ -74,6 +74,9 @@ struct Map {
   std::vector<Opening> openings;
   std::vector<Polygon> obstacles;
   std::vector<Vec2> sources;
+  // Robot starts for evaluation (plumekit-map/2 only): `evaluate` starts its
+  // runs from these, in turn, instead of seeded random free points.
+  std::vector<Vec2> starts;
 
   // Length of a wall: height for left/right, width for bottom/top.
   double wall_length(Side side) const;

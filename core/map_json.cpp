@@ -273,6 +273,11 @@ void parse_shapes(const Reader& r, const json& doc, Map& map) {
     for (std::size_t k = 0; k < sources.size(); ++k)
       map.sources.push_back(from_file(map, r.point(sources[k], Reader::index("sources", k))));
   }
+  if (doc.contains("starts")) {
+    const json& starts = r.array(doc["starts"], "starts");
+    for (std::size_t k = 0; k < starts.size(); ++k)
+      map.starts.push_back(from_file(map, r.point(starts[k], Reader::index("starts", k))));
+  }
 }
 
 using ordered_json = nlohmann::ordered_json;
@@ -436,14 +441,22 @@ void validate_map(const Map& map, const std::string& origin) {
     if (auto fault = simplicity_fault(poly)) r.fail(key, "polygon is not simple: " + *fault);
   }
   validate_openings(r, map);
-  for (std::size_t k = 0; k < map.sources.size(); ++k) {
-    const Vec2 p = map.sources[k];
-    const std::string key = Reader::index("sources", k);
-    if (!is_finite(p)) r.fail(key, "source is not finite");
-    if (!map.in_arena(p)) r.fail(key, "source " + framed(map, p) + " lies outside the arena");
-    if (const int o = map.obstacle_at(p); o >= 0)
-      r.fail(key, "source " + framed(map, p) + " lies inside obstacles[" + std::to_string(o) + "]");
+  // Sources and starts: finite points in the arena's free space.
+  for (const auto& [list, noun] :
+       {std::pair<const std::vector<Vec2>*, std::string>{&map.sources, "source"},
+        {&map.starts, "start"}}) {
+    for (std::size_t k = 0; k < list->size(); ++k) {
+      const Vec2 p = (*list)[k];
+      const std::string key = Reader::index(noun + "s", k);
+      if (!is_finite(p)) r.fail(key, noun + " is not finite");
+      if (!map.in_arena(p)) r.fail(key, noun + " " + framed(map, p) + " lies outside the arena");
+      if (const int o = map.obstacle_at(p); o >= 0)
+        r.fail(key,
+               noun + " " + framed(map, p) + " lies inside obstacles[" + std::to_string(o) + "]");
+    }
   }
+  if (map.format_version == 1 && !map.starts.empty())
+    r.fail("starts", "plumekit-map/1 has no starts; write the map as plumekit-map/2");
 }
 
 namespace {
@@ -483,9 +496,9 @@ Map parse_map(std::string_view text, const std::string& origin) {
         doc, "",
         {"format", "name", "generated_by", "size", "inlet", "outlet", "obstacles", "sources"});
   } else if (format == kMapFormat) {
-    r.only_keys(
-        doc, "",
-        {"format", "name", "generated_by", "frame", "size", "openings", "obstacles", "sources"});
+    r.only_keys(doc, "",
+                {"format", "name", "generated_by", "frame", "size", "openings", "obstacles",
+                 "sources", "starts"});
   } else {
     r.fail("format", "'" + format + "' is not supported; this plumekit reads " + kMapFormat +
                          " and " + kMapFormatV1);
@@ -566,6 +579,12 @@ nlohmann::ordered_json map_to_json(const Map& map) {
   j["sources"] = ordered_json::array();
   for (Vec2 s : map.sources)
     j["sources"].push_back(json_point(map, s));
+  // Only when there are any, so that a map without starts keeps its bytes.
+  if (!map.starts.empty()) {
+    j["starts"] = ordered_json::array();
+    for (Vec2 s : map.starts)
+      j["starts"].push_back(json_point(map, s));
+  }
   return j;
 }
 
@@ -579,13 +598,14 @@ std::string map_file_text(const Map& map, const std::string& origin) {
                                "size",   "inlet", "outlet"};
   for (const char* key : order)
     if (j.contains(key)) out << "  \"" << key << "\": " << j[key].dump() << ",\n";
-  for (const char* key : {"openings", "obstacles", "sources"}) {
+  const std::string last = j.contains("starts") ? "starts" : "sources";
+  for (const char* key : {"openings", "obstacles", "sources", "starts"}) {
     if (!j.contains(key)) continue;
     out << "  \"" << key << "\": [";
     const ordered_json& list = j[key];
     for (std::size_t i = 0; i < list.size(); ++i)
       out << (i ? ",\n    " : "\n    ") << list[i].dump();
-    out << (list.empty() ? "]" : "\n  ]") << (std::string(key) != "sources" ? ",\n" : "\n");
+    out << (list.empty() ? "]" : "\n  ]") << (key != last ? ",\n" : "\n");
   }
   out << "}\n";
   return out.str();

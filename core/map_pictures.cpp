@@ -55,6 +55,8 @@ Picture render_map(const Map& map, const RenderOptions& options, double cells) {
   }
   title << ")";
   frame.title = title.str();
+  if (!map.starts.empty())
+    frame.legend.push_back({LegendEntry::Symbol::Ring, colours::kStart, "robot start"});
   MapCanvas canvas(map, options, frame);
   canvas.draw_free_space();
   canvas.draw_obstacles();
@@ -62,6 +64,8 @@ Picture render_map(const Map& map, const RenderOptions& options, double cells) {
   if (cells > 0.0) overlay_solid_cells(canvas, cells);
   canvas.draw_walls_and_openings();
   canvas.draw_sources();
+  for (Vec2 p : map.starts)
+    canvas.draw_ring(p, colours::kStart, 8);
   return canvas.finish();
 }
 

@@ -134,6 +134,31 @@ TEST_F(Cli, ImportRosWritesAValidMap) {
   EXPECT_FALSE(fs::exists(out.string() + ".2"));
 }
 
+// Sources and robot starts typed in the ROS map frame land in the file as
+// typed; one in an obstacle or off the map is refused, naming it, with no file.
+TEST_F(Cli, ImportRosPlacesSourcesAndStartsInTheMapFrame) {
+  const std::string cmd = "map import-ros " + (kData / "ros" / "office.yaml").string() +
+                          " --inlet 0,1.8,0,3.4 --outlet 11.25,1.0,11.25,2.5";
+  const fs::path out = dir / "office.json";
+  const Result r = run(cmd + " --out " + out.string() +
+                       " --source 3,1.5 --source 9,3 --start 6,3 --start 1.5,4");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(plumekit::test::slurp(out));
+  EXPECT_EQ(j["sources"], nlohmann::json::parse("[[3.0, 1.5], [9.0, 3.0]]"));
+  EXPECT_EQ(j["starts"], nlohmann::json::parse("[[6.0, 3.0], [1.5, 4.0]]"));
+  EXPECT_EQ(run("map validate " + out.string()).code, 0);
+  const fs::path bad = dir / "bad.json";
+  const Result inside = run(cmd + " --out " + bad.string() + " --source 2,2.5");
+  EXPECT_EQ(inside.code, 2);
+  EXPECT_NE(inside.err.find("sources[0]: source (2, 2.5) lies inside obstacles"), std::string::npos)
+      << inside.err;
+  const Result off = run(cmd + " --out " + bad.string() + " --start 6,3 --start -3,1");
+  EXPECT_EQ(off.code, 2);
+  EXPECT_NE(off.err.find("starts[1]: start (-3, 1) lies outside the arena"), std::string::npos)
+      << off.err;
+  EXPECT_FALSE(fs::exists(bad));
+}
+
 TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {
   const fs::path out = dir / "office.json";
   const Result r =

@@ -169,6 +169,34 @@ TEST(MapV2, RefusesBadFramesAndUnknownKeys) {
   expect_map_rejected(R"({"format": "plumekit-map/2", "size": [6, 4]})", "openings", "missing");
 }
 
+// Robot starts, for evaluate: map-frame points in free space, written back
+// only when a map has them (so a map without keeps its bytes).
+TEST(MapV2, StartsAreReadInTheFrameAndWrittenBackOnlyWhenPresent) {
+  const std::string openings = kInletJson + ", " + kOutletJson;
+  const Map map = parse_map(
+      v2_text(openings, R"(, "sources": [[11, 21.5]], "starts": [[15, 22], [12.5, 20.5]])"), "x");
+  ASSERT_EQ(map.starts.size(), 2u);
+  EXPECT_EQ(map.starts[0], (Vec2{5, 2}));
+  EXPECT_EQ(map.to_frame(map.starts[1]), (Vec2{12.5, 20.5}));
+  const std::string text = map_file_text(map, "x");
+  EXPECT_NE(text.find("\"starts\": [\n    [15.0,22.0],\n    [12.5,20.5]\n  ]\n}"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(parse_map(text, "x").starts, map.starts);
+  EXPECT_EQ(map_file_text(read_map(kBuilding), "x").find("starts"), std::string::npos);
+
+  expect_map_rejected(v2_text(openings, R"(, "starts": [[12, 23.8]])"), "starts[0]",
+                      "lies inside obstacles[0]");
+  expect_map_rejected(v2_text(openings, R"(, "starts": [[12, 30]])"), "starts[0]",
+                      "outside the arena");
+  expect_map_rejected(v2_text(openings, R"(, "starts": [[12, 21], [1]])"), "starts[1]",
+                      "expected a point");
+  expect_map_rejected(
+      R"({"format": "plumekit-map/1", "size": [10, 4], "inlet": {"side": "left"},
+          "outlet": {"side": "right"}, "starts": [[1, 1]]})",
+      "starts", "unknown key");
+}
+
 TEST(MapV2, OpeningsOnObstacleEdgesLabelTheCellsBesideThem) {
   const Map map = read_map(kBuilding);
   const GridShape s = GridShape::with_cell(map.width, map.height, 0.1);
