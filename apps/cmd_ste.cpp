@@ -89,6 +89,11 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
                 "ste.source_cell");
   bind_to(cmd, "--diffusivity", o.physics.advection_diffusion.diffusivity,
           "Eddy diffusivity of the physics model, m^2/s", "plume.diffusivity");
+  bind_to(cmd, "--decay-rate", o.physics.advection_diffusion.decay_rate,
+          "First-order decay rate of the physics model's gas, 1/s (default: 1/28, the filament "
+          "world's, whose filaments are dropped 28 s after release; 0: none, the model before "
+          "issue 17; ste/README.md, \"Floors\")",
+          "plume.decay_rate");
   bind_field(cmd,
              bind_field(cmd,
                         cmd->add_option_function<std::string>(
@@ -181,9 +186,10 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
       cmd->add_option_function<std::string>(
              "--candidates",
              [&o](const std::string& s) { o.navigation.candidates = ste::parse_candidates(s); },
-             "Where the robot may go next: lattice (moves around it, the thesis's) or "
+             "Where the robot may go next: lattice (moves around it, the thesis's), "
              "floor (also goals over the whole reachable floor, taken when one offers more "
-             "than twice the moves' expected gain per second of travel and sampling)")
+             "than twice the moves' expected gain per second of travel and sampling), or auto "
+             "(floor on arenas larger than the thesis's 10 x 4 m, lattice on the others)")
           ->default_str(ste::to_string(o.navigation.candidates)),
       "ste.navigation.candidates");
   bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,

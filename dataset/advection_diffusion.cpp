@@ -52,6 +52,7 @@ void AdvectionDiffusionOptions::validate() const {
   check_positive("plume.diffusivity", diffusivity, 100.0, "m^2/s", "the default is 0.05 m^2/s");
   check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
                  "the default is 1000");
+  check_non_negative("plume.decay_rate", decay_rate, 100.0, "1/s", "the default is 0 (no decay)");
 }
 
 AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
@@ -81,11 +82,12 @@ AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,
   std::vector<Eigen::Triplet<double, int>> t;
   t.reserve(static_cast<std::size_t>(n) * 5);
   const double D = options.diffusivity;
+  const double decay = options.decay_rate * dx * dy;  // the sink, integrated over a cell
   for (int j = 0; j < ny; ++j) {
     for (int i = 0; i < nx; ++i) {
       const int p = unknown_[shape_.index(i, j)];
       if (p < 0) continue;
-      double diag = 0.0;
+      double diag = decay;
       // The four faces: outward flux F, conductance Dc, neighbour (or -1 at the arena edge).
       struct Face {
         double F, Dc;

@@ -1,7 +1,10 @@
 #pragma once
 // Steady advection-diffusion of a point release in a solved wind field:
 //
-//   div(u C) - div(D grad C) = Q delta(x - s)
+//   div(u C) - div(D grad C) + lambda C = Q delta(x - s)
+//
+// (lambda, the first-order decay rate, is 0 unless set: gas that is lost
+// at a rate, such as the filament world's filaments that end when too wide).
 //
 // finite volumes on the flow's own MAC grid, with the face velocities as the
 // fluxes (so the discrete operator conserves mass exactly as the flow does).
@@ -28,9 +31,15 @@ struct AdvectionDiffusionOptions {
   // about Q / sqrt(4 pi D x / u) ~ 1300 and fall to ~400 at 10 m: the 0..3000
   // range of the thesis's (unnormalised) dataset.
   double release_rate = 1000.0;
+  // First-order decay rate lambda, 1/s: a sink lambda C everywhere. 0 (the
+  // default): gas leaves only through outlets. The filament world drops a
+  // filament once it is max_radius wide, (R^2 - R0^2) / growth = 28 s after
+  // its release, so its gas has a finite life that the physics model of
+  // ste/ can mirror (ste/README.md, "Floors").
+  double decay_rate = 0.0;
 
-  // Throws OptionError naming "plume.diffusivity" or "plume.release_rate" and
-  // the allowed range. AdvectionDiffusion's constructor calls it.
+  // Throws OptionError naming "plume.diffusivity", "plume.release_rate" or
+  // "plume.decay_rate" and the allowed range. AdvectionDiffusion's constructor calls it.
   void validate() const;
 };
 

@@ -77,6 +77,11 @@ struct FilamentOptions {
   double meander_wall_layer = 1.0;  // m
 
   double equivalent_diffusivity() const { return 0.5 * sigma_walk * sigma_walk + 0.25 * growth; }
+  // A filament's age when it is dropped for being max_radius wide, s: (R^2 - R0^2) / growth,
+  // 28 s with the defaults. The world's gas lives no longer.
+  double lifetime_s() const {
+    return (max_radius * max_radius - initial_radius * initial_radius) / growth;
+  }
 
   // Throws OptionError naming the field ("plume.release_rate",
   // "plume.filaments_per_second", "plume.dt", ...) and its allowed range

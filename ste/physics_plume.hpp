@@ -9,6 +9,7 @@
 #include "cfd/wind_field.hpp"
 #include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
+#include "dataset/filament_model.hpp"
 #include "ste/forward_model.hpp"
 
 namespace plumekit::ste {
@@ -18,12 +19,20 @@ struct PhysicsPlumeOptions {
   double source_cell = 0.1;
   // Eddy diffusivity and release rate: the dataset's advection-diffusion
   // defaults (D = 0.05 m^2/s equals the filament model's equivalent
-  // diffusivity without its meander; release 1000).
-  dataset::AdvectionDiffusionOptions advection_diffusion;
+  // diffusivity without its meander; release 1000). Its decay rate is the
+  // filament world's: 1 / lifetime_s() = 1/28 s, the rate at which the world
+  // loses its gas (ste/README.md, "Floors"); without it the model fills
+  // dead-end rooms the world never fills.
+  dataset::AdvectionDiffusionOptions advection_diffusion = world_matched();
   // Prior bounds of the release scale (1 = the dataset's release rate).
   double scale_lo = 1.0, scale_hi = 1.0;
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
+  static dataset::AdvectionDiffusionOptions world_matched() {
+    dataset::AdvectionDiffusionOptions o;
+    o.decay_rate = 1.0 / dataset::FilamentOptions{}.lifetime_s();
+    return o;
+  }
 };
 
 class PhysicsPlume final : public SourceTableModel {

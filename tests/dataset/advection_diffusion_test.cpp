@@ -138,9 +138,44 @@ TEST(AdvectionDiffusion, GasLeavesThroughAVentOnAnObstacleEdge) {
   EXPECT_LT(mass, 1000.0 * area / 1.0);
 }
 
+// With a first-order decay lambda, the gas that crosses a section downstream
+// of the source falls as exp(k x), k = (u - sqrt(u^2 + 4 D lambda)) / (2 D),
+// the decaying root of u m' = D m'' - lambda m for the section's total m; and
+// the cells' balance holds exactly: what crosses x is the release less what
+// left through the inlet and what decayed upstream of x.
+TEST(AdvectionDiffusion, DecayTakesGasAtItsRateAndThinsThePlumeDownstream) {
+  const cfd::WindField wind = test::uniform_wind(50.0, 10.0, 0.1, 1.0);
+  const double u = 1.0, D = 0.1, lambda = 0.1;
+  AdvectionDiffusionOptions o;
+  o.diffusivity = D;
+  o.release_rate = 1.0;
+  o.decay_rate = lambda;
+  const AdvectionDiffusion ad(wind, o);
+  const Grid<double> c = ad.solve({2.0, 5.0});
+  const GridShape& g = ad.shape();
+  const double k = (u - std::sqrt(u * u + 4.0 * D * lambda)) / (2.0 * D);
+  const int i10 = static_cast<int>(std::lround(10.0 / g.dx()));
+  const int i30 = static_cast<int>(std::lround(30.0 / g.dx()));
+  const double ratio = ad.flux_through_column(c, i30) / ad.flux_through_column(c, i10);
+  EXPECT_NEAR(ratio, std::exp(k * 20.0), 0.02 * std::exp(k * 20.0));
+  double decayed = 0.0;  // lambda times the mass in the columns left of i30
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < i30; ++i)
+      decayed += lambda * c(i, j) * g.dx() * g.dy();
+  EXPECT_NEAR(ad.flux_through_column(c, i30) - ad.flux_through_column(c, 0), 1.0 - decayed, 1e-6);
+  EXPECT_LT(ad.flux_through_column(c, i30), 0.2);
+  // Without decay the same section carries the whole release.
+  o.decay_rate = 0.0;
+  const AdvectionDiffusion steady(wind, o);
+  EXPECT_NEAR(steady.flux_through_column(steady.solve({2.0, 5.0}), i30), 1.0, 1e-6);
+}
+
 TEST(AdvectionDiffusion, RejectsNonPositiveDiffusivity) {
   const cfd::WindField w = test::uniform_wind(2.0, 1.0, 0.1, 1.0);
   EXPECT_THROW(AdvectionDiffusion(w, {0.0, 1.0}), InputError);
+  AdvectionDiffusionOptions o;
+  o.decay_rate = -0.1;
+  EXPECT_THROW(AdvectionDiffusion(w, o), OptionError);
 }
 
 }  // namespace
