@@ -39,10 +39,11 @@ std::vector<RunRecord> planned_runs(const Map& map, int map_index, const Evaluat
   return records;
 }
 
-// One run from its seeded random start; its record's summary columns filled in.
+// One run from the map's starts or its seeded random start; its record's summary columns filled
+// in.
 void run_one(const Scenario& scenario, RunRecord& rec) {
   const std::uint64_t s = run_seed(rec.seed, rec.map_index, rec.source_index, rec.run);
-  rec.start = scenario.random_start(rec.source, stream_seed(s, SteStream::Start));
+  rec.start = scenario.run_start(rec.source, rec.run, stream_seed(s, SteStream::Start));
   rec.result = scenario.run(rec.source, rec.start, s);
   const LocalizationResult& r = rec.result;
   rec.estimate = r.estimate;
@@ -68,12 +69,13 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
   Stats s;
   s.runs = static_cast<int>(runs.size());
   if (runs.empty()) return s;
-  std::vector<double> err, samples, dist, step;
+  std::vector<double> err, samples, dist, step, mission;
   double sum = 0;
   for (const RunRecord* r : runs) {
     err.push_back(r->error_m);
     samples.push_back(r->samples);
     dist.push_back(r->distance_m);
+    mission.push_back(r->mission_s);
     step.push_back(r->median_step_s);
     sum += r->error_m;
     s.success_0_5 += r->error_m <= 0.5;
@@ -90,6 +92,7 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
   s.entropy_stops /= n;
   s.median_samples = median(samples);
   s.median_distance_m = median(dist);
+  s.median_mission_s = median(mission);
   s.median_step_s = median(step);
   return s;
 }

@@ -49,7 +49,8 @@ struct Stats {
   double median_error_m = 0, mean_error_m = 0, success_0_5 = 0, success_1_0 = 0;
   Interval success_0_5_ci95, success_1_0_ci95;  // Wilson (core/statistics.hpp)
   double median_samples = 0, median_distance_m = 0, median_step_s = 0;
-  double entropy_stops = 0;  // fraction stopped by the entropy rule
+  double median_mission_s = 0;  // the robot's time to its estimate: travel and sampling
+  double entropy_stops = 0;     // fraction stopped by the entropy rule
 };
 Stats summarise(const std::vector<const RunRecord*>& runs);
 

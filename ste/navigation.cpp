@@ -66,13 +66,15 @@ std::vector<Vec2> Navigator::lattice_moves(Vec2 robot) const {
 Decision Navigator::decide(Vec2 robot, const Estimator& estimator,
                            const Posterior& posterior) const {
   return roadmap_ ? decide_on_floor(robot, estimator, posterior)
-                  : decide_on_lattice(robot, estimator, posterior);
+                  : decide_on_lattice(robot, estimator, posterior, 0);
 }
 
 Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
                                     const Posterior& posterior) const {
-  // The thesis's decision first: its moves, and its pull towards the posterior's peak.
-  Decision d = decide_on_lattice(robot, estimator, posterior);
+  // The thesis's decision first: its moves, and its pull towards the posterior's peak. Its moves
+  // are scored on the floor goals' budget of cells: over every cell of a building's posterior
+  // they took most of a decision.
+  Decision d = decide_on_lattice(robot, estimator, posterior, options_.floor_gain_cells);
   // Expected gain per second of mission: travel, then the sample.
   auto rate = [&](double gain, double travel) {
     return gain / (travel / pace_.speed + pace_.sample_s);
@@ -106,12 +108,12 @@ Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
 }
 
 Decision Navigator::decide_on_lattice(Vec2 robot, const Estimator& estimator,
-                                      const Posterior& posterior) const {
+                                      const Posterior& posterior, int max_cells) const {
   Decision d;
   const int home = space_.region_of(robot);
   // V_KLD: the most informative reachable candidate.
   d.candidates = lattice_moves(robot);
-  d.gains = gains(d.candidates, estimator, posterior, 0);
+  d.gains = gains(d.candidates, estimator, posterior, max_cells);
   double best = -1.0;
   d.kld_target = robot;
   for (std::size_t c = 0; c < d.candidates.size(); ++c)

@@ -48,7 +48,9 @@ struct NavigationOptions {
   enum class Reward { Kl, ExpectedGain } reward = Reward::ExpectedGain;
   // Where candidates come from: the lattice of moves around the robot (the thesis's), or also
   // goals spread over the whole reachable floor, ranked by expected gain per second (Floor).
-  enum class Candidates { Lattice, Floor } candidates = Candidates::Lattice;
+  // Auto: Floor on an arena larger than the thesis's 10 x 4 m, Lattice on one within it
+  // (Scenario resolves it; resolve_candidates).
+  enum class Candidates { Lattice, Floor, Auto } candidates = Candidates::Auto;
   double floor_spacing = 1.0;  // m, between the floor's goals (Floor)
   // Floor: each goal's expected gain sums over at most this many of the posterior's cells (drawn
   // from it), so that a decision over hundreds of goals stays within 0.1 s.
@@ -83,8 +85,9 @@ class Navigator {
   const std::vector<Vec2>& floor_goals() const { return floor_goals_; }
 
  private:
-  Decision decide_on_lattice(Vec2 robot, const Estimator& estimator,
-                             const Posterior& posterior) const;
+  // max_cells: the moves' gain budget (0: every cell of the posterior, the thesis's lattice).
+  Decision decide_on_lattice(Vec2 robot, const Estimator& estimator, const Posterior& posterior,
+                             int max_cells) const;
   Decision decide_on_floor(Vec2 robot, const Estimator& estimator,
                            const Posterior& posterior) const;
   // The lattice's moves around the robot that stay in its piece of free space.

@@ -109,6 +109,7 @@ ordered_json stats_json(const Stats& s) {
           {"success_1_0m_ci95", {s.success_1_0_ci95.lo, s.success_1_0_ci95.hi}},
           {"median_samples", s.median_samples},
           {"median_distance_m", s.median_distance_m},
+          {"median_mission_s", s.median_mission_s},
           {"median_step_compute_s", s.median_step_s},
           {"entropy_stops", s.entropy_stops}};
 }
@@ -128,7 +129,7 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
     << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
   h << std::left << std::setw(22) << "map"
     << " median_err  mean_err  ok@0.5  (95% CI)  ok@1.0  (95% CI)  samples"
-    << "  dist_m  step_ms  table_s\n";
+    << "  dist_m  time_s  step_ms  table_s\n";
   auto ci = [](const Interval& i) {
     return "(" + fmt(100 * i.lo, 0) + "-" + fmt(100 * i.hi, 0) + ")";
   };
@@ -138,7 +139,8 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
       << std::setw(10) << ci(s.success_0_5_ci95) << std::setw(8)
       << fmt(100 * s.success_1_0, 0) + "%" << std::setw(10) << ci(s.success_1_0_ci95)
       << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1)
-      << std::setw(9) << fmt(1000 * s.median_step_s, 1) << std::setw(9)
+      << std::setw(8) << fmt(s.median_mission_s, 0) << std::setw(9)
+      << fmt(1000 * s.median_step_s, 1) << std::setw(9)
       << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
   };
   for (const MapReport& mr : res.maps)

@@ -115,18 +115,38 @@ NavigationOptions::Reward parse_reward(const std::string& name) {
 }
 
 const char* to_string(NavigationOptions::Candidates candidates) {
-  return candidates == NavigationOptions::Candidates::Floor ? "floor" : "lattice";
+  switch (candidates) {
+    case NavigationOptions::Candidates::Lattice:
+      return "lattice";
+    case NavigationOptions::Candidates::Floor:
+      return "floor";
+    case NavigationOptions::Candidates::Auto:
+      return "auto";
+  }
+  return "?";
 }
 
 NavigationOptions::Candidates parse_candidates(const std::string& name) {
   if (name == "lattice") return NavigationOptions::Candidates::Lattice;
   if (name == "floor") return NavigationOptions::Candidates::Floor;
+  if (name == "auto") return NavigationOptions::Candidates::Auto;
   throw OptionError("ste.navigation.candidates",
-                    "unknown candidates '" + name + "' (lattice or floor)");
+                    "unknown candidates '" + name + "' (lattice, floor or auto)");
+}
+
+NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates candidates,
+                                                 const Map& map) {
+  if (candidates != NavigationOptions::Candidates::Auto) return candidates;
+  const double long_side = std::max(map.width, map.height);
+  const double short_side = std::min(map.width, map.height);
+  const double eps = map.round_off();
+  return long_side > 10.0 + eps || short_side > 4.0 + eps ? NavigationOptions::Candidates::Floor
+                                                          : NavigationOptions::Candidates::Lattice;
 }
 
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
   options.validate();
+  options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
   if (options.model == PlumeModelKind::Physics)
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell", kBytesPerSourceCell);
   if (options.model == PlumeModelKind::Surrogate)
@@ -145,8 +165,9 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
   space_ = std::make_unique<planner::FreeSpace>(map_, po.margin, po.arc_segments);
   if (space_->empty()) throw InputError("map " + map_.name + ": no free space at the margin");
   bins_ = make_bins(map_, options.bins);
-  navigator_ = std::make_unique<Navigator>(
-      *space_, bins_, options.navigation, MissionPace{options.world.speed, options.world.sample_s});
+  navigator_ =
+      std::make_unique<Navigator>(*space_, bins_, options_.navigation,
+                                  MissionPace{options.world.speed, options.world.sample_s});
   // The floor's goals are scored at every decision: their readings are tabulated once here, as
   // part of the model's build.
   const auto* table_model = dynamic_cast<const SourceTableModel*>(model_.get());
@@ -207,6 +228,22 @@ Vec2 Scenario::random_start(Vec2 source, std::uint64_t seed) const {
   }
   throw InputError("map " + map_.name + ": no free start found " +
                    compact(options_.min_start_distance) + " m from the source");
+}
+
+Vec2 Scenario::run_start(Vec2 source, int run, std::uint64_t seed) const {
+  if (map_.starts.empty()) return random_start(source, seed);
+  const int region = space_->region_of(space_->nearest_free(source));
+  std::vector<Vec2> usable;
+  for (Vec2 p : map_.starts)
+    if (norm(p - source) >= options_.min_start_distance &&
+        space_->region_of(space_->nearest_free(p)) == region)
+      usable.push_back(p);
+  if (usable.empty())
+    throw InputError("map " + map_.name + ": none of its " + std::to_string(map_.starts.size()) +
+                     " starts is " + compact(options_.min_start_distance) +
+                     " m or more from the source " + to_string(map_.to_frame(source)) +
+                     " and connected to it");
+  return usable[static_cast<std::size_t>(run) % usable.size()];
 }
 
 LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {

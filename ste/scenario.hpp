@@ -91,8 +91,14 @@ const char* to_string(NavigationOptions::Reward reward);
 // "kl", "expected"; OptionError on ste.navigation.reward otherwise.
 NavigationOptions::Reward parse_reward(const std::string& name);
 const char* to_string(NavigationOptions::Candidates candidates);
-// "lattice", "floor"; OptionError on ste.navigation.candidates otherwise.
+// "lattice", "floor", "auto"; OptionError on ste.navigation.candidates otherwise.
 NavigationOptions::Candidates parse_candidates(const std::string& name);
+// `candidates` with Auto resolved for `map`: Floor when either side of the arena exceeds the
+// thesis's 10 x 4 m (in either orientation), Lattice otherwise. On the thesis's arenas the
+// lattice's 0.5 m moves and the pull to the posterior's peak do best; on a larger floor, goals
+// over the whole floor (ste/README.md, "Floors").
+NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates candidates,
+                                                 const Map& map);
 
 class Scenario {
  public:
@@ -119,6 +125,10 @@ class Scenario {
   // A uniformly random start in the free space that can reach the source,
   // at least min_start_distance from it.
   Vec2 random_start(Vec2 source, std::uint64_t seed) const;
+  // The start of run `run` of a source: the map's own starts (Map::starts) in turn, skipping
+  // those closer than min_start_distance to the source or that cannot reach it; a map without
+  // starts gives random_start(source, seed). InputError when no start of the map qualifies.
+  Vec2 run_start(Vec2 source, int run, std::uint64_t seed) const;
 
   // One localization run; `seed` drives the plume, the sensor noise and MH.
   LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;

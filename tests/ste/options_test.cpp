@@ -113,7 +113,8 @@ TEST(SteOptions, DefaultsAreTheSurrogatesAndFollowTheModel) {
   EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.3);
   EXPECT_EQ(parse_reward(to_string(NavigationOptions::Reward::Kl)), NavigationOptions::Reward::Kl);
   expect_option_error([] { parse_reward("greedy"); }, "ste.navigation.reward", "'greedy'");
-  EXPECT_EQ(o.navigation.candidates, NavigationOptions::Candidates::Lattice);
+  EXPECT_EQ(o.navigation.candidates, NavigationOptions::Candidates::Auto);
+  EXPECT_EQ(parse_candidates("auto"), NavigationOptions::Candidates::Auto);
   EXPECT_EQ(parse_candidates(to_string(NavigationOptions::Candidates::Floor)),
             NavigationOptions::Candidates::Floor);
   expect_option_error([] { parse_candidates("rooms"); }, "ste.navigation.candidates", "'rooms'");
