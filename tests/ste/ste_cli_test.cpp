@@ -55,7 +55,7 @@ TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   EXPECT_NE(r.err.find("--reward: unknown reward 'greedy'"), std::string::npos) << r.err;
   r = run("localize " + map + " --source 4.2,1.3 --plume-model physics --candidates rooms");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--candidates: unknown candidates 'rooms' (lattice or floor)"),
+  EXPECT_NE(r.err.find("--candidates: unknown candidates 'rooms' (lattice, floor or auto)"),
             std::string::npos)
       << r.err;
   r = run("localize " + map +
