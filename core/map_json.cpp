@@ -268,15 +268,12 @@ void parse_shapes(const Reader& r, const json& doc, Map& map) {
       map.obstacles.push_back(std::move(p));
     }
   }
-  if (doc.contains("sources")) {
-    const json& sources = r.array(doc["sources"], "sources");
-    for (std::size_t k = 0; k < sources.size(); ++k)
-      map.sources.push_back(from_file(map, r.point(sources[k], Reader::index("sources", k))));
-  }
-  if (doc.contains("starts")) {
-    const json& starts = r.array(doc["starts"], "starts");
-    for (std::size_t k = 0; k < starts.size(); ++k)
-      map.starts.push_back(from_file(map, r.point(starts[k], Reader::index("starts", k))));
+  // Sources and starts: lists of points, each read the same way.
+  for (const auto& [key, list] : {std::pair{"sources", &map.sources}, {"starts", &map.starts}}) {
+    if (!doc.contains(key)) continue;
+    const json& points = r.array(doc[key], key);
+    for (std::size_t k = 0; k < points.size(); ++k)
+      list->push_back(from_file(map, r.point(points[k], Reader::index(key, k))));
   }
 }
 

@@ -217,8 +217,12 @@ Vec2 Scenario::check_start(Vec2 start) const {
   return space_->contains(start) ? start : space_->nearest_free(start);
 }
 
+int Scenario::region_reaching(Vec2 p) const {
+  return space_->region_of(space_->nearest_free(p));
+}
+
 Vec2 Scenario::random_start(Vec2 source, std::uint64_t seed) const {
-  const int region = space_->region_of(space_->nearest_free(source));
+  const int region = region_reaching(source);
   std::mt19937_64 rng(seed);
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const double x = uniform(rng, 0.0, map_.width);  // x first: the committed starts' order
@@ -232,11 +236,10 @@ Vec2 Scenario::random_start(Vec2 source, std::uint64_t seed) const {
 
 Vec2 Scenario::run_start(Vec2 source, int run, std::uint64_t seed) const {
   if (map_.starts.empty()) return random_start(source, seed);
-  const int region = space_->region_of(space_->nearest_free(source));
+  const int region = region_reaching(source);
   std::vector<Vec2> usable;
   for (Vec2 p : map_.starts)
-    if (norm(p - source) >= options_.min_start_distance &&
-        space_->region_of(space_->nearest_free(p)) == region)
+    if (norm(p - source) >= options_.min_start_distance && region_reaching(p) == region)
       usable.push_back(p);
   if (usable.empty())
     throw InputError("map " + map_.name + ": none of its " + std::to_string(map_.starts.size()) +

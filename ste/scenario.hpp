@@ -138,6 +138,10 @@ class Scenario {
   Grid<double> mean_plume(Vec2 source) const;
 
  private:
+  // The piece of free space (at the planner's margin) that `p`, or the free point nearest it,
+  // lies in: a start must be in its source's.
+  int region_reaching(Vec2 p) const;
+
   Map map_;
   SteOptions options_;
   cfd::WindField wind_;
