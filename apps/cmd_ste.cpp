@@ -74,9 +74,12 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
                 "ste.likelihood.sigma_m");
   bind_to(cmd, "--sigma-d", o.likelihood.sigma_d, "Measurement error sigma_D, concentration units",
           "ste.likelihood.sigma_d");
-  bind_to(cmd, "--sigma-rel", o.likelihood.sigma_rel,
-          "Model error relative to the predicted concentration, added in quadrature to sigma_M",
-          "ste.likelihood.sigma_rel");
+  bind_optional(cmd, "--sigma-rel", o.likelihood.sigma_rel,
+                "Model error relative to the predicted concentration, added in quadrature to "
+                "sigma_M (default: " +
+                    compact(p.sigma_rel) +
+                    " for physics, chosen on held-out buildings; 0 for the others)",
+                "ste.likelihood.sigma_rel");
   bind_optional(cmd, "--sigma-std", o.likelihood.sigma_std,
                 "Model error in units of the surrogate's predicted std of the readings, added in "
                 "quadrature (default: " +
@@ -197,6 +200,10 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
   bind_to(cmd, "--max-samples", o.stop.max_samples, "Stop after this many samples",
           "ste.stop.max_samples");
+  bind_to(cmd, "--entropy-fraction", o.stop.entropy_fraction,
+          "Stop when the posterior's entropy on the thesis's bins falls below this fraction of "
+          "its maximum (the thesis's: 0.02)",
+          "ste.stop.entropy_fraction");
   bind_to(cmd, "--seen-mass", o.stop.seen_mass,
           "Stop on entropy only with this share of the posterior on sources the samples could "
           "tell from no source (0: also declare sources whose plume reached no sample)",

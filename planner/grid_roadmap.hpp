@@ -20,6 +20,8 @@ class GridRoadmap {
   GridRoadmap(const FreeSpace& space, double spacing);
 
   double spacing() const { return spacing_; }
+  // The lattice's point (column 0, row 0); node k lies at origin() + spacing() (column, row).
+  Vec2 origin() const { return first_; }
   std::size_t size() const { return nodes_.size(); }
   Vec2 node(std::size_t k) const { return nodes_[k]; }
   // Lattice column and row of node k.

@@ -1,12 +1,19 @@
 #pragma once
 // A plume model whose readings at a fixed set of points are tabulated once per
-// map. Navigation over a whole floor scores the same goals at every decision,
-// and for the physics model each reading costs an adjoint solve: a table turns
-// hundreds of solves per decision into lookups. Readings are kept as float32
-// (memory: goals x source cells x 4 bytes); any other point is asked of the
-// wrapped model.
+// map, and whose readings at any other point are remembered for a while.
+// Navigation over a whole floor scores the same goals at every decision, and
+// for the physics model each reading costs an adjoint solve: a table turns
+// hundreds of solves per decision into lookups. The lattice's moves lie on a
+// fixed grid in the floor mode (ste/navigation.hpp), so a robot that moves
+// half a metre finds most of its next moves already solved: the most recently
+// used rows are kept up to a byte budget. Readings are kept as float32
+// (memory: points x source cells x 4 bytes), and a row is rounded to float32
+// whether it was remembered or not, so a run does not depend on what other
+// runs on the same map asked before it.
 #include <cstdint>
+#include <list>
 #include <memory>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -17,9 +24,11 @@ namespace plumekit::ste {
 class CachedReadings final : public SourceTableModel {
  public:
   // Tabulates readings_at (and spreads_at, when the model has them) at every point, on
-  // `threads` threads (0: one per core).
+  // `threads` threads (0: one per core). Rows at other points are remembered up to
+  // `recent_bytes` (0: none).
   CachedReadings(std::unique_ptr<SourceTableModel> model, const std::vector<Vec2>& points,
-                 int threads);
+                 int threads, double recent_bytes = kRecentBytes);
+  ~CachedReadings() override;
 
   std::string name() const override { return model_->name(); }
   const std::vector<Parameter>& parameters() const override { return model_->parameters(); }
@@ -30,13 +39,18 @@ class CachedReadings final : public SourceTableModel {
   std::vector<double> spreads_at(Vec2 p) const override;
   const SourceTableModel& wrapped() const { return *model_; }
 
+  // The default budget of remembered rows: 256 MiB.
+  static constexpr double kRecentBytes = 256.0 * 1024 * 1024;
+
  private:
+  class Recent;  // the remembered rows of one kind, least recently used first out
   std::vector<double> row(const std::vector<float>& table, std::size_t k) const;
 
   std::unique_ptr<SourceTableModel> model_;
   std::unordered_map<Vec2, std::size_t, Vec2Hash> index_;
   std::size_t cells_ = 0;
   std::vector<float> readings_, spreads_;  // [point][cell]
+  std::unique_ptr<Recent> recent_readings_, recent_spreads_;
 };
 
 }  // namespace plumekit::ste

@@ -54,9 +54,20 @@ std::vector<Vec2> Navigator::lattice_moves(Vec2 robot) const {
   const int home = space_.region_of(robot);
   std::vector<Vec2> moves;
   const int n = options_.lattice;
+  const double step = options_.step;
+  // Floor: around the fixed grid's point nearest the robot, so that the next decision finds
+  // most of its moves' readings remembered (CachedReadings). The grid is the roadmap's, so
+  // with the default spacings every floor goal is one of its points.
+  Vec2 origin = robot;
+  int ci = 0, cj = 0;
+  if (roadmap_) {
+    origin = roadmap_->origin();
+    ci = static_cast<int>(std::lround((robot.x - origin.x) / step));
+    cj = static_cast<int>(std::lround((robot.y - origin.y) / step));
+  }
   for (int dj = -n; dj <= n; ++dj)
     for (int di = -n; di <= n; ++di) {
-      const Vec2 c{robot.x + di * options_.step, robot.y + dj * options_.step};
+      const Vec2 c{origin.x + (ci + di) * step, origin.y + (cj + dj) * step};
       if ((di == 0 && dj == 0) || !space_.contains(c) || space_.region_of(c) != home) continue;
       moves.push_back(c);
     }

@@ -24,7 +24,9 @@
 // lattice of `floor_spacing` metres, on a roadmap of the free space) by expected
 // information per second of mission, gain / (travel time + sampling time), and
 // leaves the lattice's decision for the best goal when it offers clearly more
-// than the best move (ste/README.md, "Floors").
+// than the best move (ste/README.md, "Floors"). There the lattice's moves lie on
+// a fixed grid (around its point nearest the robot), so that a plume model can
+// remember their readings from one decision to the next.
 #include <memory>
 #include <vector>
 
@@ -90,7 +92,8 @@ class Navigator {
                              int max_cells) const;
   Decision decide_on_floor(Vec2 robot, const Estimator& estimator,
                            const Posterior& posterior) const;
-  // The lattice's moves around the robot that stay in its piece of free space.
+  // The lattice's moves around the robot that stay in its piece of free space. Floor: around
+  // the point of a fixed grid (the roadmap's, `step` apart) nearest the robot.
   std::vector<Vec2> lattice_moves(Vec2 robot) const;
   // max_cells: the estimator's budget per point (0: exact).
   std::vector<double> gains(const std::vector<Vec2>& points, const Estimator& estimator,

@@ -92,7 +92,7 @@ LikelihoodOptions SteOptions::likelihood_options() const {
   LikelihoodOptions l = default_likelihood(model);
   l.sigma_m = likelihood.sigma_m.value_or(l.sigma_m);
   l.sigma_d = likelihood.sigma_d;
-  l.sigma_rel = likelihood.sigma_rel;
+  l.sigma_rel = likelihood.sigma_rel.value_or(l.sigma_rel);
   l.sigma_std = likelihood.sigma_std.value_or(l.sigma_std);
   return l;
 }

@@ -92,6 +92,7 @@ LikelihoodOptions default_likelihood(PlumeModelKind kind) {
     l.sigma_std = 2.0;
   } else if (kind == PlumeModelKind::Physics) {
     l.sigma_m = 150.0;
+    l.sigma_rel = 0.15;
   }
   return l;
 }
@@ -175,9 +176,10 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
     t0 = Clock::now();
     const double goals = static_cast<double>(navigator_->floor_goals().size());
     const double cells = static_cast<double>(table_model->candidates().size());
-    check_memory(goals * cells * 4.0 * (table_model->has_spreads() ? 2.0 : 1.0),
+    check_memory(goals * cells * 4.0 * (table_model->has_spreads() ? 2.0 : 1.0) +
+                     CachedReadings::kRecentBytes,
                  "the readings at " + compact(goals) + " floor goals for " + compact(cells) +
-                     " source cells",
+                     " source cells, and the recent moves' readings",
                  "use a larger ste.navigation.floor_spacing or ste.source_cell");
     std::unique_ptr<SourceTableModel> table(static_cast<SourceTableModel*>(model_.release()));
     model_ = std::make_unique<CachedReadings>(std::move(table), navigator_->floor_goals(),

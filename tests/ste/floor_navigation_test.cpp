@@ -138,10 +138,65 @@ TEST(CachedReadings, TabulatedPointsMatchTheModelAndOthersAreAskedOfIt) {
       EXPECT_NEAR(got[k], want[k], 1e-6 * std::abs(want[k]));  // float32
   }
   const int before = raw->calls;
-  EXPECT_EQ(cached.readings_at({5.0, 1.0}), raw->readings_at({5.0, 1.0}));
-  EXPECT_EQ(raw->calls, before + 2);  // not tabulated: asked of the model
+  const std::vector<double> first = cached.readings_at({5.0, 1.0});
+  EXPECT_EQ(raw->calls, before + 1);  // not tabulated: asked of the model
+  EXPECT_EQ(cached.readings_at({5.0, 1.0}), first);
+  EXPECT_EQ(raw->calls, before + 1);  // ... once: then remembered
+  const std::vector<double> want = raw->readings_at({5.0, 1.0});
+  for (std::size_t k = 0; k < want.size(); ++k)
+    EXPECT_EQ(first[k], static_cast<double>(static_cast<float>(want[k])));
   EXPECT_EQ(cached.name(), "rooms");
   EXPECT_EQ(cached.allowed(), raw->allowed());
+}
+
+TEST(CachedReadings, RemembersTheMostRecentRowsWithinItsBudget) {
+  const Map map = two_rooms();
+  auto model = std::make_unique<RoomPlume>(map);
+  const RoomPlume* raw = model.get();
+  const double row_bytes = 4.0 * static_cast<double>(raw->candidates().size());
+  const CachedReadings cached(std::move(model), {}, 1, 2.5 * row_bytes);  // two rows
+  const Vec2 a{1.0, 1.0}, b{2.0, 1.0}, c{3.0, 1.0};
+  const std::vector<double> ra = cached.readings_at(a);
+  cached.readings_at(b);
+  cached.readings_at(a);  // a is now the most recent, b the least
+  EXPECT_EQ(raw->calls, 2);
+  cached.readings_at(c);  // b goes
+  cached.readings_at(a);
+  EXPECT_EQ(raw->calls, 3);
+  cached.readings_at(b);
+  EXPECT_EQ(raw->calls, 4);
+  // Remembered or asked again, a row is the same.
+  EXPECT_EQ(cached.readings_at(a), ra);
+  const CachedReadings forgetful(std::make_unique<RoomPlume>(map), {}, 1, 0.0);
+  EXPECT_EQ(forgetful.readings_at(a), ra);
+}
+
+TEST(FloorNavigation, TheLatticesMovesLieOnAFixedGridInTheFloorMode) {
+  const Map map = two_rooms();
+  const planner::FreeSpace space(map, 0.15, 8);
+  const RoomPlume model(map);
+  const GridShape bins = make_bins(map, {});
+  GridEstimator est(model, {}, bins);
+  est.add({1.0, 1.0}, 0.0);
+  const Posterior post = est.posterior();
+  NavigationOptions floor;
+  floor.candidates = NavigationOptions::Candidates::Floor;
+  const Navigator navigator(space, bins, floor);
+  // Two robots a few centimetres apart see the same moves, and every floor goal near them is one.
+  const Decision a = navigator.decide({2.02, 1.97}, est, post);
+  const Decision b = navigator.decide({1.95, 2.04}, est, post);
+  const auto moves = [](const Decision& d) {
+    return std::vector<Vec2>(d.candidates.begin(), d.candidates.begin() + 24);
+  };
+  ASSERT_GE(a.candidates.size(), 24u);
+  EXPECT_EQ(moves(a), moves(b));
+  int goals_among_moves = 0;
+  for (const Vec2& g : navigator.floor_goals())
+    goals_among_moves += std::count(a.candidates.begin(), a.candidates.begin() + 24, g) > 0;
+  EXPECT_GE(goals_among_moves, 4);
+  // The thesis's lattice stays around the robot itself.
+  const Decision thesis = Navigator(space, bins, {}).decide({2.02, 1.97}, est, post);
+  EXPECT_EQ(thesis.candidates.front(), (Vec2{2.02 - 1.0, 1.97 - 1.0}));
 }
 
 TEST(FloorGain, ResampledSupportKeepsTheMassAndApproximatesTheExactGain) {
