@@ -198,7 +198,9 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,
           "Spacing of the floor's goals, m (--candidates floor)", "ste.navigation.floor_spacing");
   bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
-  bind_to(cmd, "--max-samples", o.stop.max_samples, "Stop after this many samples",
+  bind_to(cmd, "--max-samples", o.stop.max_samples,
+          "Stop after this many samples (0, the default: 50, or on a floor of more than 500 m^2 "
+          "one per 10 m^2 of its reachable free space)",
           "ste.stop.max_samples");
   bind_to(cmd, "--entropy-fraction", o.stop.entropy_fraction,
           "Stop when the posterior's entropy on the thesis's bins falls below this fraction of "

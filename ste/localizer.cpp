@@ -23,7 +23,7 @@ std::string stop_reason(const Posterior& posterior, int samples, const StopOptio
   if (posterior.entropy < stop.entropy_fraction * posterior.max_entropy &&
       posterior.seen_mass >= stop.seen_mass)
     return "entropy";
-  return samples >= stop.max_samples ? "max_samples" : "";
+  return samples >= stop.max_samples_in_use() ? "max_samples" : "";
 }
 
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,

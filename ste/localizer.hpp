@@ -20,7 +20,14 @@ struct StopOptions {
   // could tell from no source (Posterior::seen_mass): a certain posterior on sources whose plume
   // reaches no sample says only that nothing was read.
   double seen_mass = 0.95;
-  int max_samples = 50;
+  // 0 (auto): the thesis's 50, or on a floor (the floor mode) one sample per 10 m² of its
+  // reachable free space when that is more (Scenario resolves it; resolve_max_samples).
+  int max_samples = kAutoMaxSamples;
+  static constexpr int kAutoMaxSamples = 0;
+  static constexpr int kThesisMaxSamples = 50;
+  int max_samples_in_use() const {
+    return max_samples == kAutoMaxSamples ? kThesisMaxSamples : max_samples;
+  }
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
 };

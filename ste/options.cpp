@@ -55,7 +55,8 @@ void StopOptions::validate() const {
                      "the default is 0.02; 1 or more stops after the first sample");
   check_non_negative("ste.stop.seen_mass", seen_mass, 1.0, "",
                      "the default is 0.95; 0 declares unseen sources too");
-  check_count("ste.stop.max_samples", max_samples, 1, 100'000, "the default is 50");
+  check_count("ste.stop.max_samples", max_samples, 0, 100'000,
+              "the default is 0 (auto: 50, more on large floors)");
 }
 
 void WorldOptions::validate() const {

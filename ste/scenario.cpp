@@ -1,5 +1,6 @@
 #include "ste/scenario.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -145,6 +146,14 @@ NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates c
                                                           : NavigationOptions::Candidates::Lattice;
 }
 
+int resolve_max_samples(int max_samples, std::size_t floor_goals, double floor_spacing) {
+  if (max_samples != StopOptions::kAutoMaxSamples) return max_samples;
+  constexpr double kSquareMetresPerSample = 10.0;
+  const double area = static_cast<double>(floor_goals) * floor_spacing * floor_spacing;
+  return std::max(StopOptions::kThesisMaxSamples,
+                  static_cast<int>(std::ceil(area / kSquareMetresPerSample)));
+}
+
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
   options.validate();
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
@@ -169,6 +178,9 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
   navigator_ =
       std::make_unique<Navigator>(*space_, bins_, options_.navigation,
                                   MissionPace{options.world.speed, options.world.sample_s});
+  options_.stop.max_samples =
+      resolve_max_samples(options.stop.max_samples, navigator_->floor_goals().size(),
+                          options_.navigation.floor_spacing);
   // The floor's goals are scored at every decision: their readings are tabulated once here, as
   // part of the model's build.
   const auto* table_model = dynamic_cast<const SourceTableModel*>(model_.get());

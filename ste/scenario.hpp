@@ -102,6 +102,12 @@ NavigationOptions::Candidates parse_candidates(const std::string& name);
 NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates candidates,
                                                  const Map& map);
 
+// `max_samples` with auto (0) resolved: the thesis's 50, or on a floor whose `floor_goals` goals
+// `floor_spacing` apart cover more than 500 m² (one goal per spacing²), one sample per 10 m² of
+// it. 50 samples do not cover a 30 x 50 m warehouse when the gas lives 28 s (ste/README.md,
+// "Floors").
+int resolve_max_samples(int max_samples, std::size_t floor_goals, double floor_spacing);
+
 class Scenario {
  public:
   // Solves the wind (options.flow; upwind if Newton stalls with central convection) and builds

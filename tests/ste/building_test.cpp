@@ -85,5 +85,20 @@ TEST(BuildingSte, AutoCandidatesAreTheFloorsOnArenasLargerThanTheThesiss) {
   EXPECT_EQ(Scenario(small_building(), o).options().navigation.candidates, C::Floor);
 }
 
+// 50 samples on the thesis's arena and on floors up to 500 m^2; one per 10 m^2 on larger ones
+// (the warehouse's runs needed up to 87); an explicit count stays.
+TEST(BuildingSte, AutoMaxSamplesGrowWithTheFloorsArea) {
+  EXPECT_EQ(resolve_max_samples(0, 0, 1.0), 50);      // the lattice mode: no floor goals
+  EXPECT_EQ(resolve_max_samples(0, 500, 1.0), 50);    // 500 m^2
+  EXPECT_EQ(resolve_max_samples(0, 1201, 1.0), 121);  // 1,201 m^2
+  EXPECT_EQ(resolve_max_samples(0, 1200, 0.5), 50);   // 300 m^2 at 0.5 m spacing
+  EXPECT_EQ(resolve_max_samples(30, 5000, 1.0), 30);
+  StopOptions stop;
+  EXPECT_EQ(stop.max_samples_in_use(), 50);  // unresolved auto: the thesis's
+  SteOptions o;
+  o.model = PlumeModelKind::Gaussian;
+  EXPECT_EQ(Scenario(small_building(), o).options().stop.max_samples, 50);
+}
+
 }  // namespace
 }  // namespace plumekit::ste

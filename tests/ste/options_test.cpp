@@ -49,7 +49,7 @@ TEST(SteOptions, EveryDefectNamesTheFieldAndTheRange) {
        "both 0"},
       {"ste.navigation.alpha", [](SteOptions& o) { o.navigation.alpha = 1.5; }, "from 0 to 1"},
       {"ste.navigation.lattice", [](SteOptions& o) { o.navigation.lattice = 0; }, "from 1 to 20"},
-      {"ste.stop.max_samples", [](SteOptions& o) { o.stop.max_samples = 0; }, "from 1"},
+      {"ste.stop.max_samples", [](SteOptions& o) { o.stop.max_samples = -1; }, "from 0"},
       {"ste.mh.burn_in", [](SteOptions& o) { o.mh.burn_in = 5000; }, "from 0 to 3999"},
       {"ste.physics.source_cell", [](SteOptions& o) { o.physics.source_cell = NAN; }, "got nan"},
       {"ste.source_cell",

@@ -247,7 +247,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   const LocalizationResult r = sc.run(source, {1.0, 2.5}, run_seed(3, 0, 0, 0));
   EXPECT_LT(norm(r.estimate - source), 0.5) << "estimate " << to_string(r.estimate);
   EXPECT_EQ(r.stopped_by, "entropy");
-  EXPECT_LT(r.samples, o.stop.max_samples);
+  EXPECT_LT(r.samples, o.stop.max_samples_in_use());
   EXPECT_GT(r.distance_m, 1.0);
   // Every sample is taken in free space, every path stays in it.
   const planner::FreeSpace& space = sc.free_space();
