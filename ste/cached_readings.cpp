@@ -77,8 +77,7 @@ CachedReadings::CachedReadings(std::unique_ptr<SourceTableModel> model,
     const std::vector<double> s = model_->spreads_at(unique[k]);
     std::copy(s.begin(), s.end(), spreads_.begin() + k * cells_);
   });
-  const double row_bytes = 4.0 * static_cast<double>(std::max<std::size_t>(cells_, 1)) *
-                           (model_->has_spreads() ? 2.0 : 1.0);
+  const double row_bytes = std::max(4.0, bytes_per_point(*model_));  // no division by 0 cells
   const auto capacity = static_cast<std::size_t>(std::max(0.0, recent_bytes) / row_bytes);
   recent_readings_ = std::make_unique<Recent>(capacity);
   recent_spreads_ = std::make_unique<Recent>(model_->has_spreads() ? capacity : 0);

@@ -39,6 +39,11 @@ class CachedReadings final : public SourceTableModel {
   std::vector<double> spreads_at(Vec2 p) const override;
   const SourceTableModel& wrapped() const { return *model_; }
 
+  // What one point's rows take for `model`: its readings (and spreads) at every source cell,
+  // float32. The table and the remembered rows are both sized by it.
+  static double bytes_per_point(const SourceTableModel& model) {
+    return 4.0 * static_cast<double>(model.candidates().size()) * (model.has_spreads() ? 2.0 : 1.0);
+  }
   // The default budget of remembered rows: 256 MiB.
   static constexpr double kRecentBytes = 256.0 * 1024 * 1024;
 

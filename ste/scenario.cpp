@@ -188,11 +188,11 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
     t0 = Clock::now();
     const double goals = static_cast<double>(navigator_->floor_goals().size());
     const double cells = static_cast<double>(table_model->candidates().size());
-    check_memory(goals * cells * 4.0 * (table_model->has_spreads() ? 2.0 : 1.0) +
-                     CachedReadings::kRecentBytes,
-                 "the readings at " + compact(goals) + " floor goals for " + compact(cells) +
-                     " source cells, and the recent moves' readings",
-                 "use a larger ste.navigation.floor_spacing or ste.source_cell");
+    check_memory(
+        goals * CachedReadings::bytes_per_point(*table_model) + CachedReadings::kRecentBytes,
+        "the readings at " + compact(goals) + " floor goals for " + compact(cells) +
+            " source cells, and the recent moves' readings",
+        "use a larger ste.navigation.floor_spacing or ste.source_cell");
     std::unique_ptr<SourceTableModel> table(static_cast<SourceTableModel*>(model_.release()));
     model_ = std::make_unique<CachedReadings>(std::move(table), navigator_->floor_goals(),
                                               options.threads);
