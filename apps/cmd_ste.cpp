@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include "apps/cli.hpp"
@@ -16,8 +17,10 @@
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
+#include "core/sha256.hpp"
 #include "ste/demo.hpp"
 #include "ste/evaluation.hpp"
+#include "ste/evaluation_parts.hpp"
 #include "ste/report.hpp"
 #include "ste/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
@@ -294,11 +297,83 @@ void add_localize(CLI::App& app) {
   });
 }
 
+// Every flag of `evaluate` that shapes the results, as given or its default: what the parts
+// of a --shard split must share. Where the output goes, the threads, the table cache and the
+// memory limit change no result; the map folder and the CNN are compared by their files'
+// SHA-256 (map_files_json, cnn_sha256) so that paths may differ between machines.
+ordered_json result_options(const CLI::App* cmd, const ste::EvaluationOptions& eo) {
+  static const std::set<std::string> not_results{"--out",  "--shard",      "--threads",
+                                                 "--json", "--max-memory", "--table-cache",
+                                                 "--help", "--map-dir",    "--cnn"};
+  ordered_json j = ordered_json::object();
+  for (const CLI::Option* opt : cmd->get_options()) {
+    const std::string name = opt->get_name();
+    if (not_results.count(name) || opt->get_group().empty()) continue;  // "": a hidden alias
+    j[name] = opt->count() > 0 ? CLI::detail::join(opt->results(), " ") : opt->get_default_str();
+  }
+  if (eo.ste.model == ste::PlumeModelKind::Surrogate)
+    j["cnn_sha256"] = sha256_file(eo.ste.model_path);
+  return j;
+}
+
+// The part folder of `evaluate --shard K/N`: part.json, runs.csv, timings.csv, and the
+// trajectory pictures of this part's median runs.
+void write_part(OutputDirectory& dir, const ste::EvaluationResult& res,
+                const ste::EvaluationOptions& eo, const ste::PartIdentity& id,
+                const fs::path& out) {
+  ste::EvaluationFiles files;
+  files.runs_csv = ste::runs_csv(res);
+  files.timings_csv = ste::timings_csv(res);
+  write_file_atomic(dir.open() / "runs.csv", files.runs_csv);
+  write_file_atomic(dir.open() / "timings.csv", files.timings_csv);
+  write_file_atomic(dir.open() / ste::kPartFile, ste::part_json(res, eo, id, files).dump(2) + "\n");
+  dir.commit();
+  const std::string part = std::to_string(eo.part_k) + "/" + std::to_string(eo.part_n);
+  const ordered_json j{{"ok", true},           {"part", eo.part_k},
+                       {"parts", eo.part_n},   {"runs", res.runs.size()},
+                       {"wall_s", res.wall_s}, {"out", out.string()}};
+  report(j, "evaluated part " + part + ": " + std::to_string(res.runs.size()) + " runs (pairs " +
+                std::to_string(res.pairs.first) + ".." + std::to_string(res.pairs.end) + " of " +
+                std::to_string(res.pairs.total) + " map sources)\nwrote " + out.string() +
+                "/{part.json, runs.csv, timings.csv, trajectories/}; join the parts with "
+                "`plumekit evaluate merge PART_DIR... --out DIR`");
+}
+
+void add_evaluate_merge(CLI::App* evaluate) {
+  auto* cmd = evaluate->add_subcommand(
+      "merge", "Join the parts of `evaluate --shard K/N` into one evaluation, verifying them");
+  struct Args {
+    std::string out;
+    std::vector<std::string> parts;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("PARTS", a->parts, "Part folders (the --out of each `evaluate --shard K/N`)")
+      ->required();
+  cmd->add_option("--out,-o", a->out,
+                  "Output folder (new, empty, or an earlier `evaluate` output, which is "
+                  "replaced): runs.csv, summary.json, timings, box plots")
+      ->required();
+  add_common_flags(cmd);
+  cmd->callback([a] {
+    // Every part is verified before the output folder is touched.
+    const std::vector<fs::path> parts(a->parts.begin(), a->parts.end());
+    const ste::MergedEvaluation m = ste::merge_evaluation_parts(parts);
+    OutputDirectory dir(a->out, "evaluate", parts);
+    ste::write_evaluation_files(dir.open(), m.result, m.files);
+    dir.commit();
+    Report rep = ste::evaluation_report(m.result, m.settings, a->out, false);
+    rep.json["parts"] = m.parts;
+    rep.json["timings"] = m.files.timings;
+    report(rep.json, "joined " + std::to_string(m.parts) + " parts\n" + rep.text);
+  });
+}
+
 void add_evaluate(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "evaluate", "Localize every ground-truth source of every map N times; scores and pictures");
   struct Args {
     std::string map_dir, out = "out/evaluate";
+    bool part = false;
     ste::EvaluationOptions eval;
   };
   auto a = std::make_shared<Args>();
@@ -318,14 +393,26 @@ void add_evaluate(CLI::App& app) {
   bind_to(cmd, "--sources", a->eval.source_count,
           "Only the first K sources of each map (0: all; a labelled subset)",
           "evaluation.source_count");
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                 "--shard",
+                 [a](const std::string& k_of_n) {
+                   a->eval.set_part(k_of_n);
+                   a->part = true;
+                 },
+                 "K/N: only part K of N of the (map, source) pairs, into a part folder (then "
+                 "`evaluate merge`)"),
+             "evaluation.shard");
   add_seed_flag(cmd, a->eval.seed, "Seed of plumes, noise and starts");
   cmd->add_option("--out,-o", a->out,
                   "Output folder (new, empty, or an earlier `evaluate` output, which is "
-                  "replaced): runs.csv, summary.json, box plots, trajectories/")
+                  "replaced): runs.csv, summary.json, timings, box plots, trajectories/")
       ->capture_default_str();
   add_ste_options(cmd, a->eval.ste);
   add_common_flags(cmd);
-  cmd->callback([a] {
+  add_evaluate_merge(cmd);
+  cmd->callback([a, cmd] {
+    if (cmd->got_subcommand("merge")) return;  // `evaluate merge` did the work
     a->eval.validate();
     const ste::MapFolder maps = ste::read_map_folder(a->map_dir);
     const ste::EvaluationOptions& eo = a->eval;
@@ -339,10 +426,20 @@ void add_evaluate(CLI::App& app) {
         },
         ste::trajectory_pictures(dir.open(), maps.picture_names, eo.ste.model));
     bar.finish();
-    const Report rep = ste::evaluation_report(res, eo, a->map_dir, a->out);
-    ste::write_evaluation_files(dir.open(), res, eo, rep.json);
+    const ordered_json settings = ste::evaluation_settings(eo, a->map_dir);
+    if (a->part) {
+      const ste::PartIdentity id{settings, result_options(cmd, eo), ste::map_files_json(maps)};
+      return write_part(dir, res, eo, id, a->out);
+    }
+    const Report rep = ste::evaluation_report(res, settings, a->out);
+    ste::write_evaluation_files(
+        dir.open(), res,
+        {ste::runs_csv(res), ste::timings_csv(res), rep.json, ste::evaluation_timings(res)});
     dir.commit();
-    report(rep.json, rep.text);
+    // On stdout the times go with the summary (they are apart only in the files).
+    ordered_json printed = rep.json;
+    printed["timings"] = ste::evaluation_timings(res);
+    report(printed, rep.text);
   });
 }
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 #include "core/error.hpp"
 
@@ -70,6 +71,15 @@ void check_name(const std::string& field, const std::string& name,
   for (const std::string& k : known)
     if (k == name) return;
   throw OptionError(field, "unknown name '" + name + "'; use " + join(known));
+}
+
+PartOfN parse_part(const std::string& field, const std::string& k_of_n) {
+  int k = -1, n = 0;
+  char slash = 0, extra = 0;
+  std::istringstream in(k_of_n);
+  if (!(in >> k >> slash >> n) || slash != '/' || (in >> extra) || n <= 0 || k < 0 || k >= n)
+    throw OptionError(field, "expected K/N with 0 <= K < N, got '" + k_of_n + "'");
+  return {k, n};
 }
 
 }  // namespace plumekit

@@ -33,4 +33,10 @@ void check_count(const std::string& field, long long value, long long lo, long l
 void check_name(const std::string& field, const std::string& name,
                 const std::vector<std::string>& known);
 
+// "K/N", a part of a run split N ways (--shard): 0 <= K < N, both integers.
+struct PartOfN {
+  int k = 0, n = 1;
+};
+PartOfN parse_part(const std::string& field, const std::string& k_of_n);
+
 }  // namespace plumekit

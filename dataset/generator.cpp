@@ -6,7 +6,6 @@
 #include <cmath>
 #include <mutex>
 #include <set>
-#include <sstream>
 #include <tuple>
 
 #include "cfd/flow_policy.hpp"
@@ -277,13 +276,9 @@ MapOutcome make_map_shard(const fs::path& out, const DatasetOptions& o, const Ma
 }  // namespace
 
 void RunOptions::set_part(const std::string& k_of_n) {
-  int k = -1, n = 0;
-  char slash = 0, extra = 0;
-  std::istringstream in(k_of_n);
-  if (!(in >> k >> slash >> n) || slash != '/' || (in >> extra) || n <= 0 || k < 0 || k >= n)
-    throw OptionError("dataset.shard", "expected K/N with 0 <= K < N, got '" + k_of_n + "'");
-  part_k = k;
-  part_n = n;
+  const PartOfN part = parse_part("dataset.shard", k_of_n);
+  part_k = part.k;
+  part_n = part.n;
 }
 
 void use_map_dir(DatasetOptions& o, const fs::path& dir) {

@@ -36,6 +36,11 @@ packages=(
   # `plumekit flow --engine openfoam` and its test (openfoam_tests, 2 MPI ranks): OpenFOAM v1912
   # (simpleFoam, decomposePar, reconstructPar) and the Open MPI launcher, mpirun.
   openfoam openmpi-bin
+  # the Python module (python/README.md): pybind11, its tests, and the examples' pictures
+  pybind11-dev python3-dev python3-pytest python3-matplotlib
+  # scale-out (scripts/scaleout/README.md): a single-node Slurm with munge, started by its test,
+  # and GNU parallel
+  slurm-wlm munge parallel
 )
 # Optional, never needed by the build: libtorch-dev for bench/surrogate_vs_libtorch
 # (bench/libtorch/run.sh passes it as an argument).

@@ -20,12 +20,14 @@ int sources_evaluated(const Map& map, const EvaluationOptions& o) {
   return o.source_count > 0 ? std::min(o.source_count, all) : all;
 }
 
-// The records of one map, in run order (source, then seed, then run), before they are run.
-std::vector<RunRecord> planned_runs(const Map& map, int map_index, const EvaluationOptions& o) {
+// The records of one map, in run order (source, then seed, then run), before they are run: the
+// sources whose pair number (`first_pair` + source index) lies in `part`.
+std::vector<RunRecord> planned_runs(const Map& map, int map_index, const EvaluationOptions& o,
+                                    long long first_pair, const PairRange& part) {
   const int n_src = sources_evaluated(map, o);
   std::vector<RunRecord> records;
-  records.reserve(static_cast<std::size_t>(n_src) * o.seeds * o.runs);
-  for (int s = 0; s < n_src; ++s)
+  for (int s = 0; s < n_src; ++s) {
+    if (first_pair + s < part.first || first_pair + s >= part.end) continue;
     for (int k = 0; k < o.seeds; ++k)
       for (int r = 0; r < o.runs; ++r) {
         RunRecord& rec = records.emplace_back();
@@ -36,6 +38,7 @@ std::vector<RunRecord> planned_runs(const Map& map, int map_index, const Evaluat
         rec.seed = o.seed + static_cast<std::uint64_t>(k);
         rec.source = map.sources[s];
       }
+  }
   return records;
 }
 
@@ -63,7 +66,21 @@ std::vector<const RunRecord*> pointers(const std::vector<RunRecord>& records) {
   return p;
 }
 
+// The columns that name a run, first in runs.csv and timings.csv.
+void run_id_columns(std::ostream& s, const RunRecord& r) {
+  s << r.map << ',' << r.source_index << ',' << r.run;
+}
+
 }  // namespace
+
+PairRange part_pairs(const std::vector<Map>& maps, const EvaluationOptions& o) {
+  PairRange p;
+  for (const Map& m : maps)
+    p.total += sources_evaluated(m, o);
+  p.first = p.total * o.part_k / o.part_n;
+  p.end = p.total * (o.part_k + 1) / o.part_n;
+  return p;
+}
 
 Stats summarise(const std::vector<const RunRecord*>& runs) {
   Stats s;
@@ -102,32 +119,39 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
                           const AfterMap& after_map) {
   o.validate();
   const auto t_all = Clock::now();
-  int total = 0;
-  for (const Map& m : maps) {
+  for (const Map& m : maps)
     if (m.sources.empty())
       throw InputError("map " + m.name + " has no ground-truth \"sources\" to evaluate on");
-    total += sources_evaluated(m, o) * o.runs * o.seeds;
-  }
+  EvaluationResult result;
+  result.seeds = o.seeds;
+  result.pairs = part_pairs(maps, o);
+  const int total = static_cast<int>(result.pairs.end - result.pairs.first) * o.runs * o.seeds;
   SteOptions ste = o.ste;
   ste.threads = o.threads;  // the table build uses the evaluation's threads
   ThreadPool pool(o.threads);
-  EvaluationResult result;
-  result.seeds = o.seeds;
+  result.threads = pool.size();
   int done = 0;
   std::mutex lock;
+  long long first_pair = 0;
   for (std::size_t mi = 0; mi < maps.size(); ++mi) {
     const auto t_map = Clock::now();
+    std::vector<RunRecord> records =
+        planned_runs(maps[mi], static_cast<int>(mi), o, first_pair, result.pairs);
+    first_pair += sources_evaluated(maps[mi], o);
+    MapReport report;
+    report.name = maps[mi].name;
+    report.frame = maps[mi].frame;
+    if (records.empty()) {  // another part's map: no wind, no table
+      result.maps.push_back(report);
+      continue;
+    }
     const Scenario scenario(maps[mi], ste);
-    std::vector<RunRecord> records = planned_runs(maps[mi], static_cast<int>(mi), o);
     pool.parallel_for(records.size(), [&](std::size_t k) {
       run_one(scenario, records[k]);
       std::lock_guard<std::mutex> g(lock);
       ++done;
       if (progress) progress(done, total);
     });
-    MapReport report;
-    report.name = maps[mi].name;
-    report.frame = maps[mi].frame;
     report.wind_s = scenario.wind_s();
     report.table_build_s = scenario.model_build_s();
     report.stats = summarise(pointers(records));
@@ -145,7 +169,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
 std::string runs_csv(const EvaluationResult& result) {
   std::ostringstream s;
   s << "map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,estimate_y,error_m,"
-       "samples,distance_m,mission_s,compute_s,median_step_s,stopped_by"
+       "samples,distance_m,mission_s,stopped_by"
     << (result.seeds > 1 ? ",seed\n" : "\n");
   s << std::setprecision(6);
   // Positions in each map's own frame, as its file and the user's robot hold them.
@@ -153,14 +177,26 @@ std::string runs_csv(const EvaluationResult& result) {
     const MapFrame& frame = result.maps.at(r.map_index).frame;
     const Vec2 source = frame.to_frame(r.source), start = frame.to_frame(r.start),
                estimate = frame.to_frame(r.estimate);
+    run_id_columns(s, r);
     // Far from the frame's origin 6 digits would lose the millimetres.
-    s << r.map << ',' << r.source_index << ',' << r.run << ','
-      << std::setprecision(frame.is_identity() ? 6 : 12) << source.x << ',' << source.y << ','
-      << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
+    s << ',' << std::setprecision(frame.is_identity() ? 6 : 12) << source.x << ',' << source.y
+      << ',' << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
       << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
-      << r.mission_s << ',' << r.compute_s << ',' << r.median_step_s << ',' << r.stopped_by;
+      << r.mission_s << ',' << r.stopped_by;
     if (result.seeds > 1) s << ',' << r.seed;
     s << '\n';
+  }
+  return s.str();
+}
+
+std::string timings_csv(const EvaluationResult& result) {
+  std::ostringstream s;
+  s << "map,source_index,run" << (result.seeds > 1 ? ",seed" : "") << ",compute_s,median_step_s\n";
+  s << std::setprecision(6);
+  for (const RunRecord& r : result.runs) {
+    run_id_columns(s, r);
+    if (result.seeds > 1) s << ',' << r.seed;
+    s << ',' << r.compute_s << ',' << r.median_step_s << '\n';
   }
   return s.str();
 }

@@ -28,9 +28,22 @@ struct EvaluationOptions {
   // ste.threads); 0: one per core. Results do not depend on it.
   int threads = kDefaultThreads;
   int source_count = 0;  // 0: all of each map's sources; K: the first K (a labelled subset)
-  // The run counts and ste.validate(); evaluate() calls it before any work.
+  // evaluation.shard K/N: only part K (0 <= K < N) of the (map, source) pairs, in order; the
+  // parts are joined by merge_evaluation_parts (ste/evaluation_parts.hpp).
+  int part_k = 0, part_n = 1;
+  // The run counts, the part and ste.validate(); evaluate() calls it before any work.
   void validate() const;
+  // Sets part_k and part_n from "K/N"; OptionError naming evaluation.shard otherwise.
+  void set_part(const std::string& k_of_n);
 };
+
+// The (map, source) pairs evaluated, numbered in map then source order, and the contiguous
+// block [first, end) of them that part K of N runs: whole pairs keep each run's records
+// together, and contiguous blocks let most parts build only a few maps' winds and tables.
+struct PairRange {
+  long long first = 0, end = 0, total = 0;
+};
+PairRange part_pairs(const std::vector<Map>& maps, const EvaluationOptions& options);
 
 struct RunRecord {
   std::string map;
@@ -58,7 +71,7 @@ struct MapReport {
   std::string name;
   MapFrame frame;  // for reporting positions in the map's frame
   Stats stats;
-  double wind_s = 0, table_build_s = 0, wall_s = 0;
+  double wind_s = 0, table_build_s = 0, wall_s = 0;  // 0 for a map this part did not run
 };
 
 struct EvaluationResult {
@@ -66,7 +79,9 @@ struct EvaluationResult {
   std::vector<MapReport> maps;
   Stats overall;
   double wall_s = 0;
-  int seeds = 1;  // EvaluationOptions::seeds: runs.csv has a seed column when more than one
+  int seeds = 1;    // EvaluationOptions::seeds: runs.csv has a seed column when more than one
+  PairRange pairs;  // what this result holds: all pairs, or one part's
+  int threads = 1;  // the count used
 };
 
 // `progress(done, total)` is called from the calling thread's perspective
@@ -78,7 +93,10 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
                           const std::function<void(int, int)>& progress = {},
                           const AfterMap& after_map = {});
 
-// CSV of all runs (one header line, one line per run).
+// CSV of all runs (one header line, one line per run): what each run found, the same bytes
+// whatever the threads, the machine or the --shard split. The measured compute times are in
+// timings_csv, with the same first columns.
 std::string runs_csv(const EvaluationResult& result);
+std::string timings_csv(const EvaluationResult& result);
 
 }  // namespace plumekit::ste

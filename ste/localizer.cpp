@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
+#include "ste/mission.hpp"
 
 namespace plumekit::ste {
 
@@ -29,7 +30,7 @@ std::string stop_reason(const Posterior& posterior, int samples, const StopOptio
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,
                             const StopOptions& stop) {
-  stop.validate();
+  Mission mission(estimator, planner, navigator, stop);
   LocalizationResult r;
   r.start = start;
   const double t_start = world.time();
@@ -48,22 +49,18 @@ LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& wo
     s.time_s = world.time() - t_start;
 
     const double t0 = thread_cpu_s();
-    estimator.add(reading.position, s.value);
-    r.posterior = estimator.posterior();
+    r.posterior = mission.add(reading.position, s.value);
     s.estimate = r.posterior.expected_source();
     s.map = r.posterior.map;
     s.entropy = r.posterior.entropy;
-    r.stopped_by = stop_reason(r.posterior, estimator.samples(), stop);
+    r.stopped_by = mission.stopped_by();
     planner::PlanResult path;
-    if (r.stopped_by.empty()) {
-      const Decision d = navigator.decide(pos, estimator, r.posterior);
-      path = planner.plan(pos, d.goal);
-    }
+    if (!mission.stopped()) path = mission.next(pos);
     s.compute_s = thread_cpu_s() - t0;
     step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;
     r.steps.push_back(std::move(s));
-    if (!r.stopped_by.empty()) break;
+    if (mission.stopped()) break;
 
     world.travel(path.path, path.length);
     r.distance_m += path.length;

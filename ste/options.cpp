@@ -159,7 +159,17 @@ void EvaluationOptions::validate() const {
   check_count("evaluation.threads", threads, 0, 1024, "0 means one per core");
   check_count("evaluation.source_count", source_count, 0, 1'000'000,
               "0 means all of each map's sources");
+  if (part_n < 1 || part_k < 0 || part_k >= part_n)
+    throw OptionError("evaluation.shard", "expected K/N with 0 <= K < N, got " +
+                                              std::to_string(part_k) + "/" +
+                                              std::to_string(part_n));
   ste.validate();
+}
+
+void EvaluationOptions::set_part(const std::string& k_of_n) {
+  const PartOfN part = parse_part("evaluation.shard", k_of_n);
+  part_k = part.k;
+  part_n = part.n;
 }
 
 }  // namespace plumekit::ste

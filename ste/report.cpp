@@ -110,7 +110,6 @@ ordered_json stats_json(const Stats& s) {
           {"median_samples", s.median_samples},
           {"median_distance_m", s.median_distance_m},
           {"median_mission_s", s.median_mission_s},
-          {"median_step_compute_s", s.median_step_s},
           {"entropy_stops", s.entropy_stops}};
 }
 
@@ -123,7 +122,7 @@ std::vector<std::vector<double>> per_map(const EvaluationResult& res, bool error
 }
 
 std::string evaluation_table(const EvaluationResult& res, const std::string& label,
-                             const fs::path& out) {
+                             const fs::path& out, bool pictures) {
   std::ostringstream h;
   h << "evaluated " << res.runs.size() << " runs (" << res.maps.size() << " maps, " << label
     << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
@@ -147,7 +146,9 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
     line(mr.name, mr.stats, mr.table_build_s);
   line("overall", res.overall, -1);
   h << "wrote " << out.string()
-    << "/{runs.csv, summary.json, boxplot-error.png, boxplot-samples.png, trajectories/}";
+    << "/{runs.csv, summary.json, timings.csv, timings.json, boxplot-error.png, "
+       "boxplot-samples.png"
+    << (pictures ? ", trajectories/}" : "}");
   return h.str();
 }
 
@@ -215,51 +216,71 @@ AfterMap trajectory_pictures(const fs::path& dir, const std::vector<std::string>
   };
 }
 
-Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& eo,
-                         const fs::path& map_dir, const fs::path& out) {
+ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& map_dir) {
+  const LikelihoodOptions l = eo.ste.likelihood_options();
+  return {{"ok", true},
+          {"map_dir", provenance_path(map_dir)},
+          {"plume_model", to_string(eo.ste.model)},
+          {"runs_per_source", eo.runs},
+          {"sources_per_map",
+           eo.source_count > 0 ? ordered_json(eo.source_count) : ordered_json("all")},
+          {"seed", eo.seed},
+          {"seeds", eo.seeds},
+          {"sigma_m", l.sigma_m},
+          {"sigma_rel", l.sigma_rel},
+          {"sigma_std", l.sigma_std},
+          {"source_cell", source_cell_json(eo.ste)},
+          {"noise", eo.ste.world.noise},
+          {"occlusion", eo.ste.world.filament.occlusion},
+          {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
+          {"gas_sensor", eo.ste.world.sensor.name},
+          {"sensor_baseline", eo.ste.world.sensor.baseline}};
+}
+
+Report evaluation_report(const EvaluationResult& res, const ordered_json& settings,
+                         const fs::path& out, bool pictures) {
   ordered_json maps = ordered_json::array();
   for (const MapReport& mr : res.maps) {
     ordered_json j{{"map", mr.name}};
     j.update(stats_json(mr.stats));
-    j["wind_s"] = mr.wind_s;
-    j["table_build_s"] = mr.table_build_s;
-    j["wall_s"] = mr.wall_s;
     maps.push_back(j);
   }
-  const LikelihoodOptions l = eo.ste.likelihood_options();
-  const std::string label = to_string(eo.ste.model);
-  ordered_json summary{{"ok", true},
-                       {"map_dir", provenance_path(map_dir)},
-                       {"plume_model", label},
-                       {"runs_per_source", eo.runs},
-                       {"sources_per_map",
-                        eo.source_count > 0 ? ordered_json(eo.source_count) : ordered_json("all")},
-                       {"seed", eo.seed},
-                       {"seeds", eo.seeds},
-                       {"threads", resolve_threads(eo.threads)},
-                       {"sigma_m", l.sigma_m},
-                       {"sigma_rel", l.sigma_rel},
-                       {"sigma_std", l.sigma_std},
-                       {"source_cell", source_cell_json(eo.ste)},
-                       {"noise", eo.ste.world.noise},
-                       {"occlusion", eo.ste.world.filament.occlusion},
-                       {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
-                       {"gas_sensor", eo.ste.world.sensor.name},
-                       {"sensor_baseline", eo.ste.world.sensor.baseline},
-                       {"overall", stats_json(res.overall)},
-                       {"maps", maps},
-                       {"wall_s", res.wall_s}};
-  return {summary, evaluation_table(res, label, out)};
+  ordered_json summary = settings;
+  summary["overall"] = stats_json(res.overall);
+  summary["maps"] = maps;
+  const std::string label = settings.at("plume_model").get<std::string>();
+  return {summary, evaluation_table(res, label, out, pictures)};
+}
+
+Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& eo,
+                         const fs::path& map_dir, const fs::path& out) {
+  return evaluation_report(res, evaluation_settings(eo, map_dir), out);
+}
+
+ordered_json evaluation_timings(const EvaluationResult& res) {
+  ordered_json maps = ordered_json::array();
+  for (const MapReport& mr : res.maps)
+    maps.push_back({{"map", mr.name},
+                    {"median_step_compute_s", mr.stats.median_step_s},
+                    {"wind_s", mr.wind_s},
+                    {"table_build_s", mr.table_build_s},
+                    {"wall_s", mr.wall_s}});
+  return {{"threads", res.threads},
+          {"wall_s", res.wall_s},
+          {"median_step_compute_s", res.overall.median_step_s},
+          {"maps", maps}};
 }
 
 void write_evaluation_files(const fs::path& dir, const EvaluationResult& res,
-                            const EvaluationOptions& eo, const ordered_json& summary) {
+                            const EvaluationFiles& files) {
   std::vector<std::string> labels;
   for (std::size_t m = 0; m < res.maps.size(); ++m)
     labels.push_back(res.maps[m].name);
-  const std::string label = to_string(eo.ste.model);
-  write_file_atomic(dir / "runs.csv", runs_csv(res));
-  write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+  const std::string label = files.summary.at("plume_model").get<std::string>();
+  write_file_atomic(dir / "runs.csv", files.runs_csv);
+  write_file_atomic(dir / "summary.json", files.summary.dump(2) + "\n");
+  write_file_atomic(dir / "timings.csv", files.timings_csv);
+  write_file_atomic(dir / "timings.json", files.timings.dump(2) + "\n");
   write_png(draw_box_plot(per_map(res, true), labels, "error [m]",
                           "STE (" + label + ") localization error per test map", 0.5),
             dir / "boxplot-error.png");

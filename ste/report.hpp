@@ -48,13 +48,30 @@ std::string median_run_note(const std::vector<RunRecord>& runs);
 AfterMap trajectory_pictures(const std::filesystem::path& dir,
                              const std::vector<std::string>& picture_names, PlumeModelKind model);
 
-// summary.json's content and the evaluation's table (the text). `map_dir` is the folder the maps
-// came from, `out` the output folder, both as the user named them.
+// What was evaluated and how: summary.json's keys before "overall" (the options that shape the
+// results; never the threads or a time). `map_dir` is the folder the maps came from, as the user
+// named it.
+nlohmann::ordered_json evaluation_settings(const EvaluationOptions& options,
+                                           const std::filesystem::path& map_dir);
+// summary.json's content (`settings`, then the overall and per-map statistics) and the
+// evaluation's table (the text); `out` is the output folder as the user named it, `pictures`
+// whether it holds trajectories/. summary.json holds no measured time, so a rerun, another
+// thread count or a merge of --shard parts writes the same bytes.
+Report evaluation_report(const EvaluationResult& result, const nlohmann::ordered_json& settings,
+                         const std::filesystem::path& out, bool pictures = true);
+// The same with the settings of `options` and `map_dir` (evaluation_settings).
 Report evaluation_report(const EvaluationResult& result, const EvaluationOptions& options,
                          const std::filesystem::path& map_dir, const std::filesystem::path& out);
-// Writes runs.csv, summary.json (`summary`) and the two box plots into `dir`.
+// timings.json: the threads used, the wall time, and the measured compute, wind and table
+// build times overall and per map.
+nlohmann::ordered_json evaluation_timings(const EvaluationResult& result);
+
+struct EvaluationFiles {
+  std::string runs_csv, timings_csv;
+  nlohmann::ordered_json summary, timings;
+};
+// Writes runs.csv, summary.json, timings.csv, timings.json and the two box plots into `dir`.
 void write_evaluation_files(const std::filesystem::path& dir, const EvaluationResult& result,
-                            const EvaluationOptions& options,
-                            const nlohmann::ordered_json& summary);
+                            const EvaluationFiles& files);
 
 }  // namespace plumekit::ste

@@ -263,16 +263,17 @@ Vec2 Scenario::run_start(Vec2 source, int run, std::uint64_t seed) const {
   return usable[static_cast<std::size_t>(run) % usable.size()];
 }
 
+std::unique_ptr<Estimator> Scenario::make_estimator(std::uint64_t seed) const {
+  if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get()))
+    return std::make_unique<GridEstimator>(*table, options_.likelihood_options(), bins_);
+  return std::make_unique<MhEstimator>(*model_, map_, options_.likelihood_options(), bins_,
+                                       options_.mh, splitmix64(stream_seed(seed, SteStream::Mh)));
+}
+
 LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {
   check_source(source);
   start = check_start(start);
-  std::unique_ptr<Estimator> estimator;
-  if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get()))
-    estimator = std::make_unique<GridEstimator>(*table, options_.likelihood_options(), bins_);
-  else
-    estimator =
-        std::make_unique<MhEstimator>(*model_, map_, options_.likelihood_options(), bins_,
-                                      options_.mh, splitmix64(stream_seed(seed, SteStream::Mh)));
+  const std::unique_ptr<Estimator> estimator = make_estimator(seed);
   SimulatedWorld world(map_, wind_, source, options_.world, seed);
   return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);
 }

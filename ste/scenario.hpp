@@ -138,6 +138,12 @@ class Scenario {
   // starts gives random_start(source, seed). InputError when no start of the map qualifies.
   Vec2 run_start(Vec2 source, int run, std::uint64_t seed) const;
 
+  // A fresh estimator on this scenario's plume model (the grid estimator on a source table, MH
+  // otherwise); `seed` drives MH.
+  std::unique_ptr<Estimator> make_estimator(std::uint64_t seed) const;
+  const planner::Planner& planner() const { return *planner_; }
+  const Navigator& navigator() const { return *navigator_; }
+
   // One localization run; `seed` drives the plume, the sensor noise and MH.
   LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;
 
