@@ -1,0 +1,146 @@
+// Plumes: the filament and advection-diffusion simulators (dataset/) in a solved wind.
+#include <pybind11/stl.h>
+
+#include "core/seed.hpp"
+#include "dataset/features.hpp"
+#include "dataset/plume.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+#include "python/options.hpp"
+#include "python/wind.hpp"
+
+namespace plumekit::python {
+
+namespace {
+
+using dataset::AdvectionDiffusionOptions;
+using dataset::FilamentOptions;
+using dataset::GasSensorModel;
+using dataset::PlumeOptions;
+
+// The preset the two world fields match: "faithful", "thesis", or "custom".
+std::string world_name(const FilamentOptions& o) {
+  if (o.occlusion && o.unsteady_wind) return "faithful";
+  return !o.occlusion && !o.unsteady_wind ? "thesis" : "custom";
+}
+
+void bind_filament_options(py::module_& m) {
+  py::class_<FilamentOptions> c(m, "FilamentOptions",
+                                "The filament plume (dataset/README.md, \"Options\")");
+  c.def(py::init<>());
+  PK_FIELD(c, FilamentOptions, release_per_second, "Filaments released per second");
+  PK_FIELD(c, FilamentOptions, release_rate, "Release rate per metre of depth");
+  PK_FIELD(c, FilamentOptions, initial_radius, "Filament radius at release, m");
+  PK_FIELD(c, FilamentOptions, growth, "dR^2/dt, m^2/s");
+  PK_FIELD(c, FilamentOptions, sigma_walk, "Random walk, m/sqrt(s)");
+  PK_FIELD(c, FilamentOptions, meander_speed, "Meander std per axis, m/s");
+  PK_FIELD(c, FilamentOptions, meander_time, "Meander correlation time, s");
+  PK_FIELD(c, FilamentOptions, dt, "Integration step, s");
+  PK_FIELD(c, FilamentOptions, max_radius, "Filaments wider than this are dropped, m");
+  PK_FIELD(c, FilamentOptions, steady_window, "Spin-up steadiness window, s");
+  PK_FIELD(c, FilamentOptions, steady_tolerance, "Spin-up steadiness tolerance");
+  PK_FIELD(c, FilamentOptions, min_spinup, "Shortest spin-up, s");
+  PK_FIELD(c, FilamentOptions, max_spinup, "Longest spin-up, s");
+  PK_FIELD(c, FilamentOptions, record_s, "Recording length, s");
+  PK_FIELD(c, FilamentOptions, sample_rate, "Sensor reads per second");
+  PK_FIELD(c, FilamentOptions, cutoff, "Kernel cutoff, in radii");
+  PK_FIELD(c, FilamentOptions, occlusion, "Gas stops at walls (line of sight)");
+  PK_FIELD(c, FilamentOptions, unsteady_wind, "Meander as a field fading at walls");
+  PK_FIELD(c, FilamentOptions, meander_length, "Meander wavelength, m");
+  PK_FIELD(c, FilamentOptions, meander_wall_layer, "Meander fade distance at walls, m");
+  c.def_property(
+      "world", &world_name,
+      [](FilamentOptions& o, const std::string& name) { dataset::set_world(o, name); },
+      "World preset: 'faithful' (occlusion, unsteady wind) or 'thesis' (neither)");
+}
+
+void bind_sensor(py::module_& m) {
+  py::class_<GasSensorModel> c(m, "GasSensorModel",
+                               "A gas sensor's response (dataset/README.md, \"Gas sensors\")");
+  c.def(py::init<>());
+  PK_FIELD(c, GasSensorModel, rise_s, "Rise time constant, s");
+  PK_FIELD(c, GasSensorModel, rise_slow_s, "Slow rise time constant (infrared), s");
+  PK_FIELD(c, GasSensorModel, fast_share, "Share of the rise with rise_s");
+  PK_FIELD(c, GasSensorModel, decay_s, "Decay time constant, s");
+  PK_FIELD(c, GasSensorModel, dead_rise_s, "Dead time before a rise, s");
+  PK_FIELD(c, GasSensorModel, dead_decay_s, "Dead time before a decay, s");
+  PK_FIELD(c, GasSensorModel, baseline, "Added to every reading");
+  PK_FIELD(c, GasSensorModel, name, "The preset it came from");
+  static const std::string doc = [] {
+    std::string names;
+    for (const auto& n : dataset::gas_sensor_preset_names())
+      names += (names.empty() ? "" : ", ") + n;
+    return "A gas sensor preset: " + names;
+  }();
+  m.def("gas_sensor", &dataset::gas_sensor_preset, py::arg("name"), doc.c_str());
+}
+
+void bind_plume_options(py::module_& m) {
+  py::class_<AdvectionDiffusionOptions> ad(m, "AdvectionDiffusionOptions",
+                                           "The steady advection-diffusion plume");
+  ad.def(py::init<>());
+  PK_FIELD(ad, AdvectionDiffusionOptions, diffusivity, "Eddy diffusivity, m^2/s");
+  PK_FIELD(ad, AdvectionDiffusionOptions, release_rate, "Release rate per metre of depth");
+  PK_FIELD(ad, AdvectionDiffusionOptions, decay_rate, "First-order decay rate, 1/s");
+
+  py::class_<PlumeOptions> c(m, "PlumeOptions", "Options of plume() (`plumekit plume`)");
+  c.def(py::init<>());
+  c.def_property(
+      "model", [](const PlumeOptions& o) { return std::string(dataset::to_string(o.model)); },
+      [](PlumeOptions& o, const std::string& s) { o.model = dataset::parse_plume_simulator(s); },
+      "'filament' or 'advection-diffusion'");
+  PK_FIELD(c, PlumeOptions, filament, "FilamentOptions");
+  PK_FIELD(c, PlumeOptions, advection_diffusion, "AdvectionDiffusionOptions");
+  PK_FIELD(c, PlumeOptions, sensor, "The static sensors' GasSensorModel");
+  c.def_property(
+      "release_rate", [](const PlumeOptions& o) { return o.filament.release_rate; },
+      &PlumeOptions::set_release_rate, "Both models' release rate");
+  c.def_property(
+      "world", [](const PlumeOptions& o) { return world_name(o.filament); },
+      [](PlumeOptions& o, const std::string& name) { dataset::set_world(o.filament, name); },
+      "World preset of the filament plume: 'faithful' or 'thesis'");
+  c.def_property(
+      "gas_sensor", [](const PlumeOptions& o) { return o.sensor.name; },
+      [](PlumeOptions& o, const std::string& name) { set_gas_sensor(o.sensor, name); },
+      "The static sensors' gas sensor preset (gas_sensor())");
+}
+
+}  // namespace
+
+void bind_plume(py::module_& m) {
+  bind_filament_options(m);
+  bind_sensor(m);
+  bind_plume_options(m);
+  m.def(
+      "plume",
+      [](const Wind& wind, const py::handle& source, std::uint64_t seed, double cell,
+         const py::object& options, const py::kwargs& kw) {
+        const auto o = options_from<PlumeOptions>(options, kw, "plume");
+        const Map& map = *wind.map;
+        const Vec2 s = map.from_frame(to_point(source, "source"));
+        const GridShape grid = cell > 0 ? GridShape::with_cell(map.width, map.height, cell)
+                                        : dataset::feature_grid(map);
+        dataset::PlumeTargets t;
+        {
+          py::gil_scoped_release release;
+          dataset::check_source(map, s);
+          const dataset::MapPlumes plumes(map, wind.field, grid, o);
+          t = plumes.run(s, seed);
+        }
+        py::dict out;
+        out["mean"] = grid_array(t.mean.values, grid);
+        out["std"] = grid_array(t.std.values, grid);
+        out["spinup_s"] = t.filament.spinup_s;
+        out["steady"] = t.filament.steady;
+        out["filaments"] = t.filament.filaments_at_end;
+        return out;
+      },
+      py::arg("wind"), py::arg("source"), py::arg("seed") = kDefaultSeed, py::arg("cell") = 0.0,
+      py::arg("options") = py::none(),
+      "One source's plume in a solved wind (`plumekit plume`): a dict with 'mean' and 'std' "
+      "[ny, nx] (float64) on the dataset's 64 x 64 sensor grid, or on cells of about `cell` m, "
+      "and the filament model's spin-up. Keyword arguments set PlumeOptions fields: "
+      "plume(wind, (2, 2), model='advection-diffusion'), world='thesis', gas_sensor='mox-fast'.");
+}
+
+}  // namespace plumekit::python

@@ -1,0 +1,236 @@
+// Source term estimation (ste/): one run, an evaluation, and a mission a user drives step by step
+// with their own readings.
+#include <filesystem>
+#include <memory>
+
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "core/seed.hpp"
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+#include "python/wind.hpp"
+#include "ste/evaluation.hpp"
+#include "ste/mission.hpp"
+#include "ste/report.hpp"
+#include "ste/scenario.hpp"
+
+namespace plumekit::python {
+
+namespace {
+
+using ste::Scenario;
+using ste::SteOptions;
+
+// The CLI's defaults the library leaves to its caller: the shipped CNN.
+SteOptions ste_options(const py::object& base, const py::kwargs& kw, const std::string& what) {
+  SteOptions o = options_from<SteOptions>(base, kw, what);
+  if (o.model == ste::PlumeModelKind::Surrogate && o.model_path.empty())
+    o.model_path = (std::filesystem::path(data_dir()) / "models" / "plume-unet.pkcnn").string();
+  return o;
+}
+
+std::shared_ptr<Scenario> make_scenario(const Map& map, const SteOptions& o) {
+  py::gil_scoped_release release;
+  return std::make_shared<Scenario>(map, o);
+}
+
+py::dict posterior_dict(const Map& map, const ste::Posterior& p) {
+  py::dict out;
+  out["estimate"] = from_point(map.to_frame(p.expected_source()));
+  out["map"] = from_point(map.to_frame(p.map));
+  out["expected"] = p.expected;
+  out["entropy"] = p.entropy;
+  out["max_entropy"] = p.max_entropy;
+  out["seen_mass"] = p.seen_mass;
+  out["marginal"] = grid_array(p.marginal.values, p.marginal.shape);
+  return out;
+}
+
+// The run `localize` makes: the CLI's seeds, so that the same seed gives the same run.
+py::object run_once(const Scenario& sc, const py::handle& source, const py::object& start,
+                    std::uint64_t seed) {
+  const Map& map = sc.map();
+  const Vec2 s = sc.check_source(map.from_frame(to_point(source, "source")));
+  const std::uint64_t run = ste::run_seed(seed, 0, 0, 0);
+  ste::LocalizationResult r;
+  nlohmann::ordered_json j;
+  {
+    py::gil_scoped_release release;
+    const Vec2 a = start.is_none() ? sc.random_start(s, stream_seed(run, ste::SteStream::Start))
+                                   : sc.check_start(map.from_frame(to_point(start, "start")));
+    r = sc.run(s, a, run);
+    j = ste::run_report(sc, s, r).json;
+  }
+  return from_json(j);
+}
+
+// A mission on a scenario, kept alive together.
+struct PyMission {
+  std::shared_ptr<const Scenario> scenario;
+  std::unique_ptr<ste::Estimator> estimator;
+  std::unique_ptr<ste::Mission> mission;
+};
+
+void bind_mission(py::module_& m) {
+  py::class_<PyMission>(
+      m, "Mission",
+      "STE driven by the caller: add(p, reading) after each stop, next(robot) for where to go. "
+      "Points in the map frame; a reading is the mean over a stop, in the plume model's units.")
+      .def(
+          "add",
+          [](PyMission& pm, const py::handle& p, double reading) {
+            const Map& map = pm.scenario->map();
+            const Vec2 a = map.from_frame(to_point(p, "p"));
+            const ste::Posterior* post = nullptr;
+            {
+              py::gil_scoped_release release;
+              post = &pm.mission->add(a, reading);
+            }
+            return posterior_dict(map, *post);
+          },
+          py::arg("p"), py::arg("reading"),
+          "A sample; returns the posterior: 'estimate' (the expected source), 'map', "
+          "'entropy', 'max_entropy', 'seen_mass', 'expected' (every parameter) and 'marginal' "
+          "[ny, nx] over the arena")
+      .def(
+          "next",
+          [](const PyMission& pm, const py::handle& robot) {
+            const Map& map = pm.scenario->map();
+            const Vec2 a = map.from_frame(to_point(robot, "robot"));
+            planner::PlanResult r;
+            {
+              py::gil_scoped_release release;
+              r = pm.mission->next(a);
+            }
+            py::dict out;
+            py::list path;
+            for (const Vec2& q : r.path)
+              path.append(from_point(map.to_frame(q)));
+            out["goal"] = from_point(map.to_frame(r.goal));
+            out["path"] = path;
+            out["length"] = r.length;
+            return out;
+          },
+          py::arg("robot"),
+          "Where to sample next from `robot`: 'goal', the planner's 'path' there and its "
+          "'length'. InputError once the mission has stopped.")
+      .def_property_readonly("samples", [](const PyMission& pm) { return pm.mission->samples(); })
+      .def_property_readonly("stopped", [](const PyMission& pm) { return pm.mission->stopped(); })
+      .def_property_readonly(
+          "stopped_by", [](const PyMission& pm) { return pm.mission->stopped_by(); },
+          "'entropy', 'max_samples', or '' while it goes on")
+      .def_property_readonly(
+          "posterior",
+          [](const PyMission& pm) {
+            return posterior_dict(pm.scenario->map(), pm.mission->posterior());
+          },
+          "The posterior after the last sample");
+}
+
+void bind_scenario(py::module_& m) {
+  py::class_<Scenario, std::shared_ptr<Scenario>>(
+      m, "Scenario",
+      "What STE needs for one map, built once: the wind, the plume model, the planner. Keyword "
+      "arguments set SteOptions fields.")
+      .def(py::init([](const Map& map, const py::object& options, const py::kwargs& kw) {
+             return make_scenario(map, ste_options(options, kw, "Scenario"));
+           }),
+           py::arg("map"), py::arg("options") = py::none())
+      .def_property_readonly("map", [](const Scenario& sc) { return sc.map(); })
+      .def_property_readonly(
+          "wind",
+          [](const Scenario& sc) {
+            auto w = std::make_shared<Wind>();
+            w->map = std::make_shared<const Map>(sc.map());
+            w->field = sc.wind();
+            return w;
+          },
+          "The scenario's wind (a copy)")
+      .def("run", &run_once, py::arg("source"), py::arg("start") = py::none(),
+           py::arg("seed") = kDefaultSeed,
+           "One simulated localization (`plumekit localize --json`'s summary as a dict)")
+      .def(
+          "mission",
+          [](std::shared_ptr<Scenario> sc, std::uint64_t seed) {
+            auto pm = std::make_unique<PyMission>();
+            pm->scenario = sc;
+            pm->estimator = sc->make_estimator(ste::run_seed(seed, 0, 0, 0));
+            pm->mission = std::make_unique<ste::Mission>(*pm->estimator, sc->planner(),
+                                                         sc->navigator(), sc->options().stop);
+            return pm;
+          },
+          py::arg("seed") = kDefaultSeed,
+          "A Mission on this scenario, for readings the caller brings (`seed` drives MH)");
+}
+
+py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, int seeds,
+                         int threads, int source_count, const py::object& progress,
+                         const py::object& options, const py::kwargs& kw) {
+  std::vector<Map> list;
+  std::filesystem::path dir;
+  if (py::isinstance<py::str>(maps) || py::hasattr(maps, "__fspath__")) {
+    dir = py::str(maps).cast<std::string>();
+    list = ste::read_map_folder(dir).maps;
+  } else {
+    list = maps.cast<std::vector<Map>>();
+  }
+  ste::EvaluationOptions eo;
+  eo.ste = ste_options(options, kw, "evaluate");
+  eo.runs = runs;
+  eo.seed = seed;
+  eo.seeds = seeds;
+  eo.threads = threads;
+  eo.source_count = source_count;
+  std::function<void(int, int)> report;
+  if (!progress.is_none())
+    report = [&progress](int done, int total) {
+      py::gil_scoped_acquire acquire;
+      progress(done, total);
+    };
+  nlohmann::ordered_json j;
+  {
+    py::gil_scoped_release release;
+    const ste::EvaluationResult r = ste::evaluate(list, eo, report);
+    j = ste::evaluation_report(r, eo, dir, "").json;
+    j["timings"] = ste::evaluation_timings(r);
+  }
+  return from_json(j);
+}
+
+}  // namespace
+
+void bind_ste(py::module_& m) {
+  bind_mission(m);
+  bind_scenario(m);
+  m.def(
+      "localize",
+      [](const Map& map, const py::handle& source, const py::object& start, std::uint64_t seed,
+         const py::object& options, const py::kwargs& kw) {
+        const auto sc = make_scenario(map, ste_options(options, kw, "localize"));
+        return run_once(*sc, source, start, seed);
+      },
+      py::arg("map"), py::arg("source"), py::arg("start") = py::none(),
+      py::arg("seed") = kDefaultSeed, py::arg("options") = py::none(),
+      "A simulated robot localizes the source (`plumekit localize`; the same seed gives the same "
+      "run). Returns its summary dict: 'estimate', 'error_m', 'samples', 'steps', ...");
+  m.def("evaluate", &evaluate_maps, py::arg("maps"), py::arg("runs") = 3,
+        py::arg("seed") = kDefaultSeed, py::arg("seeds") = 1, py::arg("threads") = 0,
+        py::arg("source_count") = 0, py::arg("progress") = py::none(),
+        py::arg("options") = py::none(),
+        "Every source of every map (or the first `source_count`), `runs` times each (`plumekit "
+        "evaluate`): `maps` is a list of Map or a folder of map files. Returns summary.json's "
+        "content, with the measured times under 'timings'. `progress(done, total)` is called "
+        "after each run.");
+  m.def(
+      "data_dir", [] { return data_dir(); },
+      "The shipped data folder ($PLUMEKIT_DATA, else the source tree's data/)");
+}
+
+std::string data_dir() {
+  if (const char* env = std::getenv("PLUMEKIT_DATA"); env && *env) return env;
+  return PLUMEKIT_DATA_DIR;
+}
+
+}  // namespace plumekit::python

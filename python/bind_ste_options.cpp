@@ -1,0 +1,136 @@
+// SteOptions and the options it nests (ste/README.md, "Options"), field by field.
+#include <pybind11/stl.h>
+
+#include "python/bindings.hpp"
+#include "python/convert.hpp"
+#include "python/options.hpp"
+#include "ste/evaluation.hpp"
+
+namespace plumekit::python {
+
+namespace {
+
+using namespace ste;
+
+void bind_estimation(py::module_& m) {
+  py::class_<SteLikelihood> l(m, "SteLikelihood",
+                              "The likelihood's errors; None: the plume model's default");
+  l.def(py::init<>());
+  PK_FIELD(l, SteLikelihood, sigma_m,
+           "Model error (None: 200 surrogate, 150 physics, 30 gaussian)");
+  PK_FIELD(l, SteLikelihood, sigma_d, "Measurement error");
+  PK_FIELD(l, SteLikelihood, sigma_rel,
+           "Model error relative to the prediction (None: 0.15 physics, else 0)");
+  PK_FIELD(l, SteLikelihood, sigma_std,
+           "Model error in the surrogate's predicted stds (None: 2 surrogate)");
+
+  py::class_<BinOptions> b(m, "BinOptions", "Entropy bins, m");
+  b.def(py::init<>());
+  PK_FIELD(b, BinOptions, x, "Bin width in x, m");
+  PK_FIELD(b, BinOptions, y, "Bin height in y, m");
+
+  py::class_<MhOptions> mh(m, "MhOptions", "Metropolis-Hastings (Gaussian plume model)");
+  mh.def(py::init<>());
+  PK_FIELD(mh, MhOptions, iterations, "Iterations per decision step");
+  PK_FIELD(mh, MhOptions, burn_in, "Of those, not summarised");
+  PK_FIELD(mh, MhOptions, proposal, "Proposal scale, a share of each parameter's range");
+
+  py::class_<StopOptions> s(m, "StopOptions", "When a localization stops");
+  s.def(py::init<>());
+  PK_FIELD(s, StopOptions, entropy_fraction, "Stop below this share of the maximum entropy");
+  PK_FIELD(s, StopOptions, seen_mass, "... with at least this posterior mass on seen sources");
+  PK_FIELD(s, StopOptions, max_samples, "Sample budget (0: 50, or one per 10 m^2 on large floors)");
+
+  py::class_<NavigationOptions> n(m, "NavigationOptions", "Where the robot goes next");
+  n.def(py::init<>());
+  PK_FIELD(n, NavigationOptions, step, "Lattice spacing, m");
+  PK_FIELD(n, NavigationOptions, lattice, "Moves of up to this many steps per axis");
+  PK_FIELD(n, NavigationOptions, alpha, "Weight of the KL move against the source move");
+  PK_FIELD(n, NavigationOptions, beta, "Weight of the marginal against the inverse distance");
+  PK_FIELD(n, NavigationOptions, enhanced, "The thesis's combined target (False: the MAP)");
+  PK_FIELD(n, NavigationOptions, floor_spacing, "Floor goals' spacing, m");
+  PK_FIELD(n, NavigationOptions, floor_gain_cells, "Posterior cells per floor goal's gain");
+  n.def_property(
+      "reward", [](const NavigationOptions& o) { return std::string(to_string(o.reward)); },
+      [](NavigationOptions& o, const std::string& v) { o.reward = parse_reward(v); },
+      "'kl' or 'expected'");
+  n.def_property(
+      "candidates", [](const NavigationOptions& o) { return std::string(to_string(o.candidates)); },
+      [](NavigationOptions& o, const std::string& v) { o.candidates = parse_candidates(v); },
+      "'lattice', 'floor' or 'auto'");
+}
+
+void bind_world(py::module_& m) {
+  py::class_<WorldOptions> w(m, "WorldOptions", "The simulated robot's world and sensors");
+  w.def(py::init<>());
+  PK_FIELD(w, WorldOptions, filament, "The world's FilamentOptions");
+  PK_FIELD(w, WorldOptions, speed, "Travel speed, m/s");
+  PK_FIELD(w, WorldOptions, sample_s, "Seconds per sample");
+  PK_FIELD(w, WorldOptions, sample_rate, "Readings per second");
+  PK_FIELD(w, WorldOptions, noise, "Std of each reading's noise");
+  PK_FIELD(w, WorldOptions, sensor, "The robot's GasSensorModel");
+  PK_FIELD(w, WorldOptions, wind_direction_noise_deg, "Anemometer direction error, degrees");
+  PK_FIELD(w, WorldOptions, wind_noise_from_table35, "Direction error from seed 000's table 3.5");
+  PK_FIELD(w, WorldOptions, position_noise, "Std per axis of the recorded position, m");
+  w.def_property(
+      "gas_sensor", [](const WorldOptions& o) { return o.sensor.name; },
+      [](WorldOptions& o, const std::string& name) { set_gas_sensor(o.sensor, name); },
+      "The robot's gas sensor preset (gas_sensor())");
+}
+
+void bind_models(py::module_& m) {
+  py::class_<PhysicsPlumeOptions> p(m, "PhysicsPlumeOptions", "The physics plume model");
+  p.def(py::init<>());
+  PK_FIELD(p, PhysicsPlumeOptions, source_cell, "Candidate source grid, m");
+  PK_FIELD(p, PhysicsPlumeOptions, advection_diffusion, "Its AdvectionDiffusionOptions");
+  PK_FIELD(p, PhysicsPlumeOptions, scale_lo, "Release-scale prior, low");
+  PK_FIELD(p, PhysicsPlumeOptions, scale_hi, "Release-scale prior, high");
+
+  py::class_<GaussianPlumeBounds> g(m, "GaussianPlumeBounds", "The Gaussian plume's prior box");
+  g.def(py::init<>());
+  PK_FIELD(g, GaussianPlumeBounds, q_max, "Largest release rate");
+  PK_FIELD(g, GaussianPlumeBounds, a_min, "sigma_y growth per metre, low");
+  PK_FIELD(g, GaussianPlumeBounds, a_max, "sigma_y growth per metre, high");
+  PK_FIELD(g, GaussianPlumeBounds, b_min, "sigma_y at the source, low, m");
+  PK_FIELD(g, GaussianPlumeBounds, b_max, "sigma_y at the source, high, m");
+}
+
+void bind_ste_options_class(py::module_& m) {
+  py::class_<SteOptions> o(m, "SteOptions",
+                           "Every option of a localization, with the library's defaults. Nested "
+                           "options take dicts in keyword arguments: localize(map, source, "
+                           "plume_model='physics', stop={'max_samples': 30}).");
+  o.def(py::init<>());
+  o.def_property(
+      "plume_model", [](const SteOptions& s) { return std::string(to_string(s.model)); },
+      [](SteOptions& s, const std::string& v) { s.model = parse_plume_model_kind(v); },
+      "'surrogate' (the CNN), 'gaussian' or 'physics'");
+  PK_FIELD(o, SteOptions, model_path, "The surrogate's CNN file (empty: the shipped model)");
+  PK_FIELD(o, SteOptions, likelihood, "SteLikelihood");
+  PK_FIELD(o, SteOptions, bins, "BinOptions");
+  PK_FIELD(o, SteOptions, mh, "MhOptions");
+  PK_FIELD(o, SteOptions, navigation, "NavigationOptions");
+  PK_FIELD(o, SteOptions, stop, "StopOptions");
+  PK_FIELD(o, SteOptions, world, "WorldOptions");
+  PK_FIELD(o, SteOptions, flow, "FlowOptions of the map's wind");
+  PK_FIELD(o, SteOptions, wind_dir, "A `plumekit flow` output to use instead of solving");
+  PK_FIELD(o, SteOptions, physics, "PhysicsPlumeOptions");
+  PK_FIELD(o, SteOptions, gaussian, "GaussianPlumeBounds");
+  PK_FIELD(o, SteOptions, source_cell, "Candidate source grid, m (None: the model's default)");
+  PK_FIELD(o, SteOptions, margin, "The planner's clearance, m");
+  PK_FIELD(o, SteOptions, table_cache, "Folder caching surrogate tables (empty: none)");
+  PK_FIELD(o, SteOptions, threads, "Threads of the surrogate's table build (0: one per core)");
+  PK_FIELD(o, SteOptions, min_start_distance,
+           "Random starts are at least this far from the source, m");
+}
+
+}  // namespace
+
+void bind_ste_options(py::module_& m) {
+  bind_estimation(m);
+  bind_world(m);
+  bind_models(m);
+  bind_ste_options_class(m);
+}
+
+}  // namespace plumekit::python

@@ -1,0 +1,80 @@
+"""Localization: the same runs as the command line, and a mission driven with given readings."""
+import pytest
+
+import plumekit
+
+
+@pytest.fixture(scope="module")
+def block(data):
+    return plumekit.read_map(data / "test-maps" / "test-1-block.json")
+
+
+@pytest.fixture(scope="module")
+def run(block):
+    return plumekit.localize(block, block.sources[0], seed=3, plume_model="physics",
+                             stop={"max_samples": 15})
+
+
+def test_localize_is_the_cli_run(block, run, cli):
+    s = block.sources[0]
+    c = cli("localize", plumekit.data_dir() + "/test-maps/test-1-block.json",
+            "--source", f"{s[0]!r},{s[1]!r}", "--seed", 3, "--plume-model", "physics",
+            "--max-samples", 15)
+    for key in ("estimate", "samples", "error_m", "distance_m", "start", "stopped_by"):
+        assert run[key] == c[key], key
+    assert run["samples"] == len(run["steps"]) <= 15
+
+
+def test_a_mission_fed_the_runs_readings_reaches_its_estimate(block, run):
+    sc = plumekit.Scenario(block, plume_model="physics", stop={"max_samples": 15})
+    mission = sc.mission(seed=3)
+    with pytest.raises(plumekit.InputError, match="no sample yet"):
+        mission.next(run["start"])
+    for k, step in enumerate(run["steps"]):
+        post = mission.add(step["recorded_position"], step["value"])
+        assert list(post["estimate"]) == pytest.approx(step["estimate"], abs=1e-12)
+        assert post["entropy"] == pytest.approx(step["entropy"], abs=1e-12)
+        if not mission.stopped:
+            goal = mission.next(step["position"])["goal"]
+            # The run went where the mission says to go.
+            assert list(goal) == pytest.approx(run["steps"][k + 1]["position"], abs=1e-9)
+    assert mission.stopped and mission.stopped_by == run["stopped_by"]
+    assert mission.samples == run["samples"]
+    with pytest.raises(plumekit.InputError, match="stopped"):
+        mission.next(run["steps"][-1]["position"])
+    marginal = mission.posterior["marginal"]
+    assert marginal.sum() == pytest.approx(1.0)
+
+
+def test_options_reach_the_library(block):
+    o = plumekit.SteOptions()
+    assert o.plume_model == "surrogate" and o.stop.max_samples == 0
+    assert o.likelihood.sigma_m is None
+    with pytest.raises(TypeError, match="stop: no option named 'samples'"):
+        plumekit.Scenario(block, plume_model="physics", stop={"samples": 3})
+    with pytest.raises(plumekit.OptionError) as e:
+        plumekit.localize(block, block.sources[0], plume_model="physics",
+                          stop={"entropy_fraction": -1.0})
+    assert e.value.field == "ste.stop.entropy_fraction"
+
+
+def test_source_in_obstacle(block):
+    import numpy as np
+    inside = tuple(np.mean(block.obstacles[0], axis=0))
+    with pytest.raises(plumekit.InputError, match="ste.source"):
+        plumekit.localize(block, inside, plume_model="physics")
+
+
+def test_evaluate_matches_cli(tmp_path, data, cli):
+    folder = tmp_path / "maps"
+    folder.mkdir()
+    (folder / "block.json").write_bytes((data / "test-maps" / "test-1-block.json").read_bytes())
+    seen = []
+    r = plumekit.evaluate(folder, runs=2, threads=2, source_count=1, plume_model="physics",
+                          stop={"max_samples": 10}, progress=lambda d, t: seen.append((d, t)))
+    c = cli("evaluate", "--map-dir", folder, "--runs", 2, "--threads", 2, "--plume-model",
+            "physics", "--max-samples", 10, "--sources", 1, "--out", tmp_path / "eval")
+    for key in ("success_0_5m", "median_error_m", "median_samples", "median_distance_m"):
+        assert r["overall"][key] == c["overall"][key], key
+    assert seen[-1] == (2, 2) and r["overall"]["runs"] == 2
+    assert r["timings"]["median_step_compute_s"] > 0
