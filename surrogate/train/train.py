@@ -23,6 +23,15 @@ The best finished epoch's model (or, if none finished, the current weights) is w
 with a golden input/output pair (OUT_input.npy, OUT_output.npy: validation samples and PyTorch's
 prediction in dataset units; see golden_pair() for which samples).
 Runs unchanged on CUDA when a GPU is present.
+
+Data-parallel on several GPUs (or CPU processes) under torchrun:
+
+    torchrun --standalone --nproc_per_node 4 surrogate/train/train.py --data ... --work ... --out ...
+
+Each process takes every WORLD_SIZE-th sample of each batch (--batch stays the whole batch, so the
+batches, the epochs and the learning rate are those of one process), DistributedDataParallel
+averages the gradients (NCCL on GPUs, gloo on CPUs), and rank 0 alone writes the log, the
+checkpoints and the model. The result is one process's, up to the order of float sums.
 """
 import argparse
 import csv
@@ -34,6 +43,7 @@ import time
 
 import numpy as np
 import torch
+import torch.distributed as dist
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: E402
@@ -98,6 +108,61 @@ class Batches:
         return self.x[index], self.y[index]
 
 
+class Team:
+    """This process's place among torchrun's: rank, world size and device; one process when
+    WORLD_SIZE is unset or 1 (the collective calls are then plain no-ops)."""
+
+    def __init__(self):
+        self.world = int(os.environ.get("WORLD_SIZE", "1"))
+        self.rank = int(os.environ.get("RANK", "0"))
+        if self.world <= 1:
+            self.world, self.rank, self.device = 1, 0, pick_device()
+            return
+        local = int(os.environ.get("LOCAL_RANK", "0"))
+        if torch.cuda.is_available():
+            torch.cuda.set_device(local)
+            self.device, backend = torch.device("cuda", local), "nccl"
+        else:
+            self.device, backend = torch.device("cpu"), "gloo"
+        dist.init_process_group(backend)
+
+    @property
+    def lead(self):
+        return self.rank == 0
+
+    def wrap(self, model):
+        """The model to train: DistributedDataParallel over the team, or the model itself."""
+        if self.world == 1:
+            return model
+        ids = [self.device.index] if self.device.type == "cuda" else None
+        return torch.nn.parallel.DistributedDataParallel(model, device_ids=ids)
+
+    def share(self, values):
+        """Rank 0's floats on every rank: one decision (validation, time limit) for all."""
+        if self.world == 1:
+            return values
+        t = torch.tensor(values, dtype=torch.float64, device=self.device)
+        dist.broadcast(t, 0)
+        return t.tolist()
+
+    def mean(self, value):
+        if self.world == 1:
+            return value
+        t = torch.tensor([value], dtype=torch.float64, device=self.device)
+        dist.all_reduce(t)
+        return t.item() / self.world
+
+    def my_rows(self, rows):
+        """This rank's share of a batch: every world-th row, or the first row when a short last
+        batch leaves none (its loss then counts zero: every rank must run backward)."""
+        mine = rows[self.rank::self.world]
+        return (mine, 1.0) if mine else (rows[:1], 0.0)
+
+    def close(self):
+        if self.world > 1:
+            dist.destroy_process_group()
+
+
 def evaluate(model, batches, rows, scale, batch_size):
     """(loss on scaled targets, RMSE of the mean channel in dataset units)."""
     model.eval()
@@ -141,7 +206,9 @@ def golden_pair(model, shards, rows, count, tries=64):
 def main(argv=None):
     args = parse_args(argv)
     torch.set_num_threads(max(1, args.threads))
-    device = pick_device()
+    team = Team()
+    device = team.device
+    say = print if team.lead else (lambda *a, **k: None)
     os.makedirs(args.work, exist_ok=True)
     manifest, shards = open_dataset(args.data)
     train_rows, val_rows, val_maps = split_by_map(shards, args.val_fraction, args.seed)
@@ -181,7 +248,11 @@ def main(argv=None):
              "batch": 0, "running": 0.0, "seen": 0}
     ckpt_path = os.path.join(args.work, "checkpoint.pt")
     best_path = os.path.join(args.work, "best.pt")
-    if os.path.exists(ckpt_path):
+    # Every rank sees the work folder as it was before rank 0 writes anything to it.
+    resuming, fresh = os.path.exists(ckpt_path), not os.path.exists(best_path)
+    if team.world > 1:
+        dist.barrier()
+    if resuming:
         ckpt = torch.load(ckpt_path, map_location=device)
         model.load_state_dict(ckpt["model"])
         opt.load_state_dict(ckpt["optimizer"])
@@ -190,19 +261,23 @@ def main(argv=None):
         scale = state["scale"]
         for key, value in (("batch", 0), ("running", 0.0), ("seen", 0)):
             state.setdefault(key, value)
-        print(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
+        say(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
     start_row = None
-    if init_model is not None and not os.path.exists(ckpt_path) and not os.path.exists(best_path):
+    if init_model is not None and not resuming and fresh:
         # Epoch 0 is the start itself: a fine-tuning that only hurts returns the start.
         val_loss, val_rmse = evaluate(model, batches, val_rows, scale, args.batch)
+        val_loss, val_rmse = team.share([val_loss, val_rmse])
         state["best_val"] = val_loss
-        torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
+        if team.lead:
+            torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
         start_row = [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"]
-        print(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
-    print(f"{parameter_count(model)} parameters on {device}; {len(train_rows)} training and "
-          f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
+        say(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
+    say(f"{parameter_count(model)} parameters on {device}"
+        f"{f' x {team.world} processes' if team.world > 1 else ''}; {len(train_rows)} training and "
+        f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
+    core, model = model, team.wrap(model)  # core: the network itself, for saving and validation
 
-    log_path = os.path.join(args.work, "log.csv")
+    log_path = os.path.join(args.work, "log.csv") if team.lead else os.devnull
     new_log = not os.path.exists(log_path)
     with open(log_path, "a", newline="") as log_file:
         log = csv.writer(log_file)
@@ -211,7 +286,9 @@ def main(argv=None):
         if start_row:
             log.writerow(start_row)
         def save_checkpoint():
-            torch.save({"model": model.state_dict(), "optimizer": opt.state_dict(),
+            if not team.lead:
+                return
+            torch.save({"model": core.state_dict(), "optimizer": opt.state_dict(),
                         "state": state, "torch_rng": torch.get_rng_state()}, ckpt_path + ".tmp")
             os.replace(ckpt_path + ".tmp", ckpt_path)
 
@@ -228,51 +305,61 @@ def main(argv=None):
             while state["batch"] < steps_per_epoch:
                 if args.max_steps and state["step"] >= args.max_steps:
                     break
-                if args.max_minutes and time.time() - started > 60.0 * args.max_minutes:
+                if args.max_minutes and team.share(
+                        [time.time() - started > 60.0 * args.max_minutes])[0]:
                     out_of_time = True
                     break
                 i = state["batch"] * args.batch
                 rows = sorted(train_rows[j] for j in order[i:i + args.batch])
-                x, y = batches(rows)
+                mine, weight = team.my_rows(rows)
+                x, y = batches(mine)
                 y = y / scale
                 for group in opt.param_groups:
                     group["lr"] = learning_rate(args, state["step"], steps_per_epoch)
-                loss = torch.mean((model(x) - y) ** 2)
+                if team.world == 1:
+                    loss = torch.mean((model(x) - y) ** 2)
+                else:  # this rank's part of the whole batch's mean; DDP averages over ranks
+                    per_sample = torch.mean((model(x) - y) ** 2, dim=(1, 2, 3))
+                    loss = per_sample.sum() * (weight * team.world / len(rows))
                 opt.zero_grad()
                 loss.backward()
                 opt.step()
                 state["step"] += 1
                 state["batch"] += 1
-                state["running"] += loss.item() * len(rows)
+                state["running"] += team.mean(loss.item()) * len(rows)
                 state["seen"] += len(rows)
                 if time.time() - last_save > 60.0 * args.checkpoint_minutes:
                     save_checkpoint()
                     last_save = time.time()
             if state["batch"] < steps_per_epoch:  # stopped inside the epoch (time or steps)
                 save_checkpoint()
-                if not os.path.exists(best_path):  # no finished epoch yet: keep these weights
-                    val_loss, _ = evaluate(model, batches, val_rows, scale, args.batch)
-                    torch.save({"model": model.state_dict(), "state": dict(state, best_val=val_loss)},
+                if team.lead and not os.path.exists(best_path):  # no finished epoch: keep these
+                    val_loss, _ = evaluate(core, batches, val_rows, scale, args.batch)
+                    torch.save({"model": core.state_dict(), "state": dict(state, best_val=val_loss)},
                                best_path)
                 break
             state["epoch"] += 1
-            val_loss, val_rmse = evaluate(model, batches, val_rows, scale, args.batch)
+            val_loss, val_rmse = team.share(list(evaluate(core, batches, val_rows, scale, args.batch)))
             train_loss = state["running"] / max(state["seen"], 1)
             state["batch"], state["running"], state["seen"] = 0, 0.0, 0
             log.writerow([state["epoch"], state["step"], f"{train_loss:.6g}", f"{val_loss:.6g}",
                           f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"])
             log_file.flush()
-            print(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
+            say(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
                   f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
             if val_loss < state["best_val"]:
                 state["best_val"], state["stale"] = val_loss, 0
-                torch.save({"model": model.state_dict(), "state": dict(state)}, best_path + ".tmp")
-                os.replace(best_path + ".tmp", best_path)
+                if team.lead:
+                    torch.save({"model": core.state_dict(), "state": dict(state)}, best_path + ".tmp")
+                    os.replace(best_path + ".tmp", best_path)
             else:
                 state["stale"] += 1
             save_checkpoint()
             last_save = time.time()
 
+    team.close()
+    if not team.lead:
+        return
     best = torch.load(best_path, map_location="cpu")
     final = PlumeUNet()
     final.load_state_dict(best["model"])

@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -149,6 +151,67 @@ TEST(TrainSmoke, TrainsOnADatasetTheGeneratorMade) {
                             .c_str()),
             0);
   expect_engine_reproduces_golden_pair(model);
+  fs::remove_all(dir);
+}
+
+// The val_loss column (the fourth) of a trainer's log.csv.
+std::vector<double> val_losses(const std::string& log) {
+  std::vector<double> v;
+  std::istringstream in(log);
+  std::string line, field;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    for (int i = 0; i < 4; ++i)
+      std::getline(fields, field, ',');
+    v.push_back(std::stod(field));
+  }
+  return v;
+}
+
+// Data-parallel training under torchrun (two gloo processes on the CPU) learns what one process
+// learns from the same batches, up to the order of float sums; rank 0 alone writes.
+TEST(TrainSmoke, TorchrunDataParallelLearnsWhatOneProcessDoes) {
+  const fs::path dir = fresh_dir("train-ddp");
+  const std::string data = (dir / "data").string();
+  ASSERT_EQ(std::system((std::string(PLUMEKIT_PYTHON) + " " + PLUMEKIT_SOURCE_DIR +
+                         "/surrogate/train/synthetic_dataset.py " + data +
+                         " --maps 3 --per-map 6 > /dev/null")
+                            .c_str()),
+            0);
+  const std::string args = " --data " + data + " --batch 4 --threads 1 --max-steps 4 ";
+  ASSERT_EQ(std::system((kTrain + args + "--work " + (dir / "one").string() + " --out " +
+                         (dir / "one.pkcnn").string() + " > /dev/null")
+                            .c_str()),
+            0);
+  // --redirects/--tee 1: Debian's torch 1.13 reads the default 0 as None on Python 3.11
+  // (surrogate/README.md, "Several GPUs").
+  const std::string torchrun = std::string(PLUMEKIT_PYTHON) +
+                               " -m torch.distributed.run --standalone --nproc_per_node 2 "
+                               "--redirects 1 --tee 1 " +
+                               PLUMEKIT_SOURCE_DIR + "/surrogate/train/train.py";
+  ASSERT_EQ(std::system((torchrun + args + "--work " + (dir / "two").string() + " --out " +
+                         (dir / "two.pkcnn").string() + " > /dev/null")
+                            .c_str()),
+            0);
+  // The same epochs and losses in one log.
+  const std::string one = read_file(dir / "one" / "log.csv"),
+                    two = read_file(dir / "two" / "log.csv");
+  const std::vector<double> a = val_losses(one), b = val_losses(two);
+  ASSERT_EQ(a.size(), b.size()) << one << two;
+  ASSERT_FALSE(a.empty());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    EXPECT_NEAR(a[i], b[i], 1e-4 * a[i]) << one << two;
+  // The two models predict the same plumes.
+  const Tensor input = to_tensor(read_npy((dir / "one_input.npy").string()));
+  const Tensor p = Network::load((dir / "one.pkcnn").string()).predict(input);
+  const Tensor q = Network::load((dir / "two.pkcnn").string()).predict(input);
+  double peak = 0, diff = 0;
+  for (std::size_t i = 0; i < p.data.size(); ++i) {
+    peak = std::max(peak, std::abs(double{p.data[i]}));
+    diff = std::max(diff, std::abs(double{p.data[i]} - q.data[i]));
+  }
+  EXPECT_LT(diff, 1e-3 * peak);
   fs::remove_all(dir);
 }
 
