@@ -2,6 +2,7 @@
 // with their own readings.
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
@@ -54,12 +55,16 @@ py::object run_once(const Scenario& sc, const py::handle& source, const py::obje
   const Map& map = sc.map();
   const Vec2 s = sc.check_source(map.from_frame(to_point(source, "source")));
   const std::uint64_t run = ste::run_seed(seed, 0, 0, 0);
+  // Python objects are read before the GIL is released.
+  const std::optional<Vec2> requested =
+      start.is_none() ? std::nullopt
+                      : std::optional<Vec2>(map.from_frame(to_point(start, "start")));
   ste::LocalizationResult r;
   nlohmann::ordered_json j;
   {
     py::gil_scoped_release release;
-    const Vec2 a = start.is_none() ? sc.random_start(s, stream_seed(run, ste::SteStream::Start))
-                                   : sc.check_start(map.from_frame(to_point(start, "start")));
+    const Vec2 a = requested ? sc.check_start(*requested)
+                             : sc.random_start(s, stream_seed(run, ste::SteStream::Start));
     r = sc.run(s, a, run);
     j = ste::run_report(sc, s, r).json;
   }

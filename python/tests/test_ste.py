@@ -78,3 +78,14 @@ def test_evaluate_matches_cli(tmp_path, data, cli):
         assert r["overall"][key] == c["overall"][key], key
     assert seen[-1] == (2, 2) and r["overall"]["runs"] == 2
     assert r["timings"]["median_step_compute_s"] > 0
+
+
+def test_a_given_start_is_the_cli_start(block, cli):
+    s, start = block.sources[0], (1.0, 3.5)
+    r = plumekit.localize(block, s, start=start, seed=4, plume_model="physics",
+                          stop={"max_samples": 5})
+    c = cli("localize", plumekit.data_dir() + "/test-maps/test-1-block.json",
+            "--source", f"{s[0]!r},{s[1]!r}", "--start", "1.0,3.5", "--seed", 4,
+            "--plume-model", "physics", "--max-samples", 5)
+    assert r["start"] == c["start"] and r["estimate"] == c["estimate"]
+    assert r["steps"][0]["position"] == pytest.approx(list(start))
