@@ -3,6 +3,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "core/map_json.hpp"
+#include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/rasterize.hpp"
 #include "core/ros_import.hpp"
@@ -60,8 +61,24 @@ void bind_map_class(py::module_& m) {
           },
           "Obstacle polygons, each a list of (x, y) vertices in the map frame")
       .def_property_readonly(
-          "openings", [](const Map& map) { return from_json(map_to_json(map)["openings"]); },
-          "Inlets and outlets as in the map file")
+          "openings",
+          [](const Map& map) {
+            py::list out;
+            for (const Opening& o : map.openings) {
+              py::dict d;
+              d["kind"] = to_string(o.kind);
+              d["from"] = from_point(map.to_frame(o.from));
+              d["to"] = from_point(map.to_frame(o.to));
+              if (o.is_inlet()) {
+                d["speed"] = o.speed;
+                d["profile"] = to_string(o.profile);
+              }
+              out.append(d);
+            }
+            return out;
+          },
+          "Inlets and outlets: dicts of kind, from, to (map frame) and an inlet's speed (m/s) "
+          "and profile")
       .def(
           "is_free",
           [](const Map& map, const py::handle& p) {
@@ -72,8 +89,8 @@ void bind_map_class(py::module_& m) {
           "to_dict", [](const Map& map) { return from_json(map_to_json(map)); },
           "The map file's JSON as a dict")
       .def("__repr__", [](const Map& map) {
-        return "<plumekit.Map '" + map.name + "' " + std::to_string(map.width) + " x " +
-               std::to_string(map.height) + " m, " + std::to_string(map.obstacles.size()) +
+        return "<plumekit.Map '" + map.name + "' " + compact(map.width) + " x " +
+               compact(map.height) + " m, " + std::to_string(map.obstacles.size()) +
                " obstacles, " + std::to_string(map.sources.size()) + " sources>";
       });
 }

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "core/error.hpp"
 #include "core/seed.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
@@ -82,7 +83,8 @@ void bind_mission(py::module_& m) {
   py::class_<PyMission>(
       m, "Mission",
       "STE driven by the caller: add(p, reading) after each stop, next(robot) for where to go. "
-      "Points in the map frame; a reading is the mean over a stop, in the plume model's units.")
+      "Points in the map frame; a reading is the mean over a stop, in the plume model's units. "
+      "One thread at a time.")
       .def(
           "add",
           [](PyMission& pm, const py::handle& p, double reading) {
@@ -129,6 +131,8 @@ void bind_mission(py::module_& m) {
       .def_property_readonly(
           "posterior",
           [](const PyMission& pm) {
+            if (pm.mission->samples() == 0)
+              throw InputError("the mission has no sample yet: there is no posterior");
             return posterior_dict(pm.scenario->map(), pm.mission->posterior());
           },
           "The posterior after the last sample");

@@ -17,13 +17,6 @@ py::tuple from_point(Vec2 p) {
   return py::make_tuple(p.x, p.y);
 }
 
-py::list from_points(const std::vector<Vec2>& points) {
-  py::list out;
-  for (const Vec2& p : points)
-    out.append(from_point(p));
-  return out;
-}
-
 // Through Python's own json module: summaries are small, and this keeps every number's spelling.
 py::object from_json(const nlohmann::json& value) {
   return py::module_::import("json").attr("loads")(value.dump());

@@ -19,7 +19,6 @@ namespace py = pybind11;
 // (x, y) from any two-number sequence; TypeError naming `what` otherwise.
 Vec2 to_point(const py::handle& value, const char* what);
 py::tuple from_point(Vec2 p);
-py::list from_points(const std::vector<Vec2>& points);
 
 // A JSON value as Python objects (dicts keep the JSON's key order).
 py::object from_json(const nlohmann::json& value);

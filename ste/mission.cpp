@@ -1,5 +1,7 @@
 #include "ste/mission.hpp"
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "ste/localizer.hpp"
 
@@ -12,6 +14,10 @@ Mission::Mission(Estimator& estimator, const planner::Planner& planner, const Na
 }
 
 const Posterior& Mission::add(Vec2 p, double value) {
+  // A NaN would poison every later posterior without a word.
+  if (!std::isfinite(p.x) || !std::isfinite(p.y))
+    throw InputError("ste.sample.position: not a finite point");
+  if (!std::isfinite(value)) throw InputError("ste.sample.reading: not a finite number");
   estimator_.add(p, value);
   posterior_ = estimator_.posterior();
   stopped_by_ = stop_reason(posterior_, estimator_.samples(), stop_);

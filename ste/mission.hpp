@@ -19,7 +19,7 @@ class Mission {
           const StopOptions& stop);
 
   // A sample: the mean reading `value` recorded at `p` (arena frame). Updates the posterior and
-  // the stop rule; returns the posterior.
+  // the stop rule; returns the posterior. InputError for a point or value that is not finite.
   const Posterior& add(Vec2 p, double value);
   // Where to sample next, seen from `robot`, and the planner's path there. InputError when the
   // mission has stopped or has no sample yet.

@@ -10,6 +10,9 @@ def test_read_and_describe(data):
     assert (m.width, m.height) == (10.0, 4.0)
     assert m.sources == [(1.5, 1.0)]
     assert len(m.obstacles) == 2 and all(len(p) >= 3 for p in m.obstacles)
+    assert m.openings[0] == {"kind": "inlet", "from": (0.0, 0.0), "to": (0.0, 4.0), "speed": 1.0,
+                             "profile": "uniform"}
+    assert repr(m) == "<plumekit.Map 'cluttered-1' 10 x 4 m, 2 obstacles, 1 sources>"
     assert m.is_free((0.2, 0.2))
     assert not m.is_free(m.obstacles[0][0])  # a vertex is on the boundary: not free
     labels = plumekit.rasterize(m, 0.1)

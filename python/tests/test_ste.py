@@ -30,6 +30,11 @@ def test_a_mission_fed_the_runs_readings_reaches_its_estimate(block, run):
     mission = sc.mission(seed=3)
     with pytest.raises(plumekit.InputError, match="no sample yet"):
         mission.next(run["start"])
+    with pytest.raises(plumekit.InputError, match="no sample yet"):
+        mission.posterior
+    with pytest.raises(plumekit.InputError, match="reading: not a finite number"):
+        mission.add(run["start"], float("nan"))
+    assert mission.samples == 0  # the bad reading was not taken
     for k, step in enumerate(run["steps"]):
         post = mission.add(step["recorded_position"], step["value"])
         assert list(post["estimate"]) == pytest.approx(step["estimate"], abs=1e-12)

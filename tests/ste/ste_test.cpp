@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <utility>
 
 #include "../dataset/uniform_wind.hpp"
@@ -13,6 +14,7 @@
 #include "ste/gaussian_plume.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/mh_estimator.hpp"
+#include "ste/mission.hpp"
 #include "ste/physics_plume.hpp"
 #include "ste/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
@@ -263,6 +265,32 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   const LocalizationResult again = sc.run(source, {1.0, 2.5}, run_seed(3, 0, 0, 0));
   EXPECT_EQ(again.samples, r.samples);
   EXPECT_EQ(again.estimate, r.estimate);
+}
+
+// A Mission fed a run's own readings gives that run's posteriors and goals (localize() is a
+// Mission driven by the simulated world), and refuses what is not a reading.
+TEST(Localize, AMissionFedARunsReadingsRetracesIt) {
+  const Map map = small_map();
+  SteOptions o;
+  o.model = PlumeModelKind::Physics;
+  const Scenario sc(map, o);
+  const LocalizationResult r = sc.run({4.5, 0.5}, {1.0, 2.5}, run_seed(3, 0, 0, 0));
+  const std::unique_ptr<Estimator> estimator = sc.make_estimator(run_seed(3, 0, 0, 0));
+  Mission mission(*estimator, sc.planner(), sc.navigator(), sc.options().stop);
+  EXPECT_THROW(mission.next({1.0, 2.5}), InputError);  // no sample yet
+  EXPECT_THROW(mission.add({1.0, 2.5}, std::nan("")), InputError);
+  EXPECT_THROW(mission.add({std::nan(""), 2.5}, 1.0), InputError);
+  EXPECT_EQ(mission.samples(), 0);
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    const Step& s = r.steps[k];
+    const Posterior& p = mission.add(s.recorded, s.value);
+    EXPECT_EQ(p.expected_source(), s.estimate);
+    if (mission.stopped()) break;
+    EXPECT_EQ(mission.next(s.position).goal, r.steps.at(k + 1).position);
+  }
+  EXPECT_EQ(mission.stopped_by(), r.stopped_by);
+  EXPECT_EQ(mission.samples(), r.samples);
+  EXPECT_THROW(mission.next(r.steps.back().position), InputError);  // stopped
 }
 
 TEST(Localize, StopsOnTheSampleLimitWhenTheEntropyStaysHigh) {
