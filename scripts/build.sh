@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$@"
 cmake --build build -j "$(nproc)"
-if grep -q '^PLUMEKIT_PYTHON:BOOL=ON' build/CMakeCache.txt; then
+if grep -q '^PLUMEKIT_PYTHON_MODULE:BOOL=ON' build/CMakeCache.txt; then
   # /usr/local/lib/python3.X/dist-packages: root's, or a sudo away (as the packages above).
   if [[ $(id -u) -eq 0 ]]; then
     cmake --install build --component python
