@@ -10,5 +10,6 @@ void add_plan_commands(CLI::App& app);
 void add_dataset_commands(CLI::App& app);
 void add_predict_commands(CLI::App& app);
 void add_ste_commands(CLI::App& app);  // localize, evaluate, demo
+void add_gdm_commands(CLI::App& app);
 
 }  // namespace plumekit::cli

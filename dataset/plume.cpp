@@ -76,6 +76,12 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
   return t;
 }
 
+AdvectionDiffusionOptions filament_world_mean() {
+  AdvectionDiffusionOptions o;
+  o.decay_rate = 1.0 / FilamentOptions{}.lifetime_s();
+  return o;
+}
+
 SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
                          const cfd::FlowOptions& flow, std::uint64_t seed,
                          const std::filesystem::path& wind_dir) {

@@ -46,6 +46,12 @@ struct PlumeOptions {
   }
 };
 
+// The advection-diffusion options whose steady plume is the filament world's long-time mean (up
+// to its meander): the dataset's diffusivity and release rate, and the world's decay, 1 over a
+// filament's lifetime (FilamentOptions::lifetime_s, 28 s): what ste's physics model predicts and
+// what gas maps are scored against.
+AdvectionDiffusionOptions filament_world_mean();
+
 // A source must lie in the map's free space: OptionError naming plume.source otherwise.
 void check_source(const Map& map, Vec2 source);
 

@@ -59,4 +59,5 @@ PYBIND11_MODULE(plumekit, m) {
   bind_planner(m);
   bind_ste_options(m);
   bind_ste(m);
+  bind_gdm(m);
 }

@@ -10,6 +10,7 @@
 #include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
 #include "dataset/filament_model.hpp"
+#include "dataset/plume.hpp"
 #include "ste/forward_model.hpp"
 
 namespace plumekit::ste {
@@ -29,9 +30,7 @@ struct PhysicsPlumeOptions {
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
   static dataset::AdvectionDiffusionOptions world_matched() {
-    dataset::AdvectionDiffusionOptions o;
-    o.decay_rate = 1.0 / dataset::FilamentOptions{}.lifetime_s();
-    return o;
+    return dataset::filament_world_mean();
   }
 };
 

@@ -1,0 +1,122 @@
+// plumekit gdm: gas distribution maps (Kernel DM+V, DM+V/W) from a robot's readings.
+#include <filesystem>
+
+#include "apps/cli.hpp"
+#include "apps/commands.hpp"
+#include "cfd/flow_policy.hpp"
+#include "cfd/wind_file.hpp"
+#include "core/atomic_file.hpp"
+#include "core/map_json.hpp"
+#include "core/npy.hpp"
+#include "core/output_target.hpp"
+#include "gdm/kernel_dmv.hpp"
+#include "gdm/map_score.hpp"
+#include "gdm/render.hpp"
+#include "gdm/report.hpp"
+#include "gdm/samples.hpp"
+
+namespace plumekit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct GdmArgs {
+  std::string map, samples, run, out, source, wind, background = "mean";
+  gdm::GdmOptions options;
+  cfd::FlowOptions flow;
+};
+
+void bind_gdm_options(CLI::App* cmd, GdmArgs& a) {
+  gdm::GdmOptions& o = a.options;
+  bind_field(cmd, cmd->add_option("--map-cell", o.cell, "The gas map's cell, m"), "gdm.cell")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--kernel-width", o.kernel_width,
+                             "The kernel's sigma, m (seed 000: 0.4 for samples 1 m apart)"),
+             "gdm.kernel_width")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--sigma-omega", o.sigma_omega,
+                             "Confidence scale: alpha = 1 - exp(-Omega / sigma_omega^2)"),
+             "gdm.sigma_omega")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--wind-stretch", o.wind_stretch,
+                             "gamma, s: 0 gives Kernel DM+V; more stretches each kernel along its "
+                             "sample's wind (Kernel DM+V/W; seed 000: 0.2-0.6)"),
+             "gdm.wind_stretch")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--background", a.background,
+                             "What a cell far from every sample shows: the readings' mean or min"),
+             "gdm.background")
+      ->capture_default_str();
+}
+
+std::vector<gdm::Sample> read_samples(const GdmArgs& a, const Map& map) {
+  if (!a.samples.empty()) return gdm::read_samples_csv(a.samples, map);
+  const fs::path run = fs::is_directory(a.run) ? fs::path(a.run) / "run.json" : fs::path(a.run);
+  return gdm::read_run_samples(run, map);
+}
+
+}  // namespace
+
+void add_gdm_commands(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "gdm",
+      "Gas distribution maps (Kernel DM+V, DM+V/W) from readings: mean, variance and confidence "
+      ".npy and gdm.png; scored against the true mean plume with --source");
+  auto a = std::make_shared<GdmArgs>();
+  add_map_argument(cmd, a->map);
+  auto* csv =
+      cmd->add_option("--samples", a->samples,
+                      "CSV of readings: a header naming x, y, reading (and u, v), map frame");
+  auto* run = cmd->add_option("--run", a->run,
+                              "A `plumekit localize --out` folder (or its run.json): its samples");
+  csv->excludes(run);
+  cmd->add_option("--source", a->source, "The true source X,Y: score the maps against its plume");
+  cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
+  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, cfd::kCellHelp), "flow.cell")
+      ->capture_default_str();
+  cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `gdm` output")
+      ->required();
+  bind_gdm_options(cmd, *a);
+  add_common_flags(cmd);
+  cmd->callback([a] {
+    if (a->samples.empty() && a->run.empty())
+      throw OptionError("gdm.samples", "give --samples CSV or --run DIR");
+    a->options.background = gdm::parse_background(a->background);
+    a->options.validate();
+    const Map map = read_map(a->map);
+    const std::vector<gdm::Sample> samples = read_samples(*a, map);
+    gdm::GdmRun r{a->map, a->samples.empty() ? a->run : a->samples, a->out, a->options, {}, {}};
+    if (!a->source.empty()) r.source = map.from_frame(parse_point(a->source, "--source"));
+    OutputDirectory out(a->out, "gdm", {a->map, a->samples, a->run, a->wind});
+    const gdm::GdmMaps maps = gdm::kernel_dmv(map, samples, a->options);
+    if (r.source) {
+      const cfd::WindField wind =
+          a->wind.empty() ? cfd::solve_wind(map, a->flow).flow.wind : cfd::read_wind(a->wind, map);
+      r.score =
+          gdm::score_mean(maps.mean, gdm::true_mean_plume(map, wind, *r.source, maps.mean.shape));
+    }
+    const fs::path& dir = out.open();
+    const GridShape& g = maps.mean.shape;
+    const std::vector<std::size_t> shape{static_cast<std::size_t>(g.ny),
+                                         static_cast<std::size_t>(g.nx)};
+    write_file_atomic(dir / "mean.npy", npy_float64(maps.mean.values, shape));
+    write_file_atomic(dir / "variance.npy", npy_float64(maps.variance.values, shape));
+    write_file_atomic(dir / "confidence.npy", npy_float64(maps.confidence.values, shape));
+    write_png(
+        gdm::draw_gdm(map, maps, samples, r.source, gdm::method_name(a->options, samples), ""),
+        dir / "gdm.png");
+    const Report rep = gdm::gdm_report(map, maps, r);
+    write_file_atomic(dir / "gdm.json", rep.json.dump(2) + "\n");
+    out.commit();
+    report(rep.json, rep.text + "\nwrote " + a->out +
+                         "/{mean,variance,confidence}.npy (float64, NaN in obstacles), gdm.png, "
+                         "gdm.json");
+  });
+}
+
+}  // namespace plumekit::cli

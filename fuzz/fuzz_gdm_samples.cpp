@@ -1,0 +1,32 @@
+// Fuzzes the readings reader (gdm/samples: parse_samples_csv) with arbitrary text. Bad input must
+// end in InputError; an accepted CSV gives at least one sample, every one finite, with a wind for
+// all or for none.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+#include "core/error.hpp"
+#include "core/map.hpp"
+#include "gdm/samples.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  plumekit::Map map = plumekit::default_arena(10.0, 4.0);
+  map.frame.origin = {-1.0, 2.0};
+  std::vector<plumekit::gdm::Sample> samples;
+  try {
+    samples = plumekit::gdm::parse_samples_csv(text, "fuzz.csv", map);
+  } catch (const plumekit::InputError&) {
+    return 0;
+  }
+  if (samples.empty()) std::abort();
+  for (const auto& s : samples) {
+    if (!std::isfinite(s.position.x) || !std::isfinite(s.position.y) || !std::isfinite(s.reading))
+      std::abort();
+    if (s.wind.has_value() != samples[0].wind.has_value()) std::abort();
+    if (s.wind && (!std::isfinite(s.wind->x) || !std::isfinite(s.wind->y))) std::abort();
+  }
+  return 0;
+}
