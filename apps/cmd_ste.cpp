@@ -216,7 +216,72 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--cell", o.flow.cell, cfd::kCellHelp, "flow.cell");
 }
 
+// The localization method and the options of the seeds' methods (methods/README.md).
+void add_method_options(CLI::App* cmd, ste::MethodOptions& m) {
+  std::string names;
+  for (const std::string& n : ste::method_names())
+    names += (names.empty() ? "" : ", ") + n;
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--method", [&m](const std::string& s) { m.kind = ste::parse_method_kind(s); },
+                    "Localization method: " + names +
+                        " (ste: plumekit's source term estimation; the others are the seeds' "
+                        "plume trackers and particle filters, methods/README.md)")
+                 ->default_str(ste::to_string(m.kind)),
+             "ste.method");
+  methods::TrackingOptions& t = m.tracking;
+  bind_to(cmd, "--track-step", t.step,
+          "Step of the trackers and the particle filter's exploration, m (the seeds': 1)",
+          "tracking.step");
+  bind_to(cmd, "--detection-threshold", t.detection_threshold,
+          "A stop detects gas above this mean reading, concentration units (trackers; the "
+          "particle filter's lower detection limit)",
+          "tracking.detection_threshold");
+  bind_to(cmd, "--zigzag-angle", t.zigzag_alpha_deg, "Zigzag legs' angle off upwind, degrees",
+          "tracking.zigzag_alpha_deg");
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--zigzag-flip",
+                    [&t](const std::string& s) {
+                      if (s != "loss" && s != "detection")
+                        throw OptionError("tracking.zigzag_flip",
+                                          "expected loss or detection, got '" + s + "'");
+                      t.zigzag_flip = s == "loss" ? methods::ZigzagFlip::OnLoss
+                                                  : methods::ZigzagFlip::OnDetection;
+                    },
+                    "When the zigzag turns: loss (seed 002: the reading falls below the "
+                    "threshold) or detection (seed 000's list)")
+                 ->default_str("loss"),
+             "tracking.zigzag_flip");
+  bind_to(cmd, "--gradient-angle", t.gradient_beta_deg,
+          "Pseudo-gradient's largest turn off upwind beta, degrees", "tracking.gradient_beta_deg");
+  bind_to(cmd, "--max-casts", t.max_casts, "Surge-cast: casts before it sweeps again",
+          "tracking.max_casts");
+  bind_to(cmd, "--max-misses", t.max_misses,
+          "Zigzag: non-detections in a row before it sweeps again", "tracking.max_misses");
+  bind_to(cmd, "--max-steps", m.max_steps,
+          "Stops of a tracker or particle filter run at most (0: two per square step of the "
+          "arena, at least 50)",
+          "tracking.max_steps");
+  bind_to(cmd, "--particles", m.pf.filter.particles, "Particle filter: particles", "pf.particles");
+  bind_to(cmd, "--declare-iterations", m.pf.declare_iterations,
+          "Particle filter: declare when the estimate stayed within --declare-radius this many "
+          "iterations (0: never; Li et al.'s 20)",
+          "pf.declare_iterations");
+  bind_to(cmd, "--declare-radius", m.pf.declare_radius,
+          "Particle filter: the declaration's radius, m", "pf.declare_radius");
+  bind_optional(cmd, "--pf-alpha", m.pf_alpha,
+                "Particle filter: penalty alpha of a particle outside the patch path envelope "
+                "on a detection (default: 0.2 with pf-gradient, 0.4 with pf-sweep, seed 001)",
+                "pf.alpha");
+  bind_optional(cmd, "--pf-beta", m.pf_beta,
+                "Particle filter: penalty beta on a non-detection (default: 0.8 with "
+                "pf-gradient, 0.9 with pf-sweep, seed 001)",
+                "pf.beta");
+}
+
 void add_ste_options(CLI::App* cmd, ste::SteOptions& o) {
+  add_method_options(cmd, o.method);
   add_model_options(cmd, o);
   add_run_options(cmd, o);
 }
@@ -283,15 +348,18 @@ void add_localize(CLI::App& app) {
     rep.json = j;
     if (out) {
       const fs::path& dir = out->open();
-      ste::write_run_pictures(sc, source, r, dir);
+      const ste::RunPictures pictures = ste::write_run_pictures(sc, source, r, dir);
       write_file_atomic(dir / "run.json", rep.json.dump(2) + "\n");
       out->commit();
       const fs::path o = a->out;
       rep.json["out"] = {{"run", (o / "run.json").string()},
-                         {"trajectory", (o / "trajectory.png").string()},
-                         {"posterior", (o / "posterior.png").string()}};
-      rep.text += "\nwrote " + (o / "trajectory.png").string() + ", " +
-                  (o / "posterior.png").string() + ", " + (o / "run.json").string();
+                         {"trajectory", (o / "trajectory.png").string()}};
+      rep.text += "\nwrote " + (o / "trajectory.png").string() + ", ";
+      if (!pictures.posterior.empty()) {
+        rep.json["out"]["posterior"] = (o / "posterior.png").string();
+        rep.text += (o / "posterior.png").string() + ", ";
+      }
+      rep.text += (o / "run.json").string();
     }
     report_run(rep, map, requested, start);
   });
@@ -424,7 +492,7 @@ void add_evaluate(CLI::App& app) {
           bar.update(static_cast<double>(done) / total,
                      std::to_string(done) + "/" + std::to_string(total) + " runs");
         },
-        ste::trajectory_pictures(dir.open(), maps.picture_names, eo.ste.model));
+        ste::trajectory_pictures(dir.open(), maps.picture_names));
     bar.finish();
     const ordered_json settings = ste::evaluation_settings(eo, a->map_dir);
     if (a->part) {
@@ -473,7 +541,7 @@ void add_demo(CLI::App& app) {
     const Vec2 requested = map.from_frame(d.start);
     const Vec2 start = sc.check_start(requested);
     const ste::LocalizationResult r = sc.run(source, start, ste::run_seed(d.seed, 0, 0, 0));
-    ste::write_run_pictures(sc, source, r, out.open());
+    const bool posterior = !ste::write_run_pictures(sc, source, r, out.open()).posterior.empty();
     out.commit();
     const fs::path traj = fs::path(a->out) / "trajectory.png",
                    post = fs::path(a->out) / "posterior.png";
@@ -483,9 +551,13 @@ void add_demo(CLI::App& app) {
                    {"plume_model", ste::to_string(d.ste.model)}};
     if (!note.empty()) j["note"] = note;
     j.update(rep.json);
-    j["out"] = {{"trajectory", traj.string()}, {"posterior", post.string()}};
+    j["out"] = {{"trajectory", traj.string()}};
+    rep.text += "\npictures: " + traj.string() + " (trajectory)";
+    if (posterior) {
+      j["out"]["posterior"] = post.string();
+      rep.text += ", " + post.string() + " (posterior)";
+    }
     rep.json = j;
-    rep.text += "\npictures: " + traj.string() + " (trajectory), " + post.string() + " (posterior)";
     report_run(rep, map, requested, start);
   });
 }

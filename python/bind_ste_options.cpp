@@ -102,6 +102,11 @@ void bind_ste_options_class(py::module_& m) {
                            "plume_model='physics', stop={'max_samples': 30}).");
   o.def(py::init<>());
   o.def_property(
+      "method", [](const SteOptions& s) { return std::string(to_string(s.method.kind)); },
+      [](SteOptions& s, const std::string& v) { s.method.kind = parse_method_kind(v); },
+      "'ste' (the default), or one of the seeds' methods: 'sweeping', 'surge-cast', 'zigzag', "
+      "'pseudo-gradient', 'pf-gradient', 'pf-sweep' (methods/README.md)");
+  o.def_property(
       "plume_model", [](const SteOptions& s) { return std::string(to_string(s.model)); },
       [](SteOptions& s, const std::string& v) { s.model = parse_plume_model_kind(v); },
       "'surrogate' (the CNN), 'gaussian' or 'physics'");

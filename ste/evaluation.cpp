@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <mutex>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
+#include "methods/plume_tracking.hpp"
 
 namespace plumekit::ste {
 
@@ -42,6 +44,21 @@ std::vector<RunRecord> planned_runs(const Map& map, int map_index, const Evaluat
   return records;
 }
 
+// The seeds' distance overhead of a run (seed 000 App. C): the path from its first stop above
+// the detection threshold on. NaN when no stop detected or the robot made no progress.
+double tracking_overhead(const LocalizationResult& r, Vec2 source, double threshold) {
+  std::size_t first = 0;
+  while (first < r.steps.size() && !(r.steps[first].value > threshold))
+    ++first;
+  if (first == r.steps.size()) return std::numeric_limits<double>::quiet_NaN();
+  std::vector<Vec2> path{r.steps[first].position};
+  for (std::size_t k = first + 1; k < r.steps.size(); ++k)
+    for (std::size_t i = 1; i < r.steps[k].path_in.size(); ++i)
+      path.push_back(r.steps[k].path_in[i]);
+  return methods::distance_overhead(path, source)
+      .value_or(std::numeric_limits<double>::quiet_NaN());
+}
+
 // One run from the map's starts or its seeded random start; its record's summary columns filled
 // in.
 void run_one(const Scenario& scenario, RunRecord& rec) {
@@ -57,6 +74,10 @@ void run_one(const Scenario& scenario, RunRecord& rec) {
   rec.compute_s = r.compute_s;
   rec.median_step_s = r.median_step_s;
   rec.stopped_by = r.stopped_by;
+  rec.reached = r.reached;
+  if (stops_in_source_box(scenario.options().method.kind))
+    rec.distance_overhead =
+        tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
 }
 
 std::vector<const RunRecord*> pointers(const std::vector<RunRecord>& records) {
@@ -86,7 +107,7 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
   Stats s;
   s.runs = static_cast<int>(runs.size());
   if (runs.empty()) return s;
-  std::vector<double> err, samples, dist, step, mission;
+  std::vector<double> err, samples, dist, step, mission, overhead;
   double sum = 0;
   for (const RunRecord* r : runs) {
     err.push_back(r->error_m);
@@ -98,7 +119,13 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
     s.success_0_5 += r->error_m <= 0.5;
     s.success_1_0 += r->error_m <= 1.0;
     s.entropy_stops += r->stopped_by == "entropy";
+    s.reached += r->reached;
+    if (std::isfinite(r->distance_overhead)) overhead.push_back(r->distance_overhead);
   }
+  s.reached_ci95 = wilson_interval(static_cast<int>(s.reached), s.runs);
+  s.reached /= static_cast<double>(runs.size());
+  s.distance_overhead_runs = static_cast<int>(overhead.size());
+  if (!overhead.empty()) s.median_distance_overhead = median(overhead);
   const double n = static_cast<double>(runs.size());
   s.success_0_5_ci95 = wilson_interval(static_cast<int>(s.success_0_5), s.runs);
   s.success_1_0_ci95 = wilson_interval(static_cast<int>(s.success_1_0), s.runs);
@@ -123,6 +150,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
     if (m.sources.empty())
       throw InputError("map " + m.name + " has no ground-truth \"sources\" to evaluate on");
   EvaluationResult result;
+  result.method = to_string(o.ste.method.kind);
   result.seeds = o.seeds;
   result.pairs = part_pairs(maps, o);
   const int total = static_cast<int>(result.pairs.end - result.pairs.first) * o.runs * o.seeds;
@@ -170,6 +198,7 @@ std::string runs_csv(const EvaluationResult& result) {
   std::ostringstream s;
   s << "map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,estimate_y,error_m,"
        "samples,distance_m,mission_s,stopped_by"
+    << (result.method != "ste" ? ",reached,distance_overhead" : "")
     << (result.seeds > 1 ? ",seed\n" : "\n");
   s << std::setprecision(6);
   // Positions in each map's own frame, as its file and the user's robot hold them.
@@ -183,6 +212,10 @@ std::string runs_csv(const EvaluationResult& result) {
       << ',' << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
       << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
       << r.mission_s << ',' << r.stopped_by;
+    if (result.method != "ste") {
+      s << ',' << (r.reached ? 1 : 0) << ',';
+      if (std::isfinite(r.distance_overhead)) s << r.distance_overhead;
+    }
     if (result.seeds > 1) s << ',' << r.seed;
     s << '\n';
   }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -54,6 +55,10 @@ struct RunRecord {
   int samples = 0;
   double distance_m = 0.0, mission_s = 0.0, compute_s = 0.0, median_step_s = 0.0;
   std::string stopped_by;
+  // The plume trackers' criteria (methods other than STE): a stop in the source box, and the
+  // seeds' distance overhead (NaN where there was no detection or no progress).
+  bool reached = false;
+  double distance_overhead = std::numeric_limits<double>::quiet_NaN();
   LocalizationResult result;  // kept for the example pictures
 };
 
@@ -64,6 +69,11 @@ struct Stats {
   double median_samples = 0, median_distance_m = 0, median_step_s = 0;
   double median_mission_s = 0;  // the robot's time to its estimate: travel and sampling
   double entropy_stops = 0;     // fraction stopped by the entropy rule
+  double reached = 0;           // fraction that stopped in the source box
+  Interval reached_ci95;
+  // Over the runs that have one (NaN when none does), and how many do.
+  double median_distance_overhead = std::numeric_limits<double>::quiet_NaN();
+  int distance_overhead_runs = 0;
 };
 Stats summarise(const std::vector<const RunRecord*>& runs);
 
@@ -75,6 +85,7 @@ struct MapReport {
 };
 
 struct EvaluationResult {
+  std::string method = "ste";  // MethodKind's name: runs.csv adds the trackers' columns for others
   std::vector<RunRecord> runs;
   std::vector<MapReport> maps;
   Stats overall;

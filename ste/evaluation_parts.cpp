@@ -1,6 +1,7 @@
 #include "ste/evaluation_parts.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "core/atomic_file.hpp"
@@ -17,9 +18,12 @@ namespace {
 // One run's figures at full precision (JSON numbers round-trip a double exactly): what the
 // summary's statistics, the box plots and timings.json are computed from.
 ordered_json run_row(const RunRecord& r) {
+  // The trackers' two criteria last (null: no overhead), so STE's rows keep their first 11.
   return ordered_json::array({r.map_index, r.source_index, r.run, r.seed, r.error_m, r.samples,
-                              r.distance_m, r.mission_s, r.stopped_by, r.compute_s,
-                              r.median_step_s});
+                              r.distance_m, r.mission_s, r.stopped_by, r.compute_s, r.median_step_s,
+                              r.reached,
+                              std::isfinite(r.distance_overhead) ? ordered_json(r.distance_overhead)
+                                                                 : ordered_json(nullptr)});
 }
 
 RunRecord parse_run_row(const ordered_json& row, const ordered_json& maps) {
@@ -36,6 +40,10 @@ RunRecord parse_run_row(const ordered_json& row, const ordered_json& maps) {
   r.stopped_by = row.at(8).get<std::string>();
   r.compute_s = row.at(9).get<double>();
   r.median_step_s = row.at(10).get<double>();
+  if (row.size() > 12) {
+    r.reached = row.at(11).get<bool>();
+    if (!row.at(12).is_null()) r.distance_overhead = row.at(12).get<double>();
+  }
   return r;
 }
 
@@ -200,6 +208,7 @@ MergedEvaluation join(const std::vector<Part>& parts) {
   EvaluationResult& res = m.result;
   const ordered_json& first = parts.front().j;
   res.seeds = first.at("settings").at("seeds").get<int>();
+  res.method = first.at("settings").value("method", std::string("ste"));
   res.pairs = {0, first.at("pairs").at("total").get<long long>(),
                first.at("pairs").at("total").get<long long>()};
   for (const auto& map : first.at("maps"))

@@ -46,8 +46,11 @@ struct Step {
 };
 
 struct LocalizationResult {
+  std::string method = "ste";  // the localization method's name (--method)
   Vec2 start;
-  Vec2 estimate;  // declared: the expected value
+  // Declared: STE's expected value, the particle filter's estimate, or where a plume tracker
+  // ended.
+  Vec2 estimate;
   std::vector<double> expected;
   Vec2 map;
   int samples = 0;
@@ -55,15 +58,19 @@ struct LocalizationResult {
   double time_s = 0.0;         // simulated mission time
   double compute_s = 0.0;      // total decision compute
   double median_step_s = 0.0;  // median compute per decision step
-  std::string stopped_by;      // "entropy" or "max_samples"
+  // "entropy" or "max_samples" (STE); "declared" (particle filter); "reached" (a stop in the
+  // plume trackers' source box); ...
+  std::string stopped_by;
+  bool reached = false;  // stopped in the source box (SourceBox, method_run.hpp)
   std::vector<Step> steps;
-  Posterior posterior;
+  Posterior posterior;  // STE's; empty for the other methods
 };
 
 // Why the run stops after `samples` samples with this posterior: "entropy", "max_samples", or ""
 // (it goes on).
 std::string stop_reason(const Posterior& posterior, int samples, const StopOptions& stop);
 
+// run_method (method_run.hpp) with STE (SteMethod) on `estimator`.
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,
                             const StopOptions& stop);

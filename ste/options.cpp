@@ -111,6 +111,7 @@ double SteOptions::source_cell_in_use() const {
 }
 
 void SteOptions::validate() const {
+  method.validate();
   likelihood_options().validate();
   if (likelihood.sigma_std && *likelihood.sigma_std != 0.0 && model != PlumeModelKind::Surrogate)
     throw OptionError("ste.likelihood.sigma_std",
@@ -137,7 +138,7 @@ void SteOptions::validate() const {
   check_count("ste.threads", threads, 0, 1024, "0 means one per core");
   check_non_negative("ste.min_start_distance", min_start_distance, 1000.0, "m",
                      "the default is 1 m");
-  if (model == PlumeModelKind::Surrogate) check_model_file();
+  if (model == PlumeModelKind::Surrogate && uses_plume_model(method.kind)) check_model_file();
 }
 
 void SteOptions::check_model_file() const {

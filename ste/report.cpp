@@ -1,6 +1,7 @@
 #include "ste/report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
 #include <sstream>
 
@@ -56,17 +57,21 @@ ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
 
 ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
   ordered_json expected = ordered_json::object();
-  const auto& params = sc.model().parameters();
-  for (std::size_t k = 0; k < params.size() && k < r.expected.size(); ++k)
-    expected[params[k].name] = r.expected[k];
+  if (sc.has_model()) {
+    const auto& params = sc.model().parameters();
+    for (std::size_t k = 0; k < params.size() && k < r.expected.size(); ++k)
+      expected[params[k].name] = r.expected[k];
+  }
   const MapFrame& f = sc.map().frame;
   if (!f.is_identity() && expected.contains("x") && expected.contains("y")) {
     const Vec2 at = f.to_frame({expected["x"].get<double>(), expected["y"].get<double>()});
     expected["x"] = at.x;
     expected["y"] = at.y;
   }
-  return {{"estimate", point_json(f.to_frame(r.estimate))},
+  return {{"method", r.method},
+          {"estimate", point_json(f.to_frame(r.estimate))},
           {"error_m", norm(r.estimate - source)},
+          {"reached_source_box", r.reached},
           {"samples", r.samples},
           {"distance_m", r.distance_m},
           {"compute_s", r.compute_s},
@@ -89,8 +94,9 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
 std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
   const MapFrame& f = sc.map().frame;
   std::ostringstream h;
-  h << sc.map().name << ", " << to_string(sc.options().model) << " plume model: source "
-    << fmt(f.to_frame(source)) << ", start " << fmt(f.to_frame(r.start)) << "\n"
+  h << sc.map().name << ", " << run_label(sc.options())
+    << (sc.has_model() ? " plume model" : " method") << ": source " << fmt(f.to_frame(source))
+    << ", start " << fmt(f.to_frame(r.start)) << "\n"
     << "estimate " << fmt(f.to_frame(r.estimate)) << ", error " << fmt(norm(r.estimate - source))
     << " m after " << r.samples << " samples and " << fmt(r.distance_m, 1) << " m (stopped by "
     << r.stopped_by << ")\ncompute " << fmt(r.compute_s, 3) << " s in all, median "
@@ -99,18 +105,28 @@ std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& 
   return h.str();
 }
 
-ordered_json stats_json(const Stats& s) {
-  return {{"runs", s.runs},
-          {"median_error_m", s.median_error_m},
-          {"mean_error_m", s.mean_error_m},
-          {"success_0_5m", s.success_0_5},
-          {"success_0_5m_ci95", {s.success_0_5_ci95.lo, s.success_0_5_ci95.hi}},
-          {"success_1_0m", s.success_1_0},
-          {"success_1_0m_ci95", {s.success_1_0_ci95.lo, s.success_1_0_ci95.hi}},
-          {"median_samples", s.median_samples},
-          {"median_distance_m", s.median_distance_m},
-          {"median_mission_s", s.median_mission_s},
-          {"entropy_stops", s.entropy_stops}};
+// `tracking`: a method other than STE, whose runs have the trackers' criteria too.
+ordered_json stats_json(const Stats& s, bool tracking) {
+  ordered_json j{{"runs", s.runs},
+                 {"median_error_m", s.median_error_m},
+                 {"mean_error_m", s.mean_error_m},
+                 {"success_0_5m", s.success_0_5},
+                 {"success_0_5m_ci95", {s.success_0_5_ci95.lo, s.success_0_5_ci95.hi}},
+                 {"success_1_0m", s.success_1_0},
+                 {"success_1_0m_ci95", {s.success_1_0_ci95.lo, s.success_1_0_ci95.hi}},
+                 {"median_samples", s.median_samples},
+                 {"median_distance_m", s.median_distance_m},
+                 {"median_mission_s", s.median_mission_s},
+                 {"entropy_stops", s.entropy_stops}};
+  if (tracking) {
+    j["reached_source_box"] = s.reached;
+    j["reached_source_box_ci95"] = {s.reached_ci95.lo, s.reached_ci95.hi};
+    j["median_distance_overhead"] = std::isfinite(s.median_distance_overhead)
+                                        ? ordered_json(s.median_distance_overhead)
+                                        : ordered_json(nullptr);
+    j["distance_overhead_runs"] = s.distance_overhead_runs;
+  }
+  return j;
 }
 
 // The errors (or sample counts) of each map's runs, in map order: the box plots' groups.
@@ -121,14 +137,54 @@ std::vector<std::vector<double>> per_map(const EvaluationResult& res, bool error
   return groups;
 }
 
+// "STE (physics)", or the method's name ("surge-cast"); summaries written before --method were
+// STE's.
+std::string summary_label(const ordered_json& settings) {
+  const std::string method = settings.value("method", std::string("ste"));
+  return method == "ste" ? "STE (" + settings.at("plume_model").get<std::string>() + ")" : method;
+}
+
+// The options of a method other than STE, for its summary.
+ordered_json method_options_json(const MethodOptions& m) {
+  const methods::TrackingOptions& t = m.tracking;
+  ordered_json j{{"step_m", t.step}, {"detection_threshold", t.detection_threshold}};
+  switch (m.kind) {
+    case MethodKind::SurgeCast:
+      j["max_casts"] = t.max_casts;
+      break;
+    case MethodKind::Zigzag:
+      j["zigzag_alpha_deg"] = t.zigzag_alpha_deg;
+      j["zigzag_flip"] = t.zigzag_flip == methods::ZigzagFlip::OnLoss ? "loss" : "detection";
+      j["max_misses"] = t.max_misses;
+      break;
+    case MethodKind::PseudoGradient:
+    case MethodKind::PfGradient:
+      j["gradient_beta_deg"] = t.gradient_beta_deg;
+      break;
+    default:
+      break;
+  }
+  if (m.kind == MethodKind::PfGradient || m.kind == MethodKind::PfSweep) {
+    const methods::PfMethodOptions pf = m.pf_in_use();
+    j["particles"] = pf.filter.particles;
+    j["pf_alpha"] = pf.filter.alpha;
+    j["pf_beta"] = pf.filter.beta;
+    j["declare_radius_m"] = pf.declare_radius;
+    j["declare_iterations"] = pf.declare_iterations;
+  }
+  j["max_steps"] = m.max_steps;  // 0: auto (MethodOptions::max_steps_in_use)
+  return j;
+}
+
 std::string evaluation_table(const EvaluationResult& res, const std::string& label,
                              const fs::path& out, bool pictures) {
   std::ostringstream h;
   h << "evaluated " << res.runs.size() << " runs (" << res.maps.size() << " maps, " << label
-    << " plume model) in " << fmt(res.wall_s, 1) << " s\n";
+    << ") in " << fmt(res.wall_s, 1) << " s\n";
   h << std::left << std::setw(22) << "map"
     << " median_err  mean_err  ok@0.5  (95% CI)  ok@1.0  (95% CI)  samples"
-    << "  dist_m  time_s  step_ms  table_s\n";
+    << "  dist_m  time_s  step_ms  table_s" << (res.method != "ste" ? "  reached   d_o" : "")
+    << "\n";
   auto ci = [](const Interval& i) {
     return "(" + fmt(100 * i.lo, 0) + "-" + fmt(100 * i.hi, 0) + ")";
   };
@@ -140,7 +196,12 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
       << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1)
       << std::setw(8) << fmt(s.median_mission_s, 0) << std::setw(9)
       << fmt(1000 * s.median_step_s, 1) << std::setw(9)
-      << (table >= 0 ? fmt(table, 1) : std::string("-")) << "\n";
+      << (table >= 0 ? fmt(table, 1) : std::string("-"));
+    if (res.method != "ste")
+      h << std::setw(9) << fmt(100 * s.reached, 0) + "%" << std::setw(6)
+        << (std::isfinite(s.median_distance_overhead) ? fmt(s.median_distance_overhead)
+                                                      : std::string("-"));
+    h << "\n";
   };
   for (const MapReport& mr : res.maps)
     line(mr.name, mr.stats, mr.table_build_s);
@@ -160,10 +221,13 @@ Report run_report(const Scenario& scenario, Vec2 source, const LocalizationResul
 
 RunPictures write_run_pictures(const Scenario& sc, Vec2 source, const LocalizationResult& r,
                                const fs::path& dir) {
-  RunPictures p{dir / "trajectory.png", dir / "posterior.png"};
-  const RunToDraw run = run_to_draw(sc.map(), r, source, to_string(sc.options().model));
+  RunPictures p{dir / "trajectory.png", {}};
+  const RunToDraw run = run_to_draw(sc.map(), r, source, run_label(sc.options()));
   write_png(draw_trajectory(sc.map(), sc.mean_plume(source), run), p.trajectory);
-  write_png(draw_posterior(sc.map(), run), p.posterior);
+  if (!r.posterior.marginal.values.empty()) {
+    p.posterior = dir / "posterior.png";
+    write_png(draw_posterior(sc.map(), run), p.posterior);
+  }
   return p;
 }
 
@@ -205,36 +269,39 @@ std::string median_run_note(const std::vector<RunRecord>& runs) {
          fmt(summarise(all).median_error_m) + " m";
 }
 
-AfterMap trajectory_pictures(const fs::path& dir, const std::vector<std::string>& picture_names,
-                             PlumeModelKind model) {
-  return [dir, picture_names, model](const Scenario& sc, const std::vector<RunRecord>& runs) {
+AfterMap trajectory_pictures(const fs::path& dir, const std::vector<std::string>& picture_names) {
+  return [dir, picture_names](const Scenario& sc, const std::vector<RunRecord>& runs) {
     const RunRecord& r = median_run(runs);
     fs::create_directories(dir / "trajectories");
     write_png(draw_trajectory(sc.map(), sc.mean_plume(r.source),
-                              run_to_draw(r, to_string(model), median_run_note(runs))),
+                              run_to_draw(r, run_label(sc.options()), median_run_note(runs))),
               dir / "trajectories" / picture_names.at(r.map_index));
   };
 }
 
 ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& map_dir) {
   const LikelihoodOptions l = eo.ste.likelihood_options();
-  return {{"ok", true},
-          {"map_dir", provenance_path(map_dir)},
-          {"plume_model", to_string(eo.ste.model)},
-          {"runs_per_source", eo.runs},
-          {"sources_per_map",
-           eo.source_count > 0 ? ordered_json(eo.source_count) : ordered_json("all")},
-          {"seed", eo.seed},
-          {"seeds", eo.seeds},
-          {"sigma_m", l.sigma_m},
-          {"sigma_rel", l.sigma_rel},
-          {"sigma_std", l.sigma_std},
-          {"source_cell", source_cell_json(eo.ste)},
-          {"noise", eo.ste.world.noise},
-          {"occlusion", eo.ste.world.filament.occlusion},
-          {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
-          {"gas_sensor", eo.ste.world.sensor.name},
-          {"sensor_baseline", eo.ste.world.sensor.baseline}};
+  ordered_json j{{"ok", true},
+                 {"map_dir", provenance_path(map_dir)},
+                 {"method", to_string(eo.ste.method.kind)},
+                 {"plume_model", to_string(eo.ste.model)},
+                 {"runs_per_source", eo.runs},
+                 {"sources_per_map",
+                  eo.source_count > 0 ? ordered_json(eo.source_count) : ordered_json("all")},
+                 {"seed", eo.seed},
+                 {"seeds", eo.seeds},
+                 {"sigma_m", l.sigma_m},
+                 {"sigma_rel", l.sigma_rel},
+                 {"sigma_std", l.sigma_std},
+                 {"source_cell", source_cell_json(eo.ste)},
+                 {"noise", eo.ste.world.noise},
+                 {"occlusion", eo.ste.world.filament.occlusion},
+                 {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
+                 {"gas_sensor", eo.ste.world.sensor.name},
+                 {"sensor_baseline", eo.ste.world.sensor.baseline}};
+  if (!uses_plume_model(eo.ste.method.kind))
+    j["method_options"] = method_options_json(eo.ste.method);
+  return j;
 }
 
 Report evaluation_report(const EvaluationResult& res, const ordered_json& settings,
@@ -242,14 +309,13 @@ Report evaluation_report(const EvaluationResult& res, const ordered_json& settin
   ordered_json maps = ordered_json::array();
   for (const MapReport& mr : res.maps) {
     ordered_json j{{"map", mr.name}};
-    j.update(stats_json(mr.stats));
+    j.update(stats_json(mr.stats, res.method != "ste"));
     maps.push_back(j);
   }
   ordered_json summary = settings;
-  summary["overall"] = stats_json(res.overall);
+  summary["overall"] = stats_json(res.overall, res.method != "ste");
   summary["maps"] = maps;
-  const std::string label = settings.at("plume_model").get<std::string>();
-  return {summary, evaluation_table(res, label, out, pictures)};
+  return {summary, evaluation_table(res, summary_label(settings), out, pictures)};
 }
 
 Report evaluation_report(const EvaluationResult& res, const EvaluationOptions& eo,
@@ -276,16 +342,15 @@ void write_evaluation_files(const fs::path& dir, const EvaluationResult& res,
   std::vector<std::string> labels;
   for (std::size_t m = 0; m < res.maps.size(); ++m)
     labels.push_back(res.maps[m].name);
-  const std::string label = files.summary.at("plume_model").get<std::string>();
+  const std::string label = summary_label(files.summary);
   write_file_atomic(dir / "runs.csv", files.runs_csv);
   write_file_atomic(dir / "summary.json", files.summary.dump(2) + "\n");
   write_file_atomic(dir / "timings.csv", files.timings_csv);
   write_file_atomic(dir / "timings.json", files.timings.dump(2) + "\n");
   write_png(draw_box_plot(per_map(res, true), labels, "error [m]",
-                          "STE (" + label + ") localization error per test map", 0.5),
+                          label + " localization error per map", 0.5),
             dir / "boxplot-error.png");
-  write_png(draw_box_plot(per_map(res, false), labels, "samples",
-                          "STE (" + label + ") samples per test map"),
+  write_png(draw_box_plot(per_map(res, false), labels, "samples", label + " samples per map"),
             dir / "boxplot-samples.png");
 }
 

@@ -46,7 +46,7 @@ std::string median_run_note(const std::vector<RunRecord>& runs);
 // An AfterMap (evaluate()) that draws each map's median run into
 // dir/trajectories/<picture_names[map]>.
 AfterMap trajectory_pictures(const std::filesystem::path& dir,
-                             const std::vector<std::string>& picture_names, PlumeModelKind model);
+                             const std::vector<std::string>& picture_names);
 
 // What was evaluated and how: summary.json's keys before "overall" (the options that shape the
 // results; never the threads or a time). `map_dir` is the folder the maps came from, as the user

@@ -106,6 +106,11 @@ PlumeModelKind parse_plume_model_kind(const std::string& name) {
                     "unknown plume model '" + name + "'; use surrogate, gaussian or physics");
 }
 
+std::string run_label(const SteOptions& options) {
+  return uses_plume_model(options.method.kind) ? to_string(options.model)
+                                               : to_string(options.method.kind);
+}
+
 const char* to_string(NavigationOptions::Reward reward) {
   return reward == NavigationOptions::Reward::Kl ? "kl" : "expected";
 }
@@ -157,9 +162,10 @@ int resolve_max_samples(int max_samples, std::size_t floor_goals, double floor_s
 Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
   options.validate();
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
-  if (options.model == PlumeModelKind::Physics)
+  const bool model = uses_plume_model(options.method.kind);
+  if (model && options.model == PlumeModelKind::Physics)
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell", kBytesPerSourceCell);
-  if (options.model == PlumeModelKind::Surrogate)
+  if (model && options.model == PlumeModelKind::Surrogate)
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
@@ -167,7 +173,8 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
                                    : cfd::read_wind(options.wind_dir, map_);
   wind_s_ = since(t0);
   t0 = Clock::now();
-  model_ = make_model(map_, wind_, options, table_from_cache_);
+  if (uses_plume_model(options.method.kind))
+    model_ = make_model(map_, wind_, options, table_from_cache_);
   model_build_s_ = since(t0);
   planner::PlannerOptions po;
   po.margin = options.margin;
@@ -270,12 +277,35 @@ std::unique_ptr<Estimator> Scenario::make_estimator(std::uint64_t seed) const {
                                        options_.mh, splitmix64(stream_seed(seed, SteStream::Mh)));
 }
 
+const ForwardModel& Scenario::model() const {
+  if (!model_)
+    throw std::logic_error("the " + std::string(to_string(options_.method.kind)) +
+                           " method has no plume model");
+  return *model_;
+}
+
 LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {
   check_source(source);
   start = check_start(start);
-  const std::unique_ptr<Estimator> estimator = make_estimator(seed);
   SimulatedWorld world(map_, wind_, source, options_.world, seed);
-  return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);
+  if (uses_plume_model(options_.method.kind)) {
+    const std::unique_ptr<Estimator> estimator = make_estimator(seed);
+    return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);
+  }
+  const std::unique_ptr<methods::LocalizationMethod> method =
+      make_method(options_.method, {&map_}, stream_seed(seed, SteStream::Method));
+  MethodRunOptions o;
+  o.space = space_.get();
+  if (stops_in_source_box(options_.method.kind)) o.box = source_box(source);
+  return run_method(start, *method, world, *planner_, o);
+}
+
+SourceBox Scenario::source_box(Vec2 source) const {
+  SourceBox box;
+  box.source = source;
+  const Vec2 w = wind_.at(source);
+  if (norm(w) > 1e-9) box.downwind = (1.0 / norm(w)) * w;
+  return box;
 }
 
 Grid<double> Scenario::mean_plume(Vec2 source) const {

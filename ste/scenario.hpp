@@ -16,6 +16,8 @@
 #include "ste/forward_model.hpp"
 #include "ste/gaussian_plume.hpp"
 #include "ste/localizer.hpp"
+#include "ste/method_choice.hpp"
+#include "ste/method_run.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/physics_plume.hpp"
 #include "ste/seeds.hpp"
@@ -52,6 +54,9 @@ struct SteLikelihood {
 // model is the surrogate; its CNN file (model_path) has no default here, since where the shipped
 // model lies is the CLI's to say (it fills in data/models/plume-unet.pkcnn).
 struct SteOptions {
+  // The localization method (--method): plumekit's STE, or one of the seeds' trackers and
+  // particle filters, which use no plume model (the model's options below are then unused).
+  MethodOptions method;
   PlumeModelKind model = PlumeModelKind::Surrogate;
   std::string model_path;  // the surrogate's CNN file (plumekit-cnn)
   SteLikelihood likelihood;
@@ -89,6 +94,10 @@ struct SteOptions {
   void check_model_file() const;
 };
 
+// What a run is labelled with in reports and pictures: STE's plume model ("surrogate", ...), or
+// the method's name ("surge-cast", ...).
+std::string run_label(const SteOptions& options);
+
 const char* to_string(NavigationOptions::Reward reward);
 // "kl", "expected"; OptionError on ste.navigation.reward otherwise.
 NavigationOptions::Reward parse_reward(const std::string& name);
@@ -118,7 +127,9 @@ class Scenario {
   const Map& map() const { return map_; }
   const SteOptions& options() const { return options_; }
   const cfd::WindField& wind() const { return wind_; }
-  const ForwardModel& model() const { return *model_; }
+  // The plume model; STE's alone (has_model() is false for the other methods).
+  bool has_model() const { return model_ != nullptr; }
+  const ForwardModel& model() const;
   const planner::FreeSpace& free_space() const { return *space_; }
   double wind_s() const { return wind_s_; }
   // The plume model's build: the surrogate's table, and the readings at the floor's goals.
@@ -144,8 +155,12 @@ class Scenario {
   const planner::Planner& planner() const { return *planner_; }
   const Navigator& navigator() const { return *navigator_; }
 
-  // One localization run; `seed` drives the plume, the sensor noise and MH.
+  // One localization run with the options' method; `seed` drives the plume, the sensor noise, MH
+  // and the particle filter.
   LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;
+
+  // The plume trackers' success box of a source: along the steady wind at the source.
+  SourceBox source_box(Vec2 source) const;
 
   // The steady advection-diffusion mean of a source on the flow grid: the
   // picture's background (the filament plume's long-time mean, up to its meander).

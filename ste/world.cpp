@@ -68,18 +68,23 @@ Reading SimulatedWorld::stop(Vec2 p) {
       std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
   NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
   double sum = 0.0;
-  Vec2 wind_sum;  // the wind that carries the gas at p, at each reading
+  Vec2 wind_sum;       // the wind that carries the gas at p, at each reading
+  Vec2 direction_sum;  // their unit vectors: the circular variance
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = gas_.read(sim_.concentration_at(p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
-    wind_sum = wind_sum + sim_.wind_at(p);
+    const Vec2 w = sim_.wind_at(p);
+    wind_sum = wind_sum + w;
+    if (const double speed = norm(w); speed > 0.0)
+      direction_sum = direction_sum + (1.0 / speed) * w;
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval
   Reading r;
   r.gas = sum / n;
   r.wind = (1.0 / n) * wind_sum;
+  r.wind_variance = std::clamp(1.0 - norm((1.0 / n) * direction_sum), 0.0, 1.0);
   if (const double sigma = options_.direction_noise_deg(); sigma > 0.0) {
     NormalSampler draw;
     const double a = normal(draw, wind_rng_, 0.0, sigma) * kPi / 180.0;

@@ -53,7 +53,10 @@ double table35_direction_noise(double averaging_s);
 struct Reading {
   double gas = 0.0;  // the mean gas reading over the stop
   Vec2 wind;         // the anemometer's mean wind over the stop, with its direction error
-  Vec2 position;     // where the robot records the stop: its position plus position noise
+  // The circular variance S0 = 1 - R of the wind's direction over the stop's readings (seed 000
+  // App. A): 0 in a steady wind, larger where it meanders.
+  double wind_variance = 0.0;
+  Vec2 position;  // where the robot records the stop: its position plus position noise
 };
 
 class SimulatedWorld {
@@ -68,6 +71,7 @@ class SimulatedWorld {
   double time() const { return sim_.time(); }  // simulated seconds since release
   double spinup_s() const { return spinup_; }  // before the robot started
   Vec2 source() const { return source_; }
+  const Map& map() const { return map_; }
 
  private:
   void advance(double seconds);

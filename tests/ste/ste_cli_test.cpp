@@ -36,6 +36,44 @@ TEST_F(SteCli, LocalizeJsonAndPictures) {
   EXPECT_TRUE(std::filesystem::exists(dir / "run" / "run.json"));
 }
 
+// Issue 20: every method through the same commands, outputs and pictures.
+TEST_F(SteCli, LocalizeAndEvaluateRunAnyMethod) {
+  const std::string map = write_map();
+  CliResult r = run("localize " + map + " --source 4.5,0.5 --start 1,2.5 --method surge-cast " +
+                    "--seed 3 --out " + (dir / "track").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  json j = json::parse(r.out);
+  EXPECT_EQ(j["method"], "surge-cast");
+  EXPECT_TRUE(j.contains("reached_source_box"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "track" / "trajectory.png"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "track" / "posterior.png"));  // a tracker has none
+  EXPECT_FALSE(j["out"].contains("posterior"));
+  r = run("localize " + map + " --source 4.5,0.5 --start 1,2.5 --method pf-sweep --seed 3 --out " +
+          (dir / "pf").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "pf" / "posterior.png"));  // its particles
+  r = run("evaluate --map-dir " + (dir / "maps").string() +
+          " --runs 1 --method zigzag --max-steps 30 --json --out " + (dir / "ev").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = json::parse(r.out);
+  EXPECT_EQ(j["method"], "zigzag");
+  EXPECT_TRUE(j["overall"].contains("reached_source_box"));
+  EXPECT_EQ(j["method_options"]["zigzag_alpha_deg"].get<double>(), 60.0);
+  const std::string csv = slurp(dir / "ev" / "runs.csv");
+  EXPECT_EQ(csv.rfind("map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,"
+                      "estimate_y,error_m,samples,distance_m,mission_s,stopped_by,reached,"
+                      "distance_overhead\n",
+                      0),
+            0u)
+      << csv;
+  r = run("localize " + map + " --source 4.5,0.5 --method infotaxis");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--method: unknown method 'infotaxis'"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.5,0.5 --method zigzag --zigzag-angle 95");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--zigzag-angle"), std::string::npos) << r.err;
+}
+
 TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   const std::string map = write_map();
   CliResult r = run("localize " + map + " --source 2.7,1.5 --plume-model physics");

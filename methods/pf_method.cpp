@@ -1,0 +1,166 @@
+#include "methods/pf_method.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "core/error.hpp"
+#include "core/option_check.hpp"
+#include "methods/wind_statistics.hpp"
+
+namespace plumekit::methods {
+
+namespace {
+
+const PfMethodOptions& validated(const PfMethodOptions& options) {
+  options.validate();
+  return options;
+}
+
+void check_observation(const Observation& o, const char* who) {
+  if (!is_finite(o.position) || !std::isfinite(o.gas) || !is_finite(o.wind) ||
+      !std::isfinite(o.wind_variance))
+    throw InputError(std::string(who) + ": an observation's position or reading is not finite");
+}
+
+// The stops of one line, ascending across the wind; points a round-off outside the rectangle are
+// moved onto its edge.
+std::vector<Vec2> line_stops(const SearchArea& area, Vec2 d, Vec2 c, double a, double b_lo,
+                             int count, double step) {
+  const double tol = area.map->round_off();
+  std::vector<Vec2> stops;
+  for (int j = 0; j <= count; ++j) {
+    Vec2 q = a * d + (b_lo + j * step) * c;
+    if (q.x < -tol || q.x > area.width() + tol || q.y < -tol || q.y > area.height() + tol) continue;
+    q = {std::clamp(q.x, 0.0, area.width()), std::clamp(q.y, 0.0, area.height())};
+    if (area.is_free(q)) stops.push_back(q);
+  }
+  return stops;
+}
+
+}  // namespace
+
+ParticleFilterOptions pf_options_for(PfExploration exploration, ParticleFilterOptions base) {
+  base.alpha = exploration == PfExploration::Sweep ? 0.4 : 0.2;
+  base.beta = exploration == PfExploration::Sweep ? 0.9 : 0.8;
+  return base;
+}
+
+void SweepPatternOptions::validate() const {
+  check_range("sweep.step", step, 0.1, 100.0, "m", "the default is 1 m");
+  check_count("sweep.max_steps", max_steps, 1, 10000000, "the default is 2000");
+}
+
+std::vector<Vec2> sweep_pattern(const SearchArea& area, Vec2 start, Vec2 wind, double step) {
+  const Vec2 d = norm(wind) < 1e-9 ? Vec2{1.0, 0.0} : (1.0 / norm(wind)) * wind;  // downwind
+  const Vec2 c{-d.y, d.x};  // across: d turned 90 deg counter-clockwise, exactly
+  double a_lo = 1e300, a_hi = -1e300, b_lo = 1e300, b_hi = -1e300;
+  for (Vec2 p : {Vec2{0.0, 0.0}, Vec2{area.width(), 0.0}, Vec2{0.0, area.height()},
+                 Vec2{area.width(), area.height()}}) {
+    a_lo = std::min(a_lo, dot(p, d));
+    a_hi = std::max(a_hi, dot(p, d));
+    b_lo = std::min(b_lo, dot(p, c));
+    b_hi = std::max(b_hi, dot(p, c));
+  }
+  const int lines = static_cast<int>(std::floor((a_hi - a_lo) / step + 1e-9));
+  const int per_line = static_cast<int>(std::floor((b_hi - b_lo) / step + 1e-9));
+  std::vector<Vec2> pattern;
+  Vec2 last = start;
+  for (int k = 0; k <= lines; ++k) {
+    std::vector<Vec2> stops = line_stops(area, d, c, a_hi - k * step, b_lo, per_line, step);
+    if (stops.empty()) continue;
+    // Boustrophedon: each line starts at its end nearer the last stop.
+    if (norm(stops.back() - last) < norm(stops.front() - last))
+      std::reverse(stops.begin(), stops.end());
+    pattern.insert(pattern.end(), stops.begin(), stops.end());
+    last = pattern.back();
+  }
+  return pattern;
+}
+
+PredefinedSweep::PredefinedSweep(const SearchArea& area, const SweepPatternOptions& options)
+    : area_(area), options_(options) {
+  options_.validate();
+}
+
+void PredefinedSweep::observe(const Observation& o) {
+  check_observation(o, "predefined-sweep");
+  if (!built_) {
+    pattern_ = sweep_pattern(area_, o.position, o.wind, options_.step);
+    built_ = true;
+  }
+  ++stops_;
+  awaiting_ = false;
+}
+
+Move PredefinedSweep::next(Vec2 robot) {
+  while (next_ < pattern_.size() && norm(pattern_[next_] - robot) < 0.5 * options_.step)
+    ++next_;
+  awaiting_ = true;
+  if (next_ >= pattern_.size()) return Move{robot, {}, 0.0};
+  return Move{pattern_[next_++], {}, 0.0};
+}
+
+std::string PredefinedSweep::stopped_by() const {
+  if (built_ && next_ >= pattern_.size() && !awaiting_) return "swept";
+  if (stops_ >= options_.max_steps) return "max_samples";
+  return "";
+}
+
+void PfMethodOptions::validate() const {
+  filter.validate();
+  check_positive("pf.declare_radius", declare_radius, 1000.0, "m", "the default is 0.5 m");
+  check_count("pf.declare_iterations", declare_iterations, 0, 1000000,
+              "e.g. 20 (Li et al.); 0, the default, never declares");
+  check_count("pf.max_steps", max_steps, 1, 10000000, "the default is 2000");
+}
+
+ParticleFilterMethod::ParticleFilterMethod(const SearchArea& area,
+                                           std::unique_ptr<LocalizationMethod> explorer,
+                                           const PfMethodOptions& options, std::string name)
+    : options_(validated(options)),
+      filter_(area, options_.filter, options_.seed),
+      explorer_(std::move(explorer)),
+      name_(std::move(name)) {
+  if (!explorer_) throw std::invalid_argument("ParticleFilterMethod: no explorer");
+  if (name_.empty()) name_ = "pf-" + explorer_->name();
+}
+
+void ParticleFilterMethod::observe(const Observation& o) {
+  check_observation(o, "pf");
+  filter_.update(o);
+  explorer_->observe(o);
+  ++steps_;
+  if (filter_.last_step().detection) detected_ = true;
+  const int k = options_.declare_iterations;
+  if (!detected_ || k == 0) return;
+  recent_.push_back(filter_.estimate());
+  if (static_cast<int>(recent_.size()) > k) recent_.pop_front();
+  if (static_cast<int>(recent_.size()) < k) return;
+  const Vec2 newest = recent_.back();
+  declared_ = std::all_of(recent_.begin(), recent_.end(),
+                          [&](Vec2 p) { return norm(p - newest) <= options_.declare_radius; });
+}
+
+std::optional<Vec2> ParticleFilterMethod::estimate() const {
+  if (steps_ == 0) return std::nullopt;
+  return filter_.estimate();
+}
+
+std::string ParticleFilterMethod::stopped_by() const {
+  if (declared_) return "declared";
+  if (explorer_->stopped()) return explorer_->stopped_by();
+  if (steps_ >= options_.max_steps) return "max_samples";
+  return "";
+}
+
+std::unique_ptr<LocalizationMethod> make_pf_sweep(const SearchArea& area,
+                                                  const PfMethodOptions& options,
+                                                  const SweepPatternOptions& sweep) {
+  return std::make_unique<ParticleFilterMethod>(
+      area, std::make_unique<PredefinedSweep>(area, sweep), options, "pf-sweep");
+}
+
+}  // namespace plumekit::methods

@@ -1,0 +1,112 @@
+#include "ste/method_choice.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/option_check.hpp"
+
+namespace plumekit::ste {
+
+namespace {
+
+struct Named {
+  MethodKind kind;
+  const char* name;
+};
+constexpr Named kMethods[] = {
+    {MethodKind::Ste, "ste"},
+    {MethodKind::Sweeping, "sweeping"},
+    {MethodKind::SurgeCast, "surge-cast"},
+    {MethodKind::Zigzag, "zigzag"},
+    {MethodKind::PseudoGradient, "pseudo-gradient"},
+    {MethodKind::PfGradient, "pf-gradient"},
+    {MethodKind::PfSweep, "pf-sweep"},
+};
+
+}  // namespace
+
+const char* to_string(MethodKind kind) {
+  for (const Named& m : kMethods)
+    if (m.kind == kind) return m.name;
+  return "?";
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const Named& m : kMethods)
+    names.emplace_back(m.name);
+  return names;
+}
+
+MethodKind parse_method_kind(const std::string& name) {
+  for (const Named& m : kMethods)
+    if (name == m.name) return m.kind;
+  std::string all;
+  for (const Named& m : kMethods)
+    all += std::string(all.empty() ? "" : ", ") + m.name;
+  throw OptionError("ste.method", "unknown method '" + name + "'; use one of " + all);
+}
+
+bool stops_in_source_box(MethodKind kind) {
+  return kind != MethodKind::Ste && kind != MethodKind::PfSweep;
+}
+
+methods::PfMethodOptions MethodOptions::pf_in_use() const {
+  methods::PfMethodOptions o = pf;
+  o.filter = methods::pf_options_for(kind == MethodKind::PfSweep ? methods::PfExploration::Sweep
+                                                                 : methods::PfExploration::Gradient,
+                                     pf.filter);
+  if (pf_alpha) o.filter.alpha = *pf_alpha;
+  if (pf_beta) o.filter.beta = *pf_beta;
+  o.filter.detection_limit = tracking.detection_threshold;
+  o.max_steps = tracking.max_steps;
+  return o;
+}
+
+int MethodOptions::max_steps_in_use(double area) const {
+  if (max_steps > 0) return max_steps;
+  return std::max(50, static_cast<int>(std::ceil(2.0 * area / (tracking.step * tracking.step))));
+}
+
+void MethodOptions::validate() const {
+  check_count("tracking.max_steps", max_steps, 0, 10000000, "0 means auto");
+  tracking.validate();
+  pf_in_use().validate();
+}
+
+std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& given,
+                                                         const methods::SearchArea& area,
+                                                         std::uint64_t seed) {
+  MethodOptions options = given;
+  options.validate();
+  options.tracking.max_steps = given.max_steps_in_use(area.width() * area.height());
+  switch (options.kind) {
+    case MethodKind::Ste:
+      throw std::logic_error("make_method: STE is built by its Scenario");
+    case MethodKind::Sweeping:
+      return methods::make_sweeping(area, options.tracking);
+    case MethodKind::SurgeCast:
+      return methods::make_surge_cast(area, options.tracking);
+    case MethodKind::Zigzag:
+      return methods::make_zigzag(area, options.tracking);
+    case MethodKind::PseudoGradient:
+      return methods::make_pseudo_gradient(area, options.tracking);
+    case MethodKind::PfGradient:
+    case MethodKind::PfSweep: {
+      methods::PfMethodOptions pf = options.pf_in_use();
+      pf.seed = seed;
+      std::unique_ptr<methods::LocalizationMethod> explorer;
+      if (options.kind == MethodKind::PfGradient)
+        explorer = methods::make_pseudo_gradient(area, options.tracking);
+      else
+        explorer = std::make_unique<methods::PredefinedSweep>(
+            area, methods::SweepPatternOptions{options.tracking.step, options.tracking.max_steps});
+      return std::make_unique<methods::ParticleFilterMethod>(area, std::move(explorer), pf,
+                                                             to_string(options.kind));
+    }
+  }
+  throw std::logic_error("make_method: unknown method");
+}
+
+}  // namespace plumekit::ste

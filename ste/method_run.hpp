@@ -1,0 +1,41 @@
+#pragma once
+// Runs any localization method (methods/method.hpp) against the simulated world: stop and read
+// the sensors, let the method observe and decide, drive to its goal along a planner path around
+// the obstacles, and record every stop. localize() is this loop with plumekit's STE.
+#include <optional>
+
+#include "methods/method.hpp"
+#include "planner/free_space.hpp"
+#include "planner/planner.hpp"
+#include "ste/localizer.hpp"
+#include "ste/world.hpp"
+
+namespace plumekit::ste {
+
+// The plume trackers' success area (seed 002 §5.1): 1.5 m along the wind by 2 m across it,
+// right downwind of the source. A tracker cannot know the source; the runner ends its run when a
+// stop lies in this box ("reached").
+struct SourceBox {
+  Vec2 source;
+  Vec2 downwind{1.0, 0.0};  // unit vector: the mean wind's direction at the source
+  double along = 1.5, across = 2.0;
+  bool contains(Vec2 p) const;
+};
+
+struct MethodRunOptions {
+  std::optional<SourceBox> box;  // stop a run whose stop lies in it
+  // Moves goals off obstacles and walls (the planner's margin); needed by every method that does
+  // not plan its own paths (all but STE).
+  const planner::FreeSpace* space = nullptr;
+  // A guard on every method (each has its own budget below this): no run is longer.
+  int max_stops = 2000;
+};
+
+// One run of `method` from `start`. A goal the robot cannot reach leaves it where it is (the
+// method sees that in its next observation). The result's estimate is the method's, or where the
+// robot ended for a method without one (a plume tracker).
+LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
+                              SimulatedWorld& world, const planner::Planner& planner,
+                              const MethodRunOptions& options);
+
+}  // namespace plumekit::ste

@@ -1,0 +1,114 @@
+// Any localization method run against the simulated world (ste/method_run.hpp): goals moved off
+// obstacles, the trackers' source box, and every method through Scenario::run.
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "core/map.hpp"
+#include "ste/method_run.hpp"
+#include "ste/scenario.hpp"
+
+namespace plumekit::ste {
+namespace {
+
+Map block_map() {
+  Map m = default_arena(6.0, 3.0);
+  m.name = "block";
+  m.obstacles = {{{2.5, 1.0}, {3.0, 1.0}, {3.0, 2.0}, {2.5, 2.0}}};
+  return m;
+}
+
+// Asks for the same goals in turn, then stops: what the runner does with each.
+class ScriptedMethod : public methods::LocalizationMethod {
+ public:
+  explicit ScriptedMethod(std::vector<Vec2> goals) : goals_(std::move(goals)) {}
+  std::string name() const override { return "scripted"; }
+  void observe(const methods::Observation& o) override { seen.push_back(o); }
+  methods::Move next(Vec2) override { return {goals_.at(seen.size() - 1), {}, 0.0}; }
+  std::optional<Vec2> estimate() const override { return std::nullopt; }
+  std::string stopped_by() const override {
+    return seen.size() > goals_.size() ? "max_samples" : "";
+  }
+  std::vector<methods::Observation> seen;
+
+ private:
+  std::vector<Vec2> goals_;
+};
+
+TEST(MethodRun, GoalsInObstaclesOrOutsideAreMovedToTheNearestFreePoint) {
+  const Map map = block_map();
+  SteOptions o;
+  o.method.kind = MethodKind::SurgeCast;  // no plume model: the scenario builds none
+  const Scenario sc(map, o);
+  EXPECT_FALSE(sc.has_model());
+  SimulatedWorld world(map, sc.wind(), {4.5, 0.5}, o.world, 3);
+  // Inside the block, beyond the right wall, and a reachable free point.
+  ScriptedMethod method({{2.75, 1.5}, {7.0, 1.5}, {1.0, 2.5}});
+  MethodRunOptions ro;
+  ro.space = &sc.free_space();
+  const LocalizationResult r = run_method({1.0, 0.5}, method, world, sc.planner(), ro);
+  ASSERT_EQ(r.steps.size(), 4u);
+  EXPECT_EQ(r.stopped_by, "max_samples");
+  for (const Step& s : r.steps)
+    EXPECT_TRUE(sc.free_space().contains(s.position));
+  // Moved to the block's edge at the margin, and to the right wall's margin.
+  EXPECT_NEAR(norm(r.steps[1].position - Vec2{2.75, 1.5}), 0.25 + o.margin, 0.01);
+  EXPECT_NEAR(r.steps[2].position.x, map.width - o.margin, 0.01);
+  EXPECT_NEAR(r.steps[3].position.x, 1.0, 1e-9);
+  // The method saw each stop's reading at the stop (no position noise here).
+  ASSERT_EQ(method.seen.size(), 4u);
+  EXPECT_EQ(method.seen[2].position, r.steps[2].position);
+  EXPECT_EQ(method.seen[2].gas, r.steps[2].value);
+  // Without an estimate of its own, a method's estimate is where it ended.
+  EXPECT_EQ(r.estimate, r.steps.back().position);
+  EXPECT_TRUE(r.posterior.marginal.values.empty());
+}
+
+TEST(MethodRun, TheSourceBoxLiesDownwindOfTheSource) {
+  SourceBox box;
+  box.source = {2.0, 4.0};
+  box.downwind = {1.0, 0.0};
+  EXPECT_TRUE(box.contains({2.0, 4.0}));
+  EXPECT_TRUE(box.contains({3.5, 4.99}));
+  EXPECT_FALSE(box.contains({3.6, 4.0}));  // past 1.5 m downwind
+  EXPECT_FALSE(box.contains({1.9, 4.0}));  // upwind of the source
+  EXPECT_FALSE(box.contains({2.5, 5.1}));  // more than 1 m across
+  box.downwind = {0.0, -1.0};              // a wind blowing down
+  EXPECT_TRUE(box.contains({2.9, 2.6}));
+  EXPECT_FALSE(box.contains({2.0, 4.5}));
+}
+
+TEST(MethodRun, EveryMethodRunsOnAMapWithAnObstacleAndRepeatsItself) {
+  const Map map = block_map();
+  for (const std::string& name : method_names()) {
+    if (name == "ste") continue;
+    SteOptions o;
+    o.method.kind = parse_method_kind(name);
+    o.method.max_steps = 40;
+    const Scenario sc(map, o);
+    const LocalizationResult a = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
+    const LocalizationResult b = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
+    EXPECT_EQ(a.method, name);
+    EXPECT_GE(a.samples, 1) << name;
+    EXPECT_LE(a.samples, 40) << name;
+    EXPECT_FALSE(a.stopped_by.empty()) << name;
+    EXPECT_EQ(a.reached, a.stopped_by == "reached") << name;
+    for (const Step& s : a.steps)
+      EXPECT_TRUE(sc.free_space().contains(s.position)) << name;
+    // The same seed gives the same run.
+    ASSERT_EQ(a.steps.size(), b.steps.size()) << name;
+    EXPECT_EQ(a.estimate, b.estimate) << name;
+  }
+}
+
+TEST(MethodRun, UnknownMethodNamesTheFieldAndTheChoices) {
+  try {
+    parse_method_kind("infotaxis");
+    FAIL();
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "ste.method");
+    EXPECT_NE(std::string(e.what()).find("surge-cast"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace plumekit::ste
