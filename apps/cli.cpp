@@ -200,10 +200,11 @@ void add_world_options(CLI::App* command, dataset::FilamentOptions& filament) {
                  ->add_option_function<std::string>(
                      "--world",
                      [&filament](const std::string& name) { dataset::set_world(filament, name); },
-                     "Filament world preset: faithful (--occlusion on --wind-model unsteady) or "
+                     "Filament world preset: faithful (--occlusion on --wind-model unsteady), "
                      "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
-                     "thesis's figures); either flag overrides its half")
-                 ->type_name("faithful|thesis")
+                     "thesis's figures), or neumann (seed 000's filaments in a laminar wind, for "
+                     "its 32 x 8 m tunnel: data/seeds/); either flag overrides its half")
+                 ->type_name("faithful|thesis|neumann")
                  ->default_str(faithful ? "faithful"
                                : thesis ? "thesis"
                                         : "neither"),

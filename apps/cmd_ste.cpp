@@ -157,6 +157,11 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
                  ->type_name("DEG|table35")
                  ->default_str("0"),
              "ste.world.wind_direction_noise");
+  bind_to(cmd, "--wind-variance-noise", o.world.wind_variance_noise_deg,
+          "Direction noise on each single wind reading of a stop, degrees, from which the stop's "
+          "circular variance (the particle filter's) is computed (seed 002: 23.08; 0: the "
+          "world's own wind)",
+          "ste.world.wind_variance_noise");
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--position-noise",
@@ -278,6 +283,29 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m) {
                 "Particle filter: penalty beta on a non-detection (default: 0.8 with "
                 "pf-gradient, 0.9 with pf-sweep, seed 001)",
                 "pf.beta");
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--apf-weights",
+                    [&m](const std::string& text) {
+                      std::istringstream in(text);
+                      char c1 = 0, c2 = 0;
+                      if (!(in >> m.apf.beta_m >> c1 >> m.apf.beta_v >> c2 >> m.apf.beta_c) ||
+                          c1 != ',' || c2 != ',' || !(in >> std::ws).eof())
+                        throw OptionError("apf.beta_c", "expected M,V,C, got '" + text + "'");
+                    },
+                    "APF: weights of the mean, variance and confidence terms, summing to 1 "
+                    "(seed 000 ch. 8's best)")
+                 ->type_name("M,V,C")
+                 ->default_str("0.1,0.1,0.8"),
+             "apf.beta_c");
+  bind_field(cmd,
+             cmd->add_option_function<std::string>(
+                    "--apf-locality",
+                    [&m](const std::string& s) { m.apf.locality = gdm::parse_locality(s); },
+                    "APF: which of the suggestions to take: none (the best), closest (A) or "
+                    "most-suggested (B)")
+                 ->default_str(gdm::to_string(m.apf.locality)),
+             "apf.locality");
 }
 
 void add_ste_options(CLI::App* cmd, ste::SteOptions& o) {
@@ -298,7 +326,8 @@ void report_run(Report r, const Map& map, const std::optional<Vec2>& requested, 
 
 void add_localize(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "localize", "Find a gas source with a simulated robot (source term estimation)");
+      "localize",
+      "Find a gas source with a simulated robot (source term estimation, or any --method)");
   struct Args {
     std::string map, source, start, out;
     std::uint64_t seed = kDefaultSeed;

@@ -95,9 +95,25 @@ void FilamentOptions::validate() const {
 }
 
 void set_world(FilamentOptions& options, const std::string& name) {
-  if (name != "faithful" && name != "thesis")
-    throw OptionError("plume.world", "unknown world '" + name + "'; use faithful or thesis");
+  if (name != "faithful" && name != "thesis" && name != "neumann")
+    throw OptionError("plume.world",
+                      "unknown world '" + name + "'; use faithful, thesis or neumann");
   options.occlusion = options.unsteady_wind = name == "faithful";
+  if (name != "neumann") return;
+  // Seed 000 Eqs. 4.1-4.2 with its step taken as 0.1 s (the seed gives none), also the
+  // integration step (5 cm at 0.5 m/s: one flow cell): a walk of
+  // sigma_p = 0.1 m per step is 0.1 / sqrt(0.1) m/sqrt(s), and R grows by gamma / (2 R) per step
+  // with gamma = 4e-7, i.e. dR^2/dt = gamma / 0.1 s. "Predominantly laminar": no meander.
+  constexpr double kSeedStep = 0.1;
+  options.release_per_second = 500.0;
+  options.initial_radius = 0.2;
+  options.sigma_walk = 0.1 / std::sqrt(kSeedStep);
+  options.growth = 4e-7 / kSeedStep;
+  options.meander_speed = 0.0;
+  options.dt = kSeedStep;
+  // The plume takes 64 s to cross the tunnel at 0.5 m/s (the seed shows it at 99 s).
+  options.min_spinup = 100.0;
+  options.max_spinup = 200.0;
 }
 
 double FilamentOptions::max_filaments() const {

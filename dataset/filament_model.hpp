@@ -93,8 +93,11 @@ struct FilamentOptions {
 };
 
 // The world presets (--world, dataset/README.md, "Worlds"): "faithful" (the
-// defaults: occlusion and the unsteady wind) or "thesis" (neither). Sets only
-// those two fields; OptionError "plume.world" for another name.
+// defaults: occlusion and the unsteady wind) or "thesis" (neither), which set only
+// those two fields; or "neumann", seed 000 §4.1's filaments in a laminar wind (no
+// meander, 500 filaments/s of 0.2 m, sigma_p 0.1 m per 0.1 s step (dt 0.1 s), almost no growth,
+// a spin-up of at least 100 s), for the seeds' 32 x 8 m tunnel. OptionError
+// "plume.world" for another name.
 void set_world(FilamentOptions& options, const std::string& name);
 
 struct Filament {

@@ -22,6 +22,7 @@ constexpr Named kMethods[] = {
     {MethodKind::PseudoGradient, "pseudo-gradient"},
     {MethodKind::PfGradient, "pf-gradient"},
     {MethodKind::PfSweep, "pf-sweep"},
+    {MethodKind::Apf, "apf"},
 };
 
 }  // namespace
@@ -49,7 +50,7 @@ MethodKind parse_method_kind(const std::string& name) {
 }
 
 bool stops_in_source_box(MethodKind kind) {
-  return kind != MethodKind::Ste && kind != MethodKind::PfSweep;
+  return kind != MethodKind::Ste && kind != MethodKind::PfSweep && kind != MethodKind::Apf;
 }
 
 methods::PfMethodOptions MethodOptions::pf_in_use() const {
@@ -73,6 +74,7 @@ void MethodOptions::validate() const {
   check_count("tracking.max_steps", max_steps, 0, 10000000, "0 means auto");
   tracking.validate();
   pf_in_use().validate();
+  apf.validate();
 }
 
 std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& given,
@@ -104,6 +106,11 @@ std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& gi
             area, methods::SweepPatternOptions{options.tracking.step, options.tracking.max_steps});
       return std::make_unique<methods::ParticleFilterMethod>(area, std::move(explorer), pf,
                                                              to_string(options.kind));
+    }
+    case MethodKind::Apf: {
+      gdm::ApfOptions apf = options.apf;
+      apf.max_steps = options.tracking.max_steps;
+      return gdm::make_apf_mapping(area, apf);
     }
   }
   throw std::logic_error("make_method: unknown method");

@@ -7,19 +7,30 @@
 #include <string>
 #include <vector>
 
+#include "gdm/apf_planner.hpp"
 #include "methods/method.hpp"
 #include "methods/pf_method.hpp"
 #include "methods/plume_tracking.hpp"
 
 namespace plumekit::ste {
 
-enum class MethodKind { Ste, Sweeping, SurgeCast, Zigzag, PseudoGradient, PfGradient, PfSweep };
+enum class MethodKind {
+  Ste,
+  Sweeping,
+  SurgeCast,
+  Zigzag,
+  PseudoGradient,
+  PfGradient,
+  PfSweep,
+  Apf
+};
 const char* to_string(MethodKind kind);
 // The --method names in order: "ste", "sweeping", ... OptionError on ste.method otherwise.
 MethodKind parse_method_kind(const std::string& name);
 std::vector<std::string> method_names();
 
-// STE needs a plume model; the others read only the gas, the wind and the pose.
+// STE needs a plume model; the others read only the gas, the wind and the pose. (The APF's gas
+// maps are built from the readings.)
 inline bool uses_plume_model(MethodKind kind) {
   return kind == MethodKind::Ste;
 }
@@ -44,6 +55,9 @@ struct MethodOptions {
   // Unset: the seeds' best for the exploration (seed 001: (0.2, 0.8) with the pseudo-gradient,
   // (0.4, 0.9) with the predefined sweep).
   std::optional<double> pf_alpha, pf_beta;
+  // Adaptive sampling for gas distribution mapping (seed 000 ch. 8; gdm/README.md); its
+  // max_steps is replaced by the one above.
+  gdm::ApfOptions apf;
   // The filter's options for `kind`: alpha and beta resolved, the detection limit the trackers'
   // detection threshold, the step budget tracking.max_steps.
   methods::PfMethodOptions pf_in_use() const;

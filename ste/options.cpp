@@ -69,6 +69,9 @@ void WorldOptions::validate() const {
   sensor.validate();
   check_non_negative("ste.world.wind_direction_noise", wind_direction_noise_deg, 360.0, "degrees",
                      "0 is an exact anemometer; seed 000 measured 14-29 degrees");
+  check_non_negative("ste.world.wind_variance_noise", wind_variance_noise_deg, 360.0, "degrees",
+                     "0 takes the circular variance from the world's own wind; seed 002 used "
+                     "23.08");
   check_non_negative("ste.world.position_noise", position_noise, 100.0, "m",
                      "0 is an exact position; seed 000's GPS (Eq. 4.3) is 1.08 m");
 }

@@ -271,6 +271,10 @@ Vec2 Scenario::run_start(Vec2 source, int run, std::uint64_t seed) const {
 }
 
 std::unique_ptr<Estimator> Scenario::make_estimator(std::uint64_t seed) const {
+  if (!model_)
+    throw InputError("the " + std::string(to_string(options_.method.kind)) +
+                     " method has no plume model to estimate with: STE's estimator and Mission "
+                     "need --method ste");
   if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get()))
     return std::make_unique<GridEstimator>(*table, options_.likelihood_options(), bins_);
   return std::make_unique<MhEstimator>(*model_, map_, options_.likelihood_options(), bins_,

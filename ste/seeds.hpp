@@ -25,6 +25,7 @@ enum class SteStream : std::uint64_t {
   WindNoise = 0xA7E3,            // the anemometer's direction error (SimulatedWorld)
   PositionNoise = 0x905E,        // the recorded position's error (SimulatedWorld)
   Method = 0x9F17,               // a localization method's own draws (the particle filter)
+  WindSpread = 0x5A0D,           // the single wind readings' direction noise (SimulatedWorld)
 };
 
 inline std::uint64_t stream_seed(std::uint64_t run_seed, SteStream stream) {

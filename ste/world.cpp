@@ -19,6 +19,7 @@ SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 
       noise_rng_(stream_seed(seed, SteStream::SensorNoise)),
       wind_rng_(stream_seed(seed, SteStream::WindNoise)),
       position_rng_(stream_seed(seed, SteStream::PositionNoise)),
+      spread_rng_(stream_seed(seed, SteStream::WindSpread)),
       gas_(options.sensor, 1.0 / options.sample_rate) {
   options.validate();  // the filament simulation (sim_) has checked its own options already
   dataset::spin_up(sim_, options.filament);
@@ -70,6 +71,7 @@ Reading SimulatedWorld::stop(Vec2 p) {
   double sum = 0.0;
   Vec2 wind_sum;       // the wind that carries the gas at p, at each reading
   Vec2 direction_sum;  // their unit vectors: the circular variance
+  NormalSampler spread;
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     double c = gas_.read(sim_.concentration_at(p));
@@ -77,8 +79,14 @@ Reading SimulatedWorld::stop(Vec2 p) {
     sum += c;
     const Vec2 w = sim_.wind_at(p);
     wind_sum = wind_sum + w;
-    if (const double speed = norm(w); speed > 0.0)
+    if (options_.wind_variance_noise_deg > 0.0) {
+      const double a =
+          std::atan2(w.y, w.x) +
+          normal(spread, spread_rng_, 0.0, options_.wind_variance_noise_deg) * kPi / 180.0;
+      direction_sum = direction_sum + Vec2{std::cos(a), std::sin(a)};
+    } else if (const double speed = norm(w); speed > 0.0) {
       direction_sum = direction_sum + (1.0 / speed) * w;
+    }
   }
   advance(1.0 / options_.sample_rate);  // the last reading's interval
   Reading r;

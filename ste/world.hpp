@@ -32,6 +32,11 @@ struct WorldOptions {
   double wind_direction_noise_deg = 0.0;
   bool wind_noise_from_table35 = false;  // use table35_direction_noise(sample_s) instead
   double direction_noise_deg() const;
+  // Std of a direction noise on each of a stop's single wind readings, degrees: the stop's
+  // circular variance S0 (Reading::wind_variance) is then that of the noisy directions, as seed
+  // 002 synthesised it (σ_S0 = 23.08, read as a standard deviation; methods/README.md). 0: S0 of
+  // the world's own wind.
+  double wind_variance_noise_deg = 0.0;
   // Std per axis of the position the robot records for a stop, m
   // (kGpsPositionNoise is seed 000's GPS); the robot still drives from where it is.
   double position_noise = 0.0;
@@ -79,7 +84,7 @@ class SimulatedWorld {
   WorldOptions options_;
   dataset::FilamentSimulation sim_;
   const Map& map_;
-  std::mt19937_64 noise_rng_, wind_rng_, position_rng_;
+  std::mt19937_64 noise_rng_, wind_rng_, position_rng_, spread_rng_;
   dataset::GasSensor gas_;
   double spinup_ = 0.0;
   double debt_ = 0.0;  // seconds not yet stepped (travel times are not multiples of dt)

@@ -94,3 +94,20 @@ def test_a_given_start_is_the_cli_start(block, cli):
             "--plume-model", "physics", "--max-samples", 5)
     assert r["start"] == c["start"] and r["estimate"] == c["estimate"]
     assert r["steps"][0]["position"] == pytest.approx(list(start))
+
+
+def test_any_method_runs_as_the_cli_runs_it(cli):
+    # Issue 20: the seeds' methods through the same call and options as STE.
+    path = plumekit.data_dir() + "/test-maps/test-3-two-blocks.json"
+    m = plumekit.read_map(path)
+    run = plumekit.localize(m, (7.5, 2.0), start=(9.5, 0.5), seed=2, method="surge-cast")
+    c = cli("localize", path, "--source", "7.5,2", "--start", "9.5,0.5", "--seed", 2,
+            "--method", "surge-cast")
+    assert run["method"] == "surge-cast"
+    for key in ("estimate", "samples", "distance_m", "stopped_by", "reached_source_box"):
+        assert run[key] == c[key], key
+    sc = plumekit.Scenario(m, method="pf-sweep")
+    with pytest.raises(plumekit.InputError, match="method ste"):
+        sc.mission(seed=1)
+    with pytest.raises(plumekit.OptionError, match="unknown method"):
+        plumekit.localize(m, (7.5, 2.0), method="infotaxis")

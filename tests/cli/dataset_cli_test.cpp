@@ -147,7 +147,7 @@ TEST_F(DatasetCli, TheWorldPresetSetsBothIngredientsAndAFlagOverridesIt) {
   const Result bad = run("plume --world real" + common + at("bad"));
   EXPECT_EQ(bad.code, 2);
   EXPECT_TRUE(has(bad.err, "--world")) << bad.err;
-  EXPECT_TRUE(has(bad.err, "faithful or thesis")) << bad.err;
+  EXPECT_TRUE(has(bad.err, "faithful, thesis or neumann")) << bad.err;
   EXPECT_FALSE(fs::exists(at("bad")));
 }
 

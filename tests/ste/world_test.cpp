@@ -133,3 +133,29 @@ TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpac
 
 }  // namespace
 }  // namespace plumekit::ste
+
+namespace plumekit::ste {
+namespace {
+
+// The circular variance a stop reports (issue 20): 0 in a laminar wind, and with the seeds'
+// synthetic direction noise on the single readings, about 1 - exp(-sigma^2 / 2) (0.078 for
+// 23.08 degrees: seed 002's S0 of about 0.075).
+TEST(SimulatedWorld, CircularVarianceOfTheStopsWind) {
+  const PlumeWorld w;
+  WorldOptions o;
+  dataset::set_world(o.filament, "neumann");  // no meander
+  o.filament.min_spinup = o.filament.max_spinup = 2.0;
+  o.filament.release_per_second = 10.0;  // the gas does not matter here
+  o.sample_s = 20.0;
+  o.sample_rate = 1.0;
+  SimulatedWorld laminar = w.make("ideal", o);
+  EXPECT_LT(laminar.stop({6.0, 1.0}).wind_variance, 1e-12);
+  o.wind_variance_noise_deg = 23.08;
+  SimulatedWorld noisy = w.make("ideal", o);
+  double sum = 0.0;
+  for (int k = 0; k < 100; ++k) sum += noisy.stop({6.0, 1.0}).wind_variance;
+  EXPECT_NEAR(sum / 100, 1.0 - std::exp(-0.5 * std::pow(23.08 * kPi / 180.0, 2)), 0.01);
+}
+
+}  // namespace
+}  // namespace plumekit::ste
