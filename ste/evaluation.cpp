@@ -198,7 +198,7 @@ std::string runs_csv(const EvaluationResult& result) {
   std::ostringstream s;
   s << "map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,estimate_y,error_m,"
        "samples,distance_m,mission_s,stopped_by"
-    << (result.method != "ste" ? ",reached,distance_overhead" : "")
+    << (result.tracking() ? ",reached,distance_overhead" : "")
     << (result.seeds > 1 ? ",seed\n" : "\n");
   s << std::setprecision(6);
   // Positions in each map's own frame, as its file and the user's robot hold them.
@@ -212,7 +212,7 @@ std::string runs_csv(const EvaluationResult& result) {
       << ',' << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
       << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
       << r.mission_s << ',' << r.stopped_by;
-    if (result.method != "ste") {
+    if (result.tracking()) {
       s << ',' << (r.reached ? 1 : 0) << ',';
       if (std::isfinite(r.distance_overhead)) s << r.distance_overhead;
     }

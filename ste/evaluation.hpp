@@ -85,7 +85,10 @@ struct MapReport {
 };
 
 struct EvaluationResult {
-  std::string method = "ste";  // MethodKind's name: runs.csv adds the trackers' columns for others
+  std::string method = "ste";  // MethodKind's name
+  // A plume tracker's evaluation: runs.csv and the summaries add the source box and the distance
+  // overhead.
+  bool tracking() const { return stops_in_source_box(parse_method_kind(method)); }
   std::vector<RunRecord> runs;
   std::vector<MapReport> maps;
   Stats overall;

@@ -50,7 +50,8 @@ MethodKind parse_method_kind(const std::string& name) {
 }
 
 bool stops_in_source_box(MethodKind kind) {
-  return kind != MethodKind::Ste && kind != MethodKind::PfSweep && kind != MethodKind::Apf;
+  return kind == MethodKind::Sweeping || kind == MethodKind::SurgeCast ||
+         kind == MethodKind::Zigzag || kind == MethodKind::PseudoGradient;
 }
 
 methods::PfMethodOptions MethodOptions::pf_in_use() const {

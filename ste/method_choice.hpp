@@ -34,8 +34,9 @@ std::vector<std::string> method_names();
 inline bool uses_plume_model(MethodKind kind) {
   return kind == MethodKind::Ste;
 }
-// Runs that end in the plume trackers' success box (SourceBox): the trackers, and the particle
-// filter explored by the pseudo-gradient tracker (seed 000 §6.2.1 ends those runs the same way).
+// Runs that end in the plume trackers' success box (SourceBox): the trackers'. The particle
+// filter explored by the pseudo-gradient tracker goes on past the source, as the seeds' runs did
+// (seed 002 Fig. 5(d): 133 iterations), to its budget or its declaration.
 bool stops_in_source_box(MethodKind kind);
 
 struct MethodOptions {

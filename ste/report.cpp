@@ -105,7 +105,7 @@ std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& 
   return h.str();
 }
 
-// `tracking`: a method other than STE, whose runs have the trackers' criteria too.
+// `tracking`: a plume tracker's runs, which have the source box and the distance overhead too.
 ordered_json stats_json(const Stats& s, bool tracking) {
   ordered_json j{{"runs", s.runs},
                  {"median_error_m", s.median_error_m},
@@ -183,8 +183,7 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
     << ") in " << fmt(res.wall_s, 1) << " s\n";
   h << std::left << std::setw(22) << "map"
     << " median_err  mean_err  ok@0.5  (95% CI)  ok@1.0  (95% CI)  samples"
-    << "  dist_m  time_s  step_ms  table_s" << (res.method != "ste" ? "  reached   d_o" : "")
-    << "\n";
+    << "  dist_m  time_s  step_ms  table_s" << (res.tracking() ? "  reached   d_o" : "") << "\n";
   auto ci = [](const Interval& i) {
     return "(" + fmt(100 * i.lo, 0) + "-" + fmt(100 * i.hi, 0) + ")";
   };
@@ -197,7 +196,7 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
       << std::setw(8) << fmt(s.median_mission_s, 0) << std::setw(9)
       << fmt(1000 * s.median_step_s, 1) << std::setw(9)
       << (table >= 0 ? fmt(table, 1) : std::string("-"));
-    if (res.method != "ste")
+    if (res.tracking())
       h << std::setw(9) << fmt(100 * s.reached, 0) + "%" << std::setw(6)
         << (std::isfinite(s.median_distance_overhead) ? fmt(s.median_distance_overhead)
                                                       : std::string("-"));
@@ -309,11 +308,11 @@ Report evaluation_report(const EvaluationResult& res, const ordered_json& settin
   ordered_json maps = ordered_json::array();
   for (const MapReport& mr : res.maps) {
     ordered_json j{{"map", mr.name}};
-    j.update(stats_json(mr.stats, res.method != "ste"));
+    j.update(stats_json(mr.stats, res.tracking()));
     maps.push_back(j);
   }
   ordered_json summary = settings;
-  summary["overall"] = stats_json(res.overall, res.method != "ste");
+  summary["overall"] = stats_json(res.overall, res.tracking());
   summary["maps"] = maps;
   return {summary, evaluation_table(res, summary_label(settings), out, pictures)};
 }

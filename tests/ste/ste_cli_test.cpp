@@ -286,8 +286,12 @@ class SteShards : public SteCli {
 
 TEST_F(SteShards, MergedPartsAreTheSingleRunByteForByte) {
   const std::string maps = write_maps();
-  for (const auto& [n, extra] : {std::pair<int, std::string>{2, ""}, {3, " --seeds 2"}}) {
-    const std::string tag = std::to_string(n);
+  // The last: a plume tracker's runs, with the source box and the distance overhead (issue 20).
+  int case_number = 0;
+  for (const auto& [n, extra] : {std::pair<int, std::string>{2, ""},
+                                 {3, " --seeds 2"},
+                                 {2, " --method zigzag --max-steps 20"}}) {
+    const std::string tag = std::to_string(n) + "-" + std::to_string(case_number++);
     const CliResult one = run("evaluate --map-dir " + maps + kFast + extra + " --threads 2 --out " +
                               (dir / ("one-" + tag)).string());
     ASSERT_EQ(one.code, 0) << one.err;

@@ -1,0 +1,89 @@
+// Issue 20's speed figures: the median compute of one decision step of every localization method
+// on the thesis's test maps (one core each), against STE with the physics model measured in the
+// same run (the named baseline), and Kernel DM+V on a 10 x 4 m map from 100 samples.
+//
+//   build/bench/methods_bench [MAP.json] [RUNS]
+//
+// Times are the thread's CPU time (what `evaluate` reports as step_ms), so load matters little.
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <random>
+#include <vector>
+
+#include "core/map_json.hpp"
+#include "core/random.hpp"
+#include "core/statistics.hpp"
+#include "gdm/kernel_dmv.hpp"
+#include "ste/scenario.hpp"
+
+using namespace plumekit;
+namespace fs = std::filesystem;
+
+namespace {
+
+double thread_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The median step compute of `runs` runs from the map's sources in turn; also the stops.
+double step_median(const Map& map, const ste::SteOptions& o, int runs, std::size_t& stops) {
+  const ste::Scenario sc(map, o);
+  std::vector<double> steps;
+  for (int r = 0; r < runs; ++r) {
+    const Vec2 source = map.sources[r % map.sources.size()];
+    const std::uint64_t seed = ste::run_seed(1, 0, r, 0);
+    const ste::LocalizationResult res = sc.run(source, sc.random_start(source, seed), seed);
+    for (const ste::Step& s : res.steps)
+      steps.push_back(s.compute_s);
+  }
+  stops = steps.size();
+  return median(steps);
+}
+
+// Kernel DM+V of 100 random readings on the map, median of 50 builds.
+double gdm_median(const Map& map) {
+  std::mt19937_64 rng(7);
+  std::vector<gdm::Sample> samples;
+  while (samples.size() < 100) {
+    const Vec2 p{uniform(rng, 0.0, map.width), uniform(rng, 0.0, map.height)};
+    if (map.is_free(p)) samples.push_back({p, uniform(rng, 0.0, 1000.0), Vec2{1.0, 0.0}});
+  }
+  gdm::GdmOptions o;
+  o.wind_stretch = 0.6;  // DM+V/W: the dearer of the two
+  std::vector<double> t;
+  for (int k = 0; k < 50; ++k) {
+    const double t0 = thread_cpu();
+    const gdm::GdmMaps maps = gdm::kernel_dmv(map, samples, o);
+    t.push_back(thread_cpu() - t0);
+    if (maps.samples != 100) std::abort();
+  }
+  return median(t);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const fs::path map_file = argc > 1
+                                ? fs::path(argv[1])
+                                : fs::path(PLUMEKIT_DATA_DIR) / "test-maps" / "test-4-l-shape.json";
+  const int runs = argc > 2 ? std::atoi(argv[2]) : 5;
+  const Map map = read_map(map_file);
+  std::printf("map %s, %d runs per method, median CPU per decision step\n", map.name.c_str(), runs);
+  ste::SteOptions base;
+  base.model = ste::PlumeModelKind::Physics;
+  std::size_t stops = 0;
+  const double ste = step_median(map, base, runs, stops);
+  std::printf("%-16s %8.3f ms  (baseline, %zu steps)\n", "ste (physics)", 1000 * ste, stops);
+  for (const std::string& name : ste::method_names()) {
+    if (name == "ste") continue;
+    ste::SteOptions o = base;
+    o.method.kind = ste::parse_method_kind(name);
+    const double t = step_median(map, o, runs, stops);
+    std::printf("%-16s %8.3f ms  %7.4fx the baseline (%zu steps)\n", name.c_str(), 1000 * t,
+                t / ste, stops);
+  }
+  std::printf("Kernel DM+V/W, 100 samples, 0.1 m cells: %.2f ms\n", 1000 * gdm_median(map));
+}

@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""A Markdown table of `evaluate` summaries side by side (issue 20's comparison).
+
+    scripts/methods_table.py DIR...      # each DIR an `evaluate --out` folder
+
+One row per folder: the method (STE with its plume model), runs, success within 0.5 m and 1 m
+with their 95 % intervals, median error, samples, distance and mission time, the median decision
+step, and for the methods other than STE the share that reached the source box and the median
+distance overhead.
+"""
+import json
+import sys
+from pathlib import Path
+
+
+def pct(x):
+    return f"{100 * x:.0f} %"
+
+
+def ci(pair):
+    return f"({100 * pair[0]:.0f}–{100 * pair[1]:.0f})"
+
+
+def row(folder):
+    s = json.loads((Path(folder) / "summary.json").read_text())
+    t = json.loads((Path(folder) / "timings.json").read_text())
+    o = s["overall"]
+    method = s.get("method", "ste")
+    name = f"ste ({s['plume_model']})" if method == "ste" else method
+    reached = pct(o["reached_source_box"]) if "reached_source_box" in o else "–"
+    overhead = o.get("median_distance_overhead")
+    return (f"| {name} | {o['runs']} | {pct(o['success_0_5m'])} {ci(o['success_0_5m_ci95'])} | "
+            f"{pct(o['success_1_0m'])} {ci(o['success_1_0m_ci95'])} | {o['median_error_m']:.2f} | "
+            f"{o['median_samples']:.0f} | {o['median_distance_m']:.1f} | "
+            f"{o['median_mission_s']:.0f} | {1000 * t['median_step_compute_s']:.2f} | {reached} | "
+            f"{'–' if overhead is None else f'{overhead:.2f}'} |")
+
+
+def main(folders):
+    if not folders:
+        sys.exit(__doc__)
+    print("| method | runs | within 0.5 m | within 1 m | median error m | samples | distance m "
+          "| mission s | step ms | reached box | distance overhead |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for f in folders:
+        print(row(f))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
