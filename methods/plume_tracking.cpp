@@ -123,6 +123,7 @@ void PlumeTracker::observe(const Observation& o) {
     throw InputError(name() + ": an observation must be finite: position " + to_string(o.position) +
                      ", gas " + compact(o.gas) + ", wind " + to_string(o.wind));
   ++stops_;
+  recorded_ = o.position;
   Vec2 up = upwind(o.wind);
   if (up == Vec2{})
     up = last_upwind_;  // calm: keep the last direction
@@ -140,7 +141,12 @@ void PlumeTracker::observe(const Observation& o) {
 
 Move PlumeTracker::next(Vec2 robot) {
   Move move;
-  move.goal = goal_.value_or(robot);  // before any stop: measure where it stands
+  // The planned step, from where the robot stands; before any stop: measure there.
+  // (Exactly the goal when the position was recorded without noise.)
+  if (!goal_)
+    move.goal = robot;
+  else
+    move.goal = robot == recorded_ ? *goal_ : robot + (*goal_ - recorded_);
   return move;
 }
 

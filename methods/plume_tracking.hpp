@@ -91,6 +91,12 @@ class Sweeper {
 //
 // A calm stop (wind below 1e-9 m/s) keeps the last measured upwind direction; before any wind
 // is measured upwind is -x (plumekit's default arena blows along +x).
+//
+// A tracker moves by steps ("1 m upwind of here"): it plans its goal from the position the stop
+// recorded, and next(robot) hands the runner the same step from where the robot truly stands,
+// as a robot's odometry would carry it out. The position noise (GPS) then blurs what the
+// tracker knows of where it is, not the length of its steps: seed 000's simulated trackers
+// (zigzag 15 degrees: d_o 1.07) cannot have taken GPS-sized detours.
 class PlumeTracker : public LocalizationMethod {
  public:
   void observe(const Observation& o) final;
@@ -120,6 +126,7 @@ class PlumeTracker : public LocalizationMethod {
   bool acquiring_ = true;
   int stops_ = 0;
   Vec2 last_upwind_{-1.0, 0.0};
+  Vec2 recorded_;  // the last stop's recorded position, which goal_ was planned from
   std::optional<Vec2> goal_;
 };
 

@@ -150,6 +150,17 @@ TEST_F(PlumeTrackingTest, ZigzagFlipsOnLossBySeed002) {
   EXPECT_TRUE(method.acquiring());
 }
 
+TEST_F(PlumeTrackingTest, StepsFromWhereTheRobotStandsNotFromItsNoisyFix) {
+  // The stop records (20, 5) while the robot stands at (20.8, 4.3): the zigzag's step (0.5 m
+  // upwind, sin 60 to the side) is taken from the robot, one step long whatever the fix's error.
+  Zigzag method(area, options);
+  method.observe(stop({20.0, 5.0}, 100.0));
+  const Vec2 robot{20.8, 4.3};
+  const Vec2 goal = method.next(robot).goal;
+  expect_at(goal, {20.3, 4.3 - kS60});
+  EXPECT_NEAR(norm(goal - robot), 1.0, 1e-12);
+}
+
 TEST_F(PlumeTrackingTest, ZigzagFlipsOnDetectionBySeed000) {
   options.zigzag_flip = ZigzagFlip::OnDetection;
   Zigzag method(area, options);
