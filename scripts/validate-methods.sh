@@ -5,6 +5,8 @@
 # direction's 14.02 degrees, the synthetic circular variance (23.08 degrees) and the GPS.
 #
 #   scripts/validate-methods.sh [RUNS] [OUT]      # RUNS per configuration (the seeds: 100)
+#   TRACKING_RUNS=10 scripts/validate-methods.sh 20   # fewer runs for the trackers' eight
+#   scripts/validation_table.py OUT                   # the table of methods/README.md
 #
 # Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 min
 # of CPU per particle-filter run and 15 s per tracking run.
@@ -12,6 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-100}
 out=${2:-out/validate}
+tracking_runs=${TRACKING_RUNS:-$runs}
 plumekit=${PLUMEKIT:-./build/plumekit}
 # th_c: 5 % of the mean plume's peak (2534 units on the plume grid), as the seeds' 0.05 of a
 # normalised field.
@@ -19,18 +22,18 @@ seeds=(--world neumann --stop-s 20 --stop-rate 1 --speed 1 --track-step 1 --wind
   --wind-variance-noise 23.08 --position-noise gps --gas-sensor infrared
   --detection-threshold 125 --threads 0)
 run() {
-  local name=$1
-  shift
-  "$plumekit" evaluate --runs "$runs" --out "$out/$name" "${seeds[@]}" "$@"
+  local name=$1 n=$2
+  shift 2
+  "$plumekit" evaluate --runs "$n" --out "$out/$name" "${seeds[@]}" "$@"
 }
 # The particle filter, source (8, 4); the seeds' best (alpha, beta) are the defaults.
-run pf-sweep --map-dir data/seeds/pf-sweep --method pf-sweep
-run pf-gradient --map-dir data/seeds/pf-gradient --method pf-gradient --max-steps 150
+run pf-sweep "$runs" --map-dir data/seeds/pf-sweep --method pf-sweep
+run pf-gradient "$runs" --map-dir data/seeds/pf-gradient --method pf-gradient --max-steps 150
 # Plume tracking from (31, 4) to the source at (2, 4): the distance overhead of each.
-run surge-cast --map-dir data/seeds/tracking --method surge-cast
+run surge-cast "$tracking_runs" --map-dir data/seeds/tracking --method surge-cast
 for a in 15 30 60 75; do
-  run "zigzag-$a" --map-dir data/seeds/tracking --method zigzag --zigzag-angle "$a"
+  run "zigzag-$a" "$tracking_runs" --map-dir data/seeds/tracking --method zigzag --zigzag-angle "$a"
 done
 for b in 30 60 90; do
-  run "gradient-$b" --map-dir data/seeds/tracking --method pseudo-gradient --gradient-angle "$b"
+  run "gradient-$b" "$tracking_runs" --map-dir data/seeds/tracking --method pseudo-gradient --gradient-angle "$b"
 done

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Test of issue 20's table and plot scripts on small real evaluations: methods_table.py's row
+# (its within-1.5 m share counted again here from runs.csv), validation_table.py's rows for a
+# particle filter and a tracker, and methods_boxplot.py's picture.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+plumekit=${PLUMEKIT:-$root/build/plumekit}
+python=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir "$work/maps"
+cp "$root/data/test-maps/test-1-block.json" "$work/maps/"
+evaluate() {
+  "$plumekit" evaluate --map-dir "$work/maps" --sources 4 --runs 1 --max-steps "$3" --threads 0 \
+    --out "$work/$1" --method "$2" > /dev/null
+}
+# On this map, surge-cast reaches two of the four sources' boxes in 40 stops.
+evaluate surge-cast surge-cast 40
+evaluate pf-sweep pf-sweep 15
+
+row=$("$python" "$root/scripts/methods_table.py" "$work/surge-cast" | tail -1)
+echo "$row"
+runs_csv="$work/surge-cast/runs.csv"
+share=$(awk -F, 'NR > 1 { n++; if ($10 <= 1.5) k++ } END { printf "%.0f %%", 100 * k / n }' \
+  "$runs_csv")
+[[ $row == "| surge-cast | 4 | "* ]] || { echo "FAIL: methods_table row: $row"; exit 1; }
+[[ $row == *"| $share |"* ]] || { echo "FAIL: within 1.5 m should read $share: $row"; exit 1; }
+overhead=$(awk -F, 'NR > 1 && $16 != "" { n++; s += $16 } END { printf "%.2f", s / n }' \
+  "$runs_csv")
+
+table=$("$python" "$root/scripts/validation_table.py" "$work")
+echo "$table"
+grep -q '^| PF + sweeping (0.4, 0.9) | 4 | ' <<< "$table" || { echo "FAIL: no PF row"; exit 1; }
+grep -q "^| surge-cast | 4 | [0-9]* % | $overhead ± " <<< "$table" ||
+  { echo "FAIL: the tracker row should have the mean d_o $overhead"; exit 1; }
+grep -q '^Same as published: ' <<< "$table" || { echo "FAIL: no ordering line"; exit 1; }
+
+"$python" "$root/scripts/methods_boxplot.py" "$work/box.png" "test" "$work/surge-cast" \
+  "$work/pf-sweep"
+[[ $(head -c 8 "$work/box.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] ||
+  { echo "FAIL: methods_boxplot.py wrote no PNG"; exit 1; }
+echo "OK"
