@@ -166,13 +166,15 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              cmd->add_option_function<std::string>(
                     "--position-noise",
                     [&o](const std::string& text) {
+                      o.world.position_noise_per_fix = text == "gps";
                       o.world.position_noise =
                           text == "gps"
                               ? ste::kGpsPositionNoise
                               : number_or_preset(text, "ste.world.position_noise", "metres or gps");
                     },
-                    "Std per axis of the position recorded with each sample: metres, or gps "
-                    "(seed 000 Eq. 4.3: variance 1.17 m^2, so 1.08 m)")
+                    "Std per axis of the position recorded with each sample (stop): metres, or "
+                    "gps (seed 000 Eq. 4.3: variance 1.17 m^2, so 1.08 m on each reading's fix; "
+                    "the stop records their mean, 0.24 m for 20 readings)")
                  ->type_name("M|gps")
                  ->default_str("0"),
              "ste.world.position_noise");

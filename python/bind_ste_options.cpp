@@ -72,6 +72,8 @@ void bind_world(py::module_& m) {
   PK_FIELD(w, WorldOptions, wind_direction_noise_deg, "Anemometer direction error, degrees");
   PK_FIELD(w, WorldOptions, wind_noise_from_table35, "Direction error from seed 000's table 3.5");
   PK_FIELD(w, WorldOptions, position_noise, "Std per axis of the recorded position, m");
+  PK_FIELD(w, WorldOptions, position_noise_per_fix,
+           "position_noise is each reading's fix error; a stop records their mean");
   w.def_property(
       "gas_sensor", [](const WorldOptions& o) { return o.sensor.name; },
       [](WorldOptions& o, const std::string& name) { set_gas_sensor(o.sensor, name); },

@@ -101,11 +101,15 @@ Reading SimulatedWorld::stop(Vec2 p) {
   }
   r.position = p;
   if (options_.position_noise > 0.0) {
+    // The mean of n independent fixes is drawn at once, with its std.
+    const double sd = options_.position_noise_per_fix
+                          ? options_.position_noise / std::sqrt(static_cast<double>(n))
+                          : options_.position_noise;
     // Redrawn until free: a robot does not believe itself inside a wall it can see.
     NormalSampler draw;
     for (int attempt = 0; attempt < 1000; ++attempt) {
-      const Vec2 q{p.x + normal(draw, position_rng_, 0.0, options_.position_noise),
-                   p.y + normal(draw, position_rng_, 0.0, options_.position_noise)};
+      const Vec2 q{p.x + normal(draw, position_rng_, 0.0, sd),
+                   p.y + normal(draw, position_rng_, 0.0, sd)};
       if (map_.is_free(q)) {
         r.position = q;
         break;

@@ -40,12 +40,17 @@ struct WorldOptions {
   // Std per axis of the position the robot records for a stop, m
   // (kGpsPositionNoise is seed 000's GPS); the robot still drives from where it is.
   double position_noise = 0.0;
+  // position_noise is the error of each reading's fix, independent from reading to reading,
+  // and the stop records the mean of its fixes (std position_noise / sqrt(readings)): seed 000
+  // perturbed every 1 Hz sample's position (--position-noise gps). false: one error per stop.
+  bool position_noise_per_fix = false;
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 
 // Seed 000 Eq. 4.3, its GPS: each recorded coordinate is drawn from N(x, σ²)
-// with "σ² set to 1.17", so the std per axis is sqrt(1.17) m (--position-noise gps).
+// with "σ² set to 1.17", so the std per axis is sqrt(1.17) m, on every sample's fix
+// (--position-noise gps: with position_noise_per_fix).
 constexpr double kGpsPositionNoise = 1.0816653826391969;
 
 // Seed 000, Table 3.5 (hovering): the wind direction's RMSE after averaging

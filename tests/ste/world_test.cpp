@@ -131,6 +131,26 @@ TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpac
   EXPECT_LT(std::sqrt(sum2 / n), 1.3);
 }
 
+// Seed 000's GPS on every reading's fix: a stop of 20 readings records their mean, whose error
+// is 1.08 / sqrt(20) = 0.24 m per axis.
+TEST(SimulatedWorld, PositionNoisePerFixAveragesOverTheStopsReadings) {
+  const PlumeWorld w;
+  WorldOptions o = a_thin_plume();
+  o.sample_s = 4.0;
+  o.sample_rate = 5.0;  // 20 readings
+  o.position_noise = kGpsPositionNoise;
+  o.position_noise_per_fix = true;
+  double sum2 = 0.0;
+  const int stops = 300;
+  for (std::uint64_t seed = 1; seed <= stops; ++seed) {
+    const Reading a = w.make("ideal", o, seed).stop({5.0, 2.0});
+    sum2 += 0.5 * ((a.position.x - 5.0) * (a.position.x - 5.0) +
+                   (a.position.y - 2.0) * (a.position.y - 2.0));
+  }
+  // 600 squared errors: the estimated std is within about 3 % (1 sigma) of 0.242.
+  EXPECT_NEAR(std::sqrt(sum2 / stops), kGpsPositionNoise / std::sqrt(20.0), 0.025);
+}
+
 }  // namespace
 }  // namespace plumekit::ste
 
@@ -153,7 +173,8 @@ TEST(SimulatedWorld, CircularVarianceOfTheStopsWind) {
   o.wind_variance_noise_deg = 23.08;
   SimulatedWorld noisy = w.make("ideal", o);
   double sum = 0.0;
-  for (int k = 0; k < 100; ++k) sum += noisy.stop({6.0, 1.0}).wind_variance;
+  for (int k = 0; k < 100; ++k)
+    sum += noisy.stop({6.0, 1.0}).wind_variance;
   EXPECT_NEAR(sum / 100, 1.0 - std::exp(-0.5 * std::pow(23.08 * kPi / 180.0, 2)), 0.01);
 }
 
