@@ -8,8 +8,8 @@
 #   TRACKING_RUNS=10 scripts/validate-methods.sh 20   # fewer runs for the trackers' eight
 #   scripts/validation_table.py OUT                   # the table of methods/README.md
 #
-# Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 min
-# of CPU per particle-filter run and 15 s per tracking run.
+# Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 to
+# 2.5 min of CPU per particle-filter run and 15 to 60 s per tracking run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-100}
@@ -32,8 +32,10 @@ run pf-gradient "$runs" --map-dir data/seeds/pf-gradient --method pf-gradient --
 # Plume tracking from (31, 4) to the source at (2, 4): the distance overhead of each.
 run surge-cast "$tracking_runs" --map-dir data/seeds/tracking --method surge-cast
 for a in 15 30 60 75; do
-  run "zigzag-$a" "$tracking_runs" --map-dir data/seeds/tracking --method zigzag --zigzag-angle "$a"
+  run "zigzag-$a" "$tracking_runs" --map-dir data/seeds/tracking --method zigzag \
+    --zigzag-angle "$a"
 done
 for b in 30 60 90; do
-  run "gradient-$b" "$tracking_runs" --map-dir data/seeds/tracking --method pseudo-gradient --gradient-angle "$b"
+  run "gradient-$b" "$tracking_runs" --map-dir data/seeds/tracking --method pseudo-gradient \
+    --gradient-angle "$b"
 done
