@@ -166,10 +166,10 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              cmd->add_option_function<std::string>(
                     "--position-noise",
                     [&o](const std::string& text) {
-                      o.world.position_noise_per_fix = text == "gps";
+                      const bool gps = text == "gps";
+                      o.world.position_noise_per_fix = gps;
                       o.world.position_noise =
-                          text == "gps"
-                              ? ste::kGpsPositionNoise
+                          gps ? ste::kGpsPositionNoise
                               : number_or_preset(text, "ste.world.position_noise", "metres or gps");
                     },
                     "Std per axis of the position recorded with each sample (stop): metres, or "

@@ -6,31 +6,48 @@
 Four panels over the same runs: localization error (m), samples (stops), distance travelled (m)
 and mission time (s), one box per folder, labelled by its method. Whiskers at 1.5 IQR; the
 dashed 0.5 m and dotted 1.5 m lines mark plumekit's and the seeds' success radii.
+
+OUT.png must be new or a picture this script drew (its PNG "Software" text says so): any other
+file is refused (exit 2), never overwritten.
 """
-import csv
 import json
 import sys
 from pathlib import Path
 
 import matplotlib
+from PIL import Image
+
+from evaluation_runs import SEEDS_SUCCESS_M, read_runs
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+SOFTWARE = "plumekit scripts/methods_boxplot.py"
+
+
 def load(folder):
-    folder = Path(folder)
-    summary = json.loads((folder / "summary.json").read_text())
-    method = summary.get("method", "ste")
-    with open(folder / "runs.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
-    return method, rows
+    summary = json.loads((Path(folder) / "summary.json").read_text())
+    return summary.get("method", "ste"), read_runs(folder)
+
+
+def drawn_here(path):
+    """Whether PATH is a PNG this script wrote."""
+    try:
+        with Image.open(path) as im:
+            return im.format == "PNG" and im.info.get("Software") == SOFTWARE
+    except (OSError, ValueError):
+        return False
 
 
 def main(argv):
     if len(argv) < 3:
         sys.exit(__doc__)
     out, title, folders = argv[0], argv[1], argv[2:]
+    if Path(out).exists() and not drawn_here(out):
+        print(f"methods_boxplot.py: {out} exists and was not drawn by this script; "
+              "not overwriting it", file=sys.stderr)
+        sys.exit(2)
     data = [load(f) for f in folders]
     labels = [m for m, _ in data]
     fig, axes = plt.subplots(1, 4, figsize=(19, 4.5))
@@ -44,10 +61,10 @@ def main(argv):
         ax.grid(axis="y", alpha=0.3)
         if column == "error_m":
             ax.axhline(0.5, color="tab:green", linestyle="--", linewidth=1)
-            ax.axhline(1.5, color="tab:orange", linestyle=":", linewidth=1)
+            ax.axhline(SEEDS_SUCCESS_M, color="tab:orange", linestyle=":", linewidth=1)
     fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(out, dpi=110)
+    fig.savefig(out, dpi=110, metadata={"Software": SOFTWARE})
 
 
 if __name__ == "__main__":

@@ -4,14 +4,15 @@
     scripts/methods_table.py DIR...      # each DIR an `evaluate --out` folder
 
 One row per folder: the method (STE with its plume model), runs, success within 0.5 m and 1 m
-with their 95 % intervals, within 1.5 m (the seeds' criterion), median error, samples, distance and mission time, the median decision
-step, and for the methods other than STE the share that reached the source box and the median
+with their 95 % intervals, within 1.5 m (the seeds' criterion), median error, samples, distance
+and mission time, the median decision step, and for the methods other than STE the share that reached the source box and the median
 distance overhead.
 """
-import csv
 import json
 import sys
 from pathlib import Path
+
+from evaluation_runs import read_runs, share_within
 
 
 def pct(x):
@@ -30,9 +31,7 @@ def row(folder):
     name = f"ste ({s['plume_model']})" if method == "ste" else method
     reached = pct(o["reached_source_box"]) if "reached_source_box" in o else "–"
     overhead = o.get("median_distance_overhead")
-    with open(Path(folder) / "runs.csv", newline="") as f:
-        errors = [float(r["error_m"]) for r in csv.DictReader(f)]
-    within_1_5 = sum(e <= 1.5 for e in errors) / len(errors)
+    within_1_5 = share_within([float(r["error_m"]) for r in read_runs(folder)])
     return (f"| {name} | {o['runs']} | {pct(o['success_0_5m'])} {ci(o['success_0_5m_ci95'])} | "
             f"{pct(o['success_1_0m'])} {ci(o['success_1_0m_ci95'])} | {pct(within_1_5)} | "
             f"{o['median_error_m']:.2f} | "
@@ -44,8 +43,8 @@ def row(folder):
 def main(folders):
     if not folders:
         sys.exit(__doc__)
-    print("| method | runs | within 0.5 m | within 1 m | within 1.5 m | median error m | samples | distance m "
-          "| mission s | step ms | reached box | distance overhead |")
+    print("| method | runs | within 0.5 m | within 1 m | within 1.5 m | median error m | samples "
+          "| distance m | mission s | step ms | reached box | distance overhead |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for f in folders:
         print(row(f))

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Test of issue 20's table and plot scripts on small real evaluations: methods_table.py's row
 # (its within-1.5 m share counted again here from runs.csv), validation_table.py's rows for a
-# particle filter and a tracker, and methods_boxplot.py's picture.
+# particle filter and a tracker, and methods_boxplot.py's picture (and its refusal to overwrite
+# a file it did not draw).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 plumekit=${PLUMEKIT:-$root/build/plumekit}
@@ -39,4 +40,12 @@ grep -q '^Same as published: ' <<< "$table" || { echo "FAIL: no ordering line"; 
   "$work/pf-sweep"
 [[ $(head -c 8 "$work/box.png" | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] ||
   { echo "FAIL: methods_boxplot.py wrote no PNG"; exit 1; }
+# Its own picture is redrawn; a file it did not write is refused (exit 2) and left as it was.
+"$python" "$root/scripts/methods_boxplot.py" "$work/box.png" "again" "$work/surge-cast"
+echo "a user's notes" > "$work/notes.png"
+code=0
+"$python" "$root/scripts/methods_boxplot.py" "$work/notes.png" "x" "$work/surge-cast" 2> /dev/null ||
+  code=$?
+[[ $code == 2 && $(cat "$work/notes.png") == "a user's notes" ]] ||
+  { echo "FAIL: methods_boxplot.py overwrote a file it did not write (exit $code)"; exit 1; }
 echo "OK"

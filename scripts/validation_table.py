@@ -8,10 +8,11 @@ reports them. Trackers: the mean +- SD distance overhead d_o over the runs that 
 source box (seed 000 Table 5.x), against the published value, within 25 %, and whether the
 measured means keep the published ordering.
 """
-import csv
 import statistics
 import sys
 from pathlib import Path
+
+from evaluation_runs import read_runs, share_within
 
 PF = [("pf-sweep", "PF + sweeping (0.4, 0.9)", 0.95, 0.79, 0.46),
       ("pf-gradient", "PF + pseudo-gradient (0.2, 0.8)", 0.86, 0.96, 1.01)]
@@ -19,11 +20,6 @@ TRACKERS = [("zigzag-15", "zigzag 15°", 1.07), ("surge-cast", "surge-cast", 1.1
             ("zigzag-30", "zigzag 30°", 1.23), ("gradient-30", "gradient 30°", 1.81),
             ("gradient-60", "gradient 60°", 1.91), ("gradient-90", "gradient 90°", 2.04),
             ("zigzag-60", "zigzag 60°", 2.12), ("zigzag-75", "zigzag 75°", 4.06)]
-
-
-def rows(folder):
-    with open(folder / "runs.csv", newline="") as f:
-        return list(csv.DictReader(f))
 
 
 def mean_sd(xs):
@@ -42,8 +38,8 @@ def main(argv):
     for name, label, p_success, p_mean, p_sd in PF:
         if not (out / name / "runs.csv").exists():
             continue
-        errors = [float(r["error_m"]) for r in rows(out / name)]
-        success = sum(e <= 1.5 for e in errors) / len(errors)
+        errors = [float(r["error_m"]) for r in read_runs(out / name)]
+        success = share_within(errors)
         m, sd = mean_sd(errors)
         ok = abs(success - p_success) <= 0.10 and abs(m - p_mean) <= 0.3
         print(f"| {label} | {len(errors)} | {100 * success:.0f} % | {m:.2f} ± {sd:.2f} | "
@@ -55,7 +51,7 @@ def main(argv):
     for name, label, published in TRACKERS:
         if not (out / name / "runs.csv").exists():
             continue
-        rs = rows(out / name)
+        rs = read_runs(out / name)
         d = [float(r["distance_overhead"]) for r in rs if r["distance_overhead"]]
         reached = sum(r["reached"] == "1" for r in rs) / len(rs)
         m, sd = mean_sd(d)
