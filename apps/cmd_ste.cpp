@@ -5,9 +5,11 @@
 // the only ones; this file binds and prints.
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
@@ -224,18 +226,28 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
 }
 
 // The localization method and the options of the seeds' methods (methods/README.md).
-void add_method_options(CLI::App* cmd, ste::MethodOptions& m) {
+// With `several` (evaluate), --method also takes a list or "all", which goes there.
+void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
+                        std::vector<ste::MethodKind>* several = nullptr) {
   std::string names;
   for (const std::string& n : ste::method_names())
     names += (names.empty() ? "" : ", ") + n;
-  bind_field(cmd,
-             cmd->add_option_function<std::string>(
-                    "--method", [&m](const std::string& s) { m.kind = ste::parse_method_kind(s); },
-                    "Localization method: " + names +
-                        " (ste: plumekit's source term estimation; the others are the seeds' "
-                        "plume trackers and particle filters, methods/README.md)")
-                 ->default_str(ste::to_string(m.kind)),
-             "ste.method");
+  const std::string what =
+      " (ste: plumekit's source term estimation; the others are the seeds' plume trackers and "
+      "particle filters, methods/README.md)";
+  auto one = [&m](const std::string& s) { m.kind = ste::parse_method_kind(s); };
+  auto list = [&m, several](const std::string& s) {
+    *several = ste::parse_method_list(s);
+    m.kind = several->front();
+  };
+  const std::string help =
+      several ? "Localization method: " + names + what +
+                    "; or several, NAME,NAME,... or all, sampling one world per run, each into "
+                    "OUT/NAME/ (ste/README.md, \"Several methods in one world\")"
+              : "Localization method: " + names + what;
+  CLI::Option* option = several ? cmd->add_option_function<std::string>("--method", list, help)
+                                : cmd->add_option_function<std::string>("--method", one, help);
+  bind_field(cmd, option->default_str(ste::to_string(m.kind)), "ste.method");
   methods::TrackingOptions& t = m.tracking;
   bind_to(cmd, "--track-step", t.step,
           "Step of the trackers and the particle filter's exploration, m (the seeds': 1)",
@@ -310,8 +322,9 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m) {
              "apf.locality");
 }
 
-void add_ste_options(CLI::App* cmd, ste::SteOptions& o) {
-  add_method_options(cmd, o.method);
+void add_ste_options(CLI::App* cmd, ste::SteOptions& o,
+                     std::vector<ste::MethodKind>* several_methods = nullptr) {
+  add_method_options(cmd, o.method, several_methods);
   add_model_options(cmd, o);
   add_run_options(cmd, o);
 }
@@ -417,9 +430,9 @@ ordered_json result_options(const CLI::App* cmd, const ste::EvaluationOptions& e
 
 // The part folder of `evaluate --shard K/N`: part.json, runs.csv, timings.csv, and the
 // trajectory pictures of this part's median runs.
-void write_part(OutputDirectory& dir, const ste::EvaluationResult& res,
-                const ste::EvaluationOptions& eo, const ste::PartIdentity& id,
-                const fs::path& out) {
+Report write_part(OutputDirectory& dir, const ste::EvaluationResult& res,
+                  const ste::EvaluationOptions& eo, const ste::PartIdentity& id,
+                  const fs::path& out) {
   ste::EvaluationFiles files;
   files.runs_csv = ste::runs_csv(res);
   files.timings_csv = ste::timings_csv(res);
@@ -431,11 +444,11 @@ void write_part(OutputDirectory& dir, const ste::EvaluationResult& res,
   const ordered_json j{{"ok", true},           {"part", eo.part_k},
                        {"parts", eo.part_n},   {"runs", res.runs.size()},
                        {"wall_s", res.wall_s}, {"out", out.string()}};
-  report(j, "evaluated part " + part + ": " + std::to_string(res.runs.size()) + " runs (pairs " +
-                std::to_string(res.pairs.first) + ".." + std::to_string(res.pairs.end) + " of " +
-                std::to_string(res.pairs.total) + " map sources)\nwrote " + out.string() +
-                "/{part.json, runs.csv, timings.csv, trajectories/}; join the parts with "
-                "`plumekit evaluate merge PART_DIR... --out DIR`");
+  return {j, "evaluated part " + part + ": " + std::to_string(res.runs.size()) + " runs (pairs " +
+                 std::to_string(res.pairs.first) + ".." + std::to_string(res.pairs.end) + " of " +
+                 std::to_string(res.pairs.total) + " map sources)\nwrote " + out.string() +
+                 "/{part.json, runs.csv, timings.csv, trajectories/}; join the parts with "
+                 "`plumekit evaluate merge PART_DIR... --out DIR`"};
 }
 
 void add_evaluate_merge(CLI::App* evaluate) {
@@ -474,6 +487,7 @@ void add_evaluate(CLI::App& app) {
     std::string map_dir, out = "out/evaluate";
     bool part = false;
     ste::EvaluationOptions eval;
+    std::vector<ste::MethodKind> methods;  // --method with several: one world per run
   };
   auto a = std::make_shared<Args>();
   bind_field(
@@ -507,7 +521,7 @@ void add_evaluate(CLI::App& app) {
                   "Output folder (new, empty, or an earlier `evaluate` output, which is "
                   "replaced): runs.csv, summary.json, timings, box plots, trajectories/")
       ->capture_default_str();
-  add_ste_options(cmd, a->eval.ste);
+  add_ste_options(cmd, a->eval.ste, &a->methods);
   add_common_flags(cmd);
   add_evaluate_merge(cmd);
   cmd->callback([a, cmd] {
@@ -515,30 +529,65 @@ void add_evaluate(CLI::App& app) {
     a->eval.validate();
     const ste::MapFolder maps = ste::read_map_folder(a->map_dir);
     const ste::EvaluationOptions& eo = a->eval;
-    OutputDirectory dir(a->out, "evaluate", {a->map_dir, eo.ste.table_cache, eo.ste.model_path});
+    // Several methods: each into OUT/NAME/, exactly what `--method NAME --out OUT/NAME` writes.
+    const std::vector<ste::MethodKind> kinds =
+        a->methods.size() > 1 ? a->methods : std::vector<ste::MethodKind>{eo.ste.method.kind};
+    const bool several = kinds.size() > 1;
+    std::vector<ste::EvaluationOptions> each(kinds.size(), eo);
+    std::vector<fs::path> outs;
+    std::vector<std::unique_ptr<OutputDirectory>> dirs;
+    for (std::size_t m = 0; m < kinds.size(); ++m) {
+      each[m].ste.method.kind = kinds[m];
+      outs.push_back(several ? fs::path(a->out) / ste::to_string(kinds[m]) : fs::path(a->out));
+      dirs.push_back(std::make_unique<OutputDirectory>(
+          outs[m], "evaluate",
+          std::vector<fs::path>{a->map_dir, eo.ste.table_cache, eo.ste.model_path}));
+    }
+    std::vector<ste::AfterMap> pictures;
+    for (std::size_t m = 0; m < kinds.size(); ++m)
+      pictures.push_back(ste::trajectory_pictures(dirs[m]->open(), maps.picture_names));
     ProgressBar bar("evaluate");
-    const ste::EvaluationResult res = ste::evaluate(
-        maps.maps, eo,
+    const std::string per_run =
+        several ? " runs of " + std::to_string(kinds.size()) + " methods" : " runs";
+    const std::vector<ste::EvaluationResult> results = ste::evaluate_methods(
+        maps.maps, eo, kinds,
         [&](int done, int total) {
           bar.update(static_cast<double>(done) / total,
-                     std::to_string(done) + "/" + std::to_string(total) + " runs");
+                     std::to_string(done) + "/" + std::to_string(total) + per_run);
         },
-        ste::trajectory_pictures(dir.open(), maps.picture_names));
+        [&](std::size_t m, const ste::Scenario& sc, const std::vector<ste::RunRecord>& records) {
+          pictures[m](sc, records);
+        });
     bar.finish();
-    const ordered_json settings = ste::evaluation_settings(eo, a->map_dir);
-    if (a->part) {
-      const ste::PartIdentity id{settings, result_options(cmd, eo), ste::map_files_json(maps)};
-      return write_part(dir, res, eo, id, a->out);
+    std::vector<Report> reports;
+    for (std::size_t m = 0; m < kinds.size(); ++m) {
+      const ste::EvaluationResult& res = results[m];
+      const ordered_json settings = ste::evaluation_settings(each[m], a->map_dir);
+      if (a->part) {
+        ordered_json options = result_options(cmd, each[m]);
+        options["--method"] = ste::to_string(kinds[m]);  // as the part of a single method
+        const ste::PartIdentity id{settings, options, ste::map_files_json(maps)};
+        reports.push_back(write_part(*dirs[m], res, each[m], id, outs[m]));
+        continue;
+      }
+      Report rep = ste::evaluation_report(res, settings, outs[m]);
+      ste::write_evaluation_files(
+          dirs[m]->open(), res,
+          {ste::runs_csv(res), ste::timings_csv(res), rep.json, ste::evaluation_timings(res)});
+      dirs[m]->commit();
+      // On stdout the times go with the summary (they are apart only in the files).
+      rep.json["timings"] = ste::evaluation_timings(res);
+      reports.push_back(rep);
     }
-    const Report rep = ste::evaluation_report(res, settings, a->out);
-    ste::write_evaluation_files(
-        dir.open(), res,
-        {ste::runs_csv(res), ste::timings_csv(res), rep.json, ste::evaluation_timings(res)});
-    dir.commit();
-    // On stdout the times go with the summary (they are apart only in the files).
-    ordered_json printed = rep.json;
-    printed["timings"] = ste::evaluation_timings(res);
-    report(printed, rep.text);
+    if (!several) return report(reports.front().json, reports.front().text);
+    ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
+    std::string text;
+    for (std::size_t m = 0; m < kinds.size(); ++m) {
+      j["methods"].push_back({{"method", ste::to_string(kinds[m])}, {"result", reports[m].json}});
+      text += std::string(m ? "\n\n" : "") + "== " + ste::to_string(kinds[m]) + " ==\n" +
+              reports[m].text;
+    }
+    report(j, text);
   });
 }
 

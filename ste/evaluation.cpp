@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <iomanip>
+#include <memory>
 #include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "methods/plume_tracking.hpp"
+#include "ste/shared_plume.hpp"
 
 namespace plumekit::ste {
 
@@ -59,12 +63,8 @@ double tracking_overhead(const LocalizationResult& r, Vec2 source, double thresh
       .value_or(std::numeric_limits<double>::quiet_NaN());
 }
 
-// One run from the map's starts or its seeded random start; its record's summary columns filled
-// in.
-void run_one(const Scenario& scenario, RunRecord& rec) {
-  const std::uint64_t s = run_seed(rec.seed, rec.map_index, rec.source_index, rec.run);
-  rec.start = scenario.run_start(rec.source, rec.run, stream_seed(s, SteStream::Start));
-  rec.result = scenario.run(rec.source, rec.start, s);
+// A run's summary columns, from its result.
+void fill_record(const Scenario& scenario, RunRecord& rec) {
   const LocalizationResult& r = rec.result;
   rec.estimate = r.estimate;
   rec.error_m = norm(r.estimate - rec.source);
@@ -78,6 +78,47 @@ void run_one(const Scenario& scenario, RunRecord& rec) {
   if (stops_in_source_box(scenario.options().method.kind))
     rec.distance_overhead =
         tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
+}
+
+// Run k of every method (records[m][k] with scenarios[m]), from the map's starts or its seeded
+// random start. Several methods share the run's plume, each robot on its own thread
+// (ste/shared_plume.hpp): each reads what it would alone.
+void run_one(const std::vector<std::unique_ptr<Scenario>>& scenarios,
+             std::vector<std::vector<RunRecord>>& records, std::size_t k) {
+  const Scenario& first = *scenarios.front();
+  RunRecord& head = records.front()[k];
+  const std::uint64_t s = run_seed(head.seed, head.map_index, head.source_index, head.run);
+  const Vec2 start = first.run_start(head.source, head.run, stream_seed(s, SteStream::Start));
+  if (scenarios.size() == 1) {
+    head.start = start;
+    head.result = first.run(head.source, start, s);
+    fill_record(first, head);
+    return;
+  }
+  first.check_source(head.source);
+  SharedPlume plume(first.map(), first.wind(), head.source, first.options().world.filament, s,
+                    static_cast<int>(scenarios.size()));
+  std::vector<std::exception_ptr> failed(scenarios.size());
+  auto robot = [&](std::size_t m) {
+    try {
+      RunRecord& rec = records[m][k];
+      SimulatedWorld world(plume, static_cast<int>(m), first.map(), rec.source,
+                           scenarios[m]->options().world, s);
+      rec.start = start;
+      rec.result = scenarios[m]->run(world, start, s);
+      fill_record(*scenarios[m], rec);
+    } catch (...) {
+      failed[m] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> others;
+  for (std::size_t m = 1; m < scenarios.size(); ++m)
+    others.emplace_back(robot, m);
+  robot(0);
+  for (std::thread& t : others)
+    t.join();
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
 }
 
 std::vector<const RunRecord*> pointers(const std::vector<RunRecord>& records) {
@@ -141,57 +182,87 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
   return s;
 }
 
-EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions& o,
-                          const std::function<void(int, int)>& progress,
-                          const AfterMap& after_map) {
+std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
+                                               const EvaluationOptions& o,
+                                               const std::vector<MethodKind>& kinds,
+                                               const std::function<void(int, int)>& progress,
+                                               const AfterMethodMap& after_map) {
   o.validate();
+  if (kinds.empty()) throw std::logic_error("evaluate_methods: no method");
   const auto t_all = Clock::now();
   for (const Map& m : maps)
     if (m.sources.empty())
       throw InputError("map " + m.name + " has no ground-truth \"sources\" to evaluate on");
-  EvaluationResult result;
-  result.method = to_string(o.ste.method.kind);
-  result.seeds = o.seeds;
-  result.pairs = part_pairs(maps, o);
-  const int total = static_cast<int>(result.pairs.end - result.pairs.first) * o.runs * o.seeds;
-  SteOptions ste = o.ste;
-  ste.threads = o.threads;  // the table build uses the evaluation's threads
+  std::vector<SteOptions> ste(kinds.size(), o.ste);
+  std::vector<EvaluationResult> results(kinds.size());
+  const PairRange pairs = part_pairs(maps, o);
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    ste[m].method.kind = kinds[m];
+    ste[m].threads = o.threads;  // the table build uses the evaluation's threads
+    ste[m].validate();
+    results[m].method = to_string(kinds[m]);
+    results[m].seeds = o.seeds;
+    results[m].pairs = pairs;
+  }
+  const int total = static_cast<int>(pairs.end - pairs.first) * o.runs * o.seeds;
   ThreadPool pool(o.threads);
-  result.threads = pool.size();
   int done = 0;
   std::mutex lock;
   long long first_pair = 0;
   for (std::size_t mi = 0; mi < maps.size(); ++mi) {
     const auto t_map = Clock::now();
-    std::vector<RunRecord> records =
-        planned_runs(maps[mi], static_cast<int>(mi), o, first_pair, result.pairs);
+    std::vector<std::vector<RunRecord>> records(
+        kinds.size(), planned_runs(maps[mi], static_cast<int>(mi), o, first_pair, pairs));
     first_pair += sources_evaluated(maps[mi], o);
     MapReport report;
     report.name = maps[mi].name;
     report.frame = maps[mi].frame;
-    if (records.empty()) {  // another part's map: no wind, no table
-      result.maps.push_back(report);
+    if (records.front().empty()) {  // another part's map: no wind, no table
+      for (EvaluationResult& r : results)
+        r.maps.push_back(report);
       continue;
     }
-    const Scenario scenario(maps[mi], ste);
-    pool.parallel_for(records.size(), [&](std::size_t k) {
-      run_one(scenario, records[k]);
+    std::vector<std::unique_ptr<Scenario>> scenarios;
+    for (std::size_t m = 0; m < kinds.size(); ++m)
+      scenarios.push_back(m == 0 ? std::make_unique<Scenario>(maps[mi], ste[m])
+                                 : std::make_unique<Scenario>(maps[mi], ste[m], *scenarios[0]));
+    pool.parallel_for(records.front().size(), [&](std::size_t k) {
+      run_one(scenarios, records, k);
       std::lock_guard<std::mutex> g(lock);
       ++done;
       if (progress) progress(done, total);
     });
-    report.wind_s = scenario.wind_s();
-    report.table_build_s = scenario.model_build_s();
-    report.stats = summarise(pointers(records));
-    report.wall_s = std::chrono::duration<double>(Clock::now() - t_map).count();
-    result.maps.push_back(report);
-    if (after_map) after_map(scenario, records);
-    for (RunRecord& r : records)
-      result.runs.push_back(std::move(r));
+    const double wall_s = std::chrono::duration<double>(Clock::now() - t_map).count();
+    for (std::size_t m = 0; m < kinds.size(); ++m) {
+      MapReport r = report;
+      r.wind_s = scenarios[m]->wind_s();
+      r.table_build_s = scenarios[m]->model_build_s();
+      r.stats = summarise(pointers(records[m]));
+      r.wall_s = wall_s;
+      results[m].maps.push_back(r);
+      if (after_map) after_map(m, *scenarios[m], records[m]);
+      for (RunRecord& run : records[m])
+        results[m].runs.push_back(std::move(run));
+    }
   }
-  result.overall = summarise(pointers(result.runs));
-  result.wall_s = std::chrono::duration<double>(Clock::now() - t_all).count();
-  return result;
+  const double wall_s = std::chrono::duration<double>(Clock::now() - t_all).count();
+  for (EvaluationResult& r : results) {
+    r.overall = summarise(pointers(r.runs));
+    r.wall_s = wall_s;
+    r.threads = pool.size();
+  }
+  return results;
+}
+
+EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions& o,
+                          const std::function<void(int, int)>& progress,
+                          const AfterMap& after_map) {
+  AfterMethodMap each;
+  if (after_map)
+    each = [&](std::size_t, const Scenario& sc, const std::vector<RunRecord>& records) {
+      after_map(sc, records);
+    };
+  return std::move(evaluate_methods(maps, o, {o.ste.method.kind}, progress, each).front());
 }
 
 std::string runs_csv(const EvaluationResult& result) {

@@ -107,6 +107,21 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
                           const std::function<void(int, int)>& progress = {},
                           const AfterMap& after_map = {});
 
+// Every method of `kinds` (options.ste.method.kind replaced by each) on the same runs, one
+// result per method, each byte for byte (but its wall times) the result of evaluate() with that
+// method alone. Each run's plume is simulated once and all the methods' robots sample it at once
+// (ste/shared_plume.hpp): the plume, most of a run's cost, is paid for the longest mission
+// instead of for every method's. `progress` counts runs of all the methods; `after_map` is
+// called for each method (its index in `kinds`) and map. The maps' and the whole wall times are
+// the shared ones.
+using AfterMethodMap =
+    std::function<void(std::size_t method, const Scenario&, const std::vector<RunRecord>&)>;
+std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
+                                               const EvaluationOptions& options,
+                                               const std::vector<MethodKind>& kinds,
+                                               const std::function<void(int, int)>& progress = {},
+                                               const AfterMethodMap& after_map = {});
+
 // CSV of all runs (one header line, one line per run): what each run found, the same bytes
 // whatever the threads, the machine or the --shard split. The measured compute times are in
 // timings_csv, with the same first columns.

@@ -86,7 +86,11 @@ void check_shape(const ordered_json& j) {
   const ordered_json& s = j.at("settings");
   s.at("runs_per_source").get<long long>();
   s.at("seeds").get<int>();
-  s.at("plume_model").get<std::string>();
+  // The summary's label: STE's plume model, or the method.
+  if (s.value("method", std::string("ste")) == "ste")
+    s.at("plume_model").get<std::string>();
+  else
+    s.at("method").get<std::string>();
   j.at("options").items();
   for (const char* key : {"first", "end", "total"})
     j.at("pairs").at(key).get<long long>();

@@ -49,6 +49,26 @@ MethodKind parse_method_kind(const std::string& name) {
   throw OptionError("ste.method", "unknown method '" + name + "'; use one of " + all);
 }
 
+std::vector<MethodKind> parse_method_list(const std::string& text) {
+  std::vector<MethodKind> kinds;
+  if (text == "all") {
+    for (const Named& m : kMethods)
+      kinds.push_back(m.kind);
+    return kinds;
+  }
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    const MethodKind k = parse_method_kind(text.substr(from, comma - from));
+    if (std::find(kinds.begin(), kinds.end(), k) != kinds.end())
+      throw OptionError("ste.method",
+                        std::string(to_string(k)) + " is named twice in '" + text + "'");
+    kinds.push_back(k);
+    if (comma == std::string::npos) return kinds;
+    from = comma + 1;
+  }
+}
+
 bool stops_in_source_box(MethodKind kind) {
   return kind == MethodKind::Sweeping || kind == MethodKind::SurgeCast ||
          kind == MethodKind::Zigzag || kind == MethodKind::PseudoGradient;

@@ -28,6 +28,9 @@ const char* to_string(MethodKind kind);
 // The --method names in order: "ste", "sweeping", ... OptionError on ste.method otherwise.
 MethodKind parse_method_kind(const std::string& name);
 std::vector<std::string> method_names();
+// "NAME[,NAME...]" (each once) or "all" (every method, in method_names()'s order): the methods
+// `evaluate --method` runs in one world. OptionError on ste.method otherwise.
+std::vector<MethodKind> parse_method_list(const std::string& text);
 
 // STE needs a plume model; the others read only the gas, the wind and the pose. (The APF's gas
 // maps are built from the readings.)

@@ -298,8 +298,12 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
                  {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
                  {"gas_sensor", eo.ste.world.sensor.name},
                  {"sensor_baseline", eo.ste.world.sensor.baseline}};
-  if (!uses_plume_model(eo.ste.method.kind))
+  if (!uses_plume_model(eo.ste.method.kind)) {
+    // The plume model's settings mean nothing to a method without one.
+    for (const char* key : {"plume_model", "sigma_m", "sigma_rel", "sigma_std", "source_cell"})
+      j.erase(key);
     j["method_options"] = method_options_json(eo.ste.method);
+  }
   return j;
 }
 

@@ -49,8 +49,8 @@ AfterMap trajectory_pictures(const std::filesystem::path& dir,
                              const std::vector<std::string>& picture_names);
 
 // What was evaluated and how: summary.json's keys before "overall" (the options that shape the
-// results; never the threads or a time). `map_dir` is the folder the maps came from, as the user
-// named it.
+// results; never the threads or a time; the plume model's only for STE). `map_dir` is the folder
+// the maps came from, as the user named it.
 nlohmann::ordered_json evaluation_settings(const EvaluationOptions& options,
                                            const std::filesystem::path& map_dir);
 // summary.json's content (`settings`, then the overall and per-map statistics) and the

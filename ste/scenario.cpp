@@ -159,7 +159,13 @@ int resolve_max_samples(int max_samples, std::size_t floor_goals, double floor_s
                   static_cast<int>(std::ceil(area / kSquareMetresPerSample)));
 }
 
-Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), options_(options) {
+Scenario::Scenario(const Map& map, const SteOptions& options) : Scenario(map, options, nullptr) {}
+
+Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario& same_map)
+    : Scenario(map, options, &same_map) {}
+
+Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* same_map)
+    : map_(map), options_(options) {
   options.validate();
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
   const bool model = uses_plume_model(options.method.kind);
@@ -169,9 +175,14 @@ Scenario::Scenario(const Map& map, const SteOptions& options) : map_(map), optio
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
-  wind_ = options.wind_dir.empty() ? cfd::solve_wind(map_, options.flow).flow.wind  // the policy
-                                   : cfd::read_wind(options.wind_dir, map_);
-  wind_s_ = since(t0);
+  if (same_map) {
+    wind_ = same_map->wind_;
+    wind_s_ = same_map->wind_s_;
+  } else {
+    wind_ = options.wind_dir.empty() ? cfd::solve_wind(map_, options.flow).flow.wind  // the policy
+                                     : cfd::read_wind(options.wind_dir, map_);
+    wind_s_ = since(t0);
+  }
   t0 = Clock::now();
   if (uses_plume_model(options.method.kind))
     model_ = make_model(map_, wind_, options, table_from_cache_);
@@ -292,6 +303,12 @@ LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) co
   check_source(source);
   start = check_start(start);
   SimulatedWorld world(map_, wind_, source, options_.world, seed);
+  return run(world, start, seed);
+}
+
+LocalizationResult Scenario::run(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const {
+  const Vec2 source = check_source(world.source());
+  start = check_start(start);
   if (uses_plume_model(options_.method.kind)) {
     const std::unique_ptr<Estimator> estimator = make_estimator(seed);
     return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);

@@ -122,6 +122,9 @@ class Scenario {
   // Solves the wind (options.flow; upwind if Newton stalls with central convection) and builds
   // the plume model. InputError for a map STE cannot run on.
   Scenario(const Map& map, const SteOptions& options);
+  // The same with the wind of `same_map`, a scenario of this map with the same flow options (the
+  // other methods of `evaluate --method a,b,...`): no second solve.
+  Scenario(const Map& map, const SteOptions& options, const Scenario& same_map);
   ~Scenario();
 
   const Map& map() const { return map_; }
@@ -158,6 +161,9 @@ class Scenario {
   // One localization run with the options' method; `seed` drives the plume, the sensor noise, MH
   // and the particle filter.
   LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;
+  // The same run in `world`, which holds the plume of `source` and `seed` (a robot of a shared
+  // plume: ste/shared_plume.hpp).
+  LocalizationResult run(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
 
   // The plume trackers' success box of a source: along the steady wind at the source.
   SourceBox source_box(Vec2 source) const;
@@ -170,6 +176,9 @@ class Scenario {
   // The piece of free space (at the planner's margin) that `p`, or the free point nearest it,
   // lies in: a start must be in its source's.
   int region_reaching(Vec2 p) const;
+
+  // The wind of `same_map`, or solved when it is null.
+  Scenario(const Map& map, const SteOptions& options, const Scenario* same_map);
 
   Map map_;
   SteOptions options_;

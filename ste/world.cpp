@@ -9,28 +9,63 @@
 
 namespace plumekit::ste {
 
+namespace {
+
+// Every option checked before the plume is built (its spin-up is the costly part).
+const WorldOptions& checked(const WorldOptions& options) {
+  options.validate();
+  return options;
+}
+
+}  // namespace
+
 SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
                                const WorldOptions& options, std::uint64_t seed)
-    : source_(source),
+    : own_(std::make_unique<SharedPlume>(map, wind, source, checked(options).filament, seed, 1)),
+      plume_(*own_),
+      source_(source),
       options_(options),
-      sim_(map, wind, source, options.filament, seed),
       map_(map),
       // Independent streams for the sensors, so noise never shifts the plume.
       noise_rng_(stream_seed(seed, SteStream::SensorNoise)),
       wind_rng_(stream_seed(seed, SteStream::WindNoise)),
       position_rng_(stream_seed(seed, SteStream::PositionNoise)),
       spread_rng_(stream_seed(seed, SteStream::WindSpread)),
-      gas_(options.sensor, 1.0 / options.sample_rate) {
-  options.validate();  // the filament simulation (sim_) has checked its own options already
-  dataset::spin_up(sim_, options.filament);
-  spinup_ = sim_.time();
+      gas_(options.sensor, 1.0 / options.sample_rate),
+      time_(plume_.spinup_s()) {}
+
+SimulatedWorld::SimulatedWorld(SharedPlume& plume, int robot, const Map& map, Vec2 source,
+                               const WorldOptions& options, std::uint64_t seed)
+    : plume_(plume),
+      robot_(robot),
+      source_(source),
+      options_(options),
+      map_(map),
+      noise_rng_(stream_seed(seed, SteStream::SensorNoise)),
+      wind_rng_(stream_seed(seed, SteStream::WindNoise)),
+      position_rng_(stream_seed(seed, SteStream::PositionNoise)),
+      spread_rng_(stream_seed(seed, SteStream::WindSpread)),
+      gas_(options.sensor, 1.0 / options.sample_rate),
+      time_(plume.spinup_s()) {
+  try {
+    checked(options);
+  } catch (...) {
+    plume.leave(robot);  // the other robots must not wait for this one
+    throw;
+  }
+}
+
+SimulatedWorld::~SimulatedWorld() {
+  plume_.leave(robot_);
 }
 
 void SimulatedWorld::advance(double seconds) {
+  // Only counted here: the plume steps when this robot next reads it.
   debt_ += seconds;
   const double dt = options_.filament.dt;
   while (debt_ >= dt - 1e-12) {
-    sim_.step();
+    ++steps_;
+    time_ += dt;
     debt_ -= dt;
   }
 }
@@ -59,7 +94,7 @@ void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
   const int readings = static_cast<int>(std::floor(seconds / interval));
   for (int k = 1; k <= readings; ++k) {
     advance(interval);
-    gas_.read(sim_.concentration_at(point_along(path, k * interval * options_.speed)));
+    gas_.read(plume().concentration_at(point_along(path, k * interval * options_.speed)));
   }
   advance(seconds - readings * interval);
 }
@@ -74,10 +109,11 @@ Reading SimulatedWorld::stop(Vec2 p) {
   NormalSampler spread;
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
-    double c = gas_.read(sim_.concentration_at(p));
+    const dataset::FilamentSimulation& plume_now = plume();
+    double c = gas_.read(plume_now.concentration_at(p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
-    const Vec2 w = sim_.wind_at(p);
+    const Vec2 w = plume_now.wind_at(p);
     wind_sum = wind_sum + w;
     if (options_.wind_variance_noise_deg > 0.0) {
       const double a =

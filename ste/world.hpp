@@ -9,6 +9,7 @@
 // A sensor with memory also reads on the way between stops, so it arrives
 // with what the path left in it; the ideal one only reads at stops.
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "core/map.hpp"
 #include "dataset/filament_model.hpp"
 #include "dataset/gas_sensor.hpp"
+#include "ste/shared_plume.hpp"
 
 namespace plumekit::ste {
 
@@ -71,28 +73,43 @@ struct Reading {
 
 class SimulatedWorld {
  public:
+  // A world of its own: the plume of `source` seeded by `seed`, spun up.
   SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
                  const WorldOptions& options, std::uint64_t seed);
+  // Robot `robot` in a plume it shares (ste/shared_plume.hpp), which must have been built with
+  // options.filament and `seed` on this map: the robot then reads exactly what it would read in
+  // the world of its own above. Its sensors draw from the streams of `seed`.
+  SimulatedWorld(SharedPlume& plume, int robot, const Map& map, Vec2 source,
+                 const WorldOptions& options, std::uint64_t seed);
+  ~SimulatedWorld();
+  SimulatedWorld(const SimulatedWorld&) = delete;
+  SimulatedWorld& operator=(const SimulatedWorld&) = delete;
+
   // The plume runs on while the robot covers `path` (`metres` long) at
   // options.speed; a sensor with memory reads along it.
   void travel(const std::vector<Vec2>& path, double metres);
   // Stays at p for sample_s and returns what the sensors report.
   Reading stop(Vec2 p);
-  double time() const { return sim_.time(); }  // simulated seconds since release
-  double spinup_s() const { return spinup_; }  // before the robot started
+  double time() const { return time_; }                  // simulated seconds since release
+  double spinup_s() const { return plume_.spinup_s(); }  // before the robot started
   Vec2 source() const { return source_; }
   const Map& map() const { return map_; }
 
  private:
   void advance(double seconds);
+  // The plume at this robot's time.
+  const dataset::FilamentSimulation& plume() { return plume_.at(steps_, robot_); }
+  std::unique_ptr<SharedPlume> own_;  // a world of its own
+  SharedPlume& plume_;
+  int robot_ = 0;
   Vec2 source_;
   WorldOptions options_;
-  dataset::FilamentSimulation sim_;
   const Map& map_;
   std::mt19937_64 noise_rng_, wind_rng_, position_rng_, spread_rng_;
   dataset::GasSensor gas_;
-  double spinup_ = 0.0;
-  double debt_ = 0.0;  // seconds not yet stepped (travel times are not multiples of dt)
+  long long steps_ = 0;  // of the plume's dt since the spin-up
+  double time_ = 0.0;    // summed step by step, as the plume sums its own
+  double debt_ = 0.0;    // seconds not yet stepped (travel times are not multiples of dt)
 };
 
 }  // namespace plumekit::ste

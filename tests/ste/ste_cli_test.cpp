@@ -74,6 +74,56 @@ TEST_F(SteCli, LocalizeAndEvaluateRunAnyMethod) {
   EXPECT_NE(r.err.find("--zigzag-angle"), std::string::npos) << r.err;
 }
 
+// Several methods in one world (ste/shared_plume.hpp): OUT/NAME/ is byte for byte what
+// `--method NAME --out OUT/NAME` writes, the pictures included.
+TEST_F(SteCli, SeveralMethodsInOneWorldWriteWhatEachWritesAlone) {
+  write_map();
+  const std::string maps = (dir / "maps").string();
+  const std::string common = " --plume-model gaussian --max-samples 6 --max-steps 15 --runs 2";
+  CliResult r = run("evaluate --map-dir " + maps + common +
+                    " --method ste,zigzag,pf-sweep --json --out " + (dir / "all").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  ASSERT_EQ(j["methods"].size(), 3u);
+  EXPECT_EQ(j["methods"][1]["method"], "zigzag");
+  EXPECT_TRUE(j["methods"][1]["result"]["overall"].contains("reached_source_box"));
+  for (const std::string m : {"ste", "zigzag", "pf-sweep"}) {
+    r = run("evaluate --map-dir " + maps + common + " --method " + m + " --out " +
+            (dir / ("one-" + m)).string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* f : {"runs.csv", "summary.json", "boxplot-error.png", "boxplot-samples.png",
+                          "trajectories/small.png"}) {
+      const std::string bytes = slurp(dir / "all" / m / f);
+      EXPECT_FALSE(bytes.empty()) << m << ": " << f;
+      EXPECT_EQ(bytes, slurp(dir / ("one-" + m) / f)) << m << ": " << f;
+    }
+  }
+  // Parts of several methods: OUT/NAME/ part folders, which merge method by method.
+  for (int k = 0; k < 2; ++k) {
+    r = run("evaluate --map-dir " + maps + common + " --method ste,zigzag --shard " +
+            std::to_string(k) + "/2 --out " + (dir / ("part-" + std::to_string(k))).string());
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  for (const std::string m : {"ste", "zigzag"}) {
+    r = run("evaluate merge " + (dir / "part-0" / m).string() + " " +
+            (dir / "part-1" / m).string() + " --out " + (dir / ("merged-" + m)).string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const char* f : {"runs.csv", "summary.json"})
+      EXPECT_EQ(slurp(dir / ("merged-" + m) / f), slurp(dir / ("one-" + m) / f)) << m << ": " << f;
+  }
+  // The plume model's settings are STE's alone.
+  EXPECT_FALSE(json::parse(slurp(dir / "all" / "zigzag" / "summary.json")).contains("sigma_m"));
+  EXPECT_TRUE(json::parse(slurp(dir / "all" / "ste" / "summary.json")).contains("sigma_m"));
+  r = run("evaluate --map-dir " + maps + " --method zigzag,ste,zigzag --out " +
+          (dir / "twice").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("zigzag is named twice"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "twice"));
+  r = run("localize " + (dir / "maps" / "small.json").string() + " --source 4.5,0.5 --method all");
+  EXPECT_EQ(r.code, 2);  // one robot, one method
+  EXPECT_NE(r.err.find("unknown method 'all'"), std::string::npos) << r.err;
+}
+
 TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   const std::string map = write_map();
   CliResult r = run("localize " + map + " --source 2.7,1.5 --plume-model physics");

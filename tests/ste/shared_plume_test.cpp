@@ -1,0 +1,122 @@
+// One plume that several robots sample in one world clock (ste/shared_plume.hpp): each robot,
+// on its own thread, reads exactly what it reads in a world of its own with the same seed.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "core/error.hpp"
+#include "dataset/uniform_wind.hpp"
+#include "ste/shared_plume.hpp"
+#include "ste/world.hpp"
+
+namespace plumekit::ste {
+namespace {
+
+// A plume along y = 2 from (2, 2) in a uniform 1 m/s wind, in the faithful world (unsteady wind,
+// occlusion), short enough a spin-up for a test.
+struct PlumeWorld {
+  Map map = default_arena(10.0, 4.0);
+  cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
+  Vec2 source{2.0, 2.0};
+  std::uint64_t seed = 29;
+  WorldOptions options(const std::string& sensor) const {
+    WorldOptions o;
+    o.filament.release_per_second = 100.0;
+    o.filament.min_spinup = 2.0;
+    o.filament.max_spinup = 6.0;
+    o.sensor = dataset::gas_sensor_preset(sensor);
+    o.wind_direction_noise_deg = 10.0;
+    o.position_noise = 0.1;
+    return o;
+  }
+};
+
+// What a robot did: every reading and its clock after each action.
+struct Log {
+  std::vector<Reading> readings;
+  std::vector<double> times;
+};
+
+// A mission of `stops` stops along the plume, travelling `metres` between them (not multiples of
+// the plume's dt, so the leftover seconds carry from leg to leg).
+Log mission(SimulatedWorld& world, int stops, double metres) {
+  Log log;
+  Vec2 p{3.0, 1.0};
+  for (int k = 0; k < stops; ++k) {
+    log.readings.push_back(world.stop(p));
+    log.times.push_back(world.time());
+    const Vec2 next{p.x + 0.7 * metres, p.y + 0.2};
+    world.travel({p, next}, metres);
+    log.times.push_back(world.time());
+    p = next;
+  }
+  return log;
+}
+
+void expect_same(const Log& a, const Log& b) {
+  ASSERT_EQ(a.readings.size(), b.readings.size());
+  for (std::size_t k = 0; k < a.readings.size(); ++k) {
+    EXPECT_EQ(a.readings[k].gas, b.readings[k].gas) << "stop " << k;
+    EXPECT_EQ(a.readings[k].wind.x, b.readings[k].wind.x) << "stop " << k;
+    EXPECT_EQ(a.readings[k].wind.y, b.readings[k].wind.y) << "stop " << k;
+    EXPECT_EQ(a.readings[k].wind_variance, b.readings[k].wind_variance) << "stop " << k;
+    EXPECT_EQ(a.readings[k].position.x, b.readings[k].position.x) << "stop " << k;
+    EXPECT_EQ(a.readings[k].position.y, b.readings[k].position.y) << "stop " << k;
+  }
+  EXPECT_EQ(a.times, b.times);
+}
+
+TEST(SharedPlume, RobotsOnThreadsReadWhatEachReadsAlone) {
+  const PlumeWorld w;
+  // Three robots with their own paces and sensors; the first leaves long before the others.
+  const std::vector<std::string> sensors{"ideal", "catalytic", "mox-fast"};
+  const std::vector<int> stops{2, 6, 5};
+  const std::vector<double> legs{1.3, 0.77, 1.01};
+  std::vector<Log> alone;
+  for (std::size_t r = 0; r < sensors.size(); ++r) {
+    SimulatedWorld world(w.map, w.wind, w.source, w.options(sensors[r]), w.seed);
+    alone.push_back(mission(world, stops[r], legs[r]));
+  }
+  SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 3);
+  std::vector<Log> shared(sensors.size());
+  std::vector<std::thread> robots;
+  for (std::size_t r = 0; r < sensors.size(); ++r)
+    robots.emplace_back([&, r] {
+      SimulatedWorld world(plume, static_cast<int>(r), w.map, w.source, w.options(sensors[r]),
+                           w.seed);
+      shared[r] = mission(world, stops[r], legs[r]);
+    });
+  for (std::thread& t : robots)
+    t.join();
+  for (std::size_t r = 0; r < sensors.size(); ++r) {
+    SCOPED_TRACE(sensors[r]);
+    expect_same(shared[r], alone[r]);
+  }
+  // The readings are of a plume, not of nothing.
+  EXPECT_GT(alone[1].readings.back().gas + alone[2].readings.back().gas, 0.0);
+}
+
+TEST(SharedPlume, ARobotsStepsNeverGoBack) {
+  const PlumeWorld w;
+  SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 1);
+  const double t0 = plume.at(0, 0).time();
+  EXPECT_DOUBLE_EQ(plume.at(4, 0).time(), t0 + 4 * w.options("ideal").filament.dt);
+  EXPECT_THROW(plume.at(3, 0), std::logic_error);
+}
+
+TEST(SharedPlume, ARobotWhoseOptionsFailDoesNotHoldTheOthers) {
+  const PlumeWorld w;
+  SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 2);
+  WorldOptions bad = w.options("ideal");
+  bad.speed = -1.0;
+  EXPECT_THROW(SimulatedWorld(plume, 1, w.map, w.source, bad, w.seed), OptionError);
+  SimulatedWorld world(plume, 0, w.map, w.source, w.options("ideal"), w.seed);
+  world.travel({}, 3.0);  // 6 s: the plume steps on without robot 1
+  world.stop({4.0, 2.0});
+  EXPECT_NEAR(world.time() - plume.spinup_s(), 6.0 + 5.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace plumekit::ste
