@@ -195,20 +195,22 @@ void add_wind_model_option(CLI::App* command, bool& unsteady) {
 void add_world_options(CLI::App* command, dataset::FilamentOptions& filament) {
   const bool faithful = filament.occlusion && filament.unsteady_wind,
              thesis = !filament.occlusion && !filament.unsteady_wind;
-  bind_field(command,
-             command
-                 ->add_option_function<std::string>(
-                     "--world",
-                     [&filament](const std::string& name) { dataset::set_world(filament, name); },
-                     "Filament world preset: faithful (--occlusion on --wind-model unsteady), "
-                     "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
-                     "thesis's figures), or neumann (seed 000's filaments in a laminar wind, for "
-                     "its 32 x 8 m tunnel: data/seeds/); either flag overrides its half")
-                 ->type_name("faithful|thesis|neumann")
-                 ->default_str(faithful ? "faithful"
-                               : thesis ? "thesis"
-                                        : "neither"),
-             "plume.world");
+  bind_field(
+      command,
+      command
+          ->add_option_function<std::string>(
+              "--world",
+              [&filament](const std::string& name) { dataset::set_world(filament, name); },
+              "Filament world preset: faithful (--occlusion on --wind-model unsteady), "
+              "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
+              "thesis's figures), or neumann (seed 000's filaments in a laminar wind, from a "
+              "0.2 m source disc, for its 32 x 8 m tunnel: data/seeds/); either flag "
+              "overrides its half")
+          ->type_name("faithful|thesis|neumann")
+          ->default_str(faithful ? "faithful"
+                        : thesis ? "thesis"
+                                 : "neither"),
+      "plume.world");
   add_occlusion_option(command, filament.occlusion);
   add_wind_model_option(command, filament.unsteady_wind);
 }

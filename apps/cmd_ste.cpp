@@ -180,6 +180,10 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
                  ->type_name("M|gps")
                  ->default_str("0"),
              "ste.world.position_noise");
+  bind_to(cmd, "--rotor-disc", o.world.rotor_disc,
+          "Each gas reading averages the concentration over a disc of this radius, m (seed 000's "
+          "rotor disturbance: 0.5; 0: at the sensor's point)",
+          "ste.world.rotor_disc");
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
   bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",

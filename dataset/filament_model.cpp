@@ -68,6 +68,8 @@ void FilamentOptions::validate() const {
   check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
                  "the default is 1000");
   check_positive("plume.initial_radius", initial_radius, 10.0, "m", "the default is 0.1 m");
+  check_non_negative("plume.source_radius", source_radius, 100.0, "m",
+                     "0 releases at the source's point; seed 002's source is 0.2 m");
   check_non_negative("plume.growth", growth, 100.0, "m^2/s", "the default is 0.08 m^2/s");
   check_non_negative("plume.sigma_walk", sigma_walk, 100.0, "m/sqrt(s)",
                      "the default is 0.245 m/sqrt(s)");
@@ -107,6 +109,7 @@ void set_world(FilamentOptions& options, const std::string& name) {
   constexpr double kSeedStep = 0.1;
   options.release_per_second = 500.0;
   options.initial_radius = 0.2;
+  options.source_radius = 0.2;
   options.sigma_walk = 0.1 / std::sqrt(kSeedStep);
   options.growth = 4e-7 / kSeedStep;
   options.meander_speed = 0.0;
@@ -174,6 +177,18 @@ bool FilamentSimulation::free_at(Vec2 p) const {
   return clear_[s.index(i, j)] || map_.obstacle_at(p) < 0;
 }
 
+Vec2 FilamentSimulation::release_point() {
+  if (o_.source_radius <= 0.0) return source_;
+  // Uniform over the disc's free part: redrawn where the disc overlaps a wall or an obstacle.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const double r = o_.source_radius * std::sqrt(uniform01(rng_));
+    const double a = 2.0 * kPi * uniform01(rng_);
+    const Vec2 p{source_.x + r * std::cos(a), source_.y + r * std::sin(a)};
+    if (map_.is_free(p)) return p;
+  }
+  return source_;
+}
+
 void FilamentSimulation::step() {
   const double dt = o_.dt;
   const double walk = o_.sigma_walk * std::sqrt(dt);
@@ -189,7 +204,7 @@ void FilamentSimulation::step() {
 
   release_debt_ += o_.release_per_second * dt;
   while (release_debt_ >= 1.0) {
-    filaments_.push_back({source_, o_.initial_radius * o_.initial_radius});
+    filaments_.push_back({release_point(), o_.initial_radius * o_.initial_radius});
     release_debt_ -= 1.0;
     ++summary_.released;
   }

@@ -36,6 +36,10 @@ struct FilamentOptions {
   // with the advection-diffusion model so both give the same mean.
   double release_rate = 1000.0;
   double initial_radius = 0.1;  // m, R at release (a source of ~0.1 m)
+  // Filaments leave from uniformly random points of a disc of this radius about the source
+  // (seed 002 §5: a circular source of 0.2 m, its filaments spread over it); 0: all from the
+  // source's point, drawing nothing (the other worlds' bytes).
+  double source_radius = 0.0;
   // dR^2/dt, m^2/s: the filament's own growth (molecular + small-scale mixing).
   double growth = 0.08;
   // Random walk of each filament: displacement N(0, sigma_walk^2 dt) per axis.
@@ -96,7 +100,8 @@ struct FilamentOptions {
 // defaults: occlusion and the unsteady wind) or "thesis" (neither), which set only
 // those two fields; or "neumann", seed 000 §4.1's filaments in a laminar wind (no
 // meander, 500 filaments/s of 0.2 m, sigma_p 0.1 m per 0.1 s step (dt 0.1 s), almost no growth,
-// a spin-up of at least 100 s), for the seeds' 32 x 8 m tunnel. OptionError
+// a spin-up of at least 100 s), released over a source disc of 0.2 m, for the seeds' 32 x 8 m
+// tunnel. OptionError
 // "plume.world" for another name.
 void set_world(FilamentOptions& options, const std::string& name);
 
@@ -144,6 +149,7 @@ class FilamentSimulation {
 
  private:
   bool free_at(Vec2 p) const;
+  Vec2 release_point();  // the source, or a free point of its disc (options.source_radius)
 
   const Map& map_;
   const cfd::WindField& wind_;

@@ -80,6 +80,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                      {"equivalent_diffusivity", f.equivalent_diffusivity()}};
     // Only when on, so that manifests written before the option still match on resume.
     if (f.occlusion) j["filament"]["occlusion"] = true;
+    if (f.source_radius > 0.0) j["filament"]["source_radius"] = f.source_radius;
     if (f.unsteady_wind) {
       j["filament"]["wind_model"] = "unsteady";
       j["filament"]["meander_length"] = f.meander_length;

@@ -31,6 +31,8 @@ void bind_filament_options(py::module_& m) {
   PK_FIELD(c, FilamentOptions, release_per_second, "Filaments released per second");
   PK_FIELD(c, FilamentOptions, release_rate, "Release rate per metre of depth");
   PK_FIELD(c, FilamentOptions, initial_radius, "Filament radius at release, m");
+  PK_FIELD(c, FilamentOptions, source_radius,
+           "Radius of the source disc the filaments leave from, m (0: its point)");
   PK_FIELD(c, FilamentOptions, growth, "dR^2/dt, m^2/s");
   PK_FIELD(c, FilamentOptions, sigma_walk, "Random walk, m/sqrt(s)");
   PK_FIELD(c, FilamentOptions, meander_speed, "Meander std per axis, m/s");

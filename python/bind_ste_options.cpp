@@ -74,6 +74,8 @@ void bind_world(py::module_& m) {
   PK_FIELD(w, WorldOptions, position_noise, "Std per axis of the recorded position, m");
   PK_FIELD(w, WorldOptions, position_noise_per_fix,
            "position_noise is each reading's fix error; a stop records their mean");
+  PK_FIELD(w, WorldOptions, rotor_disc,
+           "Radius of the disc each gas reading averages over, m (seed 000's rotor: 0.5)");
   w.def_property(
       "gas_sensor", [](const WorldOptions& o) { return o.sensor.name; },
       [](WorldOptions& o, const std::string& name) { set_gas_sensor(o.sensor, name); },

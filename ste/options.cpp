@@ -74,6 +74,8 @@ void WorldOptions::validate() const {
                      "23.08");
   check_non_negative("ste.world.position_noise", position_noise, 100.0, "m",
                      "0 is an exact position; seed 000's GPS (Eq. 4.3) is 1.08 m");
+  check_non_negative("ste.world.rotor_disc", rotor_disc, 10.0, "m",
+                     "0 reads at a point; seed 000's rotor disturbance is 0.5 m");
 }
 
 void PhysicsPlumeOptions::validate() const {

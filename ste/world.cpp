@@ -94,9 +94,41 @@ void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
   const int readings = static_cast<int>(std::floor(seconds / interval));
   for (int k = 1; k <= readings; ++k) {
     advance(interval);
-    gas_.read(plume().concentration_at(point_along(path, k * interval * options_.speed)));
+    gas_.read(exposure(plume(), point_along(path, k * interval * options_.speed)));
   }
   advance(seconds - readings * interval);
+}
+
+std::vector<Vec2> disc_points(Vec2 centre, double radius) {
+  std::vector<Vec2> points{centre};
+  // Ring k stands for the annulus between the areas of (sum of earlier points) and (that plus
+  // its own) nineteenths of the disc, and lies at that annulus's area midpoint.
+  const struct {
+    int count;
+    double radius2, offset;
+  } rings[] = {{6, 4.0 / 19.0, 0.0}, {12, 13.0 / 19.0, kPi / 12.0}};
+  for (const auto& ring : rings)
+    for (int k = 0; k < ring.count; ++k) {
+      const double a = ring.offset + 2.0 * kPi * k / ring.count;
+      const double r = radius * std::sqrt(ring.radius2);
+      points.push_back({centre.x + r * std::cos(a), centre.y + r * std::sin(a)});
+    }
+  return points;
+}
+
+double SimulatedWorld::exposure(const dataset::FilamentSimulation& plume, Vec2 p) const {
+  if (options_.rotor_disc <= 0.0) return plume.concentration_at(p);
+  // The downwash mixes the air it reaches: the disc's points outside walls and obstacles do not
+  // count (the robot's own position always does).
+  const std::vector<Vec2> points = disc_points(p, options_.rotor_disc);
+  double sum = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (k == 0 || map_.is_free(points[k])) {  // points[0] is p
+      sum += plume.concentration_at(points[k]);
+      ++n;
+    }
+  return sum / n;
 }
 
 Reading SimulatedWorld::stop(Vec2 p) {
@@ -110,7 +142,7 @@ Reading SimulatedWorld::stop(Vec2 p) {
   for (int k = 0; k < n; ++k) {
     if (k > 0) advance(1.0 / options_.sample_rate);
     const dataset::FilamentSimulation& plume_now = plume();
-    double c = gas_.read(plume_now.concentration_at(p));
+    double c = gas_.read(exposure(plume_now, p));
     if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
     sum += c;
     const Vec2 w = plume_now.wind_at(p);

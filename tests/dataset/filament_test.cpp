@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "cfd/flow_solver.hpp"
+#include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/resample.hpp"
 #include "dataset/advection_diffusion.hpp"
@@ -66,6 +67,39 @@ TEST(FilamentModel, NoFilamentIsEverInsideAnObstacle) {
   }
   EXPECT_GT(checked, 10000);
   EXPECT_GT(sim.summary().rejected_moves, 100);  // the test did meet the obstacles
+}
+
+// Seed 002's circular source (source_radius): filaments leave from uniform points of the disc,
+// never outside the arena where the disc crosses a wall.
+TEST(FilamentModel, ASourceDiscReleasesUniformlyOverItsFreePart) {
+  const Map map = default_arena(10.0, 4.0);
+  const cfd::WindField still = test::uniform_wind(10.0, 4.0, 0.05, 0.0);
+  FilamentOptions o;
+  o.unsteady_wind = false;
+  o.meander_speed = 0.0;
+  o.sigma_walk = 0.0;  // the filaments stay where they were released
+  o.release_per_second = 4000.0;
+  o.source_radius = 0.2;
+  FilamentSimulation sim(map, still, {5.0, 2.0}, o, 3);
+  sim.step();
+  ASSERT_EQ(sim.filaments().size(), 200u);
+  Vec2 mean;
+  double square = 0.0;
+  for (const Filament& f : sim.filaments()) {
+    const Vec2 d = f.position - Vec2{5.0, 2.0};
+    EXPECT_LE(norm(d), 0.2);
+    mean = mean + (1.0 / 200.0) * d;
+    square += dot(d, d) / 200.0;
+  }
+  EXPECT_NEAR(mean.x, 0.0, 0.03);  // std of the mean: 0.1 / sqrt(200) = 0.007
+  EXPECT_NEAR(mean.y, 0.0, 0.03);
+  EXPECT_NEAR(square, 0.5 * 0.04, 0.005);  // a uniform disc's mean r^2 is R^2 / 2; std 0.0008
+  FilamentSimulation at_wall(map, still, {0.05, 2.0}, o, 3);
+  at_wall.step();
+  for (const Filament& f : at_wall.filaments())
+    EXPECT_GE(f.position.x, 0.0);
+  o.source_radius = -0.1;
+  EXPECT_THROW(FilamentSimulation(map, still, {5.0, 2.0}, o, 3), OptionError);
 }
 
 TEST(FilamentModel, SameSeedSameRecordAndSensorsInObstaclesReadZero) {

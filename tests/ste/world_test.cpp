@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/error.hpp"
 #include "dataset/uniform_wind.hpp"
 #include "ste/world.hpp"
 
@@ -176,6 +177,46 @@ TEST(SimulatedWorld, CircularVarianceOfTheStopsWind) {
   for (int k = 0; k < 100; ++k)
     sum += noisy.stop({6.0, 1.0}).wind_variance;
   EXPECT_NEAR(sum / 100, 1.0 - std::exp(-0.5 * std::pow(23.08 * kPi / 180.0, 2)), 0.01);
+}
+
+// Seed 000 §4.4's rotor disturbance (--rotor-disc): the 19 points stand for the disc, and the
+// reading is the plume smoothed over it: lower on the plume's axis, higher in its flank.
+TEST(SimulatedWorld, DiscPointsStandForTheDisc) {
+  const Vec2 c{3.0, -1.0};
+  const double r = 0.5;
+  const std::vector<Vec2> points = disc_points(c, r);
+  ASSERT_EQ(points.size(), 19u);
+  Vec2 mean;
+  double square = 0.0;
+  for (const Vec2& q : points) {
+    EXPECT_LE(norm(q - c), r);
+    mean = mean + (1.0 / 19.0) * q;
+    square += dot(q - c, q - c) / 19.0;
+  }
+  EXPECT_NEAR(mean.x, c.x, 1e-12);  // exact for a linear field
+  EXPECT_NEAR(mean.y, c.y, 1e-12);
+  EXPECT_NEAR(square, 0.5 * r * r, 0.005 * 0.5 * r * r);  // the disc's mean of |q - c|^2
+}
+
+TEST(SimulatedWorld, TheRotorDiscSmoothsThePlume) {
+  const PlumeWorld w;
+  WorldOptions rotor;
+  rotor.rotor_disc = 0.5;
+  SimulatedWorld point = w.make("ideal"), disc = w.make("ideal", rotor);
+  double axis_point = 0.0, axis_disc = 0.0, flank_point = 0.0, flank_disc = 0.0;
+  for (int k = 0; k < 10; ++k) {  // the same plume at the same times in both worlds
+    axis_point += point.stop({3.0, 2.0}).gas;
+    axis_disc += disc.stop({3.0, 2.0}).gas;
+    flank_point += point.stop({3.0, 3.0}).gas;
+    flank_disc += disc.stop({3.0, 3.0}).gas;
+  }
+  std::printf("axis: point %.0f, disc %.0f; flank: point %.0f, disc %.0f\n", axis_point / 10,
+              axis_disc / 10, flank_point / 10, flank_disc / 10);
+  EXPECT_LT(axis_disc, 0.9 * axis_point);
+  EXPECT_GT(flank_disc, 1.2 * flank_point);
+  WorldOptions bad;
+  bad.rotor_disc = -1.0;
+  EXPECT_THROW(w.make("ideal", bad), OptionError);
 }
 
 }  // namespace
