@@ -324,6 +324,11 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
                     "most-suggested (B)")
                  ->default_str(gdm::to_string(m.apf.locality)),
              "apf.locality");
+  bind_to(cmd, "--levy-threshold", m.levy.gradient_threshold,
+          "Lévy taxis: a change of the reading between stops from which the walk is all "
+          "exploitation (longest, straightest moves), concentration units (theta of seed 004 "
+          "Eq. 16.3, which it does not give)",
+          "levy.gradient_threshold");
 }
 
 void add_ste_options(CLI::App* cmd, ste::SteOptions& o,

@@ -75,7 +75,7 @@ void fill_record(const Scenario& scenario, RunRecord& rec) {
   rec.median_step_s = r.median_step_s;
   rec.stopped_by = r.stopped_by;
   rec.reached = r.reached;
-  if (stops_in_source_box(scenario.options().method.kind))
+  if (ends_on_arrival(scenario.options().method.kind))
     rec.distance_overhead =
         tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
 }

@@ -88,7 +88,7 @@ struct EvaluationResult {
   std::string method = "ste";  // MethodKind's name
   // A plume tracker's evaluation: runs.csv and the summaries add the source box and the distance
   // overhead.
-  bool tracking() const { return stops_in_source_box(parse_method_kind(method)); }
+  bool tracking() const { return ends_on_arrival(parse_method_kind(method)); }
   std::vector<RunRecord> runs;
   std::vector<MapReport> maps;
   Stats overall;

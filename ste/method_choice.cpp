@@ -23,6 +23,7 @@ constexpr Named kMethods[] = {
     {MethodKind::PfGradient, "pf-gradient"},
     {MethodKind::PfSweep, "pf-sweep"},
     {MethodKind::Apf, "apf"},
+    {MethodKind::LevyTaxis, "levy-taxis"},
 };
 
 }  // namespace
@@ -74,6 +75,10 @@ bool stops_in_source_box(MethodKind kind) {
          kind == MethodKind::Zigzag || kind == MethodKind::PseudoGradient;
 }
 
+bool ends_on_arrival(MethodKind kind) {
+  return stops_in_source_box(kind) || kind == MethodKind::LevyTaxis;
+}
+
 methods::PfMethodOptions MethodOptions::pf_in_use() const {
   methods::PfMethodOptions o = pf;
   o.filter = methods::pf_options_for(kind == MethodKind::PfSweep ? methods::PfExploration::Sweep
@@ -96,6 +101,7 @@ void MethodOptions::validate() const {
   tracking.validate();
   pf_in_use().validate();
   apf.validate();
+  levy.validate();
 }
 
 std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& given,
@@ -132,6 +138,11 @@ std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& gi
       gdm::ApfOptions apf = options.apf;
       apf.max_steps = options.tracking.max_steps;
       return gdm::make_apf_mapping(area, apf);
+    }
+    case MethodKind::LevyTaxis: {
+      methods::LevyTaxisOptions levy = options.levy;
+      levy.max_steps = options.tracking.max_steps;
+      return std::make_unique<methods::AdaptiveLevyTaxis>(levy, seed);
     }
   }
   throw std::logic_error("make_method: unknown method");

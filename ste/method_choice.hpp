@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gdm/apf_planner.hpp"
+#include "methods/levy_taxis.hpp"
 #include "methods/method.hpp"
 #include "methods/pf_method.hpp"
 #include "methods/plume_tracking.hpp"
@@ -22,7 +23,8 @@ enum class MethodKind {
   PseudoGradient,
   PfGradient,
   PfSweep,
-  Apf
+  Apf,
+  LevyTaxis
 };
 const char* to_string(MethodKind kind);
 // The --method names in order: "ste", "sweeping", ... OptionError on ste.method otherwise.
@@ -41,6 +43,10 @@ inline bool uses_plume_model(MethodKind kind) {
 // filter explored by the pseudo-gradient tracker goes on past the source, as the seeds' runs did
 // (seed 002 Fig. 5(d): 133 iterations), to its budget or its declaration.
 bool stops_in_source_box(MethodKind kind);
+// Runs that end when the robot arrives near the source: in the trackers' box, or within adaptive
+// Lévy taxis' 0.5 m of it (seed 004 ch. 15; SourceDisc). They report whether they reached it and
+// the distance overhead.
+bool ends_on_arrival(MethodKind kind);
 
 struct MethodOptions {
   MethodKind kind = MethodKind::Ste;
@@ -62,6 +68,8 @@ struct MethodOptions {
   // Adaptive sampling for gas distribution mapping (seed 000 ch. 8; gdm/README.md); its
   // max_steps is replaced by the one above.
   gdm::ApfOptions apf;
+  // Adaptive Lévy taxis (seed 004 ch. 16); its max_steps is replaced by the one above.
+  methods::LevyTaxisOptions levy;
   // The filter's options for `kind`: alpha and beta resolved, the detection limit the trackers'
   // detection threshold, the step budget tracking.max_steps.
   methods::PfMethodOptions pf_in_use() const;

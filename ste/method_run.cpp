@@ -1,6 +1,7 @@
 #include "ste/method_run.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <ctime>
 
 #include "core/error.hpp"
@@ -43,6 +44,37 @@ planner::PlanResult path_to(const methods::Move& move, Vec2 robot, const planner
     return p;
   }
   return planner.plan(robot, goal);
+}
+
+// `path` cut at its first point in `disc` (unchanged when it never enters it).
+void stop_on_entering(const SourceDisc& disc, planner::PlanResult& path) {
+  double walked = 0.0;
+  for (std::size_t k = 1; k < path.path.size(); ++k) {
+    const Vec2 a = path.path[k - 1], d = path.path[k] - a;
+    const double leg = norm(d);
+    // The smallest t in [0, 1] with |a + t d - source| <= radius.
+    const Vec2 f = a - disc.source;
+    const double qa = dot(d, d), qb = 2.0 * dot(f, d), qc = dot(f, f) - disc.radius * disc.radius;
+    double t = -1.0;
+    if (qc <= 0.0) {
+      t = 0.0;
+    } else if (qa > 0.0) {
+      const double disc2 = qb * qb - 4.0 * qa * qc;
+      if (disc2 >= 0.0) {
+        const double t0 = (-qb - std::sqrt(disc2)) / (2.0 * qa);
+        if (t0 >= 0.0 && t0 <= 1.0) t = t0;
+      }
+    }
+    if (t >= 0.0) {
+      const Vec2 entry = a + t * d;
+      path.path.resize(k);
+      path.path.push_back(entry);
+      path.length = walked + t * leg;
+      path.goal = entry;
+      return;
+    }
+    walked += leg;
+  }
 }
 
 // The method's state after a stop, into the step's record (STE adds its posterior's).
@@ -104,9 +136,12 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
     record_state(method, s, r);
     r.stopped_by = method.stopped_by();
     if (r.stopped_by.empty() && options.box && options.box->contains(pos)) r.stopped_by = "reached";
+    if (r.stopped_by.empty() && options.disc && options.disc->contains(pos))
+      r.stopped_by = "reached";
     if (r.stopped_by.empty() && stop >= options.max_stops) r.stopped_by = "max_samples";
     planner::PlanResult path;
     if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options);
+    if (r.stopped_by.empty() && options.disc) stop_on_entering(*options.disc, path);
     s.compute_s = thread_cpu_s() - t0;
     step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;

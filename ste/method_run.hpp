@@ -22,8 +22,17 @@ struct SourceBox {
   bool contains(Vec2 p) const;
 };
 
+// Seed 004 ch. 15's success area: a disc about the source (0.5 m in ch. 16). The runner ends a run
+// as soon as the robot enters it, on its way too: a move that passes through it stops there.
+struct SourceDisc {
+  Vec2 source;
+  double radius = 0.5;
+  bool contains(Vec2 p) const { return norm(p - source) <= radius; }
+};
+
 struct MethodRunOptions {
-  std::optional<SourceBox> box;  // stop a run whose stop lies in it
+  std::optional<SourceBox> box;    // stop a run whose stop lies in it
+  std::optional<SourceDisc> disc;  // stop a run where it enters it
   // Moves goals off obstacles and walls (the planner's margin); needed by every method that does
   // not plan its own paths (all but STE).
   const planner::FreeSpace* space = nullptr;

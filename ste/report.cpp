@@ -172,6 +172,14 @@ ordered_json method_options_json(const MethodOptions& m) {
     j["declare_radius_m"] = pf.declare_radius;
     j["declare_iterations"] = pf.declare_iterations;
   }
+  if (m.kind == MethodKind::LevyTaxis) {
+    const methods::LevyTaxisOptions& l = m.levy;
+    j["min_move_m"] = l.min_move;
+    j["max_move_m"] = l.max_move;
+    j["mu"] = {l.mu_min, l.mu_max};
+    j["gamma"] = {l.gamma_min, l.gamma_max};
+    j["gradient_threshold"] = l.gradient_threshold;
+  }
   j["max_steps"] = m.max_steps;  // 0: auto (MethodOptions::max_steps_in_use)
   return j;
 }

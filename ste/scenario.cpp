@@ -318,6 +318,7 @@ LocalizationResult Scenario::run(SimulatedWorld& world, Vec2 start, std::uint64_
   MethodRunOptions o;
   o.space = space_.get();
   if (stops_in_source_box(options_.method.kind)) o.box = source_box(source);
+  if (options_.method.kind == MethodKind::LevyTaxis) o.disc = SourceDisc{source};
   return run_method(start, *method, world, *planner_, o);
 }
 

@@ -77,6 +77,28 @@ TEST(MethodRun, TheSourceBoxLiesDownwindOfTheSource) {
   EXPECT_FALSE(box.contains({2.0, 4.5}));
 }
 
+// Lévy taxis' success disc (seed 004 ch. 15): a move through it ends the run where it enters.
+TEST(MethodRun, AMoveThroughTheSourceDiscEndsTheRunWhereItEnters) {
+  const Map map = block_map();
+  SteOptions o;
+  o.method.kind = MethodKind::LevyTaxis;
+  const Scenario sc(map, o);
+  SimulatedWorld world(map, sc.wind(), {4.5, 2.0}, o.world, 3);
+  ScriptedMethod method({{5.5, 2.0}, {5.5, 2.5}});  // straight through the source
+  MethodRunOptions ro;
+  ro.space = &sc.free_space();
+  ro.disc = SourceDisc{{4.5, 2.0}, 0.5};
+  const LocalizationResult r = run_method({3.5, 2.0}, method, world, sc.planner(), ro);
+  EXPECT_EQ(r.stopped_by, "reached");
+  EXPECT_TRUE(r.reached);
+  ASSERT_EQ(r.steps.size(), 2u);
+  EXPECT_NEAR(r.steps[1].position.x, 4.0, 1e-9);
+  EXPECT_NEAR(r.steps[1].position.y, 2.0, 1e-9);
+  EXPECT_NEAR(r.distance_m, 0.5, 1e-9);
+  EXPECT_TRUE(ro.disc->contains({4.9, 2.2}));
+  EXPECT_FALSE(ro.disc->contains({5.1, 2.0}));
+}
+
 TEST(MethodRun, EveryMethodRunsOnAMapWithAnObstacleAndRepeatsItself) {
   const Map map = block_map();
   for (const std::string& name : method_names()) {

@@ -1,0 +1,84 @@
+#include "methods/levy_taxis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.hpp"
+#include "core/option_check.hpp"
+#include "core/random.hpp"
+
+namespace plumekit::methods {
+
+void LevyTaxisOptions::validate() const {
+  const double inf = std::numeric_limits<double>::infinity();
+  check_positive("levy.min_move", min_move, 100.0, "m", "the thesis's 0.1 m");
+  check_range("levy.max_move", max_move, min_move, 1000.0, "m",
+              "it must exceed levy.min_move; the thesis's 2 m", true);
+  check_range("levy.mu_min", mu_min, 1.0, 3.0, "", "1 < mu <= 3; the thesis's 1.1", true);
+  check_range("levy.mu_max", mu_max, mu_min, 3.0, "",
+              "at least levy.mu_min and at most 3; the thesis's 2.9");
+  check_range("levy.gamma_min", gamma_min, 0.0, 1.0, "", "the thesis's 0");
+  check_range("levy.gamma_max", gamma_max, gamma_min, 1.0, "",
+              "at least levy.gamma_min and at most 1; the thesis's 1");
+  check_positive("levy.gradient_threshold", gradient_threshold, inf, "concentration units",
+                 "the default is 150");
+  check_count("levy.max_steps", max_steps, 1, 10000000, "the default is 300");
+}
+
+double levy_move_length(double u, double mu, double min_move, double max_move) {
+  // u = 0 would be an infinite move: the cut takes it.
+  if (u <= 0.0) return max_move;
+  return std::min(max_move, min_move * std::pow(u, 1.0 / (1.0 - mu)));
+}
+
+double wrapped_cauchy_turn(double u, double gamma) {
+  return 2.0 * std::atan((1.0 - gamma) / (1.0 + gamma) * std::tan(kPi * (u - 0.5)));
+}
+
+LevyShape adapt_levy_shape(double gradient, const LevyTaxisOptions& o) {
+  const double f = std::min(1.0, std::abs(gradient) / o.gradient_threshold);
+  return {o.mu_max - f * (o.mu_max - o.mu_min), o.gamma_min + f * (o.gamma_max - o.gamma_min)};
+}
+
+AdaptiveLevyTaxis::AdaptiveLevyTaxis(const LevyTaxisOptions& options, std::uint64_t seed)
+    : options_(options), rng_(seed) {
+  options_.validate();
+}
+
+void AdaptiveLevyTaxis::observe(const Observation& o) {
+  if (!std::isfinite(o.position.x) || !std::isfinite(o.position.y) || !std::isfinite(o.gas) ||
+      !std::isfinite(o.wind.x) || !std::isfinite(o.wind.y))
+    throw InputError("levy-taxis: an observation with a value that is not finite");
+  ++stops_;
+  // A calm stop keeps the last upwind direction, as the trackers do.
+  if (norm(o.wind) > 1e-9) upwind_ = std::atan2(-o.wind.y, -o.wind.x);
+  // Eq. 16.3: the change since the last stop (not divided by the distance); none at the first.
+  const double gradient = previous_gas_ ? o.gas - *previous_gas_ : 0.0;
+  shape_ = adapt_levy_shape(gradient, options_);
+  // Rising: the mean of the heading and upwind (a low-pass on the heading); else upwind alone.
+  bias_ = upwind_;
+  if (gradient > 0.0 && norm(step_) > 0.0) {
+    const double heading = std::atan2(step_.y, step_.x);
+    const double sx = std::cos(heading) + std::cos(upwind_),
+                 sy = std::sin(heading) + std::sin(upwind_);
+    if (std::hypot(sx, sy) > 1e-9) bias_ = std::atan2(sy, sx);
+  }
+  const double length =
+      levy_move_length(1.0 - uniform01(rng_), shape_.mu, options_.min_move, options_.max_move);
+  const double turn = bias_ + wrapped_cauchy_turn(uniform01(rng_), shape_.gamma);
+  step_ = {length * std::cos(turn), length * std::sin(turn)};
+  previous_gas_ = o.gas;
+}
+
+Move AdaptiveLevyTaxis::next(Vec2 robot) {
+  Move m;
+  m.goal = robot + step_;
+  return m;
+}
+
+std::string AdaptiveLevyTaxis::stopped_by() const {
+  return stops_ >= options_.max_steps ? "max_samples" : "";
+}
+
+}  // namespace plumekit::methods
