@@ -134,6 +134,14 @@ double number_or_preset(const std::string& text, const std::string& field,
 
 // The simulated world, the navigation, the stopping rule and the wind.
 void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
+  bind_to(cmd, "--release-rate", o.world.filament.release_rate,
+          "The true source's release rate in the world, concentration units * m^2/s (the plume "
+          "models' nominal is 1000; --release-scale lets STE estimate another)",
+          "plume.release_rate");
+  bind_to(cmd, "--success-radius", o.success_radius,
+          "End a run as soon as the robot comes this close to the source, on its way too, m "
+          "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
+          "ste.success_radius");
   bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per reading (simulated)",
           "ste.world.noise");
   bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
@@ -327,7 +335,7 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
   bind_to(cmd, "--levy-threshold", m.levy.gradient_threshold,
           "Lévy taxis: a change of the reading between stops from which the walk is all "
           "exploitation (longest, straightest moves), concentration units (theta of seed 004 "
-          "Eq. 16.3, which it does not give)",
+          "Eq. 16.3, which it does not give; methods/README.md)",
           "levy.gradient_threshold");
 }
 

@@ -22,7 +22,7 @@ void LevyTaxisOptions::validate() const {
   check_range("levy.gamma_max", gamma_max, gamma_min, 1.0, "",
               "at least levy.gamma_min and at most 1; the thesis's 1");
   check_positive("levy.gradient_threshold", gradient_threshold, inf, "concentration units",
-                 "the default is 150");
+                 "the default is 50");
   check_count("levy.max_steps", max_steps, 1, 10000000, "the default is 300");
 }
 

@@ -143,6 +143,8 @@ void SteOptions::validate() const {
   check_count("ste.threads", threads, 0, 1024, "0 means one per core");
   check_non_negative("ste.min_start_distance", min_start_distance, 1000.0, "m",
                      "the default is 1 m");
+  check_non_negative("ste.success_radius", success_radius, 100.0, "m",
+                     "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m");
   if (model == PlumeModelKind::Surrogate && uses_plume_model(method.kind)) check_model_file();
 }
 

@@ -306,6 +306,10 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
                  {"wind_model", eo.ste.world.filament.unsteady_wind ? "unsteady" : "steady"},
                  {"gas_sensor", eo.ste.world.sensor.name},
                  {"sensor_baseline", eo.ste.world.sensor.baseline}};
+  // Only when set, so that the summaries written before them keep their bytes.
+  if (eo.ste.world.filament.release_rate != dataset::FilamentOptions{}.release_rate)
+    j["release_rate"] = eo.ste.world.filament.release_rate;
+  if (eo.ste.success_radius > 0.0) j["success_radius"] = eo.ste.success_radius;
   if (!uses_plume_model(eo.ste.method.kind)) {
     // The plume model's settings mean nothing to a method without one.
     for (const char* key : {"plume_model", "sigma_m", "sigma_rel", "sigma_std", "source_cell"})

@@ -14,6 +14,7 @@
 #include "ste/cached_readings.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/seeds.hpp"
+#include "ste/ste_method.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
@@ -309,16 +310,20 @@ LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) co
 LocalizationResult Scenario::run(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const {
   const Vec2 source = check_source(world.source());
   start = check_start(start);
+  MethodRunOptions o;
+  if (options_.success_radius > 0.0)
+    o.disc = SourceDisc{source, options_.success_radius};
+  else if (options_.method.kind == MethodKind::LevyTaxis)
+    o.disc = SourceDisc{source};
   if (uses_plume_model(options_.method.kind)) {
     const std::unique_ptr<Estimator> estimator = make_estimator(seed);
-    return localize(start, *estimator, world, *planner_, *navigator_, options_.stop);
+    SteMethod method(*estimator, *planner_, *navigator_, options_.stop);  // plans its own paths
+    return run_method(start, method, world, *planner_, o);
   }
   const std::unique_ptr<methods::LocalizationMethod> method =
       make_method(options_.method, {&map_}, stream_seed(seed, SteStream::Method));
-  MethodRunOptions o;
   o.space = space_.get();
   if (stops_in_source_box(options_.method.kind)) o.box = source_box(source);
-  if (options_.method.kind == MethodKind::LevyTaxis) o.disc = SourceDisc{source};
   return run_method(start, *method, world, *planner_, o);
 }
 

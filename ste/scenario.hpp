@@ -81,6 +81,9 @@ struct SteOptions {
   std::string table_cache;          // folder caching surrogate tables; empty: none
   int threads = kDefaultThreads;    // for the surrogate's table build; 0: one per core
   double min_start_distance = 1.0;  // m, random starts are at least this far from the source
+  // m: a run ends as soon as the robot comes this close to the source, on its way too (seed 004
+  // ch. 15's benchmark protocol: 0.5 m; SourceDisc). 0: never, but levy-taxis always ends at 0.5 m.
+  double success_radius = 0.0;
 
   // The likelihood the plume model runs with (the unset sigmas filled in).
   LikelihoodOptions likelihood_options() const;

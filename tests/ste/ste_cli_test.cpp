@@ -124,6 +124,34 @@ TEST_F(SteCli, SeveralMethodsInOneWorldWriteWhatEachWritesAlone) {
   EXPECT_NE(r.err.find("unknown method 'all'"), std::string::npos) << r.err;
 }
 
+// Seed 004 ch. 15's benchmark protocol: a run of any method ends on arriving near the source;
+// the world's release rate can differ from the models' nominal (issue 21).
+TEST_F(SteCli, SuccessRadiusEndsAnyRunOnArrivalAndTheReleaseRateIsTheWorlds) {
+  const std::string map = write_map();
+  CliResult r = run("localize " + map +
+                    " --source 4.5,0.5 --start 1,2.5 --plume-model gaussian --success-radius 5 "
+                    "--release-rate 500 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  json j = json::parse(r.out);
+  EXPECT_EQ(j["stopped_by"], "reached");  // it starts 4 m from the source
+  EXPECT_EQ(j["samples"], 1);
+  r = run("evaluate --map-dir " + (dir / "maps").string() +
+          " --method levy-taxis --runs 1 --max-steps 5 --success-radius 0.3 --release-rate 500 "
+          "--json --out " +
+          (dir / "ev").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = json::parse(r.out);
+  EXPECT_EQ(j["success_radius"].get<double>(), 0.3);
+  EXPECT_EQ(j["release_rate"].get<double>(), 500.0);
+  EXPECT_EQ(j["method_options"]["gradient_threshold"].get<double>(), 50.0);
+  r = run("localize " + map + " --source 4.5,0.5 --release-rate 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--release-rate"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.5,0.5 --success-radius -1");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--success-radius"), std::string::npos) << r.err;
+}
+
 TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
   const std::string map = write_map();
   CliResult r = run("localize " + map + " --source 2.7,1.5 --plume-model physics");
