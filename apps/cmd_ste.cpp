@@ -132,8 +132,8 @@ double number_or_preset(const std::string& text, const std::string& field,
   return value;
 }
 
-// The simulated world, the navigation, the stopping rule and the wind.
-void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
+// The simulated world and the robot's sensors in it.
+void add_robot_world_options(CLI::App* cmd, ste::SteOptions& o) {
   bind_to(cmd, "--release-rate", o.world.filament.release_rate,
           "The true source's release rate in the world, concentration units * m^2/s (the plume "
           "models' nominal is 1000; --release-scale lets STE estimate another)",
@@ -192,6 +192,11 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
           "Each gas reading averages the concentration over a disc of this radius, m (seed 000's "
           "rotor disturbance: 0.5; 0: at the sensor's point)",
           "ste.world.rotor_disc");
+}
+
+// The simulated world, the navigation, the stopping rule and the wind.
+void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
+  add_robot_world_options(cmd, o);
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
   bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",
@@ -497,16 +502,19 @@ void add_evaluate_merge(CLI::App* evaluate) {
   });
 }
 
+struct EvaluateArgs {
+  std::string map_dir, out = "out/evaluate";
+  bool part = false;
+  ste::EvaluationOptions eval;
+  std::vector<ste::MethodKind> methods;  // --method with several: one world per run
+};
+
+void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd);
+
 void add_evaluate(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "evaluate", "Localize every ground-truth source of every map N times; scores and pictures");
-  struct Args {
-    std::string map_dir, out = "out/evaluate";
-    bool part = false;
-    ste::EvaluationOptions eval;
-    std::vector<ste::MethodKind> methods;  // --method with several: one world per run
-  };
-  auto a = std::make_shared<Args>();
+  auto a = std::make_shared<EvaluateArgs>();
   bind_field(
       cmd,
       cmd->add_option("--map-dir", a->map_dir, "Folder of map files with \"sources\" (*.json)"),
@@ -543,69 +551,74 @@ void add_evaluate(CLI::App& app) {
   add_evaluate_merge(cmd);
   cmd->callback([a, cmd] {
     if (cmd->got_subcommand("merge")) return;  // `evaluate merge` did the work
-    a->eval.validate();
-    const ste::MapFolder maps = ste::read_map_folder(a->map_dir);
-    const ste::EvaluationOptions& eo = a->eval;
-    // Several methods: each into OUT/NAME/, exactly what `--method NAME --out OUT/NAME` writes.
-    const std::vector<ste::MethodKind> kinds =
-        a->methods.size() > 1 ? a->methods : std::vector<ste::MethodKind>{eo.ste.method.kind};
-    const bool several = kinds.size() > 1;
-    std::vector<ste::EvaluationOptions> each(kinds.size(), eo);
-    std::vector<fs::path> outs;
-    std::vector<std::unique_ptr<OutputDirectory>> dirs;
-    for (std::size_t m = 0; m < kinds.size(); ++m) {
-      each[m].ste.method.kind = kinds[m];
-      outs.push_back(several ? fs::path(a->out) / ste::to_string(kinds[m]) : fs::path(a->out));
-      dirs.push_back(std::make_unique<OutputDirectory>(
-          outs[m], "evaluate",
-          std::vector<fs::path>{a->map_dir, eo.ste.table_cache, eo.ste.model_path}));
-    }
-    std::vector<ste::AfterMap> pictures;
-    for (std::size_t m = 0; m < kinds.size(); ++m)
-      pictures.push_back(ste::trajectory_pictures(dirs[m]->open(), maps.picture_names));
-    ProgressBar bar("evaluate");
-    const std::string per_run =
-        several ? " runs of " + std::to_string(kinds.size()) + " methods" : " runs";
-    const std::vector<ste::EvaluationResult> results = ste::evaluate_methods(
-        maps.maps, eo, kinds,
-        [&](int done, int total) {
-          bar.update(static_cast<double>(done) / total,
-                     std::to_string(done) + "/" + std::to_string(total) + per_run);
-        },
-        [&](std::size_t m, const ste::Scenario& sc, const std::vector<ste::RunRecord>& records) {
-          pictures[m](sc, records);
-        });
-    bar.finish();
-    std::vector<Report> reports;
-    for (std::size_t m = 0; m < kinds.size(); ++m) {
-      const ste::EvaluationResult& res = results[m];
-      const ordered_json settings = ste::evaluation_settings(each[m], a->map_dir);
-      if (a->part) {
-        ordered_json options = result_options(cmd, each[m]);
-        options["--method"] = ste::to_string(kinds[m]);  // as the part of a single method
-        const ste::PartIdentity id{settings, options, ste::map_files_json(maps)};
-        reports.push_back(write_part(*dirs[m], res, each[m], id, outs[m]));
-        continue;
-      }
-      Report rep = ste::evaluation_report(res, settings, outs[m]);
-      ste::write_evaluation_files(
-          dirs[m]->open(), res,
-          {ste::runs_csv(res), ste::timings_csv(res), rep.json, ste::evaluation_timings(res)});
-      dirs[m]->commit();
-      // On stdout the times go with the summary (they are apart only in the files).
-      rep.json["timings"] = ste::evaluation_timings(res);
-      reports.push_back(rep);
-    }
-    if (!several) return report(reports.front().json, reports.front().text);
-    ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
-    std::string text;
-    for (std::size_t m = 0; m < kinds.size(); ++m) {
-      j["methods"].push_back({{"method", ste::to_string(kinds[m])}, {"result", reports[m].json}});
-      text += std::string(m ? "\n\n" : "") + "== " + ste::to_string(kinds[m]) + " ==\n" +
-              reports[m].text;
-    }
-    report(j, text);
+    run_evaluate(*a, cmd);
   });
+}
+
+// Evaluates the method or methods of `args` and writes each one's folder.
+void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
+  args.eval.validate();
+  const ste::MapFolder maps = ste::read_map_folder(args.map_dir);
+  const ste::EvaluationOptions& eo = args.eval;
+  // Several methods: each into OUT/NAME/, exactly what `--method NAME --out OUT/NAME` writes.
+  const std::vector<ste::MethodKind> kinds =
+      args.methods.size() > 1 ? args.methods : std::vector<ste::MethodKind>{eo.ste.method.kind};
+  const bool several = kinds.size() > 1;
+  std::vector<ste::EvaluationOptions> each(kinds.size(), eo);
+  std::vector<fs::path> outs;
+  std::vector<std::unique_ptr<OutputDirectory>> dirs;
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    each[m].ste.method.kind = kinds[m];
+    outs.push_back(several ? fs::path(args.out) / ste::to_string(kinds[m]) : fs::path(args.out));
+    dirs.push_back(std::make_unique<OutputDirectory>(
+        outs[m], "evaluate",
+        std::vector<fs::path>{args.map_dir, eo.ste.table_cache, eo.ste.model_path}));
+  }
+  std::vector<ste::AfterMap> pictures;
+  for (std::size_t m = 0; m < kinds.size(); ++m)
+    pictures.push_back(ste::trajectory_pictures(dirs[m]->open(), maps.picture_names));
+  ProgressBar bar("evaluate");
+  const std::string per_run =
+      several ? " runs of " + std::to_string(kinds.size()) + " methods" : " runs";
+  const std::vector<ste::EvaluationResult> results = ste::evaluate_methods(
+      maps.maps, eo, kinds,
+      [&](int done, int total) {
+        bar.update(static_cast<double>(done) / total,
+                   std::to_string(done) + "/" + std::to_string(total) + per_run);
+      },
+      [&](std::size_t m, const ste::Scenario& sc, const std::vector<ste::RunRecord>& records) {
+        pictures[m](sc, records);
+      });
+  bar.finish();
+  std::vector<Report> reports;
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    const ste::EvaluationResult& res = results[m];
+    const ordered_json settings = ste::evaluation_settings(each[m], args.map_dir);
+    if (args.part) {
+      ordered_json options = result_options(cmd, each[m]);
+      options["--method"] = ste::to_string(kinds[m]);  // as the part of a single method
+      const ste::PartIdentity id{settings, options, ste::map_files_json(maps)};
+      reports.push_back(write_part(*dirs[m], res, each[m], id, outs[m]));
+      continue;
+    }
+    Report rep = ste::evaluation_report(res, settings, outs[m]);
+    ste::write_evaluation_files(
+        dirs[m]->open(), res,
+        {ste::runs_csv(res), ste::timings_csv(res), rep.json, ste::evaluation_timings(res)});
+    dirs[m]->commit();
+    // On stdout the times go with the summary (they are apart only in the files).
+    rep.json["timings"] = ste::evaluation_timings(res);
+    reports.push_back(rep);
+  }
+  if (!several) return report(reports.front().json, reports.front().text);
+  ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
+  std::string text;
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    j["methods"].push_back({{"method", ste::to_string(kinds[m])}, {"result", reports[m].json}});
+    text +=
+        std::string(m ? "\n\n" : "") + "== " + ste::to_string(kinds[m]) + " ==\n" + reports[m].text;
+  }
+  report(j, text);
 }
 
 void add_demo(CLI::App& app) {
