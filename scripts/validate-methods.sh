@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Issue 20's validation of the seeds' methods in the seeds' own setting (methods/README.md,
 # "Validation against the seeds"): the 32 x 8 m tunnel at 0.5 m/s, seed 000's filaments
-# (--world neumann), its infrared sensor, 20 s stops at 1 Hz, 1 m steps at 1 m/s, the wind
-# direction's 14.02 degrees, the synthetic circular variance (23.08 degrees) and the GPS.
+# (--world neumann, from a 0.2 m source disc), its infrared sensor under the rotor's 0.5 m disc,
+# 20 s stops at 1 Hz, 1 m steps at 1 m/s, the wind direction's 14.02 degrees, the synthetic
+# circular variance (23.08 degrees) and the GPS.
 #
 #   scripts/validate-methods.sh [RUNS] [OUT]      # RUNS per configuration (the seeds: 100)
 #   TRACKING_RUNS=10 scripts/validate-methods.sh 20   # fewer runs for the trackers' eight
+#   scripts/validate-methods.sh 10                    # methods/results/validation/
 #   scripts/validation_table.py OUT                   # the table of methods/README.md
 #
 # Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 to
@@ -19,7 +21,7 @@ plumekit=${PLUMEKIT:-./build/plumekit}
 # th_c: 5 % of the mean plume's peak (2534 units on the plume grid), as the seeds' 0.05 of a
 # normalised field.
 seeds=(--world neumann --stop-s 20 --stop-rate 1 --speed 1 --track-step 1 --wind-noise 14.02
-  --wind-variance-noise 23.08 --position-noise gps --gas-sensor infrared
+  --wind-variance-noise 23.08 --position-noise gps --gas-sensor infrared --rotor-disc 0.5
   --detection-threshold 125 --threads 0)
 run() {
   local name=$1 n=$2
