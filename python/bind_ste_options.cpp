@@ -131,6 +131,8 @@ void bind_ste_options_class(py::module_& m) {
   PK_FIELD(o, SteOptions, threads, "Threads of the surrogate's table build (0: one per core)");
   PK_FIELD(o, SteOptions, min_start_distance,
            "Random starts are at least this far from the source, m");
+  PK_FIELD(o, SteOptions, success_radius,
+           "A run ends on coming this close to the source, m (0: never; levy-taxis: 0.5)");
 }
 
 }  // namespace
