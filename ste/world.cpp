@@ -21,8 +21,20 @@ const WorldOptions& checked(const WorldOptions& options) {
 
 SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 source,
                                const WorldOptions& options, std::uint64_t seed)
-    : own_(std::make_unique<SharedPlume>(map, wind, source, checked(options).filament, seed, 1)),
-      plume_(*own_),
+    : SimulatedWorld(
+          std::make_unique<SharedPlume>(map, wind, source, checked(options).filament, seed, 1),
+          nullptr, 0, map, source, options, seed) {}
+
+SimulatedWorld::SimulatedWorld(SharedPlume& plume, int robot, const Map& map, Vec2 source,
+                               const WorldOptions& options, std::uint64_t seed)
+    : SimulatedWorld(nullptr, &plume, robot, map, source, options, seed) {}
+
+SimulatedWorld::SimulatedWorld(std::unique_ptr<SharedPlume> own, SharedPlume* shared, int robot,
+                               const Map& map, Vec2 source, const WorldOptions& options,
+                               std::uint64_t seed)
+    : own_(std::move(own)),
+      plume_(own_ ? *own_ : *shared),
+      robot_(robot),
       source_(source),
       options_(options),
       map_(map),
@@ -32,25 +44,11 @@ SimulatedWorld::SimulatedWorld(const Map& map, const cfd::WindField& wind, Vec2 
       position_rng_(stream_seed(seed, SteStream::PositionNoise)),
       spread_rng_(stream_seed(seed, SteStream::WindSpread)),
       gas_(options.sensor, 1.0 / options.sample_rate),
-      time_(plume_.spinup_s()) {}
-
-SimulatedWorld::SimulatedWorld(SharedPlume& plume, int robot, const Map& map, Vec2 source,
-                               const WorldOptions& options, std::uint64_t seed)
-    : plume_(plume),
-      robot_(robot),
-      source_(source),
-      options_(options),
-      map_(map),
-      noise_rng_(stream_seed(seed, SteStream::SensorNoise)),
-      wind_rng_(stream_seed(seed, SteStream::WindNoise)),
-      position_rng_(stream_seed(seed, SteStream::PositionNoise)),
-      spread_rng_(stream_seed(seed, SteStream::WindSpread)),
-      gas_(options.sensor, 1.0 / options.sample_rate),
-      time_(plume.spinup_s()) {
+      time_(plume_.spinup_s()) {
   try {
     checked(options);
   } catch (...) {
-    plume.leave(robot);  // the other robots must not wait for this one
+    plume_.leave(robot_);  // the other robots must not wait for this one
     throw;
   }
 }

@@ -106,6 +106,9 @@ class SimulatedWorld {
   const Map& map() const { return map_; }
 
  private:
+  // One of `own` (a world of its own) and `shared`.
+  SimulatedWorld(std::unique_ptr<SharedPlume> own, SharedPlume* shared, int robot, const Map& map,
+                 Vec2 source, const WorldOptions& options, std::uint64_t seed);
   void advance(double seconds);
   // The plume at this robot's time.
   const dataset::FilamentSimulation& plume() { return plume_.at(steps_, robot_); }
