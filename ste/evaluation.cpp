@@ -112,8 +112,16 @@ void run_one(const std::vector<std::unique_ptr<Scenario>>& scenarios,
     }
   };
   std::vector<std::thread> others;
-  for (std::size_t m = 1; m < scenarios.size(); ++m)
-    others.emplace_back(robot, m);
+  for (std::size_t m = 1; m < scenarios.size(); ++m) {
+    try {
+      others.emplace_back(robot, m);
+    } catch (...) {  // no thread for robot m: it and those after it never join the plume
+      failed[m] = std::current_exception();
+      for (std::size_t r = m; r < scenarios.size(); ++r)
+        plume.leave(static_cast<int>(r));
+      break;
+    }
+  }
   robot(0);
   for (std::thread& t : others)
     t.join();
