@@ -185,8 +185,23 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   } else {
     list = maps.cast<std::vector<Map>>();
   }
+  // method=[...] (a list): several methods in one plume per run (ste/README.md, "Several methods
+  // in one world"), a summary each.
+  std::vector<ste::MethodKind> kinds;
+  py::dict rest;
+  for (const auto& item : kw) {
+    const std::string key = py::str(item.first);
+    if (key == "method" && py::isinstance<py::list>(item.second)) {
+      std::string names;
+      for (const py::handle& name : item.second)
+        names += (names.empty() ? "" : ",") + py::str(name).cast<std::string>();
+      kinds = ste::parse_method_list(names);
+    } else {
+      rest[item.first] = item.second;
+    }
+  }
   ste::EvaluationOptions eo;
-  eo.ste = ste_options(options, kw, "evaluate");
+  eo.ste = ste_options(options, py::reinterpret_borrow<py::kwargs>(rest), "evaluate");
   eo.runs = runs;
   eo.seed = seed;
   eo.seeds = seeds;
@@ -198,12 +213,23 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
       py::gil_scoped_acquire acquire;
       progress(done, total);
     };
-  nlohmann::ordered_json j;
+  const bool several = !kinds.empty();
+  if (!several) kinds = {eo.ste.method.kind};
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
   {
     py::gil_scoped_release release;
-    const ste::EvaluationResult r = ste::evaluate(list, eo, report);
-    j = ste::evaluation_report(r, eo, dir, "").json;
-    j["timings"] = ste::evaluation_timings(r);
+    const std::vector<ste::EvaluationResult> results =
+        ste::evaluate_methods(list, eo, kinds, report);
+    for (std::size_t m = 0; m < kinds.size(); ++m) {
+      ste::EvaluationOptions each = eo;
+      each.ste.method.kind = kinds[m];
+      nlohmann::ordered_json one = ste::evaluation_report(results[m], each, dir, "").json;
+      one["timings"] = ste::evaluation_timings(results[m]);
+      if (!several)
+        j = one;
+      else
+        j[ste::to_string(kinds[m])] = one;
+    }
   }
   return from_json(j);
 }
@@ -231,7 +257,8 @@ void bind_ste(py::module_& m) {
         "Every source of every map (or the first `source_count`), `runs` times each (`plumekit "
         "evaluate`): `maps` is a list of Map or a folder of map files. Returns summary.json's "
         "content, with the measured times under 'timings'. `progress(done, total)` is called "
-        "after each run.");
+        "after each run. With method=[names], every method samples one plume per run and the "
+        "result is a dict of their summaries by name.");
   m.def(
       "data_dir", [] { return data_dir(); },
       "The shipped data folder ($PLUMEKIT_DATA, else the source tree's data/)");

@@ -109,7 +109,7 @@ void bind_ste_options_class(py::module_& m) {
       "method", [](const SteOptions& s) { return std::string(to_string(s.method.kind)); },
       [](SteOptions& s, const std::string& v) { s.method.kind = parse_method_kind(v); },
       "'ste' (the default), or one of the seeds' methods: 'sweeping', 'surge-cast', 'zigzag', "
-      "'pseudo-gradient', 'pf-gradient', 'pf-sweep' (methods/README.md)");
+      "'pseudo-gradient', 'pf-gradient', 'pf-sweep', 'apf', 'levy-taxis' (methods/README.md)");
   o.def_property(
       "plume_model", [](const SteOptions& s) { return std::string(to_string(s.model)); },
       [](SteOptions& s, const std::string& v) { s.model = parse_plume_model_kind(v); },

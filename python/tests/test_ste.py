@@ -85,6 +85,21 @@ def test_evaluate_matches_cli(tmp_path, data, cli):
     assert r["timings"]["median_step_compute_s"] > 0
 
 
+def test_several_methods_in_one_world_are_each_alone(tmp_path, data):
+    folder = tmp_path / "maps"
+    folder.mkdir()
+    (folder / "block.json").write_bytes((data / "test-maps" / "test-1-block.json").read_bytes())
+    common = dict(runs=1, threads=2, source_count=1, plume_model="gaussian",
+                  stop={"max_samples": 6})
+    both = plumekit.evaluate(folder, method=["ste", "zigzag"], **common)
+    assert list(both) == ["ste", "zigzag"]
+    for name in ("ste", "zigzag"):
+        alone = plumekit.evaluate(folder, method=name, **common)
+        assert both[name]["overall"] == alone["overall"], name
+    with pytest.raises(ValueError, match="named twice"):
+        plumekit.evaluate(folder, method=["zigzag", "zigzag"], **common)
+
+
 def test_a_given_start_is_the_cli_start(block, cli):
     s, start = block.sources[0], (1.0, 3.5)
     r = plumekit.localize(block, s, start=start, seed=4, plume_model="physics",
