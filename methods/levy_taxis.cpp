@@ -4,7 +4,6 @@
 #include <cmath>
 #include <limits>
 
-#include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "core/random.hpp"
 
@@ -47,9 +46,7 @@ AdaptiveLevyTaxis::AdaptiveLevyTaxis(const LevyTaxisOptions& options, std::uint6
 }
 
 void AdaptiveLevyTaxis::observe(const Observation& o) {
-  if (!std::isfinite(o.position.x) || !std::isfinite(o.position.y) || !std::isfinite(o.gas) ||
-      !std::isfinite(o.wind.x) || !std::isfinite(o.wind.y))
-    throw InputError("levy-taxis: an observation with a value that is not finite");
+  check_observation(o, name());
   ++stops_;
   // A calm stop keeps the last upwind direction, as the trackers do.
   if (norm(o.wind) > 1e-9) upwind_ = std::atan2(-o.wind.y, -o.wind.x);

@@ -28,6 +28,10 @@ struct Observation {
   double time_s = 0.0;  // since the mission started, at the stop's end
 };
 
+// InputError naming `who` when a number of the observation (position, gas, wind, circular
+// variance) is not finite: what a method's observe() refuses.
+void check_observation(const Observation& o, const std::string& who);
+
 // Where to go next. A method proposes a goal; the runner drives there along the planner's path
 // (or straight when nothing is in the way), moving a goal that lies in an obstacle or outside the
 // arena to the nearest reachable free point. The method learns where the robot actually arrived

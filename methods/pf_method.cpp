@@ -6,7 +6,6 @@
 #include <string>
 #include <utility>
 
-#include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "methods/wind_statistics.hpp"
 
@@ -17,12 +16,6 @@ namespace {
 const PfMethodOptions& validated(const PfMethodOptions& options) {
   options.validate();
   return options;
-}
-
-void check_observation(const Observation& o, const char* who) {
-  if (!is_finite(o.position) || !std::isfinite(o.gas) || !is_finite(o.wind) ||
-      !std::isfinite(o.wind_variance))
-    throw InputError(std::string(who) + ": an observation's position or reading is not finite");
 }
 
 // The stops of one line, ascending across the wind; points a round-off outside the rectangle are

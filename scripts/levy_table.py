@@ -8,10 +8,11 @@ For each condition (A-D) and start (plume, crosswind), and each method: the runs
 and quartiles of the travelled distance over all runs (the thesis's metric). Exit 2 when a
 folder is missing or a runs.csv is malformed.
 """
-import csv
 import os
 import statistics
 import sys
+
+from evaluation_runs import read_runs
 
 CONDITIONS = [("A", "0.2 m/s, 5 %"), ("B", "0.2 m/s, 10 %"), ("C", "0.9 m/s, 5 %"),
               ("D", "0.9 m/s, 10 %")]
@@ -30,8 +31,7 @@ def quartiles(values):
 
 def row(path):
     try:
-        with open(path, newline="") as f:
-            runs = list(csv.DictReader(f))
+        runs = read_runs(path)
         distance = [float(r["distance_m"]) for r in runs]
         ok = sum(r["stopped_by"] == "reached" or
                  (r["stopped_by"] == "entropy" and float(r["error_m"]) <= 0.5) for r in runs)
@@ -52,7 +52,7 @@ def main(argv):
     for name, what in CONDITIONS:
         for start in ("plume", "crosswind"):
             for method in METHODS:
-                n, ok, lo, mid, hi = row(os.path.join(out, f"{name}-{start}", method, "runs.csv"))
+                n, ok, lo, mid, hi = row(os.path.join(out, f"{name}-{start}", method))
                 print(f"| {name} ({what}) | {start} | {method} | {n} | {100 * ok / n:.0f} % | "
                       f"{mid:.1f} ({lo:.1f}–{hi:.1f}) |")
 

@@ -14,9 +14,9 @@ std::string stop_reason(const Posterior& posterior, int samples, const StopOptio
 
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,
-                            const StopOptions& stop) {
+                            const StopOptions& stop, const MethodRunOptions& options) {
   SteMethod method(estimator, planner, navigator, stop);
-  return run_method(start, method, world, planner, {});
+  return run_method(start, method, world, planner, options);
 }
 
 }  // namespace plumekit::ste

@@ -70,9 +70,12 @@ struct LocalizationResult {
 // (it goes on).
 std::string stop_reason(const Posterior& posterior, int samples, const StopOptions& stop);
 
-// run_method (method_run.hpp) with STE (SteMethod) on `estimator`.
+struct MethodRunOptions;  // method_run.hpp
+
+// run_method (method_run.hpp) with STE (SteMethod) on `estimator`, which plans its own paths;
+// `options` may end the run on arrival (its disc).
 LocalizationResult localize(Vec2 start, Estimator& estimator, SimulatedWorld& world,
                             const planner::Planner& planner, const Navigator& navigator,
-                            const StopOptions& stop);
+                            const StopOptions& stop, const MethodRunOptions& options);
 
 }  // namespace plumekit::ste

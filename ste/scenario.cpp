@@ -14,7 +14,6 @@
 #include "ste/cached_readings.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/seeds.hpp"
-#include "ste/ste_method.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
@@ -317,8 +316,7 @@ LocalizationResult Scenario::run(SimulatedWorld& world, Vec2 start, std::uint64_
     o.disc = SourceDisc{source};
   if (uses_plume_model(options_.method.kind)) {
     const std::unique_ptr<Estimator> estimator = make_estimator(seed);
-    SteMethod method(*estimator, *planner_, *navigator_, options_.stop);  // plans its own paths
-    return run_method(start, method, world, *planner_, o);
+    return localize(start, *estimator, world, *planner_, *navigator_, options_.stop, o);
   }
   const std::unique_ptr<methods::LocalizationMethod> method =
       make_method(options_.method, {&map_}, stream_seed(seed, SteStream::Method));
