@@ -8,7 +8,8 @@ on the left and an outlet on the right, one source 1 m from the upwind wall at a
 [0.5, 3.5], and the starts of START: "plume", one start 8 m downwind on the source's line (inside
 the plume, ch. 16 (a)); or "crosswind", five starts at x = 9 m and random y in [0.3, 3.7] (ch. 16
 (b)), used in turn by the runs. The same SEED (default 1) gives the same sources for both starts.
-Exit 2, writing nothing, on bad arguments or an OUT that holds other files.
+Each map is marked "generated_by": "plumekit scripts/levy_maps.py". Exit 2, writing nothing, on
+bad arguments or an OUT that holds any other file (one without that mark included).
 """
 import json
 import os
@@ -19,6 +20,18 @@ import sys
 def fail(message):
     print(f"levy_maps.py: {message}", file=sys.stderr)
     sys.exit(2)
+
+
+MARK = "plumekit scripts/levy_maps.py"
+
+
+def ours(path):
+    """Whether PATH is a map this script wrote (its mark)."""
+    try:
+        with open(path) as f:
+            return json.load(f).get("generated_by") == MARK
+    except (OSError, ValueError, AttributeError):
+        return False
 
 
 def main(argv):
@@ -35,7 +48,8 @@ def main(argv):
         fail("SPEED in (0, 10] m/s, COUNT at least 1, START plume or crosswind")
     names = [f"levy-{k:02d}.json" for k in range(count)]
     if os.path.exists(out):
-        if not os.path.isdir(out) or any(n not in names for n in os.listdir(out)):
+        if not os.path.isdir(out) or any(n not in names or not ours(os.path.join(out, n))
+                                         for n in os.listdir(out)):
             fail(f"{out} exists and holds files this script did not write")
     sources = random.Random(seed)
     starts = random.Random(seed + 1000)
@@ -49,6 +63,7 @@ def main(argv):
         m = {
             "format": "plumekit-map/2",
             "name": f"levy-{k:02d}",
+            "generated_by": MARK,
             "size": [10.0, 4.0],
             "openings": [
                 {"kind": "inlet", "from": [0.0, 0.0], "to": [0.0, 4.0], "speed": speed,
