@@ -194,6 +194,25 @@ void add_robot_world_options(CLI::App* cmd, ste::SteOptions& o) {
           "ste.world.rotor_disc");
 }
 
+// A team of robots (seed 004 ch. 13; ste/team.hpp).
+void add_team_options(CLI::App* cmd, ste::TeamOptions& t) {
+  bind_to(cmd, "--robots", t.robots,
+          "Robots running STE together in one world (1-64; the thesis's teams: 1-3), started "
+          "side by side --separation apart",
+          "ste.team.robots");
+  bind_field(
+      cmd,
+      cmd->add_option_function<std::string>(
+             "--team", [&t](const std::string& s) { t.strategy = ste::parse_team_strategy(s); },
+             "The team's strategy: individualist (each alone; the first declaration ends "
+             "the mission), cooperative (every sample shared), collaborative (shared "
+             "samples, virtual samples at teammates' goals, task swaps)")
+          ->default_str(ste::to_string(t.strategy)),
+      "ste.team.strategy");
+  bind_to(cmd, "--separation", t.separation,
+          "No robot of a team moves closer than this to a teammate, m", "ste.team.separation");
+}
+
 // The simulated world, the navigation, the stopping rule and the wind.
 void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   add_robot_world_options(cmd, o);
@@ -240,6 +259,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
           "tell from no source (0: also declare sources whose plume reached no sample)",
           "ste.stop.seen_mass");
   bind_to(cmd, "--cell", o.flow.cell, cfd::kCellHelp, "flow.cell");
+  add_team_options(cmd, o.team);
 }
 
 // The localization method and the options of the seeds' methods (methods/README.md).

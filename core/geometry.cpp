@@ -131,4 +131,29 @@ std::string to_string(Vec2 p) {
   return s.str();
 }
 
+Vec2 point_along(const std::vector<Vec2>& path, double d) {
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const double leg = norm(path[k] - path[k - 1]);
+    if (d <= leg && leg > 0.0) return path[k - 1] + (d / leg) * (path[k] - path[k - 1]);
+    d -= leg;
+  }
+  return path.back();
+}
+
+std::vector<Vec2> path_prefix(const std::vector<Vec2>& path, double d) {
+  std::vector<Vec2> prefix;
+  if (path.empty()) return prefix;
+  prefix.push_back(path.front());
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const double leg = norm(path[k] - path[k - 1]);
+    if (d < leg) {
+      if (d > 0.0) prefix.push_back(path[k - 1] + (d / leg) * (path[k] - path[k - 1]));
+      return prefix;
+    }
+    prefix.push_back(path[k]);
+    d -= leg;
+  }
+  return prefix;
+}
+
 }  // namespace plumekit

@@ -86,4 +86,9 @@ std::optional<std::string> simplicity_fault(const Polygon& poly);
 // "(1.5, 2)" — for messages.
 std::string to_string(Vec2 p);
 
+// The point `d` metres along a polyline (its end beyond its length, its start before 0).
+Vec2 point_along(const std::vector<Vec2>& path, double d);
+// The polyline's first `d` metres: its vertices before d and the point at d.
+std::vector<Vec2> path_prefix(const std::vector<Vec2>& path, double d);
+
 }  // namespace plumekit

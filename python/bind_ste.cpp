@@ -87,29 +87,40 @@ void bind_mission(py::module_& m) {
       "One thread at a time.")
       .def(
           "add",
-          [](PyMission& pm, const py::handle& p, double reading) {
+          [](PyMission& pm, const py::handle& p, double reading, const py::list& shared) {
             const Map& map = pm.scenario->map();
             const Vec2 a = map.from_frame(to_point(p, "p"));
+            std::vector<ste::Mission::Sample> others;
+            for (const py::handle& s : shared) {
+              const py::tuple t = s.cast<py::tuple>();
+              if (t.size() != 2) throw InputError("shared: each sample is (point, reading)");
+              others.push_back(
+                  {map.from_frame(to_point(t[0], "shared point")), t[1].cast<double>()});
+            }
             const ste::Posterior* post = nullptr;
             {
               py::gil_scoped_release release;
-              post = &pm.mission->add(a, reading);
+              post = &pm.mission->add(a, reading, others);
             }
             return posterior_dict(map, *post);
           },
-          py::arg("p"), py::arg("reading"),
+          py::arg("p"), py::arg("reading"), py::arg("shared") = py::list(),
           "A sample; returns the posterior: 'estimate' (the expected source), 'map', "
           "'entropy', 'max_entropy', 'seen_mass', 'expected' (every parameter) and 'marginal' "
-          "[ny, nx] over the arena")
+          "[ny, nx] over the arena. `shared`: teammates' samples since the last, [(point, "
+          "reading), ...], added first; they do not count against this robot's max_samples")
       .def(
           "next",
-          [](const PyMission& pm, const py::handle& robot) {
+          [](const PyMission& pm, const py::handle& robot, const py::list& teammates) {
             const Map& map = pm.scenario->map();
             const Vec2 a = map.from_frame(to_point(robot, "robot"));
+            std::vector<Vec2> goals;
+            for (const py::handle& g : teammates)
+              goals.push_back(map.from_frame(to_point(g, "teammate goal")));
             planner::PlanResult r;
             {
               py::gil_scoped_release release;
-              r = pm.mission->next(a);
+              r = pm.mission->next(a, goals);
             }
             py::dict out;
             py::list path;
@@ -120,9 +131,11 @@ void bind_mission(py::module_& m) {
             out["length"] = r.length;
             return out;
           },
-          py::arg("robot"),
+          py::arg("robot"), py::arg("teammate_goals") = py::list(),
           "Where to sample next from `robot`: 'goal', the planner's 'path' there and its "
-          "'length'. InputError once the mission has stopped.")
+          "'length'. `teammate_goals`: where teammates are about to sample; planned as if they "
+          "had, reading what the belief predicts (a collaborative team's virtual samples). "
+          "InputError once the mission has stopped.")
       .def_property_readonly("samples", [](const PyMission& pm) { return pm.mission->samples(); })
       .def_property_readonly("stopped", [](const PyMission& pm) { return pm.mission->stopped(); })
       .def_property_readonly(

@@ -99,6 +99,19 @@ void bind_models(py::module_& m) {
   PK_FIELD(g, GaussianPlumeBounds, b_max, "sigma_y at the source, high, m");
 }
 
+void bind_team(py::module_& m) {
+  py::class_<TeamOptions> t(m, "TeamOptions", "A team of robots running STE (seed 004 ch. 13)");
+  t.def(py::init<>());
+  PK_FIELD(t, TeamOptions, robots, "Robots (1: one alone)");
+  t.def_property(
+      "strategy", [](const TeamOptions& o) { return std::string(to_string(o.strategy)); },
+      [](TeamOptions& o, const std::string& v) { o.strategy = parse_team_strategy(v); },
+      "'individualist', 'cooperative' (shared samples) or 'collaborative' (also virtual samples "
+      "and task swaps)");
+  PK_FIELD(t, TeamOptions, separation, "No robot moves closer than this to a teammate, m");
+  PK_FIELD(t, TeamOptions, patience_s, "A robot kept waiting this long samples where it stands");
+}
+
 void bind_ste_options_class(py::module_& m) {
   py::class_<SteOptions> o(m, "SteOptions",
                            "Every option of a localization, with the library's defaults. Nested "
@@ -121,6 +134,7 @@ void bind_ste_options_class(py::module_& m) {
   PK_FIELD(o, SteOptions, navigation, "NavigationOptions");
   PK_FIELD(o, SteOptions, stop, "StopOptions");
   PK_FIELD(o, SteOptions, world, "WorldOptions");
+  PK_FIELD(o, SteOptions, team, "TeamOptions: robots > 1 runs a team (its result has 'team')");
   PK_FIELD(o, SteOptions, flow, "FlowOptions of the map's wind");
   PK_FIELD(o, SteOptions, wind_dir, "A `plumekit flow` output to use instead of solving");
   PK_FIELD(o, SteOptions, physics, "PhysicsPlumeOptions");
@@ -141,6 +155,7 @@ void bind_ste_options(py::module_& m) {
   bind_estimation(m);
   bind_world(m);
   bind_models(m);
+  bind_team(m);
   bind_ste_options_class(m);
 }
 

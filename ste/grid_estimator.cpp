@@ -164,6 +164,11 @@ Posterior GridEstimator::posterior() {
   return post;
 }
 
+double GridEstimator::predicted_reading(Vec2 p, const Posterior& current) const {
+  const int at = model_.nearest_allowed(current.expected_source());
+  return at < 0 ? 0.0 : current.expected.at(2) * model_.readings_at(p)[at];
+}
+
 double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
   const std::vector<double> r = model_.readings_at(p);
   const int at = model_.nearest_allowed(current.expected_source());

@@ -26,6 +26,10 @@ class GridEstimator final : public Estimator {
   void add(Vec2 p, double value) override;
   int samples() const override { return samples_; }
   Posterior posterior() override;
+  std::unique_ptr<Estimator> clone() const override {
+    return std::make_unique<GridEstimator>(*this);
+  }
+  double predicted_reading(Vec2 p, const Posterior& current) const override;
   double information_gain(Vec2 p, const Posterior& current) const override;
   // Averaged over `hypotheses` sources at evenly spaced quantiles of the posterior's cumulative
   // mass (deterministic), each reading its noise-free prediction at p at the expected scale.

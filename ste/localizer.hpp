@@ -4,6 +4,7 @@
 // else choose the next sampling point and travel there along a planner path
 // while the world's plume runs on. The declared source is the posterior's
 // expected value.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,23 @@ struct Step {
   std::vector<Vec2> path_in;  // the path that led here (empty for the first)
 };
 
+// One robot of a team (ste/team.hpp).
+struct TeamRobot {
+  Vec2 start;
+  std::vector<Step> steps;  // its own stops
+  double distance_m = 0.0;
+  // "entropy" (it declared), "max_samples" (its own budget ran out), or "" (the team stopped
+  // before it did).
+  std::string stopped_by;
+  Vec2 estimate;          // its posterior's expected source at its last stop
+  double entropy = 0;     // of its last posterior
+  int swaps = 0;          // goals it took from a teammate (collaborative task swaps)
+  double waited_s = 0.0;  // kept waiting by the separation rule
+  // Its closest approach to a teammate over the run, m (infinite alone): at least the team's
+  // separation unless the robots started closer.
+  double closest_m = std::numeric_limits<double>::infinity();
+};
+
 struct LocalizationResult {
   std::string method = "ste";  // the localization method's name (--method)
   Vec2 start;
@@ -64,6 +82,12 @@ struct LocalizationResult {
   bool reached = false;  // stopped in the source box (SourceBox, method_run.hpp)
   std::vector<Step> steps;
   Posterior posterior;  // STE's; empty for the other methods
+  // A team's run (ste/team.hpp): every robot, and which one's estimate the team declares (the
+  // run's steps and posterior are that robot's; samples and distance are summed over the team,
+  // time_s runs until the declaration). Empty and -1 for a robot alone.
+  std::vector<TeamRobot> team;
+  int declared_by = -1;
+  std::string strategy;  // the team's (TeamStrategy), "" alone
 };
 
 // Why the run stops after `samples` samples with this posterior: "entropy", "max_samples", or ""

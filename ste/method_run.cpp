@@ -11,15 +11,13 @@
 
 namespace plumekit::ste {
 
-namespace {
-
-// CPU time of the calling thread: a decision step runs on one thread, and
-// this reads the same on a loaded machine as on a quiet one.
 double thread_cpu_s() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
+
+namespace {
 
 // The path to a method's goal: its own, or the planner's to the goal moved into the arena and
 // off the obstacles (by the planner's margin). An unreachable goal gives a path of length 0.
@@ -46,8 +44,9 @@ planner::PlanResult path_to(const methods::Move& move, Vec2 robot, const planner
   return planner.plan(robot, goal);
 }
 
-// `path` cut at its first point in `disc` (unchanged when it never enters it).
-void stop_on_entering(const SourceDisc& disc, planner::PlanResult& path) {
+}  // namespace
+
+void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
   double walked = 0.0;
   for (std::size_t k = 1; k < path.path.size(); ++k) {
     const Vec2 a = path.path[k - 1], d = path.path[k] - a;
@@ -76,6 +75,8 @@ void stop_on_entering(const SourceDisc& disc, planner::PlanResult& path) {
     walked += leg;
   }
 }
+
+namespace {
 
 // The method's state after a stop, into the step's record (STE adds its posterior's).
 void record_state(const methods::LocalizationMethod& method, Step& s, LocalizationResult& r) {
@@ -141,7 +142,7 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
     if (r.stopped_by.empty() && stop >= options.max_stops) r.stopped_by = "max_samples";
     planner::PlanResult path;
     if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options);
-    if (r.stopped_by.empty() && options.disc) stop_on_entering(*options.disc, path);
+    if (r.stopped_by.empty() && options.disc) cut_at_entry(*options.disc, path);
     s.compute_s = thread_cpu_s() - t0;
     step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;

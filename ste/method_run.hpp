@@ -30,6 +30,14 @@ struct SourceDisc {
   bool contains(Vec2 p) const { return norm(p - source) <= radius; }
 };
 
+// CPU time of the calling thread, s: a decision step runs on one thread, and this reads the same
+// on a loaded machine as on a quiet one.
+double thread_cpu_s();
+
+// `path` cut at its first point in `disc` (unchanged when it never enters it): a run ends where
+// its robot enters the disc.
+void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path);
+
 struct MethodRunOptions {
   std::optional<SourceBox> box;    // stop a run whose stop lies in it
   std::optional<SourceDisc> disc;  // stop a run where it enters it

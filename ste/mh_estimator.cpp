@@ -102,6 +102,10 @@ Posterior MhEstimator::posterior() {
   return post;
 }
 
+double MhEstimator::predicted_reading(Vec2 p, const Posterior& current) const {
+  return model_.predict_at(current.expected.data(), p);
+}
+
 double MhEstimator::information_gain(Vec2 p, const Posterior& current) const {
   if (chain_.empty()) return 0.0;
   // Reweight the chain's states by the likelihood of the predicted reading.

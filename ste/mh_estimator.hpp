@@ -30,6 +30,8 @@ class MhEstimator final : public Estimator {
   void add(Vec2 p, double value) override;
   int samples() const override { return static_cast<int>(points_.size()); }
   Posterior posterior() override;
+  std::unique_ptr<Estimator> clone() const override { return std::make_unique<MhEstimator>(*this); }
+  double predicted_reading(Vec2 p, const Posterior& current) const override;
   double information_gain(Vec2 p, const Posterior& current) const override;
   double acceptance() const { return acceptance_; }  // of the last chain
 

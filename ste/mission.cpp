@@ -13,25 +13,52 @@ Mission::Mission(Estimator& estimator, const planner::Planner& planner, const Na
   stop_.validate();
 }
 
-const Posterior& Mission::add(Vec2 p, double value) {
-  // A NaN would poison every later posterior without a word.
+namespace {
+
+// A NaN would poison every later posterior without a word.
+void check_sample(Vec2 p, double value) {
   if (!std::isfinite(p.x) || !std::isfinite(p.y))
     throw InputError("ste.sample.position: not a finite point");
   if (!std::isfinite(value)) throw InputError("ste.sample.reading: not a finite number");
+}
+
+}  // namespace
+
+const Posterior& Mission::add(Vec2 p, double value) {
+  return add(p, value, {});
+}
+
+const Posterior& Mission::add(Vec2 p, double value, const std::vector<Sample>& shared) {
+  for (const Sample& s : shared)
+    check_sample(s.position, s.value);
+  check_sample(p, value);
+  for (const Sample& s : shared) {
+    estimator_.add(s.position, s.value);
+    ++shared_;
+  }
   estimator_.add(p, value);
   posterior_ = estimator_.posterior();
-  stopped_by_ = stop_reason(posterior_, estimator_.samples(), stop_);
+  stopped_by_ = stop_reason(posterior_, own_samples(), stop_);
   return posterior_;
 }
 
 planner::PlanResult Mission::next(Vec2 robot) const {
+  return next(robot, {});
+}
+
+planner::PlanResult Mission::next(Vec2 robot, const std::vector<Vec2>& virtual_points) const {
   if (samples() == 0)
     throw InputError("the mission has no sample yet: add one before asking where to go");
   if (stopped())
     throw InputError("the mission has stopped (" + stopped_by_ +
                      "): its estimate is final, there is no next goal");
-  const Decision d = navigator_.decide(robot, estimator_, posterior_);
-  return planner_.plan(robot, d.goal);
+  if (virtual_points.empty())
+    return planner_.plan(robot, navigator_.decide(robot, estimator_, posterior_).goal);
+  const std::unique_ptr<Estimator> planned = estimator_.clone();
+  for (Vec2 p : virtual_points)
+    planned->add(p, estimator_.predicted_reading(p, posterior_));
+  const Posterior after = planned->posterior();
+  return planner_.plan(robot, navigator_.decide(robot, *planned, after).goal);
 }
 
 }  // namespace plumekit::ste

@@ -3,6 +3,7 @@
 // world, a robot log, a live robot), the mission estimates and decides. localize() drives one
 // against the simulated world; the Python module lets a user drive one with their own readings.
 #include <string>
+#include <vector>
 
 #include "planner/planner.hpp"
 #include "ste/navigation.hpp"
@@ -21,11 +22,25 @@ class Mission {
   // A sample: the mean reading `value` recorded at `p` (arena frame). Updates the posterior and
   // the stop rule; returns the posterior. InputError for a point or value that is not finite.
   const Posterior& add(Vec2 p, double value);
+  // The same after teammates' samples `shared` (ste/team.hpp: cooperative teams share every
+  // sample), which are added first, in order, with one posterior update for all. The sample
+  // budget (max_samples) counts this robot's own samples only: the thesis's per-robot timeout.
+  struct Sample {
+    Vec2 position;
+    double value = 0.0;
+  };
+  const Posterior& add(Vec2 p, double value, const std::vector<Sample>& shared);
   // Where to sample next, seen from `robot`, and the planner's path there. InputError when the
   // mission has stopped or has no sample yet.
   planner::PlanResult next(Vec2 robot) const;
+  // The same, planned as if samples had been taken at `virtual_points` reading what the current
+  // belief predicts there (Estimator::predicted_reading): a collaborative robot's teammates'
+  // goals (thesis ch. 13), so that it does not plan to learn what they are about to learn. The
+  // posterior itself is unchanged.
+  planner::PlanResult next(Vec2 robot, const std::vector<Vec2>& virtual_points) const;
 
   int samples() const { return estimator_.samples(); }
+  int own_samples() const { return estimator_.samples() - shared_; }
   const Posterior& posterior() const { return posterior_; }
   // "entropy", "max_samples", or "" while the mission goes on (stop_reason, localizer.hpp).
   const std::string& stopped_by() const { return stopped_by_; }
@@ -38,6 +53,7 @@ class Mission {
   const StopOptions& stop_;
   Posterior posterior_;
   std::string stopped_by_;
+  int shared_ = 0;  // samples from teammates
 };
 
 }  // namespace plumekit::ste

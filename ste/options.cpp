@@ -49,6 +49,12 @@ void NavigationOptions::validate() const {
               "the default is 512");
 }
 
+void TeamOptions::validate() const {
+  check_count("ste.team.robots", robots, 1, 64, "the thesis's teams have 1 to 3 robots");
+  check_non_negative("ste.team.separation", separation, 10.0, "m", "the default is 0.3 m");
+  check_positive("ste.team.patience_s", patience_s, 3600.0, "s", "the default is 10 s");
+}
+
 void StopOptions::validate() const {
   // 1 or more stops after the first sample (a test uses it).
   check_non_negative("ste.stop.entropy_fraction", entropy_fraction, 100.0, "",
@@ -128,6 +134,11 @@ void SteOptions::validate() const {
   navigation.validate();
   stop.validate();
   world.validate();
+  team.validate();
+  if (team.robots > 1 && method.kind != MethodKind::Ste)
+    throw OptionError("ste.team.robots", "teams run plumekit's STE (seed 004 ch. 13); the " +
+                                             std::string(to_string(method.kind)) +
+                                             " method runs one robot");
   flow.validate();
   physics.validate();
   gaussian.validate();

@@ -10,6 +10,7 @@
 // Prior: uniform inside the parameter bounds, zero where the source would be
 // inside an obstacle.
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -86,6 +87,12 @@ class Estimator {
   virtual int samples() const = 0;
   // The posterior given all samples so far.
   virtual Posterior posterior() = 0;
+  // A copy holding the same samples (and, for MH, the same chain and random state): a team robot
+  // adds virtual samples to one to plan with (ste/team.hpp) and keeps its own unchanged.
+  virtual std::unique_ptr<Estimator> clone() const = 0;
+  // The mean reading at p that the current belief predicts: the model's at the expected
+  // parameters (what the thesis's KL reward predicts; its ch. 13 virtual samples).
+  virtual double predicted_reading(Vec2 p, const Posterior& current) const = 0;
   // The navigation reward (thesis eq. 7.6): KL(P || Q), where P is the current
   // posterior and Q the one after a sample at p that reads what the model
   // predicts there for the current expected parameters.

@@ -15,6 +15,12 @@ namespace plumekit::ste {
 namespace {
 
 const cv::Scalar kTrack(235, 235, 235);
+// A team's robots (BGR): white first, as a robot alone, then colours that read on viridis.
+const cv::Scalar kRobotTracks[] = {{235, 235, 235}, {60, 140, 255}, {255, 200, 60},
+                                   {200, 80, 255},  {90, 90, 255},  {120, 255, 160}};
+cv::Scalar robot_track(std::size_t k) {
+  return kRobotTracks[k % (sizeof(kRobotTracks) / sizeof(kRobotTracks[0]))];
+}
 
 cv::Scalar colour_of(double v, double lo, double hi, int colormap) {
   const double t = hi > lo ? std::clamp((v - lo) / (hi - lo), 0.0, 1.0) : 0.0;
@@ -75,6 +81,9 @@ std::string trajectory_title(const Map& map, const RunToDraw& run) {
   std::string title = run_heading(map, run) + ": error " + fmt(norm(r.estimate - run.source)) +
                       " m, " + std::to_string(r.samples) + " samples, " + fmt(r.distance_m, 1) +
                       " m travelled, stopped by " + r.stopped_by;
+  if (!r.team.empty())
+    title += "; " + std::to_string(r.team.size()) + " " + r.strategy + " robots, robot " +
+             std::to_string(r.declared_by + 1) + "'s estimate";
   if (!run.chosen_as.empty()) title += " (" + run.chosen_as + ")";
   return title;
 }
@@ -90,9 +99,23 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   const double hi = std::max(1.0, percentile(v, 0.99));
   const int cmap = cv::COLORMAP_VIRIDIS;
   const std::string title = trajectory_title(map, run);
-  std::vector<LegendEntry> legend{
-      {LegendEntry::Symbol::Line, kTrack, "path"},
-      {LegendEntry::Symbol::Dot, colour_of(hi, 0, hi, cmap), "sample (coloured by its reading)"}};
+  // A robot alone is a team of one: its steps.
+  std::vector<TeamRobot> robots = r.team;
+  if (robots.empty()) {
+    robots.emplace_back();
+    robots.back().start = r.start;
+    robots.back().steps = r.steps;
+  }
+  std::vector<LegendEntry> legend;
+  for (std::size_t k = 0; k < robots.size(); ++k)
+    if (robots.size() == 1)
+      legend.push_back({LegendEntry::Symbol::Line, kTrack, "path"});
+    else if (k < 6)
+      legend.push_back({LegendEntry::Symbol::Line, robot_track(k),
+                        "robot " + std::to_string(k + 1) +
+                            (static_cast<int>(k) == r.declared_by ? " (its estimate)" : "")});
+  legend.push_back(
+      {LegendEntry::Symbol::Dot, colour_of(hi, 0, hi, cmap), "sample (coloured by its reading)"});
   for (const LegendEntry& e : run_legend())
     legend.push_back(e);
   Frame frame{title, ColourBar{0.0, hi, "mean [concentration units]", cmap}, legend, true};
@@ -101,20 +124,25 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   canvas.draw_field(mean_plume, 0.0, hi, cmap);
   canvas.draw_obstacles();
   canvas.draw_walls_and_openings();
-  for (const Step& s : r.steps)
-    if (!s.path_in.empty()) canvas.draw_path(s.path_in, kTrack, 2);
+  for (std::size_t k = 0; k < robots.size(); ++k)
+    for (const Step& s : robots[k].steps)
+      if (!s.path_in.empty()) canvas.draw_path(s.path_in, robot_track(k), 2);
   canvas.draw_source(run.source, source_label(run));
   // Samples on the plume's colour scale with a thin grey rim (no white halo, so a
-  // low reading shows the colour map's dark end, as the plume under it does).
+  // low reading shows the colour map's dark end, as the plume under it does); a team's have
+  // their robot's colour as the rim.
   const int radius = static_cast<int>(std::lround(6 * canvas.mark_scale()));
-  for (const Step& s : r.steps) {
-    cv::circle(canvas.image(), canvas.pixel(s.position), radius, colour_of(s.value, 0.0, hi, cmap),
-               cv::FILLED, cv::LINE_AA);
-    cv::circle(canvas.image(), canvas.pixel(s.position), radius, cv::Scalar(150, 150, 150), 1,
-               cv::LINE_AA);
-  }
-  // The start as a ring, around the first sample that is usually taken there.
-  canvas.draw_ring(r.start, colours::kStart, 11);
+  for (std::size_t k = 0; k < robots.size(); ++k)
+    for (const Step& s : robots[k].steps) {
+      cv::circle(canvas.image(), canvas.pixel(s.position), radius,
+                 colour_of(s.value, 0.0, hi, cmap), cv::FILLED, cv::LINE_AA);
+      cv::circle(canvas.image(), canvas.pixel(s.position), radius,
+                 robots.size() == 1 ? cv::Scalar(150, 150, 150) : robot_track(k),
+                 robots.size() == 1 ? 1 : 2, cv::LINE_AA);
+    }
+  // The starts as rings, around the first samples that are usually taken there.
+  for (const TeamRobot& robot : robots)
+    canvas.draw_ring(robot.start, colours::kStart, 11);
   canvas.draw_cross(r.estimate, colours::kEstimate);
   return canvas.finish();
 }

@@ -55,6 +55,27 @@ ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
   return out;
 }
 
+// A team's robots: each one's start, path and samples, and how it ended.
+ordered_json team_json(const MapFrame& f, const LocalizationResult& r) {
+  ordered_json robots = ordered_json::array();
+  for (const TeamRobot& t : r.team)
+    robots.push_back({{"start", point_json(f.to_frame(t.start))},
+                      {"samples", t.steps.size()},
+                      {"distance_m", t.distance_m},
+                      {"stopped_by", t.stopped_by},
+                      {"estimate", point_json(f.to_frame(t.estimate))},
+                      {"entropy", t.entropy},
+                      {"swaps", t.swaps},
+                      {"waited_s", t.waited_s},
+                      {"closest_m", std::isfinite(t.closest_m) ? ordered_json(t.closest_m)
+                                                               : ordered_json(nullptr)},
+                      {"steps", steps_json(f, t.steps)}});
+  return {{"robots", r.team.size()},
+          {"strategy", r.strategy},
+          {"declared_by", r.declared_by},
+          {"members", robots}};
+}
+
 ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
   ordered_json expected = ordered_json::object();
   if (sc.has_model()) {
@@ -68,27 +89,31 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
     expected["x"] = at.x;
     expected["y"] = at.y;
   }
-  return {{"method", r.method},
-          {"estimate", point_json(f.to_frame(r.estimate))},
-          {"error_m", norm(r.estimate - source)},
-          {"reached_source_box", r.reached},
-          {"samples", r.samples},
-          {"distance_m", r.distance_m},
-          {"compute_s", r.compute_s},
-          {"stopped_by", r.stopped_by},
-          {"median_step_s", r.median_step_s},
-          {"mission_s", r.time_s},
-          {"map_estimate", point_json(f.to_frame(r.map))},
-          {"source_cell", source_cell_json(sc.options())},
-          {"expected_parameters", expected},
-          {"entropy", r.posterior.entropy},
-          {"max_entropy", r.posterior.max_entropy},
-          {"seen_mass", r.posterior.seen_mass},
-          {"start", point_json(f.to_frame(r.start))},
-          {"source", point_json(f.to_frame(source))},
-          {"wind_s", sc.wind_s()},
-          {"table_build_s", sc.model_build_s()},
-          {"steps", steps_json(f, r.steps)}};
+  ordered_json j{{"method", r.method},
+                 {"estimate", point_json(f.to_frame(r.estimate))},
+                 {"error_m", norm(r.estimate - source)},
+                 {"reached_source_box", r.reached},
+                 {"samples", r.samples},
+                 {"distance_m", r.distance_m},
+                 {"compute_s", r.compute_s},
+                 {"stopped_by", r.stopped_by},
+                 {"median_step_s", r.median_step_s},
+                 {"mission_s", r.time_s},
+                 {"map_estimate", point_json(f.to_frame(r.map))},
+                 {"source_cell", source_cell_json(sc.options())},
+                 {"expected_parameters", expected},
+                 {"entropy", r.posterior.entropy},
+                 {"max_entropy", r.posterior.max_entropy},
+                 {"seen_mass", r.posterior.seen_mass},
+                 {"start", point_json(f.to_frame(r.start))},
+                 {"source", point_json(f.to_frame(source))},
+                 {"wind_s", sc.wind_s()},
+                 {"table_build_s", sc.model_build_s()},
+                 {"steps", steps_json(f, r.steps)}};
+  // A team's samples and distance are summed over its robots, its mission time runs to the
+  // declaration, and "steps" are those of the robot whose estimate it declares.
+  if (!r.team.empty()) j["team"] = team_json(f, r);
+  return j;
 }
 
 std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
@@ -99,9 +124,18 @@ std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& 
     << ", start " << fmt(f.to_frame(r.start)) << "\n"
     << "estimate " << fmt(f.to_frame(r.estimate)) << ", error " << fmt(norm(r.estimate - source))
     << " m after " << r.samples << " samples and " << fmt(r.distance_m, 1) << " m (stopped by "
-    << r.stopped_by << ")\ncompute " << fmt(r.compute_s, 3) << " s in all, median "
-    << fmt(r.median_step_s * 1000, 1) << " ms per decision step; wind " << fmt(sc.wind_s(), 1)
-    << " s, model build " << fmt(sc.model_build_s(), 1) << " s";
+    << r.stopped_by << ")\n";
+  if (!r.team.empty()) {
+    h << r.team.size() << " " << r.strategy << " robots (samples and metres summed; robot "
+      << r.declared_by + 1 << "'s estimate, at " << fmt(r.time_s, 0) << " s):";
+    for (std::size_t k = 0; k < r.team.size(); ++k)
+      h << (k ? "," : "") << " robot " << k + 1 << " " << r.team[k].steps.size() << " samples "
+        << fmt(r.team[k].distance_m, 1) << " m";
+    h << "\n";
+  }
+  h << "compute " << fmt(r.compute_s, 3) << " s in all, median " << fmt(r.median_step_s * 1000, 1)
+    << " ms per decision step; wind " << fmt(sc.wind_s(), 1) << " s, model build "
+    << fmt(sc.model_build_s(), 1) << " s";
   return h.str();
 }
 
@@ -310,6 +344,11 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
   if (eo.ste.world.filament.release_rate != dataset::FilamentOptions{}.release_rate)
     j["release_rate"] = eo.ste.world.filament.release_rate;
   if (eo.ste.success_radius > 0.0) j["success_radius"] = eo.ste.success_radius;
+  if (eo.ste.team.robots > 1)
+    j["team"] = {{"robots", eo.ste.team.robots},
+                 {"strategy", to_string(eo.ste.team.strategy)},
+                 {"separation_m", eo.ste.team.separation},
+                 {"patience_s", eo.ste.team.patience_s}};
   if (!uses_plume_model(eo.ste.method.kind)) {
     // The plume model's settings mean nothing to a method without one.
     for (const char* key : {"plume_model", "sigma_m", "sigma_rel", "sigma_std", "source_cell"})

@@ -299,9 +299,67 @@ const ForwardModel& Scenario::model() const {
   return *model_;
 }
 
+std::vector<Vec2> Scenario::team_starts(Vec2 first, Vec2 source) const {
+  std::vector<Vec2> starts{first};
+  const int robots = options_.team.robots;
+  const double spacing = options_.team.separation;
+  if (robots == 1) return starts;
+  if (spacing <= 0.0) return std::vector<Vec2>(static_cast<std::size_t>(robots), first);
+  const int region = region_reaching(source);
+  std::vector<std::pair<std::pair<double, double>, Vec2>> lattice;
+  const int reach = 2 * robots + 8;
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach; j <= reach; ++j) {
+      if (i == 0 && j == 0) continue;
+      double angle = std::atan2(static_cast<double>(j), static_cast<double>(i));
+      if (angle < 0.0) angle += 2.0 * kPi;
+      lattice.push_back({{std::hypot(i, j), angle}, first + spacing * Vec2{double(i), double(j)}});
+    }
+  std::sort(lattice.begin(), lattice.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [key, p] : lattice) {
+    if (static_cast<int>(starts.size()) == robots) break;
+    if (!map_.in_arena(p) || !space_->contains(p) || space_->region_of(p) != region) continue;
+    bool apart = true;
+    for (Vec2 q : starts)
+      apart = apart && norm(p - q) >= spacing - 1e-9;
+    if (apart) starts.push_back(p);
+  }
+  if (static_cast<int>(starts.size()) < robots)
+    throw InputError("map " + map_.name + ": no room for " + std::to_string(robots) + " robots " +
+                     compact(spacing) + " m apart near the start " +
+                     to_string(map_.to_frame(first)));
+  return starts;
+}
+
+LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& starts,
+                                      std::uint64_t seed) const {
+  check_source(source);
+  SharedPlume plume(map_, wind_, source, options_.world.filament, seed,
+                    static_cast<int>(starts.size()));
+  std::vector<std::unique_ptr<Estimator>> estimators;
+  std::vector<Estimator*> pointers;
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    estimators.push_back(make_estimator(team_robot_seed(seed, static_cast<int>(k))));
+    pointers.push_back(estimators.back().get());
+  }
+  MethodRunOptions o;
+  if (options_.success_radius > 0.0) o.disc = SourceDisc{source, options_.success_radius};
+  TeamSetup setup;
+  setup.map = &map_;
+  setup.source = source;
+  setup.world = &options_.world;
+  setup.planner = planner_.get();
+  setup.space = space_.get();
+  setup.navigator = navigator_.get();
+  setup.stop = &options_.stop;
+  return ste::run_team(plume, starts, pointers, seed, setup, options_.team, o);
+}
+
 LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {
   check_source(source);
   start = check_start(start);
+  if (options_.team.robots > 1) return run_team(source, team_starts(start, source), seed);
   SimulatedWorld world(map_, wind_, source, options_.world, seed);
   return run(world, start, seed);
 }

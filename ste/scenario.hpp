@@ -21,6 +21,7 @@
 #include "ste/mh_estimator.hpp"
 #include "ste/physics_plume.hpp"
 #include "ste/seeds.hpp"
+#include "ste/team.hpp"
 #include "ste/world.hpp"
 
 namespace plumekit::ste {
@@ -65,6 +66,8 @@ struct SteOptions {
   NavigationOptions navigation;
   StopOptions stop;
   WorldOptions world;
+  // A team of robots instead of one (--robots, --team; ste/team.hpp).
+  TeamOptions team;
   // The wind every run of a map shares (the flow's defaults: 5 cm cells).
   cfd::FlowOptions flow;
   // A `plumekit flow` output folder for this map (either engine) whose wind is
@@ -161,12 +164,23 @@ class Scenario {
   const planner::Planner& planner() const { return *planner_; }
   const Navigator& navigator() const { return *navigator_; }
 
-  // One localization run with the options' method; `seed` drives the plume, the sensor noise, MH
-  // and the particle filter.
+  // One localization run with the options' method (a team's when options.team.robots > 1, its
+  // first robot at `start`: team_starts); `seed` drives the plume, the sensor noise, MH and the
+  // particle filter.
   LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;
   // The same run in `world`, which holds the plume of `source` and `seed` (a robot of a shared
   // plume: ste/shared_plume.hpp).
   LocalizationResult run(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
+
+  // The starts of a team whose first robot starts at `first`: the team is deployed together, its
+  // other robots on the free points nearest `first` of a lattice of the team's separation
+  // (nearest first, then counter-clockwise from downwind x), in the piece of free space that
+  // reaches `source`. InputError when the piece has no room for them.
+  std::vector<Vec2> team_starts(Vec2 first, Vec2 source) const;
+  // A team's run (options.team.robots robots) from `starts`; `seed` drives the plume, each
+  // robot's sensors and MH (team_robot_seed).
+  LocalizationResult run_team(Vec2 source, const std::vector<Vec2>& starts,
+                              std::uint64_t seed) const;
 
   // The plume trackers' success box of a source: along the steady wind at the source.
   SourceBox source_box(Vec2 source) const;

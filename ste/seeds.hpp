@@ -26,10 +26,19 @@ enum class SteStream : std::uint64_t {
   PositionNoise = 0x905E,        // the recorded position's error (SimulatedWorld)
   Method = 0x9F17,               // a localization method's own draws (the particle filter)
   WindSpread = 0x5A0D,           // the single wind readings' direction noise (SimulatedWorld)
+  TeamRobot = 0x7EA3,            // a team's robots after the first (team_robot_seed)
 };
 
 inline std::uint64_t stream_seed(std::uint64_t run_seed, SteStream stream) {
   return run_seed ^ static_cast<std::uint64_t>(stream);
+}
+
+// The seed of robot k of a team in run `run_seed`: its sensors' streams and its MH chain draw from
+// it (the plume is the run's). Robot 0's is the run's own, so a team of one is the lone robot.
+inline std::uint64_t team_robot_seed(std::uint64_t run_seed, int robot) {
+  if (robot == 0) return run_seed;
+  return splitmix64(stream_seed(run_seed, SteStream::TeamRobot) +
+                    static_cast<std::uint64_t>(robot));
 }
 
 }  // namespace plumekit::ste

@@ -42,6 +42,18 @@ const dataset::FilamentSimulation& SharedPlume::at(long long step, int robot) {
   return sim_;
 }
 
+void SharedPlume::promise(int robot, long long step) {
+  std::lock_guard<std::mutex> g(lock_);
+  long long& need = need_.at(static_cast<std::size_t>(robot));
+  if (need == kGone)
+    throw std::logic_error("SharedPlume: robot " + std::to_string(robot) + " left");
+  if (step < need)
+    throw std::logic_error("SharedPlume: robot " + std::to_string(robot) + " promised step " +
+                           std::to_string(step) + " after asking for step " + std::to_string(need));
+  need = step;
+  moved_.notify_all();
+}
+
 void SharedPlume::leave(int robot) {
   std::lock_guard<std::mutex> g(lock_);
   need_.at(static_cast<std::size_t>(robot)) = kGone;

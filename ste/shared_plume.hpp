@@ -37,6 +37,10 @@ class SharedPlume {
   // robot is done with the steps before it. The plume stays there until this robot asks for a
   // later step or leaves; a robot's steps never go back (std::logic_error).
   const dataset::FilamentSimulation& at(long long step, int robot);
+  // The robot reads nothing before `step`: the plume need not wait for it until then. A loop that
+  // moves several robots on one thread, always the one furthest behind (ste/team.hpp), promises
+  // each robot's next step after each of its actions, so that at() never waits there.
+  void promise(int robot, long long step);
   // The robot reads no more: the plume no longer waits for it.
   void leave(int robot);
 

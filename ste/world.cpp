@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.hpp"
 #include "core/random.hpp"
@@ -57,6 +58,18 @@ SimulatedWorld::~SimulatedWorld() {
   plume_.leave(robot_);
 }
 
+long long SimulatedWorld::steps_after(double seconds) const {
+  // advance()'s arithmetic, on copies.
+  double debt = debt_ + seconds;
+  long long steps = steps_;
+  const double dt = options_.filament.dt;
+  while (debt >= dt - 1e-12) {
+    ++steps;
+    debt -= dt;
+  }
+  return steps;
+}
+
 void SimulatedWorld::advance(double seconds) {
   // Only counted here: the plume steps when this robot next reads it.
   debt_ += seconds;
@@ -68,33 +81,22 @@ void SimulatedWorld::advance(double seconds) {
   }
 }
 
-namespace {
-
-// The point `d` metres along a polyline (its end beyond its length).
-Vec2 point_along(const std::vector<Vec2>& path, double d) {
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const double leg = norm(path[k] - path[k - 1]);
-    if (d <= leg && leg > 0.0) return path[k - 1] + (d / leg) * (path[k] - path[k - 1]);
-    d -= leg;
-  }
-  return path.back();
-}
-
-}  // namespace
-
 void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
   const double seconds = metres / options_.speed;
   if (!gas_.has_memory() || path.size() < 2) {
     advance(seconds);
     return;
   }
-  const double interval = 1.0 / options_.sample_rate;
+  const double interval = reading_interval();
   const int readings = static_cast<int>(std::floor(seconds / interval));
-  for (int k = 1; k <= readings; ++k) {
-    advance(interval);
-    gas_.read(exposure(plume(), point_along(path, k * interval * options_.speed)));
-  }
+  for (int k = 1; k <= readings; ++k)
+    pass(path, k * interval * options_.speed);
   advance(seconds - readings * interval);
+}
+
+void SimulatedWorld::pass(const std::vector<Vec2>& path, double along) {
+  advance(reading_interval());
+  if (gas_.has_memory() && !path.empty()) gas_.read(exposure(plume(), point_along(path, along)));
 }
 
 std::vector<Vec2> disc_points(Vec2 centre, double radius) {
@@ -130,35 +132,52 @@ double SimulatedWorld::exposure(const dataset::FilamentSimulation& plume, Vec2 p
 }
 
 Reading SimulatedWorld::stop(Vec2 p) {
-  const int n =
-      std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
-  NormalSampler noise;  // a fresh pair per sample, as the committed results were drawn
-  double sum = 0.0;
-  Vec2 wind_sum;       // the wind that carries the gas at p, at each reading
-  Vec2 direction_sum;  // their unit vectors: the circular variance
-  NormalSampler spread;
-  for (int k = 0; k < n; ++k) {
-    if (k > 0) advance(1.0 / options_.sample_rate);
-    const dataset::FilamentSimulation& plume_now = plume();
-    double c = gas_.read(exposure(plume_now, p));
-    if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise, noise_rng_, 0.0, options_.noise));
-    sum += c;
-    const Vec2 w = plume_now.wind_at(p);
-    wind_sum = wind_sum + w;
-    if (options_.wind_variance_noise_deg > 0.0) {
-      const double a =
-          std::atan2(w.y, w.x) +
-          normal(spread, spread_rng_, 0.0, options_.wind_variance_noise_deg) * kPi / 180.0;
-      direction_sum = direction_sum + Vec2{std::cos(a), std::sin(a)};
-    } else if (const double speed = norm(w); speed > 0.0) {
-      direction_sum = direction_sum + (1.0 / speed) * w;
-    }
+  begin_stop(p);
+  while (!stop_reading()) {
   }
-  advance(1.0 / options_.sample_rate);  // the last reading's interval
+  return end_stop();
+}
+
+void SimulatedWorld::begin_stop(Vec2 p) {
+  stop_ = StopState{};
+  stop_.p = p;
+  stop_.readings =
+      std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
+}
+
+bool SimulatedWorld::stop_reading() {
+  if (stop_.taken >= stop_.readings)
+    throw std::logic_error("SimulatedWorld: a reading after the stop's last (begin_stop first)");
+  const Vec2 p = stop_.p;
+  const dataset::FilamentSimulation& plume_now = plume();
+  double c = gas_.read(exposure(plume_now, p));
+  if (options_.noise > 0.0)
+    c = std::max(0.0, c + normal(stop_.noise, noise_rng_, 0.0, options_.noise));
+  stop_.sum += c;
+  const Vec2 w = plume_now.wind_at(p);
+  stop_.wind_sum = stop_.wind_sum + w;
+  if (options_.wind_variance_noise_deg > 0.0) {
+    const double a =
+        std::atan2(w.y, w.x) +
+        normal(stop_.spread, spread_rng_, 0.0, options_.wind_variance_noise_deg) * kPi / 180.0;
+    stop_.direction_sum = stop_.direction_sum + Vec2{std::cos(a), std::sin(a)};
+  } else if (const double speed = norm(w); speed > 0.0) {
+    stop_.direction_sum = stop_.direction_sum + (1.0 / speed) * w;
+  }
+  advance(reading_interval());
+  return ++stop_.taken == stop_.readings;
+}
+
+Reading SimulatedWorld::end_stop() {
+  if (stop_.readings == 0 || stop_.taken < stop_.readings)
+    throw std::logic_error("SimulatedWorld: end_stop before the stop's readings are taken");
+  const Vec2 p = stop_.p;
+  const int n = stop_.readings;
   Reading r;
-  r.gas = sum / n;
-  r.wind = (1.0 / n) * wind_sum;
-  r.wind_variance = std::clamp(1.0 - norm((1.0 / n) * direction_sum), 0.0, 1.0);
+  r.gas = stop_.sum / n;
+  r.wind = (1.0 / n) * stop_.wind_sum;
+  r.wind_variance = std::clamp(1.0 - norm((1.0 / n) * stop_.direction_sum), 0.0, 1.0);
+  stop_.readings = 0;
   if (const double sigma = options_.direction_noise_deg(); sigma > 0.0) {
     NormalSampler draw;
     const double a = normal(draw, wind_rng_, 0.0, sigma) * kPi / 180.0;

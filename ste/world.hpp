@@ -15,6 +15,7 @@
 
 #include "cfd/wind_field.hpp"
 #include "core/map.hpp"
+#include "core/random.hpp"
 #include "dataset/filament_model.hpp"
 #include "dataset/gas_sensor.hpp"
 #include "ste/shared_plume.hpp"
@@ -100,6 +101,29 @@ class SimulatedWorld {
   void travel(const std::vector<Vec2>& path, double metres);
   // Stays at p for sample_s and returns what the sensors report.
   Reading stop(Vec2 p);
+
+  // The same in steps, for a loop that interleaves several robots in one plume reading by reading
+  // (ste/team.hpp). stop(p) is begin_stop(p), stop_reading() until it returns true, end_stop();
+  // travel() is pass() for each reading interval of the path, then wait() for the rest.
+  void begin_stop(Vec2 p);
+  // Takes the stop's next reading now, then lets one reading interval pass; true once the stop's
+  // readings are all taken.
+  bool stop_reading();
+  // What the stop's readings report (the direction and position errors drawn now).
+  Reading end_stop();
+  // One reading interval of travel: a sensor with memory reads at the point `along` metres along
+  // `path` at its end.
+  void pass(const std::vector<Vec2>& path, double along);
+  // Time passes; the robot reads nothing.
+  void wait(double seconds) { advance(seconds); }
+  double reading_interval() const { return 1.0 / options_.sample_rate; }
+  // The plume step the robot's next reading is at (steps of the plume's dt since the spin-up).
+  long long steps() const { return steps_; }
+  // The plume step the robot will be at after `seconds` more (what wait(seconds) leads to).
+  long long steps_after(double seconds) const;
+  // Whether the gas sensor reads on the way (one with memory): pass() then reads the plume.
+  bool reads_while_travelling() const { return gas_.has_memory(); }
+  const WorldOptions& options() const { return options_; }
   double time() const { return time_; }                  // simulated seconds since release
   double spinup_s() const { return plume_.spinup_s(); }  // before the robot started
   Vec2 source() const { return source_; }
@@ -126,6 +150,15 @@ class SimulatedWorld {
   long long steps_ = 0;  // of the plume's dt since the spin-up
   double time_ = 0.0;    // summed step by step, as the plume sums its own
   double debt_ = 0.0;    // seconds not yet stepped (travel times are not multiples of dt)
+  // The stop under way (begin_stop .. end_stop).
+  struct StopState {
+    Vec2 p;
+    int readings = 0, taken = 0;
+    double sum = 0.0;
+    Vec2 wind_sum;                // the wind that carries the gas at p, at each reading
+    Vec2 direction_sum;           // their unit vectors: the circular variance
+    NormalSampler noise, spread;  // a fresh pair per sample, as the committed results were drawn
+  } stop_;
 };
 
 }  // namespace plumekit::ste

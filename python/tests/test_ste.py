@@ -126,3 +126,35 @@ def test_any_method_runs_as_the_cli_runs_it(cli):
         sc.mission(seed=1)
     with pytest.raises(plumekit.OptionError, match="unknown method"):
         plumekit.localize(m, (7.5, 2.0), method="infotaxis")
+
+
+def test_a_team_runs_as_the_cli_runs_it(block, cli):
+    s = block.sources[0]
+    run = plumekit.localize(block, s, start=(9.0, 2.0), seed=5, plume_model="physics",
+                            stop={"max_samples": 12},
+                            team={"robots": 2, "strategy": "collaborative"})
+    c = cli("localize", plumekit.data_dir() + "/test-maps/test-1-block.json",
+            "--source", f"{s[0]!r},{s[1]!r}", "--start", "9,2", "--seed", 5, "--plume-model",
+            "physics", "--max-samples", 12, "--robots", 2, "--team", "collaborative")
+    def untimed(team):  # the measured decision times differ from run to run
+        for m in team["members"]:
+            for step in m["steps"]:
+                del step["compute_s"]
+        return team
+
+    assert untimed(run["team"]) == untimed(c["team"])
+    assert run["team"]["robots"] == 2 and run["team"]["strategy"] == "collaborative"
+    assert run["samples"] == sum(m["samples"] for m in run["team"]["members"])
+    with pytest.raises(plumekit.OptionError, match="ste.team.strategy"):
+        plumekit.localize(block, s, plume_model="physics", team={"strategy": "swarm"})
+
+
+def test_a_mission_takes_teammates_samples_and_goals(block):
+    sc = plumekit.Scenario(block, plume_model="physics", stop={"max_samples": 2})
+    alone, shared = sc.mission(seed=1), sc.mission(seed=1)
+    alone.add((8.0, 2.0), 0.0)
+    post = shared.add((8.0, 2.0), 0.0, shared=[((6.0, 2.0), 0.0), ((6.0, 3.0), 0.0)])
+    assert shared.samples == 3 and not shared.stopped  # a budget of 2 of its own
+    assert post["entropy"] < alone.posterior["entropy"]
+    goal = alone.next((8.0, 2.0))["goal"]
+    assert alone.next((8.0, 2.0), teammate_goals=[goal])["goal"] != goal

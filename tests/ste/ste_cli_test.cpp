@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
 
 #include <nlohmann/json.hpp>
 
@@ -150,6 +151,62 @@ TEST_F(SteCli, SuccessRadiusEndsAnyRunOnArrivalAndTheReleaseRateIsTheWorlds) {
   r = run("localize " + map + " --source 4.5,0.5 --success-radius -1");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--success-radius"), std::string::npos) << r.err;
+}
+
+// Issue 21: robot teams (seed 004 ch. 13) through localize and evaluate.
+TEST_F(SteCli, TeamsRunThroughLocalizeAndEvaluate) {
+  const std::string map = write_map();
+  const std::string team = "localize " + map +
+                           " --source 4.5,0.5 --start 1,2.5 --plume-model physics --seed 3 "
+                           "--robots 2 --team cooperative --max-samples 10 --json --out ";
+  CliResult r = run(team + (dir / "team").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  json j = json::parse(r.out);
+  ASSERT_TRUE(j.contains("team"));
+  EXPECT_EQ(j["team"]["robots"], 2);
+  EXPECT_EQ(j["team"]["strategy"], "cooperative");
+  ASSERT_EQ(j["team"]["members"].size(), 2u);
+  int samples = 0;
+  for (const json& m : j["team"]["members"]) {
+    samples += m["samples"].get<int>();
+    EXPECT_EQ(m["steps"].size(), m["samples"].get<std::size_t>());
+  }
+  EXPECT_EQ(j["samples"].get<int>(), samples);  // summed over the team
+  EXPECT_TRUE(std::filesystem::exists(dir / "team" / "trajectory.png"));
+  // The same seed gives the same run: every field but the measured times.
+  ASSERT_EQ(run(team + (dir / "again").string()).code, 0);
+  const auto untimed = [](json v) {
+    std::function<void(json&)> strip = [&strip](json& x) {
+      if (x.is_object())
+        for (const char* key : {"compute_s", "median_step_s", "wind_s", "table_build_s"})
+          x.erase(key);
+      if (x.is_structured())
+        for (json& e : x)
+          strip(e);
+    };
+    strip(v);
+    return v;
+  };
+  EXPECT_EQ(untimed(json::parse(slurp(dir / "team" / "run.json"))),
+            untimed(json::parse(slurp(dir / "again" / "run.json"))));
+  r = run("evaluate --map-dir " + (dir / "maps").string() +
+          " --runs 1 --robots 3 --team collaborative --plume-model physics --max-samples 8 "
+          "--json --out " +
+          (dir / "ev").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = json::parse(r.out);
+  EXPECT_EQ(j["team"]["robots"], 3);
+  EXPECT_EQ(j["team"]["strategy"], "collaborative");
+  EXPECT_LE(j["overall"]["median_samples"].get<double>(), 3 * 8);
+  r = run("localize " + map + " --source 4.5,0.5 --robots 2 --team swarm");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--team"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.5,0.5 --robots 2 --method surge-cast");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--robots"), std::string::npos) << r.err;
+  r = run("localize " + map + " --source 4.5,0.5 --robots 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--robots"), std::string::npos) << r.err;
 }
 
 TEST_F(SteCli, BadInputExitsTwoWithAClearMessage) {
