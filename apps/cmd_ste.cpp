@@ -188,6 +188,11 @@ void add_robot_world_options(CLI::App* cmd, ste::SteOptions& o) {
                  ->type_name("M|gps")
                  ->default_str("0"),
              "ste.world.position_noise");
+  bind_to(cmd, "--odometry-drift", o.world.odometry_drift,
+          "The position a stop records drifts from the true one by a random walk of this std per "
+          "axis per square root of metre travelled, m (odometry without a positioning system, "
+          "for ste-local; 0: the true position)",
+          "ste.world.odometry_drift");
   bind_to(cmd, "--rotor-disc", o.world.rotor_disc,
           "Each gas reading averages the concentration over a disc of this radius, m (seed 000's "
           "rotor disturbance: 0.5; 0: at the sensor's point)",
@@ -362,6 +367,11 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
           "exploitation (longest, straightest moves), concentration units (theta of seed 004 "
           "Eq. 16.3, which it does not give; methods/README.md)",
           "levy.gradient_threshold");
+  bind_to(cmd, "--budget", m.local.budget,
+          "ste-local: samples per local map when nothing is learnt, B_0 of seed 004 Eq. 12.1",
+          "local.budget");
+  bind_to(cmd, "--local-map", m.local.map_size, "ste-local: the local map's side, m",
+          "local.map_size");
 }
 
 void add_ste_options(CLI::App* cmd, ste::SteOptions& o,

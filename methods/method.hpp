@@ -26,6 +26,9 @@ struct Observation {
   // [0, 1]: 0 for a steady wind.
   double wind_variance = 0.0;
   double time_s = 0.0;  // since the mission started, at the stop's end
+  // The robot did not reach the goal it was sent to: an obstacle stopped it on its straight way
+  // there (a method without a map, Move::straight).
+  bool blocked = false;
 };
 
 // InputError naming `who` when a number of the observation (position, gas, wind, circular
@@ -42,6 +45,10 @@ struct Move {
   // while it decides); empty: the runner plans one.
   std::vector<Vec2> path;
   double length = 0.0;  // metres along `path`
+  // A method without a map (seed 004 ch. 12's local framework): the robot drives straight to the
+  // goal and stops where an obstacle blocks its way (after its avoidance manoeuvre), which the
+  // next observation says (Observation::blocked). False: the runner plans around obstacles.
+  bool straight = false;
 };
 
 // The area a method searches: the arena's rectangle, and its obstacles for methods that want them

@@ -74,6 +74,8 @@ void bind_world(py::module_& m) {
   PK_FIELD(w, WorldOptions, position_noise, "Std per axis of the recorded position, m");
   PK_FIELD(w, WorldOptions, position_noise_per_fix,
            "position_noise is each reading's fix error; a stop records their mean");
+  PK_FIELD(w, WorldOptions, odometry_drift,
+           "Recorded positions drift by this std per axis per sqrt(m) travelled (ste-local)");
   PK_FIELD(w, WorldOptions, rotor_disc,
            "Radius of the disc each gas reading averages over, m (seed 000's rotor: 0.5)");
   w.def_property(
@@ -122,7 +124,9 @@ void bind_ste_options_class(py::module_& m) {
       "method", [](const SteOptions& s) { return std::string(to_string(s.method.kind)); },
       [](SteOptions& s, const std::string& v) { s.method.kind = parse_method_kind(v); },
       "'ste' (the default), or one of the seeds' methods: 'sweeping', 'surge-cast', 'zigzag', "
-      "'pseudo-gradient', 'pf-gradient', 'pf-sweep', 'apf', 'levy-taxis' (methods/README.md)");
+      "'pseudo-gradient', 'pf-gradient', 'pf-sweep', 'apf', 'levy-taxis', 'ste-local' "
+      "(methods/README.md, "
+      "ste/README.md)");
   o.def_property(
       "plume_model", [](const SteOptions& s) { return std::string(to_string(s.model)); },
       [](SteOptions& s, const std::string& v) { s.model = parse_plume_model_kind(v); },

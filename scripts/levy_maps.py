@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """The open-field maps of seed 004's STE-versus-ALT benchmark (ch. 16, Fig. 16.5; ch. 5.1's arena).
 
-    scripts/levy_maps.py OUT SPEED START [COUNT] [SEED]
+    scripts/levy_maps.py OUT SPEED START [COUNT] [SEED] [LENGTH]
 
-writes COUNT (default 10) maps OUT/levy-NN.json: a 10 x 4 m arena with a uniform inlet of SPEED m/s
+writes COUNT (default 10) maps OUT/levy-NN.json: a LENGTH x 4 m arena (default 10: ch. 5.1's; the
+local framework's benchmark of ch. 12 uses 20) with a uniform inlet of SPEED m/s
 on the left and an outlet on the right, one source 1 m from the upwind wall at a random y in
 [0.5, 3.5], and the starts of START: "plume", one start 8 m downwind on the source's line (inside
 the plume, ch. 16 (a)); or "crosswind", five starts at x = 9 m and random y in [0.3, 3.7] (ch. 16
@@ -35,15 +36,18 @@ def ours(path):
 
 
 def main(argv):
-    if len(argv) not in (4, 5, 6):
-        fail("usage: levy_maps.py OUT SPEED START [COUNT] [SEED]")
+    if len(argv) not in (4, 5, 6, 7):
+        fail("usage: levy_maps.py OUT SPEED START [COUNT] [SEED] [LENGTH]")
     out, speed_text, start = argv[1], argv[2], argv[3]
     try:
         speed = float(speed_text)
         count = int(argv[4]) if len(argv) > 4 else 10
         seed = int(argv[5]) if len(argv) > 5 else 1
+        length = float(argv[6]) if len(argv) > 6 else 10.0
     except ValueError:
-        fail("SPEED must be a number, COUNT and SEED whole numbers")
+        fail("SPEED and LENGTH must be numbers, COUNT and SEED whole numbers")
+    if not 10.0 <= length <= 100.0:
+        fail("LENGTH in [10, 100] m")
     if not (0.0 < speed <= 10.0) or count < 1 or start not in ("plume", "crosswind"):
         fail("SPEED in (0, 10] m/s, COUNT at least 1, START plume or crosswind")
     names = [f"levy-{k:02d}.json" for k in range(count)]
@@ -64,11 +68,11 @@ def main(argv):
             "format": "plumekit-map/2",
             "name": f"levy-{k:02d}",
             "generated_by": MARK,
-            "size": [10.0, 4.0],
+            "size": [length, 4.0],
             "openings": [
                 {"kind": "inlet", "from": [0.0, 0.0], "to": [0.0, 4.0], "speed": speed,
                  "profile": "uniform"},
-                {"kind": "outlet", "from": [10.0, 0.0], "to": [10.0, 4.0]},
+                {"kind": "outlet", "from": [length, 0.0], "to": [length, 4.0]},
             ],
             "obstacles": [],
             "sources": [[1.0, y]],

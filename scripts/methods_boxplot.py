@@ -15,9 +15,8 @@ import sys
 from pathlib import Path
 
 import matplotlib
-from PIL import Image
 
-from evaluation_runs import SEEDS_SUCCESS_M, read_runs
+from evaluation_runs import SEEDS_SUCCESS_M, drawn_by, read_runs
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -31,20 +30,11 @@ def load(folder):
     return summary.get("method", "ste"), read_runs(folder)
 
 
-def drawn_here(path):
-    """Whether PATH is a PNG this script wrote."""
-    try:
-        with Image.open(path) as im:
-            return im.format == "PNG" and im.info.get("Software") == SOFTWARE
-    except (OSError, ValueError):
-        return False
-
-
 def main(argv):
     if len(argv) < 3:
         sys.exit(__doc__)
     out, title, folders = argv[0], argv[1], argv[2:]
-    if Path(out).exists() and not drawn_here(out):
+    if Path(out).exists() and not drawn_by(out, SOFTWARE):
         print(f"methods_boxplot.py: {out} exists and was not drawn by this script; "
               "not overwriting it", file=sys.stderr)
         sys.exit(2)

@@ -17,7 +17,7 @@ import statistics
 import sys
 from pathlib import Path
 
-from evaluation_runs import read_runs
+from evaluation_runs import draw_boxplots, read_runs
 
 SETTINGS = [("A", "A (0.2 m/s, 5 %)"), ("B", "B (0.2 m/s, 10 %)"), ("C", "C (0.9 m/s, 5 %)"),
             ("D", "D (0.9 m/s, 10 %)"), ("test-maps", "nine test maps")]
@@ -52,37 +52,14 @@ def load(folder):
     return metrics
 
 
-def drawn_here(path):
-    from PIL import Image
-    try:
-        with Image.open(path) as im:
-            return im.format == "PNG" and im.info.get("Software") == SOFTWARE
-    except (OSError, ValueError):
-        return False
-
-
 def boxplot(path, title, data):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    if path.exists() and not drawn_here(path):
-        fail(f"{path} exists and was not drawn by this script; not overwriting it")
     labels = [label(s, n) for (s, n), _ in data]
-    fig, axes = plt.subplots(1, 4, figsize=(19, 4.5))
-    for ax, (key, name) in zip(axes, [("samples", "samples, summed"),
-                                      ("distance_m", "distance (m), summed"),
-                                      ("mission_s", "mission time (s)"),
-                                      ("error_m", "error (m)")]):
-        ax.boxplot([m[key] for _, m in data], labels=labels, flierprops={"markersize": 2})
-        ax.set_title(name)
-        ax.tick_params(axis="x", rotation=45)
-        ax.grid(axis="y", alpha=0.3)
-        if key == "error_m":
-            ax.axhline(0.5, color="tab:green", linestyle="--", linewidth=1)
-    fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path, dpi=100, metadata={"Software": SOFTWARE})
-    plt.close(fig)
+    panels = [(name, [m[key] for _, m in data], 0.5 if key == "error_m" else None)
+              for key, name in [("samples", "samples, summed"),
+                                ("distance_m", "distance (m), summed"),
+                                ("mission_s", "mission time (s)"), ("error_m", "error (m)")]]
+    if not draw_boxplots(path, SOFTWARE, title, labels, panels, rotation=45):
+        fail(f"{path} exists and was not drawn by this script; not overwriting it")
 
 
 def main(argv):
@@ -94,7 +71,9 @@ def main(argv):
           "mission s | step ms |")
     print("|---|---|---|---|---|---|---|---|---|")
     for setting, name in SETTINGS:
-        if not (out / setting).is_dir():
+        if not all((out / setting / f"{s}-{n}" / "runs.csv").is_file() for s, n in CONFIGS):
+            print(f"team_table.py: {out / setting}: not every configuration has run; left out",
+                  file=sys.stderr)
             continue
         data = [((s, n), load(out / setting / f"{s}-{n}")) for s, n in CONFIGS]
         for (s, n), m in data:

@@ -24,6 +24,7 @@ constexpr Named kMethods[] = {
     {MethodKind::PfSweep, "pf-sweep"},
     {MethodKind::Apf, "apf"},
     {MethodKind::LevyTaxis, "levy-taxis"},
+    {MethodKind::SteLocal, "ste-local"},
 };
 
 }  // namespace
@@ -102,6 +103,7 @@ void MethodOptions::validate() const {
   pf_in_use().validate();
   apf.validate();
   levy.validate();
+  local.validate();
 }
 
 std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& given,
@@ -143,6 +145,11 @@ std::unique_ptr<methods::LocalizationMethod> make_method(const MethodOptions& gi
       methods::LevyTaxisOptions levy = options.levy;
       levy.max_steps = options.tracking.max_steps;
       return std::make_unique<methods::AdaptiveLevyTaxis>(levy, seed);
+    }
+    case MethodKind::SteLocal: {
+      LocalFrameworkOptions local = options.local;
+      local.max_samples = options.tracking.max_steps;
+      return std::make_unique<LocalFrameworkSte>(local, seed);
     }
   }
   throw std::logic_error("make_method: unknown method");

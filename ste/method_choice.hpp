@@ -12,6 +12,7 @@
 #include "methods/method.hpp"
 #include "methods/pf_method.hpp"
 #include "methods/plume_tracking.hpp"
+#include "ste/local_framework.hpp"
 
 namespace plumekit::ste {
 
@@ -24,7 +25,8 @@ enum class MethodKind {
   PfGradient,
   PfSweep,
   Apf,
-  LevyTaxis
+  LevyTaxis,
+  SteLocal
 };
 const char* to_string(MethodKind kind);
 // The --method names in order: "ste", "sweeping", ... OptionError on ste.method otherwise.
@@ -70,6 +72,8 @@ struct MethodOptions {
   gdm::ApfOptions apf;
   // Adaptive Lévy taxis (seed 004 ch. 16); its max_steps is replaced by the one above.
   methods::LevyTaxisOptions levy;
+  // STE in the local framework (seed 004 ch. 12): no map, odometry, a moving local map.
+  LocalFrameworkOptions local;
   // The filter's options for `kind`: alpha and beta resolved, the detection limit the trackers'
   // detection threshold, the step budget tracking.max_steps.
   methods::PfMethodOptions pf_in_use() const;

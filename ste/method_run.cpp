@@ -21,8 +21,40 @@ namespace {
 
 // The path to a method's goal: its own, or the planner's to the goal moved into the arena and
 // off the obstacles (by the planner's margin). An unreachable goal gives a path of length 0.
+// The straight way from the robot towards `goal` (in the arena), up to where it would first
+// leave the free space at the planner's margin: where an obstacle's avoidance stops the robot.
+// `blocked` says whether it stopped short.
+planner::PlanResult straight_to(Vec2 goal, Vec2 robot, const planner::FreeSpace& space,
+                                bool& blocked) {
+  const Map& map = space.map();
+  goal = {std::clamp(goal.x, 0.0, map.width), std::clamp(goal.y, 0.0, map.height)};
+  const double length = norm(goal - robot);
+  const int steps = static_cast<int>(std::ceil(length / 0.01));
+  Vec2 end = robot;
+  blocked = false;
+  for (int k = 1; k <= steps; ++k) {
+    const Vec2 q = robot + (static_cast<double>(k) / steps) * (goal - robot);
+    if (!space.contains(q)) {
+      blocked = true;
+      break;
+    }
+    end = q;
+  }
+  planner::PlanResult p;
+  p.path = {robot, end};
+  p.length = norm(end - robot);
+  p.goal = end;
+  return p;
+}
+
 planner::PlanResult path_to(const methods::Move& move, Vec2 robot, const planner::Planner& planner,
-                            const MethodRunOptions& o) {
+                            const MethodRunOptions& o, bool& blocked) {
+  blocked = false;
+  if (move.straight) {
+    if (o.space == nullptr)
+      throw std::logic_error("run_method: a method that drives straight needs the free space");
+    return straight_to(move.goal, robot, *o.space, blocked);
+  }
   planner::PlanResult p;
   if (!move.path.empty()) {
     p.path = move.path;
@@ -120,6 +152,7 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
   const double t_start = world.time();
   Vec2 pos = start;
   std::vector<Vec2> path_in;
+  bool blocked = false;  // the last move stopped short at an obstacle
   std::vector<double> step_times;
   for (int stop = 1;; ++stop) {
     Step s;
@@ -133,7 +166,8 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
     s.time_s = world.time() - t_start;
 
     const double t0 = thread_cpu_s();
-    method.observe({reading.position, reading.gas, reading.wind, reading.wind_variance, s.time_s});
+    method.observe(
+        {reading.position, reading.gas, reading.wind, reading.wind_variance, s.time_s, blocked});
     record_state(method, s, r);
     r.stopped_by = method.stopped_by();
     if (r.stopped_by.empty() && options.box && options.box->contains(pos)) r.stopped_by = "reached";
@@ -141,7 +175,7 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
       r.stopped_by = "reached";
     if (r.stopped_by.empty() && stop >= options.max_stops) r.stopped_by = "max_samples";
     planner::PlanResult path;
-    if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options);
+    if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options, blocked);
     if (r.stopped_by.empty() && options.disc) cut_at_entry(*options.disc, path);
     s.compute_s = thread_cpu_s() - t0;
     step_times.push_back(s.compute_s);

@@ -80,6 +80,8 @@ void WorldOptions::validate() const {
                      "23.08");
   check_non_negative("ste.world.position_noise", position_noise, 100.0, "m",
                      "0 is an exact position; seed 000's GPS (Eq. 4.3) is 1.08 m");
+  check_non_negative("ste.world.odometry_drift", odometry_drift, 1.0, "m per sqrt(m)",
+                     "0 records the true position");
   check_non_negative("ste.world.rotor_disc", rotor_disc, 10.0, "m",
                      "0 reads at a point; seed 000's rotor disturbance is 0.5 m");
 }
@@ -135,6 +137,9 @@ void SteOptions::validate() const {
   stop.validate();
   world.validate();
   team.validate();
+  if (team.robots > 1 && world.odometry_drift > 0.0)
+    throw OptionError("ste.team.robots",
+                      "teams run in the global framework (a map and positions): no odometry drift");
   if (team.robots > 1 && method.kind != MethodKind::Ste)
     throw OptionError("ste.team.robots", "teams run plumekit's STE (seed 004 ch. 13); the " +
                                              std::string(to_string(method.kind)) +

@@ -206,6 +206,12 @@ ordered_json method_options_json(const MethodOptions& m) {
     j["declare_radius_m"] = pf.declare_radius;
     j["declare_iterations"] = pf.declare_iterations;
   }
+  if (m.kind == MethodKind::SteLocal) {
+    j["map_size_m"] = m.local.map_size;
+    j["budget"] = m.local.budget;
+    j["sigma_m"] = m.local.sigma_m;
+    j["max_samples"] = m.local.max_samples;
+  }
   if (m.kind == MethodKind::LevyTaxis) {
     const methods::LevyTaxisOptions& l = m.levy;
     j["min_move_m"] = l.min_move;

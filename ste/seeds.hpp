@@ -27,6 +27,7 @@ enum class SteStream : std::uint64_t {
   Method = 0x9F17,               // a localization method's own draws (the particle filter)
   WindSpread = 0x5A0D,           // the single wind readings' direction noise (SimulatedWorld)
   TeamRobot = 0x7EA3,            // a team's robots after the first (team_robot_seed)
+  Odometry = 0x0D0E,             // the odometry's drift (SimulatedWorld)
 };
 
 inline std::uint64_t stream_seed(std::uint64_t run_seed, SteStream stream) {

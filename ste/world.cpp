@@ -44,6 +44,7 @@ SimulatedWorld::SimulatedWorld(std::unique_ptr<SharedPlume> own, SharedPlume* sh
       wind_rng_(stream_seed(seed, SteStream::WindNoise)),
       position_rng_(stream_seed(seed, SteStream::PositionNoise)),
       spread_rng_(stream_seed(seed, SteStream::WindSpread)),
+      odometry_rng_(stream_seed(seed, SteStream::Odometry)),
       gas_(options.sensor, 1.0 / options.sample_rate),
       time_(plume_.spinup_s()) {
   try {
@@ -82,6 +83,12 @@ void SimulatedWorld::advance(double seconds) {
 }
 
 void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
+  if (options_.odometry_drift > 0.0 && metres > 0.0) {
+    NormalSampler draw;
+    const double sd = options_.odometry_drift * std::sqrt(metres);
+    odometry_error_ = odometry_error_ + Vec2{normal(draw, odometry_rng_, 0.0, sd),
+                                             normal(draw, odometry_rng_, 0.0, sd)};
+  }
   const double seconds = metres / options_.speed;
   if (!gas_.has_memory() || path.size() < 2) {
     advance(seconds);
@@ -201,6 +208,7 @@ Reading SimulatedWorld::end_stop() {
       }
     }
   }
+  if (options_.odometry_drift > 0.0) r.position = r.position + odometry_error_;
   return r;
 }
 

@@ -47,6 +47,10 @@ struct WorldOptions {
   // and the stop records the mean of its fixes (std position_noise / sqrt(readings)): seed 000
   // perturbed every 1 Hz sample's position (--position-noise gps). false: one error per stop.
   bool position_noise_per_fix = false;
+  // Odometry (seed 004 ch. 12's local framework): the position a stop records drifts from the
+  // true one by a random walk of this std per axis per square root of metre travelled, m/sqrt(m)
+  // (the robot's own estimate from its start, without a positioning system). 0: none.
+  double odometry_drift = 0.0;
   // Radius of the disc over which each gas reading averages the concentration, m: seed 000
   // §4.4's rotor disturbance (0.5 m, the drone's downwash mixing the air under it before the
   // sensor model). 0: the concentration at the sensor's point.
@@ -145,11 +149,12 @@ class SimulatedWorld {
   Vec2 source_;
   WorldOptions options_;
   const Map& map_;
-  std::mt19937_64 noise_rng_, wind_rng_, position_rng_, spread_rng_;
+  std::mt19937_64 noise_rng_, wind_rng_, position_rng_, spread_rng_, odometry_rng_;
   dataset::GasSensor gas_;
   long long steps_ = 0;  // of the plume's dt since the spin-up
   double time_ = 0.0;    // summed step by step, as the plume sums its own
   double debt_ = 0.0;    // seconds not yet stepped (travel times are not multiples of dt)
+  Vec2 odometry_error_;  // the recorded position's drift so far (odometry_drift)
   // The stop under way (begin_stop .. end_stop).
   struct StopState {
     Vec2 p;

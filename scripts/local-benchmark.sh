@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Seed 004 ch. 12's local framework (Algorithm 1): the sample budget sweep of Fig. 12.4 and the
+# global-versus-local travelled distance of Fig. 12.7, in the thesis's simulation condition C
+# (wind 0.9 m/s, release 5 %: 500 units) in a 20 x 4 m arena (scripts/levy_maps.py with LENGTH
+# 20: 10 maps, a source 1 m from the inlet at a random y, five starts 8 m downwind at random y,
+# taken in turn), the thesis's world. The local framework (--method ste-local) knows no map and
+# no position but its odometry, which drifts by 0.02 m per square root of metre travelled (the
+# thesis gives no figure); the global one is plumekit's STE with the thesis's Gaussian plume
+# model (MH), the map and exact positions.
+#
+#   scripts/local-benchmark.sh [RUNS] [OUT]     # RUNS per map (default 2)
+#   scripts/local_table.py OUT [PNG_DIR]        # the table and box plots of ste/README.md
+set -euo pipefail
+cd "$(dirname "$0")/.."
+runs=${1:-2}
+out=${2:-out/local}
+plumekit=${PLUMEKIT:-./build/plumekit}
+maps="$out/maps"
+[[ -d $maps ]] || /usr/bin/python3 scripts/levy_maps.py "$maps" 0.9 crosswind 10 1 20 >/dev/null
+evaluate() {
+  "$plumekit" evaluate --map-dir "$maps" --runs "$runs" --world thesis --release-rate 500 \
+    --threads 0 "$@" >/dev/null
+}
+start=$(date +%s)
+for budget in 1 3 5 7 9 15 25 50; do
+  evaluate --method ste-local --budget "$budget" --odometry-drift 0.02 --out "$out/budget-$budget"
+  echo "B_0 = $budget: done"
+done
+evaluate --plume-model gaussian --out "$out/global"
+echo "local framework benchmark: $(($(date +%s) - start)) s wall" | tee "$out/wall.txt"
