@@ -385,6 +385,8 @@ class TeamRun {
     if (block == Block::Wait) {
       r.obstructed += interval;
       if (r.obstructed >= team_.patience_s - 1e-9) {  // gives up its goal: samples here
+        // A sensor with memory was promised a reading this interval (read_step): it takes it.
+        if (read_step(r) > r.world->steps()) r.world->pass(r.path.path, r.along);
         leave_path(r);
         r.halted = false;
         r.phase = Phase::Sample;

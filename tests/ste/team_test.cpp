@@ -234,6 +234,23 @@ TEST(Team, RobotsKeepTheirSeparationAndRepeatThemselves) {
   }
 }
 
+// Robots that give up their goals at once, with a sensor that reads on the way: every wait, side
+// step and give-up keeps the one thread's plume clock (SharedPlume::promise throws otherwise).
+TEST(Team, ImpatientRobotsWithAMemorySensorKeepTheWorldClock) {
+  const Map map = default_arena();
+  for (TeamStrategy strategy : {TeamStrategy::Individualist, TeamStrategy::Collaborative}) {
+    SteOptions o = team_options(3, strategy);
+    o.world.sensor = dataset::gas_sensor_preset("mox-fast");
+    o.team.patience_s = 0.2;
+    o.team.separation = 0.6;
+    const Scenario sc(map, o);
+    const LocalizationResult r = sc.run(kSource, kStart, 13);
+    ASSERT_EQ(r.team.size(), 3u);
+    for (const TeamRobot& t : r.team)
+      EXPECT_GE(t.closest_m, 0.6 - 1e-9) << to_string(strategy);
+  }
+}
+
 TEST(Team, StartsSitSideBySideInTheSourcesPieceOfFreeSpace) {
   const Map map = default_arena();
   SteOptions o = team_options(4, TeamStrategy::Cooperative);
