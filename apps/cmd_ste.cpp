@@ -267,6 +267,8 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   add_team_options(cmd, o.team);
 }
 
+void add_walk_options(CLI::App* cmd, ste::MethodOptions& m);
+
 // The localization method and the options of the seeds' methods (methods/README.md).
 // With `several` (evaluate), --method also takes a list or "all", which goes there.
 void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
@@ -339,6 +341,11 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
                 "Particle filter: penalty beta on a non-detection (default: 0.8 with "
                 "pf-gradient, 0.9 with pf-sweep, seed 001)",
                 "pf.beta");
+  add_walk_options(cmd, m);
+}
+
+// The options of the APF, Lévy taxis and the local framework.
+void add_walk_options(CLI::App* cmd, ste::MethodOptions& m) {
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--apf-weights",

@@ -15,6 +15,8 @@ def strip(src):
             j=src.find('*/',i)+2; out.append(re.sub(r'[^\n]',' ',src[i:j])); i=j
         elif src.startswith('R"(',i):
             j=src.find(')"',i)+2; out.append(re.sub(r'[^\n]',' ',src[i:j])); i=j
+        elif c=="'" and i>0 and src[i-1].isdigit():  # a digit separator: 100'000
+            out.append(c); i+=1
         elif c in '"\'':
             j=i+1
             while j<n and src[j]!=c:
