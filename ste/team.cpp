@@ -249,11 +249,20 @@ class TeamRun {
       if (j >= 0) {
         Robot& o = *who[static_cast<std::size_t>(j)];
         const Vec2 mine = p.goal, theirs = o.path.goal;
-        p = setup_.planner->plan(r.pos, theirs);
-        leave_path(o);  // what it covered of its old path counts
-        start_travel(o, setup_.planner->plan(o.pos, mine));
-        ++o.out.swaps;
-        ++r.out.swaps;
+        planner::PlanResult onward = setup_.planner->plan(o.pos, mine);
+        if (options_.disc) cut_at_entry(*options_.disc, onward);
+        // The teammate promised the plume a reading on its way (read_step); a way shorter than
+        // one reading interval has none, so it keeps its goal then (a swap that saves nothing).
+        const double interval = o.world->reading_interval();
+        const bool keeps_promise =
+            read_step(o) == o.world->steps() || onward.length / setup_.world->speed >= interval;
+        if (keeps_promise) {
+          p = setup_.planner->plan(r.pos, theirs);
+          leave_path(o);  // what it covered of its old path counts
+          start_travel(o, std::move(onward));
+          ++o.out.swaps;
+          ++r.out.swaps;
+        }
       }
     }
     start_travel(r, std::move(p));
