@@ -18,7 +18,7 @@ plumekit=${PLUMEKIT:-./build/plumekit}
 maps="$out/maps"
 [[ -d $maps ]] || /usr/bin/python3 scripts/levy_maps.py "$maps" 0.9 crosswind 10 1 20 >/dev/null
 evaluate() {
-  "$plumekit" evaluate --map-dir "$maps" --runs "$runs" --world thesis --release-rate 500 \
+  "$plumekit" evaluate --map-dir "${maps:?}" --runs "$runs" --world thesis --release-rate 500 \
     --threads 0 "$@" >/dev/null
 }
 start=$(date +%s)
@@ -32,4 +32,9 @@ for budget in $budgets; do
   echo "B_0 = $budget: done"
 done
 evaluate --plume-model gaussian --out "$out/global"
+# Fig. 12.5's other half: low wind (condition A, 0.2 m/s), B_0 = 7.
+low="$out/maps-low"
+[[ -d $low ]] || /usr/bin/python3 scripts/levy_maps.py "$low" 0.2 crosswind 10 1 20 >/dev/null
+maps=$low evaluate --method ste-local --budget 7 --odometry-drift 0.02 --max-steps 160 \
+  --out "$out/low-wind"
 echo "local framework benchmark: $(($(date +%s) - start)) s wall" | tee "$out/wall.txt"

@@ -3,7 +3,8 @@
 
     scripts/local_table.py OUT [PNG_DIR]
 
-For each sample budget B_0 (OUT/budget-B) and the global framework (OUT/global): the runs, the
+For each sample budget B_0 (OUT/budget-B), the global framework (OUT/global) and, when there,
+B_0 = 7 at low wind (OUT/low-wind): the runs, the
 share declared within 0.5 m and 1 m, the medians of the error, of its x (along the wind) and y
 parts, of the samples and of the travelled distance; then the global-over-local distance ratio
 at B_0 = 7 (the thesis: about 3). With PNG_DIR, also PNG_DIR/local-budget.png (Fig. 12.4: error
@@ -51,11 +52,14 @@ def main(argv):
     out = Path(argv[1])
     data = {b: load(out / f"budget-{b}") for b in BUDGETS}
     data["global"] = load(out / "global")
+    if (out / "low-wind").is_dir():  # condition A, B_0 = 7 (Fig. 12.5)
+        data["low-wind"] = load(out / "low-wind")
     print("| framework | runs | declared | within 0.5 m | within 1 m | error m | x error m | "
           "y error m | samples | distance m |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for key, m in data.items():
-        name = "global (map, positions)" if key == "global" else f"local, B_0 = {key}"
+        name = {"global": "global (map, positions)",
+                "low-wind": "local, B_0 = 7, low wind (condition A)"}.get(key, f"local, B_0 = {key}")
         n = len(m["error"])
         print(f"| {name} | {n} | {100 * sum(m['declared']) / n:.0f} % | "
               f"{100 * sum(e <= 0.5 for e in m['error']) / n:.0f} % | "
