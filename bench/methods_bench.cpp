@@ -6,7 +6,6 @@
 //
 // Times are the thread's CPU time (what `evaluate` reports as step_ms), so load matters little.
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <random>
 #include <vector>
@@ -15,18 +14,13 @@
 #include "core/random.hpp"
 #include "core/statistics.hpp"
 #include "gdm/kernel_dmv.hpp"
+#include "ste/method_run.hpp"
 #include "ste/scenario.hpp"
 
 using namespace plumekit;
 namespace fs = std::filesystem;
 
 namespace {
-
-double thread_cpu() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // The median step compute of `runs` runs from the map's sources in turn; also the stops.
 double step_median(const Map& map, const ste::SteOptions& o, int runs, std::size_t& stops) {
@@ -55,9 +49,9 @@ double gdm_median(const Map& map) {
   o.wind_stretch = 0.6;  // DM+V/W: the dearer of the two
   std::vector<double> t;
   for (int k = 0; k < 50; ++k) {
-    const double t0 = thread_cpu();
+    const double t0 = ste::thread_cpu_s();
     const gdm::GdmMaps maps = gdm::kernel_dmv(map, samples, o);
-    t.push_back(thread_cpu() - t0);
+    t.push_back(ste::thread_cpu_s() - t0);
     if (maps.samples != 100) std::abort();
   }
   return median(t);

@@ -21,6 +21,12 @@ evaluate() {
   "$plumekit" evaluate --map-dir "${maps:?}" --runs "$runs" --world thesis --release-rate 500 \
     --threads 0 "$@" >/dev/null
 }
+wall="$out/wall.txt"
+# wall.txt is this script's own line; any other file of that name is left alone.
+if [[ -e $wall ]] && ! grep -q '^local framework benchmark: ' "$wall"; then
+  echo "local-benchmark.sh: $wall exists and was not written by this script" >&2
+  exit 2
+fi
 start=$(date +%s)
 budgets=${BUDGETS:-1 3 5 7 9 15 25 50}
 for budget in $budgets; do
@@ -37,4 +43,4 @@ low="$out/maps-low"
 [[ -d $low ]] || /usr/bin/python3 scripts/levy_maps.py "$low" 0.2 crosswind 10 1 20 >/dev/null
 maps=$low evaluate --method ste-local --budget 7 --odometry-drift 0.02 --max-steps 160 \
   --out "$out/low-wind"
-echo "local framework benchmark: $(($(date +%s) - start)) s wall" | tee "$out/wall.txt"
+echo "local framework benchmark: $(($(date +%s) - start)) s wall" | tee "$wall"

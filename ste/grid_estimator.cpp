@@ -164,15 +164,18 @@ Posterior GridEstimator::posterior() {
   return post;
 }
 
-double GridEstimator::predicted_reading(Vec2 p, const Posterior& current) const {
+double GridEstimator::predicted_from(const std::vector<double>& r, const Posterior& current) const {
   const int at = model_.nearest_allowed(current.expected_source());
-  return at < 0 ? 0.0 : current.expected.at(2) * model_.readings_at(p)[at];
+  return at < 0 ? 0.0 : current.expected.at(2) * r[at];
+}
+
+double GridEstimator::predicted_reading(Vec2 p, const Posterior& current) const {
+  return predicted_from(model_.readings_at(p), current);
 }
 
 double GridEstimator::information_gain(Vec2 p, const Posterior& current) const {
   const std::vector<double> r = model_.readings_at(p);
-  const int at = model_.nearest_allowed(current.expected_source());
-  const double predicted = at < 0 ? 0.0 : current.expected.at(2) * r[at];
+  const double predicted = predicted_from(r, current);
   Sums after = sums_;
   accumulate(after, r, spreads_at(p), predicted);
   const std::vector<double> lq = log_weights(after);

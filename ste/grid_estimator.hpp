@@ -64,6 +64,8 @@ class GridEstimator final : public Estimator {
   // (unit release; spread empty: none).
   void accumulate(Sums& sums, const std::vector<double>& r, const std::vector<double>& spread,
                   double value) const;
+  // The reading the expected parameters predict where the cells read r (unit release).
+  double predicted_from(const std::vector<double>& r, const Posterior& current) const;
   // The model's predicted std of the readings at p, when the likelihood uses it.
   std::vector<double> spreads_at(Vec2 p) const;
   double max_entropy_ = 0.0;

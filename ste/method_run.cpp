@@ -19,8 +19,6 @@ double thread_cpu_s() {
 
 namespace {
 
-// The path to a method's goal: its own, or the planner's to the goal moved into the arena and
-// off the obstacles (by the planner's margin). An unreachable goal gives a path of length 0.
 // The straight way from the robot towards `goal` (in the arena), up to where it would first
 // leave the free space at the planner's margin: where an obstacle's avoidance stops the robot.
 // `blocked` says whether it stopped short.
@@ -47,6 +45,9 @@ planner::PlanResult straight_to(Vec2 goal, Vec2 robot, const planner::FreeSpace&
   return p;
 }
 
+// The path to a method's goal: its own, the straight way of a method without a map, or the
+// planner's to the goal moved into the arena and off the obstacles (by the planner's margin). An
+// unreachable goal gives a path of length 0.
 planner::PlanResult path_to(const methods::Move& move, Vec2 robot, const planner::Planner& planner,
                             const MethodRunOptions& o, bool& blocked) {
   blocked = false;

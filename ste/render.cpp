@@ -99,13 +99,15 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   const double hi = std::max(1.0, percentile(v, 0.99));
   const int cmap = cv::COLORMAP_VIRIDIS;
   const std::string title = trajectory_title(map, run);
-  // A robot alone is a team of one: its steps.
-  std::vector<TeamRobot> robots = r.team;
-  if (robots.empty()) {
-    robots.emplace_back();
-    robots.back().start = r.start;
-    robots.back().steps = r.steps;
-  }
+  // Every robot's start and stops; a robot alone is a team of one.
+  struct Track {
+    Vec2 start;
+    const std::vector<Step>* steps;
+  };
+  std::vector<Track> robots;
+  for (const TeamRobot& t : r.team)
+    robots.push_back({t.start, &t.steps});
+  if (robots.empty()) robots.push_back({r.start, &r.steps});
   std::vector<LegendEntry> legend;
   for (std::size_t k = 0; k < robots.size(); ++k)
     if (robots.size() == 1)
@@ -125,7 +127,7 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   canvas.draw_obstacles();
   canvas.draw_walls_and_openings();
   for (std::size_t k = 0; k < robots.size(); ++k)
-    for (const Step& s : robots[k].steps)
+    for (const Step& s : *robots[k].steps)
       if (!s.path_in.empty()) canvas.draw_path(s.path_in, robot_track(k), 2);
   canvas.draw_source(run.source, source_label(run));
   // Samples on the plume's colour scale with a thin grey rim (no white halo, so a
@@ -133,7 +135,7 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   // their robot's colour as the rim.
   const int radius = static_cast<int>(std::lround(6 * canvas.mark_scale()));
   for (std::size_t k = 0; k < robots.size(); ++k)
-    for (const Step& s : robots[k].steps) {
+    for (const Step& s : *robots[k].steps) {
       cv::circle(canvas.image(), canvas.pixel(s.position), radius,
                  colour_of(s.value, 0.0, hi, cmap), cv::FILLED, cv::LINE_AA);
       cv::circle(canvas.image(), canvas.pixel(s.position), radius,
@@ -141,7 +143,7 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
                  robots.size() == 1 ? 1 : 2, cv::LINE_AA);
     }
   // The starts as rings, around the first samples that are usually taken there.
-  for (const TeamRobot& robot : robots)
+  for (const Track& robot : robots)
     canvas.draw_ring(robot.start, colours::kStart, 11);
   canvas.draw_cross(r.estimate, colours::kEstimate);
   return canvas.finish();

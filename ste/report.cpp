@@ -209,8 +209,7 @@ ordered_json method_options_json(const MethodOptions& m) {
   if (m.kind == MethodKind::SteLocal) {
     j["map_size_m"] = m.local.map_size;
     j["budget"] = m.local.budget;
-    j["sigma_m"] = m.local.sigma_m;
-    j["max_samples"] = m.local.max_samples;
+    j["sigma_m"] = m.local.sigma_m;  // its sample guard is max_steps below
   }
   if (m.kind == MethodKind::LevyTaxis) {
     const methods::LevyTaxisOptions& l = m.levy;

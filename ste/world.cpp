@@ -59,11 +59,11 @@ SimulatedWorld::~SimulatedWorld() {
   plume_.leave(robot_);
 }
 
-long long SimulatedWorld::steps_after(double seconds) const {
-  // advance()'s arithmetic, on copies.
-  double debt = debt_ + seconds;
-  long long steps = steps_;
-  const double dt = options_.filament.dt;
+namespace {
+
+// The whole plume steps of `dt` in `debt` seconds, taken off it: what advance() steps.
+long long take_steps(double& debt, double dt) {
+  long long steps = 0;
   while (debt >= dt - 1e-12) {
     ++steps;
     debt -= dt;
@@ -71,15 +71,21 @@ long long SimulatedWorld::steps_after(double seconds) const {
   return steps;
 }
 
+}  // namespace
+
+long long SimulatedWorld::steps_after(double seconds) const {
+  double debt = debt_ + seconds;
+  return steps_ + take_steps(debt, options_.filament.dt);
+}
+
 void SimulatedWorld::advance(double seconds) {
   // Only counted here: the plume steps when this robot next reads it.
   debt_ += seconds;
   const double dt = options_.filament.dt;
-  while (debt_ >= dt - 1e-12) {
-    ++steps_;
+  const long long steps = take_steps(debt_, dt);
+  steps_ += steps;
+  for (long long k = 0; k < steps; ++k)  // summed step by step, as the plume sums its own time
     time_ += dt;
-    debt_ -= dt;
-  }
 }
 
 void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
