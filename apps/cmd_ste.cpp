@@ -409,9 +409,9 @@ void add_localize(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   add_map_argument(cmd, a->map);
+  // Required unless `localize tunnel` (apps/cmd_tunnel.cpp) is the command: checked below.
   bind_field(cmd, cmd->add_option("--source", a->source, "True source X,Y in metres (simulated)"),
-             "ste.source")
-      ->required();
+             "ste.source");
   bind_field(cmd,
              cmd->add_option("--start", a->start, "Robot start X,Y (default: a random free point)"),
              "ste.start");
@@ -422,7 +422,9 @@ void add_localize(CLI::App& app) {
   add_threads_flag(cmd, a->ste.threads, "ste.threads",
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
+    if (cmd->got_subcommand("tunnel")) return;  // `localize tunnel` did the work
+    if (a->source.empty()) throw CLI::RequiredError("--source");
     // Points are typed in the map's frame (its file's coordinates).
     const Vec2 source_typed = parse_point(a->source, "--source");
     std::optional<Vec2> requested;
@@ -587,7 +589,8 @@ void add_evaluate(CLI::App& app) {
   add_common_flags(cmd);
   add_evaluate_merge(cmd);
   cmd->callback([a, cmd] {
-    if (cmd->got_subcommand("merge")) return;  // `evaluate merge` did the work
+    // `evaluate merge` or `evaluate tunnel` did the work
+    if (cmd->got_subcommand("merge") || cmd->got_subcommand("tunnel")) return;
     run_evaluate(*a, cmd);
   });
 }

@@ -10,6 +10,8 @@ void add_plan_commands(CLI::App& app);
 void add_dataset_commands(CLI::App& app);
 void add_predict_commands(CLI::App& app);
 void add_ste_commands(CLI::App& app);  // localize, evaluate, demo
+// `localize tunnel`, `evaluate tunnel` (after add_ste_commands)
+void add_tunnel_commands(CLI::App& app);
 void add_gdm_commands(CLI::App& app);
 
 }  // namespace plumekit::cli

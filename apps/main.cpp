@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
   plumekit::cli::add_dataset_commands(app);
   plumekit::cli::add_predict_commands(app);
   plumekit::cli::add_ste_commands(app);
+  plumekit::cli::add_tunnel_commands(app);
   plumekit::cli::add_gdm_commands(app);
 
   try {

@@ -51,6 +51,38 @@ inline bool is_finite(Vec2 a) {
   return std::isfinite(a.x) && std::isfinite(a.y);
 }
 
+// A point or vector in 3-D (the wind tunnel of seed 004 chs. 11 and 17: x downwind, y across,
+// z up), metres.
+struct Vec3 {
+  double x = 0.0;
+  double y = 0.0;
+  double z = 0.0;
+};
+inline Vec3 operator+(Vec3 a, Vec3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3 operator-(Vec3 a, Vec3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3 operator*(double s, Vec3 a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+inline double norm(Vec3 a) {
+  return std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+}
+inline bool is_finite(Vec3 a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+
+// An axis-aligned box in 3-D: the wind tunnel's volume.
+struct Box3 {
+  Vec3 lo;
+  Vec3 hi;
+  bool contains(Vec3 p) const {
+    return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+  }
+};
+
 // Vertices in order, either orientation, last edge closes back to the first.
 using Polygon = std::vector<Vec2>;
 

@@ -310,26 +310,6 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
   }
 }
 
-bool spin_up(FilamentSimulation& sim, const FilamentOptions& options) {
-  // Window means of the filament count until two consecutive ones agree.
-  const int per_window =
-      std::max(1, static_cast<int>(std::lround(options.steady_window / options.dt)));
-  double previous = -1.0;
-  while (sim.time() < options.max_spinup - 1e-9) {
-    double sum = 0.0;
-    for (int s = 0; s < per_window; ++s) {
-      sim.step();
-      sum += static_cast<double>(sim.filaments().size());
-    }
-    const double mean = sum / per_window;
-    if (previous > 0.0 && sim.time() >= options.min_spinup - 1e-9 &&
-        std::abs(mean - previous) <= options.steady_tolerance * previous)
-      return true;
-    previous = mean;
-  }
-  return false;
-}
-
 double FilamentSimulation::concentration_at(Vec2 p) const {
   // The same kernel and cutoff as concentration(), at one point (a square of
   // half-side cutoff * R, as there). With occlusion, the edges that face the

@@ -10,6 +10,7 @@
 // meander_speed^2 * meander_time from the meander); the fluctuations about it
 // (the std) come from the meander and the finite number of filaments.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <random>
@@ -176,7 +177,27 @@ struct SensorRecord {
 // Steps `sim` until statistically steady (the criterion of FilamentOptions);
 // returns false when it gave up at max_spinup. Used by simulate_filaments and
 // by ste/'s simulated world, whose plume then keeps running.
-bool spin_up(FilamentSimulation& sim, const FilamentOptions& options);
+// A template, so that the 3-D tunnel's plume (tunnel_plume.hpp) spins up by the same rule.
+template <class Plume>
+bool spin_up(Plume& sim, const FilamentOptions& options) {
+  // Window means of the filament count until two consecutive ones agree.
+  const int per_window =
+      std::max(1, static_cast<int>(std::lround(options.steady_window / options.dt)));
+  double previous = -1.0;
+  while (sim.time() < options.max_spinup - 1e-9) {
+    double sum = 0.0;
+    for (int s = 0; s < per_window; ++s) {
+      sim.step();
+      sum += static_cast<double>(sim.filaments().size());
+    }
+    const double mean = sum / per_window;
+    if (previous > 0.0 && sim.time() >= options.min_spinup - 1e-9 &&
+        std::abs(mean - previous) <= options.steady_tolerance * previous)
+      return true;
+    previous = mean;
+  }
+  return false;
+}
 
 // Spin up until statistically steady, then record the sensors at the cell
 // centres of `sensors`; sensors inside obstacles read 0. With a gas sensor

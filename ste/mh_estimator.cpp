@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/random.hpp"
+#include "ste/mh_chain.hpp"
 
 namespace plumekit::ste {
 
@@ -66,26 +67,11 @@ double MhEstimator::log_posterior(const std::vector<double>& m) const {
 }
 
 Posterior MhEstimator::posterior() {
-  const std::vector<Parameter>& ps = model_.parameters();
-  NormalSampler normal;  // a fresh pair per chain, as the committed results were drawn
-  double lp = log_posterior(state_);
-  std::vector<double> proposal(state_.size()), best_state = state_;
-  double best = lp;
-  chain_.clear();
-  int accepted = 0;
-  for (int it = 0; it < options_.iterations; ++it) {
-    for (std::size_t k = 0; k < state_.size(); ++k)
-      proposal[k] = state_[k] + options_.proposal * (ps[k].hi - ps[k].lo) * normal(rng_);
-    const double lq = log_posterior(proposal);
-    if (lq > -kInf && std::log(uniform01(rng_)) < lq - lp) {
-      state_ = proposal;
-      lp = lq;
-      ++accepted;
-      if (lp > best) best = lp, best_state = state_;
-    }
-    if (it >= options_.burn_in) chain_.push_back(state_);
-  }
-  acceptance_ = static_cast<double>(accepted) / options_.iterations;
+  MhChain run =
+      run_mh_chain(state_, model_.parameters(), options_.iterations, options_.burn_in,
+                   options_.proposal, rng_, [this](const auto& m) { return log_posterior(m); });
+  chain_ = std::move(run.states);
+  acceptance_ = run.acceptance;
 
   Posterior post;
   post.expected.assign(state_.size(), 0.0);
@@ -96,7 +82,7 @@ Posterior MhEstimator::posterior() {
       post.expected[k] += w * m[k];
     post.marginal.values[bin_of(m[0], m[1])] += w;
   }
-  post.map = {best_state[0], best_state[1]};
+  post.map = {run.best[0], run.best[1]};
   post.entropy = entropy_on_bins(post.marginal, bins_);
   post.max_entropy = max_entropy_;
   return post;
@@ -107,29 +93,14 @@ double MhEstimator::predicted_reading(Vec2 p, const Posterior& current) const {
 }
 
 double MhEstimator::information_gain(Vec2 p, const Posterior& current) const {
-  if (chain_.empty()) return 0.0;
   // Reweight the chain's states by the likelihood of the predicted reading.
   const double predicted = model_.predict_at(current.expected.data(), p);
-  std::vector<double> lw(chain_.size());
-  double top = -kInf;
-  for (std::size_t s = 0; s < chain_.size(); ++s) {
-    lw[s] = likelihood_.log_likelihood(predicted, model_.predict_at(chain_[s].data(), p));
-    top = std::max(top, lw[s]);
-  }
-  std::vector<double> q(bins_.size(), 0.0);
-  double total = 0.0;
-  for (std::size_t s = 0; s < chain_.size(); ++s) {
-    const double w = std::exp(lw[s] - top);
-    q[bin_of(chain_[s][0], chain_[s][1])] += w;
-    total += w;
-  }
-  double kl = 0.0;
-  for (std::size_t b = 0; b < q.size(); ++b) {
-    const double pb = current.marginal.values[b];
-    if (pb <= 0.0) continue;
-    kl += pb * std::log(pb / (q[b] / total));
-  }
-  return std::max(0.0, kl);
+  return kl_after_reweighting(
+      chain_, current.marginal.values,
+      [&](const std::vector<double>& m) {
+        return likelihood_.log_likelihood(predicted, model_.predict_at(m.data(), p));
+      },
+      [&](const std::vector<double>& m) { return bin_of(m[0], m[1]); });
 }
 
 }  // namespace plumekit::ste
