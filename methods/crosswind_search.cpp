@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "core/statistics.hpp"
 #include "methods/levy_taxis.hpp"
 
 namespace plumekit::methods {
@@ -43,14 +44,6 @@ void CrosswindSearchOptions::validate() const {
   check_positive("tunnel.search.detection", detection, inf, "concentration units",
                  "the default is 5");
   check_range("tunnel.search.altitude", altitude, -1e6, 1e6, "m", "a height inside the tunnel");
-}
-
-double quantile_type7(std::vector<double> values, double q) {
-  std::sort(values.begin(), values.end());
-  const double h = (static_cast<double>(values.size()) - 1.0) * q;
-  const std::size_t k = static_cast<std::size_t>(std::floor(h));
-  if (k + 1 >= values.size()) return values.back();
-  return values[k] + (h - static_cast<double>(k)) * (values[k + 1] - values[k]);
 }
 
 CrosswindSearch::CrosswindSearch(const Box3& tunnel, const CrosswindSearchOptions& options,
@@ -119,7 +112,7 @@ void CrosswindSearch::observe(const Observation3& o) {
     calibration_readings_.push_back(o.gas);
     if (static_cast<int>(calibration_readings_.size()) == options_.calibration) {
       threshold_ = std::max(options_.detection,
-                            quantile_type7(calibration_readings_, 1.0 - options_.threshold));
+                            percentile(calibration_readings_, 1.0 - options_.threshold));
       calibrated_ = true;
       calibration_readings_.clear();
     }

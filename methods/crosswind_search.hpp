@@ -21,7 +21,7 @@
 //     the initial phase" as inside the plume. Until `calibration` readings of at least
 //     `detection` have been seen, the threshold is `detection`; then it is fixed at
 //     max(detection, the (1 - threshold) quantile of those readings), the quantile interpolated
-//     linearly between order statistics (R's type 7). So threshold = 0.9 is the looser rule
+//     linearly between order statistics (core's percentile). So threshold = 0.9 is the looser rule
 //     (its 10 % quantile lies below the 70 % rule's 30 % quantile). The reading that completes
 //     the calibration is judged against the new threshold.
 //   - Goals are kept 0.05 m (at most half the tunnel's size) inside every wall, and never more
@@ -63,9 +63,6 @@ struct CrosswindSearchOptions {
   // OptionError naming "tunnel.search.<field>" for a value that is NaN or out of range.
   void validate() const;
 };
-
-// The q quantile (0 <= q <= 1) of `values` (not empty), linear between order statistics.
-double quantile_type7(std::vector<double> values, double q);
 
 class CrosswindSearch {
  public:

@@ -8,10 +8,9 @@ likelihood alone (OUT/ste-3d/D-thesis-likelihood): the runs, the share declared 
 medians of the error and of its x, y and z parts, the 90th percentile of the z error, the samples,
 the distance and the compute per step. Figs. 17.4 and 17.8: for the surge-spiral and the 2-D
 surge-cast in set-ups A-H (OUT/trackers/A..H/{surge-spiral,surge-cast-2d}): the share that found
-the source (its 20 cm box while in the plume), the share that came within 0.5 m of it, the median
-time of the runs that found it and the median distance. With PNG_DIR, also
-PNG_DIR/tunnel-ste-3d.png (errors per axis per condition) and PNG_DIR/tunnel-trackers.png (time to
-the source per set-up); a PNG there that this script did not draw is refused (exit 2). Exit 2 when
+the source (its 20 cm box while in the plume) and their median time, the share that came within
+0.5 m of it and their median time to get there. With PNG_DIR, also PNG_DIR/tunnel-ste-3d.png
+(errors per axis per condition) and PNG_DIR/tunnel-trackers.png (time to within 0.5 m per set-up); a PNG there that this script did not draw is refused (exit 2). Exit 2 when
 a folder is missing or malformed.
 """
 import statistics
@@ -57,6 +56,10 @@ def p90(values):
     return s[min(len(s) - 1, round(0.9 * (len(s) - 1)))]
 
 
+def whole(value):
+    return "-" if value != value else f"{value:.0f}"  # NaN: no run
+
+
 def share(flags):
     return f"{100 * sum(flags) / len(flags):.0f} %"
 
@@ -83,9 +86,9 @@ def main(argv):
               f"{median(col(rows, 'distance_m')):.1f} | "
               f"{1000 * median(col(rows, 'median_step_s')):.1f} |")
     trackers = {(s, m): load(out / "trackers" / s / m) for s in SETUPS for m in TRACKERS}
-    print("\n| set-up | wind m/s | release | threshold | surge-spiral: found | within 0.5 m | "
-          "time found s | distance m | surge-cast 2-D: found | within 0.5 m | time found s | "
-          "distance m |")
+    print("\n| set-up | wind m/s | release | threshold | surge-spiral: found | time found s | "
+          "within 0.5 m | time to 0.5 m s | surge-cast 2-D: found | time found s | within 0.5 m | "
+          "time to 0.5 m s |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for s, (wind, release, threshold) in SETUPS.items():
         cells = []
@@ -93,8 +96,9 @@ def main(argv):
             rows = trackers[(s, m)]
             found = [r["stopped_by"] == "found" for r in rows]
             time_found = [r["mission_s"] for r in rows if r["stopped_by"] == "found"]
-            cells += [share(found), share([c <= 0.5 for c in col(rows, "closest_m")]),
-                      f"{median(time_found):.0f}", f"{median(col(rows, 'distance_m')):.1f}"]
+            near = [r["time_within_0_5m_s"] for r in rows if r["time_within_0_5m_s"] >= 0]
+            cells += [share(found), whole(median(time_found)),
+                      share([r["time_within_0_5m_s"] >= 0 for r in rows]), whole(median(near))]
         print(f"| {s} | {wind} | {release} | {threshold} | " + " | ".join(cells) + " |")
     if len(argv) == 3:
         png = Path(argv[2])
@@ -104,10 +108,10 @@ def main(argv):
              [(f"{axis} error (m)", [col(ste[c], f"error_{axis}") for c in CONDITIONS],
                0.2 if axis == "z" else None) for axis in "xyz"])
         labels = list(SETUPS)
-        draw(png / "tunnel-trackers.png", "Time to the source, 20 x 4 x 2 m tunnel, set-ups "
-             "A-H (Figs. 17.4, 17.8; failures at 720 s)", labels,
-             [(f"{m}: mission (s)", [col(trackers[(s, m)], "mission_s") for s in SETUPS], None)
-              for m in TRACKERS])
+        draw(png / "tunnel-trackers.png", "Time to within 0.5 m of the source, 20 x 4 x 2 m "
+             "tunnel, set-ups A-H (Figs. 17.4, 17.8; runs that got there)", labels,
+             [(f"{m} (s)", [[t for t in col(trackers[(s, m)], "time_within_0_5m_s") if t >= 0]
+                            for s in SETUPS], None) for m in TRACKERS])
 
 
 if __name__ == "__main__":

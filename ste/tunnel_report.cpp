@@ -73,9 +73,10 @@ ordered_json tunnel_run_json(const TunnelRun& r, bool steps) {
   ordered_json j{{"method", to_string(r.method)}, {"source", point_json(r.source)},
                  {"start", point_json(r.start)},  {"estimate", point_json(r.estimate)},
                  {"error_m", r.error_m()},        {"error_xyz_m", point_json(e)},
-                 {"closest_m", r.closest_m()},    {"stopped_by", r.stopped_by},
-                 {"samples", r.steps.size()},     {"distance_m", r.distance_m},
-                 {"mission_s", r.mission_s},      {"spinup_s", r.spinup_s}};
+                 {"closest_m", r.closest_m()},    {"time_within_0_5m_s", r.time_within(0.5)},
+                 {"stopped_by", r.stopped_by},    {"samples", r.steps.size()},
+                 {"distance_m", r.distance_m},    {"mission_s", r.mission_s},
+                 {"spinup_s", r.spinup_s}};
   if (!is_tracker(r.method)) {
     j["median_step_s"] = r.median_step_s();
     j["max_entropy"] = r.max_entropy;
@@ -104,7 +105,7 @@ std::string tunnel_runs_csv(const std::vector<TunnelRun>& runs) {
   out.precision(6);
   out << "run,method,source_x,source_y,source_z,start_x,start_y,start_z,estimate_x,estimate_y,"
          "estimate_z,error_x,error_y,error_z,error_m,samples,distance_m,mission_s,stopped_by,"
-         "success,closest_m,median_step_s\n";
+         "success,closest_m,time_within_0_5m_s,median_step_s\n";
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const TunnelRun& r = runs[k];
     const Vec3 e = r.error();
@@ -113,7 +114,7 @@ std::string tunnel_runs_csv(const std::vector<TunnelRun>& runs) {
         << r.estimate.x << ',' << r.estimate.y << ',' << r.estimate.z << ',' << e.x << ',' << e.y
         << ',' << e.z << ',' << r.error_m() << ',' << r.steps.size() << ',' << r.distance_m << ','
         << r.mission_s << ',' << r.stopped_by << ',' << (succeeded(r) ? 1 : 0) << ','
-        << r.closest_m() << ',' << r.median_step_s() << '\n';
+        << r.closest_m() << ',' << r.time_within(0.5) << ',' << r.median_step_s() << '\n';
   }
   return out.str();
 }
@@ -144,6 +145,10 @@ ordered_json tunnel_summary(const std::vector<TunnelRun>& runs) {
     for (const TunnelRun& r : runs)
       if (r.found()) found_time.push_back(r.mission_s);
     j["median_time_found_s"] = median(found_time);
+    std::vector<double> near_time;
+    for (const TunnelRun& r : runs)
+      if (const double t = r.time_within(0.5); t >= 0.0) near_time.push_back(t);
+    j["median_time_within_0_5m_s"] = median(near_time);
   } else {
     j["entropy_stops"] = share(runs, [](const TunnelRun& r) { return r.stopped_by == "entropy"; });
     j["median_step_s"] = median(step);
@@ -168,13 +173,19 @@ std::string tunnel_run_line(const TunnelRun& r) {
 Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std::string& title) {
   // 60 px per metre, two panels: (x, y) above, (x, z) below, y and z upwards.
   const double ppm = std::min(60.0, 1200.0 / t.length);
-  const int left = 50, top = 60, gap = 40;
+  const int left = 50, gap = 40;
   const int w = static_cast<int>(std::lround(t.length * ppm));
   const int h1 = static_cast<int>(std::lround(t.width * ppm));
   const int h2 = static_cast<int>(std::lround(t.height * ppm));
-  cv::Mat img(top + h1 + gap + h2 + 50, left + w + 30, CV_8UC3, cv::Scalar(255, 255, 255));
+  const int width = std::max(left + w + 30, 640);
   TextPainter text(0.5, 1);
-  text.put(img, title, {10, 8});
+  // The title wrapped to the picture's width, above the panels.
+  const std::vector<std::string> lines = wrap_words(text, title, width - 20, text.scale());
+  const int line_h = text.size("Ag").height + 6;
+  const int top = 10 + static_cast<int>(lines.size()) * line_h + 30;
+  cv::Mat img(top + h1 + gap + h2 + 15, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  for (std::size_t k = 0; k < lines.size(); ++k)
+    text.put(img, lines[k], {10, 8 + static_cast<int>(k) * line_h});
   const cv::Rect panels[2] = {{left, top, w, h1}, {left, top + h1 + gap, w, h2}};
   const char* names[2] = {"from above (x, y)", "from the side (x, z)"};
   const auto at = [&](int panel, Vec3 p) {
@@ -200,13 +211,21 @@ Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std:
     const cv::Point e = at(k, r.estimate);
     cv::drawMarker(img, e, colours::kEstimate, cv::MARKER_CROSS, 14, 2, cv::LINE_AA);
   }
-  const int legend_y = top + h1 + gap + h2 + 15;
   std::string legend = "red: source, cyan: start, magenta cross: ";
   legend += is_tracker(r.method)
                 ? "end; path blue: Levy walk, green: surge, orange: " +
                       std::string(r.method == TunnelMethod::SurgeSpiral ? "spiral" : "cast")
                 : "estimate; dots: samples";
-  text.put(img, legend, {left, legend_y});
+  const std::vector<std::string> legend_lines =
+      wrap_words(text, legend, width - left - 10, text.scale());
+  const int legend_y = top + h1 + gap + h2 + 15;
+  cv::Mat framed(legend_y + static_cast<int>(legend_lines.size()) * line_h + 10, width, CV_8UC3,
+                 cv::Scalar(255, 255, 255));
+  img.rowRange(0, std::min(img.rows, framed.rows))
+      .copyTo(framed.rowRange(0, std::min(img.rows, framed.rows)));
+  img = framed;
+  for (std::size_t k = 0; k < legend_lines.size(); ++k)
+    text.put(img, legend_lines[k], {left, legend_y + static_cast<int>(k) * line_h});
   Picture p;
   p.image = img;
   p.text_boxes = text.boxes();

@@ -183,6 +183,12 @@ double TunnelRun::closest_m() const {
   return best;
 }
 
+double TunnelRun::time_within(double radius) const {
+  for (const TunnelStep& step : steps)
+    if (norm(step.position - source) <= radius) return step.time_s;
+  return -1.0;
+}
+
 double TunnelRun::median_step_s() const {
   if (method != TunnelMethod::Ste3d) return 0.0;
   std::vector<double> s;

@@ -84,6 +84,8 @@ struct TunnelRun {
   bool found() const { return stopped_by == "found"; }
   // The closest the robot came to the source at a reading (a tracker reads every 5 cm), m.
   double closest_m() const;
+  // When the robot first read within `radius` of the source, s since its start; -1: never.
+  double time_within(double radius) const;
   double median_step_s() const;  // STE's median compute per sample; 0 for a tracker
 };
 

@@ -178,6 +178,10 @@ TEST(TunnelRun, TrackersEndFoundOrOutOfTime) {
       }
     }
     EXPECT_LE(r.closest_m(), norm(start - source));
+    // The first reading within 0.5 m, or -1 when the robot never came that close.
+    const double t = r.time_within(0.5);
+    EXPECT_EQ(t < 0.0, r.closest_m() > 0.5);
+    EXPECT_EQ(r.time_within(100.0), r.steps.front().time_s);
   }
 }
 
