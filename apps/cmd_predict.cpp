@@ -84,7 +84,8 @@ void add_predict_commands(CLI::App& app) {
         draw_plume(map, g, p.mean, p.std, source, "surrogate", surrogate::mean_unit(*network));
     const fs::path& dir = out.open();
     write_file_atomic(dir / "mean.npy", npy_float32(p.mean, shape));
-    write_file_atomic(dir / "std.npy", npy_float32(p.std, shape));
+    if (!p.std.empty())
+      write_file_atomic(dir / "std.npy", npy_float32(p.std, shape));  // none: mean-only
     write_png(image, dir / "plume.png");
     out.commit();
 

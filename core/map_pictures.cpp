@@ -124,8 +124,9 @@ Picture draw_plume(const Map& map, const Grid<double>& mean, const Grid<double>&
           << map.frame.to_frame(source).y << ")";  // the axes are in the map frame
   const std::string u = unit.empty() ? "concentration units" : unit;
   FieldPanel m{free_cells(map, mean), "", "mean [" + u + "]", true};
-  FieldPanel s{free_cells(map, std), "", "std [" + u + "]", true};
   m.title = heading.str() + ": mean concentration, peak " + compact(largest(m.field));
+  if (std.values.empty()) return draw_field_panel(map, m, source, options);  // a mean-only model
+  FieldPanel s{free_cells(map, std), "", "std [" + u + "]", true};
   const double std_max = largest(s.field);
   s.title = heading.str() + ": std of the concentration, " +
             (std_max > 0.0 ? "largest " + compact(std_max) : "all zero");
@@ -135,9 +136,12 @@ Picture draw_plume(const Map& map, const Grid<double>& mean, const Grid<double>&
 Picture draw_plume(const Map& map, const GridShape& grid, const std::vector<float>& mean,
                    const std::vector<float>& std, Vec2 source, const std::string& model,
                    const std::string& unit, const RenderOptions& options) {
-  Grid<double> m(grid, 0.0), s(grid, 0.0);
+  Grid<double> m(grid, 0.0), s;
   std::copy(mean.begin(), mean.end(), m.values.begin());
-  std::copy(std.begin(), std.end(), s.values.begin());
+  if (!std.empty()) {
+    s = Grid<double>(grid, 0.0);
+    std::copy(std.begin(), std.end(), s.values.begin());
+  }
   return draw_plume(map, m, s, source, model, unit, options);
 }
 

@@ -212,7 +212,8 @@ Picture draw_field_panels(const Map& map, const std::vector<FieldPanel>& panels,
 
 // A plume's picture (`plume`, `predict`): its mean above its std, both
 // scaled from zero, obstacle cells unpainted, titled with the map, `model`
-// (e.g. "filament plume") and the source; `unit` is the concentration's.
+// (e.g. "filament plume") and the source; `unit` is the concentration's. An empty
+// std (a mean-only model) draws the mean alone.
 Picture draw_plume(const Map& map, const Grid<double>& mean, const Grid<double>& std, Vec2 source,
                    const std::string& model, const std::string& unit,
                    const RenderOptions& options = {80.0});

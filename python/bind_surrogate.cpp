@@ -40,7 +40,7 @@ std::unique_ptr<surrogate::PlumeNetwork> load_surrogate(const Map& map,
 py::dict prediction_dict(const surrogate::PlumePrediction& p, const surrogate::Network& network) {
   py::dict out;
   out["mean"] = grid_array(p.mean, p.grid);
-  out["std"] = grid_array(p.std, p.grid);
+  out["std"] = p.std.empty() ? py::object(py::none()) : py::object(grid_array(p.std, p.grid));
   out["unit"] = surrogate::mean_unit(network);
   return out;
 }
@@ -71,7 +71,21 @@ void bind_surrogate(py::module_& m) {
           },
           py::arg("source"),
           "The plume of a source (map frame): a dict with 'mean' and 'std' float32 [64, 64] "
-          "and the mean's 'unit'.");
+          "('std' None for a mean-only model) and the mean's 'unit'.")
+      .def(
+          "features",
+          [](const surrogate::PlumeNetwork& net, const py::handle& source) {
+            const Vec2 s = net.map().from_frame(to_point(source, "source"));
+            const std::vector<float> x = net.features(s);
+            const GridShape& g = net.grid();
+            py::array_t<float> out({3, g.ny, g.nx});
+            std::copy(x.begin(), x.end(), out.mutable_data());
+            return out;
+          },
+          py::arg("source"),
+          "The network's input for a source (map frame): float32 [3, 64, 64], the channels of "
+          "the model's feature contract (region, signed distance, the source channel in the "
+          "model's form), row 0 at y = 0.");
   m.def(
       "predict",
       [](const Map& map, const py::handle& source, const py::object& cnn) {

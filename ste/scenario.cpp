@@ -286,10 +286,15 @@ std::unique_ptr<Estimator> Scenario::make_estimator(std::uint64_t seed) const {
     throw InputError("the " + std::string(to_string(options_.method.kind)) +
                      " method has no plume model to estimate with: STE's estimator and Mission "
                      "need --method ste");
-  if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get()))
-    return std::make_unique<GridEstimator>(*table, options_.likelihood_options(), bins_);
-  return std::make_unique<MhEstimator>(*model_, map_, options_.likelihood_options(), bins_,
-                                       options_.mh, splitmix64(stream_seed(seed, SteStream::Mh)));
+  LikelihoodOptions likelihood = options_.likelihood_options();
+  if (const auto* table = dynamic_cast<const SourceTableModel*>(model_.get())) {
+    // A mean-only CNN predicts no std: the likelihood then uses sigma_M (and sigma_rel) alone,
+    // unless --sigma-std was given, which the estimator refuses for such a model.
+    if (!table->has_spreads() && !options_.likelihood.sigma_std) likelihood.sigma_std = 0.0;
+    return std::make_unique<GridEstimator>(*table, likelihood, bins_);
+  }
+  return std::make_unique<MhEstimator>(*model_, map_, likelihood, bins_, options_.mh,
+                                       splitmix64(stream_seed(seed, SteStream::Mh)));
 }
 
 const ForwardModel& Scenario::model() const {

@@ -187,6 +187,7 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   auto network = std::make_shared<const surrogate::Network>(surrogate::Network::load(o.model, eo));
   const surrogate::PlumeNetwork plume(network, map);  // checks the model's contract against the map
   grid_ = plume.grid();
+  has_spreads_ = plume.has_std();
   key_ = table_key(map, o.model, candidates_);
   cache_file_ = o.cache_dir.empty()
                     ? fs::path()
@@ -229,7 +230,8 @@ void SurrogatePlume::build_table(const surrogate::PlumeNetwork& plume,
     const std::vector<surrogate::PlumePrediction> p = plume.predict_batch(chunk, batch);
     for (std::size_t k = 0; k < p.size(); ++k) {
       std::memcpy(table_.data() + (first + k) * per, p[k].mean.data(), per * sizeof(float));
-      std::memcpy(table_std_.data() + (first + k) * per, p[k].std.data(), per * sizeof(float));
+      if (!p[k].std.empty())  // a mean-only model's spreads stay 0 (has_spreads() is false)
+        std::memcpy(table_std_.data() + (first + k) * per, p[k].std.data(), per * sizeof(float));
     }
   }
 }

@@ -61,7 +61,8 @@ class SurrogatePlume final : public SourceTableModel {
   const GridShape& candidates() const override { return candidates_; }
   const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
   std::vector<double> readings_at(Vec2 p) const override;
-  bool has_spreads() const override { return true; }
+  // False for a mean-only model (a DeepCFD network of one output; surrogate/README.md).
+  bool has_spreads() const override { return has_spreads_; }
   std::vector<double> spreads_at(Vec2 p) const override;
 
   bool from_cache() const { return from_cache_; }
@@ -79,6 +80,7 @@ class SurrogatePlume final : public SourceTableModel {
   std::vector<int> row_;  // source cell -> row of table_, or -1
   // Per allowed source cell (row), the predicted mean and std plumes: [rows][grid_.ny][grid_.nx].
   std::vector<float> table_, table_std_;
+  bool has_spreads_ = true;
   using Note = std::function<void(const std::string&)>;
   // Reads the table from cache_file_ if it is there and this table's; else says why (`note`).
   bool load_cache(std::size_t rows, const Note& note);

@@ -1,5 +1,6 @@
 #include "surrogate/model_file.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -147,8 +148,17 @@ FeatureContract parse_features(const json& j, int in_channels, const std::string
                      " input channels");
   }
   // The contract this engine's callers know how to build (DESIGN.md, features).
+  // The source channel's form decides its unit: metres, or 1/m for the inverse distance.
+  f.source_distance_form =
+      ch.size() >= 3 ? get<std::string>(ch[2], "form", source, "features.channels[2]") : "";
+  if (f.source_distance_form != "euclidean" && f.source_distance_form != "inverse") {
+    fail(source, "header: source_distance form \"" + f.source_distance_form +
+                     "\" is unknown; this engine builds \"euclidean\" (metres) and \"inverse\" "
+                     "(1 / metres)");
+  }
+  const bool inverse = f.source_distance_form == "inverse";
   const char* names[] = {"region", "signed_distance", "source_distance"};
-  const char* units[] = {"label", "m", "m"};
+  const char* units[] = {"label", "m", inverse ? "1/m" : "m"};
   for (std::size_t i = 0; i < ch.size(); ++i) {
     const std::string where = "features.channels[" + std::to_string(i) + "]";
     FeatureChannel c{get<std::string>(ch[i], "name", source, where),
@@ -156,14 +166,17 @@ FeatureContract parse_features(const json& j, int in_channels, const std::string
     if (i >= 3 || c.name != names[i] || c.unit != units[i]) {
       fail(source, "header: " + where + " is \"" + c.name + "\" in \"" + c.unit +
                        "\"; the feature contract is region (label), signed_distance (m), "
-                       "source_distance (m)");
+                       "source_distance (m, or 1/m in the inverse form)");
     }
     f.channels.push_back(c);
   }
-  f.source_distance_form = get<std::string>(ch[2], "form", source, "features.channels[2]");
-  if (f.source_distance_form != "euclidean") {
-    fail(source, "header: source_distance form \"" + f.source_distance_form +
-                     "\" is unknown; this engine builds \"euclidean\"");
+  // 1 / max(d, min_distance): by default half the smaller cell side, so the source's own cell
+  // reads a finite value.
+  f.source_min_distance = 0.5 * std::min(f.width / f.cols, f.height / f.rows);
+  if (inverse && ch[2].contains("min_distance")) {
+    f.source_min_distance = get<double>(ch[2], "min_distance", source, "features.channels[2]");
+    if (!std::isfinite(f.source_min_distance) || f.source_min_distance <= 0.0)
+      fail(source, "header: features.channels[2].min_distance must be a positive number of metres");
   }
   return f;
 }

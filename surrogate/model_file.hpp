@@ -56,7 +56,10 @@ struct FeatureContract {
   double width = 10.0;  // arena size in metres (x)
   double height = 4.0;  // (y)
   std::vector<FeatureChannel> channels;
-  std::string source_distance_form;  // "euclidean": metres from each cell centre to the source
+  // "euclidean": metres from each cell centre to the source; "inverse": 1 / max(that,
+  // source_min_distance), in 1/m (the thesis's code and DeepCFD-style inputs).
+  std::string source_distance_form;
+  double source_min_distance = 0.0;  // m, the inverse form's floor (header min_distance)
 };
 
 struct OutputSpec {

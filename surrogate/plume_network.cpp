@@ -36,7 +36,7 @@ double PlumePrediction::mean_at(Vec2 p) const {
   return sample(grid, mean, map.get(), p);
 }
 double PlumePrediction::std_at(Vec2 p) const {
-  return sample(grid, std, map.get(), p);
+  return std.empty() ? 0.0 : sample(grid, std, map.get(), p);
 }
 
 PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& map)
@@ -67,18 +67,19 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
                        "\", the dataset's is \"" + names[i] + "\"");
     }
   }
-  if (c.source_distance_form != "euclidean") {
+  if (c.source_distance_form != "euclidean" && c.source_distance_form != "inverse") {
     throw InputError(who + "source_distance form \"" + c.source_distance_form +
-                     "\", the dataset's is \"euclidean\"");
+                     "\", this engine builds \"euclidean\" and \"inverse\"");
   }
+  inverse_source_ = c.source_distance_form == "inverse";
+  source_min_distance_ = c.source_min_distance;
   mean_channel_ = std_channel_ = -1;
   for (std::size_t o = 0; o < f.outputs.size(); ++o) {
     if (f.outputs[o].name == "mean") mean_channel_ = static_cast<int>(o);
     if (f.outputs[o].name == "std") std_channel_ = static_cast<int>(o);
   }
-  if (mean_channel_ < 0 || std_channel_ < 0) {
-    throw InputError(who + "the model's outputs must include \"mean\" and \"std\"");
-  }
+  // A mean-only model (a DeepCFD network of one output) predicts no std.
+  if (mean_channel_ < 0) throw InputError(who + "the model's outputs must include \"mean\"");
 
   grid_ = dataset::feature_grid(map);
   map_features_ = dataset::map_features(map, grid_);
@@ -101,7 +102,12 @@ void PlumeNetwork::check_source(Vec2 source) const {
 
 std::vector<float> PlumeNetwork::features(Vec2 source) const {
   std::vector<float> x = map_features_;
-  const std::vector<float> d = dataset::source_feature(source, grid_);
+  std::vector<float> d = dataset::source_feature(source, grid_);
+  if (inverse_source_) {
+    const double floor = source_min_distance_;
+    for (float& v : d)
+      v = static_cast<float>(1.0 / std::max(static_cast<double>(v), floor));
+  }
   x.insert(x.end(), d.begin(), d.end());
   return x;
 }
@@ -131,12 +137,14 @@ std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>
       p.grid = grid_;
       p.map = map_;
       const float* m = y.sample_data(i) + cells * mean_channel_;
-      const float* s = y.sample_data(i) + cells * std_channel_;
       p.mean.resize(cells);
-      p.std.resize(cells);
-      for (std::size_t k = 0; k < cells; ++k) {
+      for (std::size_t k = 0; k < cells; ++k)
         p.mean[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, m[k]);
-        p.std[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, s[k]);
+      if (std_channel_ >= 0) {
+        const float* s = y.sample_data(i) + cells * std_channel_;
+        p.std.resize(cells);
+        for (std::size_t k = 0; k < cells; ++k)
+          p.std[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, s[k]);
       }
       out.push_back(std::move(p));
     }

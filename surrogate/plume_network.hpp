@@ -18,6 +18,7 @@ struct PlumePrediction {
   // [ny][nx], row 0 at y = 0, in the model's output units (model file `outputs[].unit`). Cells
   // whose centre is inside an obstacle are 0 (as the dataset's targets), negative network outputs
   // are clamped to 0 (a concentration and its std are never negative).
+  // std is empty for a mean-only model (PlumeNetwork::has_std).
   std::vector<float> mean, std;
   // The map, to answer 0 inside obstacles; shared by every prediction of one PlumeNetwork.
   std::shared_ptr<const Map> map;
@@ -25,14 +26,15 @@ struct PlumePrediction {
   // Bilinear between cell centres (GridShape::bilinear; constant beyond the outermost centres),
   // 0 for a point inside (or on the boundary of) an obstacle.
   double mean_at(Vec2 p) const;
-  double std_at(Vec2 p) const;
+  double std_at(Vec2 p) const;  // 0 for a mean-only model
 };
 
 class PlumeNetwork {
  public:
   // Builds the map-only feature channels once. Checks the model's feature contract against the map
-  // and the dataset's features (grid 64 x 64, arena size, channel names, distance form, outputs
-  // named mean and std); InputError naming what disagrees.
+  // and the dataset's features (grid 64 x 64, arena size, channel names, the source channel's
+  // form: euclidean or inverse, an output named mean, and optionally std); InputError naming what
+  // disagrees.
   PlumeNetwork(std::shared_ptr<const Network> network, const Map& map);
 
   // InputError if `source` is not in the map's free space.
@@ -45,7 +47,10 @@ class PlumeNetwork {
   const GridShape& grid() const { return grid_; }
   const Network& network() const { return *network_; }
   const Map& map() const { return *map_; }
-  // The network's input for one source, [3][ny][nx] (channels as in dataset/features.hpp).
+  // Whether the model predicts the std of the readings (not a mean-only model).
+  bool has_std() const { return std_channel_ >= 0; }
+  // The network's input for one source, [3][ny][nx] (channels as in dataset/features.hpp; the
+  // source channel in the model's form).
   std::vector<float> features(Vec2 source) const;
 
  private:
@@ -54,9 +59,11 @@ class PlumeNetwork {
   std::shared_ptr<const Network> network_;
   std::shared_ptr<const Map> map_;
   GridShape grid_;
-  std::vector<float> map_features_;  // channels 0 and 1, [2][ny][nx]
-  std::vector<bool> obstacle_cell_;  // region label 0
-  int mean_channel_ = 0, std_channel_ = 1;
+  std::vector<float> map_features_;         // channels 0 and 1, [2][ny][nx]
+  std::vector<bool> obstacle_cell_;         // region label 0
+  int mean_channel_ = 0, std_channel_ = 1;  // std_channel_ -1: a mean-only model
+  bool inverse_source_ = false;             // the source channel is 1 / distance
+  double source_min_distance_ = 0.0;
 };
 
 }  // namespace plumekit::surrogate

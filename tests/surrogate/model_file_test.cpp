@@ -124,5 +124,30 @@ TEST(ModelFile, RefusesNaNWeights) {
   expect_refused(p.bytes(), "NaN");
 }
 
+// The source channel's two forms: metres, or 1/m (with its floor min_distance, by default half
+// the smaller cell side); anything else, or a unit that does not fit the form, is refused.
+TEST(ModelFile, ReadsBothSourceChannelForms) {
+  const std::string odd = read_file(kOdd);
+  Parts inverse(odd);
+  nlohmann::json& channel = inverse.header["features"]["channels"][2];
+  channel["form"] = "inverse";
+  channel["unit"] = "1/m";
+  const ModelFile a = parse_model_file(inverse.bytes(), "inverse.pkcnn");
+  EXPECT_EQ(a.features.source_distance_form, "inverse");
+  // odd.pkcnn: a 21 x 30 grid over 7.5 x 5.25 m, cells of 0.25 x 0.25 m.
+  EXPECT_DOUBLE_EQ(a.features.source_min_distance, 0.125);
+  channel["min_distance"] = 0.05;
+  EXPECT_DOUBLE_EQ(parse_model_file(inverse.bytes(), "inverse.pkcnn").features.source_min_distance,
+                   0.05);
+  channel["min_distance"] = -1.0;
+  expect_refused(inverse.bytes(), "min_distance");
+  channel.erase("min_distance");
+  channel["unit"] = "m";  // the inverse of a distance is not in metres
+  expect_refused(inverse.bytes(), "1/m in the inverse form");
+  Parts unknown(odd);
+  unknown.header["features"]["channels"][2]["form"] = "log";
+  expect_refused(unknown.bytes(), "form \"log\" is unknown");
+}
+
 }  // namespace
 }  // namespace plumekit::surrogate

@@ -1,6 +1,6 @@
-// PlumeNetwork: its features are the dataset's, bit for bit; batches equal single predictions; point
-// values are bilinear between cell centres and 0 inside obstacles; bad sources and models whose
-// feature contract does not fit the map are refused.
+// PlumeNetwork: its features are the dataset's, bit for bit; batches equal single predictions;
+// point values are bilinear between cell centres and 0 inside obstacles; bad sources and models
+// whose feature contract does not fit the map are refused.
 #include "surrogate/plume_network.hpp"
 
 #include <gtest/gtest.h>
@@ -189,14 +189,66 @@ TEST(PlumeNetwork, RefusesAModelWhoseContractDoesNotFitTheMap) {
   ModelFile renamed = f;
   renamed.features.channels[0].name = "occupancy";
   expect_refused(std::make_shared<const Network>(std::move(renamed)), map, "occupancy");
-  ModelFile inverse = f;
-  inverse.features.source_distance_form = "inverse";
-  expect_refused(std::make_shared<const Network>(std::move(inverse)), map, "inverse");
+  ModelFile log_form = f;
+  log_form.features.source_distance_form = "log";
+  expect_refused(std::make_shared<const Network>(std::move(log_form)), map, "\"log\"");
   ModelFile outputs = f;
-  outputs.outputs[1].name = "variance";
-  expect_refused(std::make_shared<const Network>(std::move(outputs)), map, "\"std\"");
+  outputs.outputs[0].name = "average";
+  expect_refused(std::make_shared<const Network>(std::move(outputs)), map, "\"mean\"");
   // And the real model on its own arena is accepted.
   EXPECT_NO_THROW(PlumeNetwork(real_network(), map));
+}
+
+// The real model without its std decoder: a mean-only model (a DeepCFD network of one output)
+// predicts the same mean, bit for bit (the decoders are independent), and no std.
+TEST(PlumeNetwork, AMeanOnlyModelPredictsTheSameMeanAndNoStd) {
+  const Map map = read_map(kMap);
+  ModelFile f = read_model_file(kTestData / "surrogate" / "real.pkcnn");
+  ModelFile mean_only = f;
+  mean_only.architecture.out_channels = 1;
+  mean_only.layers.clear(), mean_only.weights.clear(), mean_only.biases.clear();
+  for (std::size_t k = 0; k < f.layers.size(); ++k) {
+    if (f.layers[k].name.rfind("decoder.1.", 0) == 0) continue;
+    mean_only.layers.push_back(f.layers[k]);
+    mean_only.weights.push_back(f.weights[k]);
+    mean_only.biases.push_back(f.biases[k]);
+  }
+  mean_only.outputs.resize(1);
+  const PlumeNetwork both(std::make_shared<const Network>(std::move(f)), map);
+  const PlumeNetwork mean(std::make_shared<const Network>(std::move(mean_only)), map);
+  EXPECT_TRUE(both.has_std());
+  EXPECT_FALSE(mean.has_std());
+  for (Vec2 s : free_points(map, 3)) {
+    const PlumePrediction a = both.predict(s), b = mean.predict(s);
+    EXPECT_EQ(a.mean, b.mean);
+    EXPECT_TRUE(b.std.empty());
+    EXPECT_EQ(b.std_at(s), 0.0);
+    EXPECT_EQ(a.std.size(), a.mean.size());
+  }
+}
+
+// The inverse source channel (the thesis's code, DeepCFD-style inputs): 1 / max(d, min_distance).
+TEST(PlumeNetwork, TheInverseSourceChannelIsOneOverTheDistance) {
+  const Map map = read_map(kMap);
+  ModelFile f = read_model_file(kTestData / "surrogate" / "real.pkcnn");
+  ModelFile inverse = f;
+  inverse.features.source_distance_form = "inverse";
+  inverse.features.channels[2].unit = "1/m";
+  inverse.features.source_min_distance = 0.05;
+  const PlumeNetwork euclidean(std::make_shared<const Network>(std::move(f)), map);
+  const PlumeNetwork inv(std::make_shared<const Network>(std::move(inverse)), map);
+  const Vec2 s = free_points(map, 1).front();
+  const std::vector<float> a = euclidean.features(s), b = inv.features(s);
+  const std::size_t cells = euclidean.grid().size();
+  ASSERT_EQ(a.size(), 3 * cells);
+  for (std::size_t k = 0; k < 2 * cells; ++k)
+    ASSERT_EQ(a[k], b[k]);  // the map's channels are untouched
+  double nearest = 1e9;
+  for (std::size_t k = 2 * cells; k < 3 * cells; ++k) {
+    EXPECT_FLOAT_EQ(b[k], static_cast<float>(1.0 / std::max<double>(a[k], 0.05)));
+    nearest = std::min<double>(nearest, a[k]);
+  }
+  EXPECT_LT(nearest, 0.1);  // the source's own cell is near, so the floor matters there
 }
 
 }  // namespace
