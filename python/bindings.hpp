@@ -17,6 +17,7 @@ void bind_planner(py::module_& m);
 void bind_ste_options(py::module_& m);  // before bind_ste
 void bind_ste(py::module_& m);
 void bind_gdm(py::module_& m);
+void bind_tunnel(py::module_& m);  // the 3-D wind tunnel
 
 // The shipped data folder: $PLUMEKIT_DATA if set, else the source tree's data/ (as the CLI).
 std::string data_dir();

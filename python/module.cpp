@@ -59,5 +59,6 @@ PYBIND11_MODULE(plumekit, m) {
   bind_planner(m);
   bind_ste_options(m);
   bind_ste(m);
+  bind_tunnel(m);
   bind_gdm(m);
 }
