@@ -91,8 +91,14 @@ void add_predict_commands(CLI::App& app) {
 
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const Report r = surrogate::prediction_report(
+    Report r = surrogate::prediction_report(
         {a->cnn, a->map, a->out, source, map.frame, predict_s, seconds}, p, *network);
+    // Outside what the model was trained on: said, not refused.
+    if (!model->warnings().empty()) {
+      r.json["warnings"] = model->warnings();
+      for (const std::string& w : model->warnings())
+        r.text = "warning: " + w + "\n" + r.text;
+    }
     report(r.json, r.text);
   });
 }

@@ -72,6 +72,10 @@ void bind_surrogate(py::module_& m) {
           py::arg("source"),
           "The plume of a source (map frame): a dict with 'mean' and 'std' float32 [64, 64] "
           "('std' None for a mean-only model) and the mean's 'unit'.")
+      .def_property_readonly(
+          "warnings", &surrogate::PlumeNetwork::warnings,
+          "Where the map lies outside what the model was trained on (its file's trained_on), "
+          "one sentence each; empty when inside it or when the file states no ranges.")
       .def(
           "features",
           [](const surrogate::PlumeNetwork& net, const py::handle& source) {

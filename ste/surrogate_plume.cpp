@@ -193,6 +193,8 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
                     ? fs::path()
                     : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");
   const Note note = [&](const std::string& text) { (o.on_note ? o.on_note : print_note)(text); };
+  for (const std::string& w : plume.warnings())  // outside what the model was trained on
+    note("surrogate model: " + w);
   if (!cache_file_.empty()) {
     prepare_cache_dir(o.cache_dir, cache_file_);
     if (load_cache(cells.size(), note)) return;

@@ -312,6 +312,38 @@ std::vector<OutputSpec> parse_outputs(const json& outs, int out_channels,
   return outputs;
 }
 
+// "trained_on": ranges [lo, hi] (finite, lo <= hi) and the inlets' walls.
+TrainingRanges parse_trained_on(const json& j, const std::string& source) {
+  TrainingRanges t;
+  if (j.is_null()) return t;
+  if (!j.is_object()) fail(source, "header: trained_on must be an object");
+  const auto range = [&](const char* key) -> std::optional<ValueRange> {
+    if (!j.contains(key)) return std::nullopt;
+    const json& r = j.at(key);
+    if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number() ||
+        !std::isfinite(r[0].get<double>()) || !std::isfinite(r[1].get<double>()) ||
+        r[0].get<double>() > r[1].get<double>())
+      fail(source, std::string("header: trained_on.") + key + " must be [lo, hi], lo <= hi");
+    return ValueRange{r[0].get<double>(), r[1].get<double>()};
+  };
+  t.map_width = range("map_width_m");
+  t.map_height = range("map_height_m");
+  t.inlet_speed = range("inlet_speed_m_s");
+  t.openings = range("openings");
+  if (j.contains("inlet_walls")) {
+    const json& w = j.at("inlet_walls");
+    if (!w.is_array()) fail(source, "header: trained_on.inlet_walls must be a list of walls");
+    for (const json& side : w) {
+      const std::string name = side.is_string() ? side.get<std::string>() : "";
+      if (name != "left" && name != "right" && name != "bottom" && name != "top")
+        fail(source, "header: trained_on.inlet_walls holds \"" + name +
+                         "\"; walls are left, right, bottom, top");
+      t.inlet_walls.push_back(name);
+    }
+  }
+  return t;
+}
+
 // The header's description of the network: architecture, layers, parameter count, features and
 // outputs, each checked against the others.
 void parse_description(const Framing& f, ModelFile& m, const std::string& source) {
@@ -335,6 +367,7 @@ void parse_description(const Framing& f, ModelFile& m, const std::string& source
   }
   m.outputs =
       parse_outputs(member_or_null(f.header, "outputs"), m.architecture.out_channels, source);
+  m.trained_on = parse_trained_on(member_or_null(f.header, "trained_on"), source);
 }
 
 // The tensors, in layer order: weight then bias, each value finite.

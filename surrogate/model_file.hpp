@@ -4,6 +4,7 @@
 // InputError naming the file and the fault, so no caller ever sees a half-loaded model.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,6 +69,19 @@ struct OutputSpec {
   float scale = 1.0f;  // network output times scale = value in `unit`
 };
 
+// What the network was trained on (header "trained_on", optional; every part optional): the
+// callers warn when a map lies outside it (PlumeNetwork::warnings), they do not refuse it.
+struct ValueRange {
+  double lo = 0.0, hi = 0.0;
+  bool contains(double v) const { return v >= lo && v <= hi; }
+};
+struct TrainingRanges {
+  std::optional<ValueRange> map_width, map_height;  // m (map_width_m, map_height_m)
+  std::optional<ValueRange> inlet_speed;            // m/s, every inlet (inlet_speed_m_s)
+  std::optional<ValueRange> openings;               // inlets and outlets counted together
+  std::vector<std::string> inlet_walls;             // "left", "right", "bottom", "top"; empty: any
+};
+
 struct ModelFile {
   Architecture architecture;
   std::vector<LayerSpec> layers;
@@ -75,6 +89,7 @@ struct ModelFile {
   std::vector<std::vector<float>> biases;
   FeatureContract features;
   std::vector<OutputSpec> outputs;
+  TrainingRanges trained_on;
   std::string header_json;  // the whole header, for what the engine does not interpret
   std::string sha256_hex;
 };

@@ -32,6 +32,43 @@ bool same_length(double a, double b) {
 
 }  // namespace
 
+std::vector<std::string> training_warnings(const TrainingRanges& t, const Map& map) {
+  std::vector<std::string> out;
+  const auto range = [](const ValueRange& r) { return fmt(r.lo) + "-" + fmt(r.hi); };
+  if ((t.map_width && !t.map_width->contains(map.width)) ||
+      (t.map_height && !t.map_height->contains(map.height))) {
+    std::string trained;
+    if (t.map_width) trained += range(*t.map_width) + " m wide";
+    if (t.map_height)
+      trained += std::string(trained.empty() ? "" : " and ") + range(*t.map_height) + " m high";
+    out.push_back("the map is " + fmt(map.width) + " x " + fmt(map.height) +
+                  " m; the model was trained on maps " + trained);
+  }
+  const double openings = static_cast<double>(map.openings.size());
+  if (t.openings && !t.openings->contains(openings))
+    out.push_back("the map has " + fmt(openings) + " openings; the model was trained on " +
+                  range(*t.openings));
+  for (const Opening& o : map.openings) {
+    if (!o.is_inlet()) continue;
+    const std::string at = "the inlet at (" + fmt(o.from.x) + ", " + fmt(o.from.y) + ")";
+    if (t.inlet_speed && !t.inlet_speed->contains(o.speed))
+      out.push_back(at + " blows at " + fmt(o.speed) + " m/s; the model was trained on " +
+                    range(*t.inlet_speed) + " m/s");
+    if (t.inlet_walls.empty()) continue;
+    const std::optional<Side> side = map.wall_of(o);
+    const std::string wall = side ? to_string(*side) : "";
+    if (std::find(t.inlet_walls.begin(), t.inlet_walls.end(), wall) == t.inlet_walls.end()) {
+      std::string walls;
+      for (const std::string& w : t.inlet_walls)
+        walls += (walls.empty() ? "" : ", ") + w;
+      out.push_back(at + " is " + (side ? "on the " + wall + " wall" : "not on an arena wall") +
+                    "; the model was trained with inlets on the " + walls +
+                    (t.inlet_walls.size() > 1 ? " walls" : " wall"));
+    }
+  }
+  return out;
+}
+
 double PlumePrediction::mean_at(Vec2 p) const {
   return sample(grid, mean, map.get(), p);
 }
@@ -81,6 +118,7 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   // A mean-only model (a DeepCFD network of one output) predicts no std.
   if (mean_channel_ < 0) throw InputError(who + "the model's outputs must include \"mean\"");
 
+  warnings_ = training_warnings(f.trained_on, map);
   grid_ = dataset::feature_grid(map);
   map_features_ = dataset::map_features(map, grid_);
   obstacle_cell_.resize(grid_.size());

@@ -3,6 +3,7 @@
 // source in that map's free space. The input features are built by the dataset module's own
 // functions (dataset/features.hpp), so the network sees exactly what it was trained on.
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -29,6 +30,11 @@ struct PlumePrediction {
   double std_at(Vec2 p) const;  // 0 for a mean-only model
 };
 
+// Where `map` lies outside what the model was trained on (ModelFile::trained_on): one sentence
+// each ("the map is 20 x 20 m; the model was trained on maps 6-12 m wide"), empty when inside it
+// or when the file states no ranges.
+std::vector<std::string> training_warnings(const TrainingRanges& trained_on, const Map& map);
+
 class PlumeNetwork {
  public:
   // Builds the map-only feature channels once. Checks the model's feature contract against the map
@@ -47,6 +53,8 @@ class PlumeNetwork {
   const GridShape& grid() const { return grid_; }
   const Network& network() const { return *network_; }
   const Map& map() const { return *map_; }
+  // training_warnings() for this map: the callers print them (predict, localize, evaluate).
+  const std::vector<std::string>& warnings() const { return warnings_; }
   // Whether the model predicts the std of the readings (not a mean-only model).
   bool has_std() const { return std_channel_ >= 0; }
   // The network's input for one source, [3][ny][nx] (channels as in dataset/features.hpp; the
@@ -62,7 +70,8 @@ class PlumeNetwork {
   std::vector<float> map_features_;         // channels 0 and 1, [2][ny][nx]
   std::vector<bool> obstacle_cell_;         // region label 0
   int mean_channel_ = 0, std_channel_ = 1;  // std_channel_ -1: a mean-only model
-  bool inverse_source_ = false;             // the source channel is 1 / distance
+  std::vector<std::string> warnings_;
+  bool inverse_source_ = false;  // the source channel is 1 / distance
   double source_min_distance_ = 0.0;
 };
 

@@ -141,6 +141,24 @@ def test_predict_writes_the_mean_alone(tmp_path, checkpoint, data, cli):
     assert not (pictures / "std.npy").exists()
 
 
+def test_maps_outside_the_training_ranges_are_warned_about(tmp_path, checkpoint, data, cli):
+    _, path = checkpoint
+    block = data / "test-maps" / "test-1-block.json"  # inlet on the left at 1 m/s
+    inside, outside = tmp_path / "inside.pkcnn", tmp_path / "outside.pkcnn"
+    assert convert(path, inside, "--arena", "10,4", "--trained-on",
+                   '{"map_width_m": [10, 10], "inlet_walls": ["left"]}').returncode == 0
+    assert convert(path, outside, "--arena", "10,4", "--trained-on",
+                   '{"inlet_speed_m_s": [2, 3]}').returncode == 0
+    assert plumekit.Surrogate(plumekit.read_map(block), cnn=inside).warnings == []
+    warnings = plumekit.Surrogate(plumekit.read_map(block), cnn=outside).warnings
+    assert len(warnings) == 1 and "blows at 1 m/s" in warnings[0]
+    run = cli("predict", block, "--source", "7.5,2", "--cnn", outside, "--out", tmp_path / "p")
+    assert run["warnings"] == warnings
+    r = convert(path, tmp_path / "bad.pkcnn", "--arena", "10,4", "--trained-on",
+                '{"inlet_walls": ["ceiling"]}')
+    assert r.returncode == 2 and "inlet_walls" in r.stderr
+
+
 def test_converter_refuses_what_it_cannot_convert(tmp_path, checkpoint):
     _, path = checkpoint
     bn = tmp_path / "bn.pt"

@@ -3,7 +3,7 @@
 
     /usr/bin/python3 surrogate/train/convert_deepcfd.py CHECKPOINT OUT.pkcnn --arena 10,4
         [--grid 64,64] [--source-form inverse|euclidean] [--min-distance M]
-        [--outputs mean|mean,std] [--scale S] [--unit UNIT]
+        [--outputs mean|mean,std] [--scale S] [--unit UNIT] [--trained-on JSON]
 
 CHECKPOINT is what torch.save wrote: a state dict, a dict holding one under "state_dict",
 "model_state_dict" or "model", or a whole module. Its keys are DeepCFD's (Ribeiro et al. 2020,
@@ -22,6 +22,7 @@ alone) and optionally "std", each times --scale in --unit. Exit 2, writing nothi
 that is not such a network or on bad arguments.
 """
 import argparse
+import json
 import os
 import re
 import sys
@@ -142,6 +143,28 @@ def build(state):
     return model
 
 
+RANGES = ("map_width_m", "map_height_m", "inlet_speed_m_s", "openings")
+WALLS = ("left", "right", "bottom", "top")
+
+
+def check_trained_on(value):
+    """The ranges plumekit's reader accepts: [lo, hi] per key of RANGES, inlet_walls of WALLS."""
+    if not isinstance(value, dict):
+        raise ConversionError("--trained-on must be a JSON object")
+    for key, v in value.items():
+        if key in RANGES:
+            if not (isinstance(v, list) and len(v) == 2 and
+                    all(isinstance(x, (int, float)) and abs(x) < float("inf") for x in v) and
+                    v[0] <= v[1]):
+                raise ConversionError(f"--trained-on: {key} must be [lo, hi], lo <= hi")
+        elif key == "inlet_walls":
+            if not (isinstance(v, list) and all(w in WALLS for w in v)):
+                raise ConversionError(f"--trained-on: inlet_walls must list walls of {WALLS}")
+        else:
+            raise ConversionError(f"--trained-on: unknown key {key!r} (known: "
+                                  f"{', '.join(RANGES + ('inlet_walls',))})")
+
+
 def pair(text, kind, name):
     try:
         a, b = (kind(v) for v in text.split(","))
@@ -165,6 +188,9 @@ def main(argv):
                         "mean, or mean,std (default: by their count)")
     parser.add_argument("--scale", type=float, default=1.0, help="output times this = value")
     parser.add_argument("--unit", default="concentration (dataset units)")
+    parser.add_argument("--trained-on", help="JSON: what the network was trained on, e.g. "
+                        "'{\"map_width_m\": [10, 10], \"inlet_speed_m_s\": [1, 1], "
+                        "\"inlet_walls\": [\"left\"]}'; plumekit warns on maps outside it")
     args = parser.parse_args(argv[1:])
     try:
         if os.path.exists(args.out):
@@ -204,7 +230,14 @@ def main(argv):
         training = {"converted_from": provenance_path(args.checkpoint),
                     "converter": "surrogate/train/convert_deepcfd.py",
                     "weight_norm_folded": weight_norm}
-        write_model(args.out, model, features, outputs, training)
+        trained_on = None
+        if args.trained_on:
+            try:
+                trained_on = json.loads(args.trained_on)
+            except ValueError as e:
+                raise ConversionError(f"--trained-on is not JSON ({e})")
+            check_trained_on(trained_on)
+        write_model(args.out, model, features, outputs, training, trained_on)
     except ConversionError as e:
         print(f"convert_deepcfd.py: {args.checkpoint}: {e}", file=sys.stderr)
         return 2

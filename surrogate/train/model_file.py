@@ -56,7 +56,7 @@ def absolute_paths(value, where="training"):
     return [where] if isinstance(value, str) and os.path.isabs(value) else []
 
 
-def header_for(model, features=None, outputs=None, training=None):
+def header_for(model, features=None, outputs=None, training=None, trained_on=None):
     features = features or DEFAULT_FEATURES
     outputs = outputs or DEFAULT_OUTPUTS
     layers = []
@@ -91,11 +91,13 @@ def header_for(model, features=None, outputs=None, training=None):
             raise ValueError(f"provenance holds absolute paths ({', '.join(bad)}): "
                              "name them with provenance_path()")
         header["training"] = training
+    if trained_on is not None:  # the ranges plumekit warns outside (surrogate/README.md)
+        header["trained_on"] = trained_on
     return header
 
 
-def model_bytes(model, features=None, outputs=None, training=None):
-    header = header_for(model, features, outputs, training)
+def model_bytes(model, features=None, outputs=None, training=None, trained_on=None):
+    header = header_for(model, features, outputs, training, trained_on)
     text = json.dumps(header, indent=1).encode("utf-8")
     head = MAGIC + struct.pack("<II", VERSION, len(text)) + text
     head += b"\0" * (-len(head) % 16)
@@ -108,9 +110,9 @@ def model_bytes(model, features=None, outputs=None, training=None):
     return body + hashlib.sha256(body).digest()
 
 
-def write_model(path, model, features=None, outputs=None, training=None):
+def write_model(path, model, features=None, outputs=None, training=None, trained_on=None):
     """Writes atomically: a temporary file renamed over `path` once complete."""
-    data = model_bytes(model, features, outputs, training)
+    data = model_bytes(model, features, outputs, training, trained_on)
     tmp = f"{path}.tmp{os.getpid()}"
     with open(tmp, "wb") as f:
         f.write(data)

@@ -149,5 +149,26 @@ TEST(ModelFile, ReadsBothSourceChannelForms) {
   expect_refused(unknown.bytes(), "form \"log\" is unknown");
 }
 
+// What the model was trained on: optional ranges and walls, read when present, refused when
+// malformed.
+TEST(ModelFile, ReadsWhatTheModelWasTrainedOn) {
+  const std::string odd = read_file(kOdd);
+  EXPECT_FALSE(parse_model_file(odd, "odd.pkcnn").trained_on.map_width);  // none stated
+  Parts p(odd);
+  p.header["trained_on"] = {
+      {"map_width_m", {6, 30}}, {"inlet_speed_m_s", {0.3, 2}}, {"inlet_walls", {"left", "top"}}};
+  const TrainingRanges t = parse_model_file(p.bytes(), "ok.pkcnn").trained_on;
+  ASSERT_TRUE(t.map_width && t.inlet_speed);
+  EXPECT_EQ(t.map_width->lo, 6.0);
+  EXPECT_EQ(t.inlet_speed->hi, 2.0);
+  EXPECT_FALSE(t.map_height);
+  EXPECT_EQ(t.inlet_walls, (std::vector<std::string>{"left", "top"}));
+  p.header["trained_on"]["map_width_m"] = {30, 6};
+  expect_refused(p.bytes(), "trained_on.map_width_m");
+  p.header["trained_on"]["map_width_m"] = {6, 30};
+  p.header["trained_on"]["inlet_walls"] = {"ceiling"};
+  expect_refused(p.bytes(), "ceiling");
+}
+
 }  // namespace
 }  // namespace plumekit::surrogate

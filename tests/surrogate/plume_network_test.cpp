@@ -251,5 +251,37 @@ TEST(PlumeNetwork, TheInverseSourceChannelIsOneOverTheDistance) {
   EXPECT_LT(nearest, 0.1);  // the source's own cell is near, so the floor matters there
 }
 
+// A map outside what the model was trained on is warned about, one sentence per reason.
+TEST(PlumeNetwork, WarnsOfMapsOutsideWhatTheModelWasTrainedOn) {
+  TrainingRanges t;
+  t.map_width = ValueRange{10.0, 10.0};
+  t.openings = ValueRange{2.0, 2.0};
+  t.inlet_speed = ValueRange{0.5, 1.5};
+  t.inlet_walls = {"left"};
+  const Map thesis = default_arena();  // 10 x 4 m, inlet on the left at 1 m/s, outlet right
+  EXPECT_TRUE(training_warnings(t, thesis).empty());
+  EXPECT_TRUE(training_warnings(TrainingRanges{}, default_arena(20.0, 20.0)).empty());
+  Map top = thesis;
+  top.openings[0] = wall_opening(top, Side::Top, 0.0, 10.0, OpeningKind::Inlet, 3.0);
+  const std::vector<std::string> w = training_warnings(t, top);
+  ASSERT_EQ(w.size(), 2u) << (w.empty() ? "" : w[0]);
+  EXPECT_NE(w[0].find("blows at 3 m/s; the model was trained on 0.5-1.5 m/s"), std::string::npos)
+      << w[0];
+  EXPECT_NE(w[1].find("on the top wall; the model was trained with inlets on the left wall"),
+            std::string::npos)
+      << w[1];
+  const std::vector<std::string> wide = training_warnings(t, default_arena(12.0, 4.0));
+  ASSERT_EQ(wide.size(), 1u);
+  EXPECT_NE(wide[0].find("the map is 12 x 4 m; the model was trained on maps 10-10 m wide"),
+            std::string::npos)
+      << wide[0];
+  // PlumeNetwork says them for its map.
+  ModelFile f = read_model_file(kTestData / "surrogate" / "real.pkcnn");
+  f.trained_on = t;
+  const Map cluttered = read_map(kMap);
+  const PlumeNetwork net(std::make_shared<const Network>(std::move(f)), cluttered);
+  EXPECT_EQ(net.warnings(), training_warnings(t, cluttered));
+}
+
 }  // namespace
 }  // namespace plumekit::surrogate
