@@ -16,7 +16,6 @@
 #include "core/seed.hpp"
 #include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
-#include "ste/seeds.hpp"
 #include "ste/tunnel_report.hpp"
 #include "ste/tunnel_run.hpp"
 
@@ -112,10 +111,6 @@ std::string method_help() {
          "baseline at a fixed altitude)";
 }
 
-void write_picture(const fs::path& path, const Picture& picture) {
-  write_png(picture, path);
-}
-
 void add_localize_tunnel(CLI::App* localize) {
   auto* cmd = localize->add_subcommand(
       "tunnel", "Find a gas source in seed 004's 3-D wind tunnel (3-D STE, surge-spiral, ...)");
@@ -143,15 +138,12 @@ void add_localize_tunnel(CLI::App* localize) {
     ste::TunnelOptions& o = a->options;
     o.method = ste::parse_tunnel_method(a->method);
     o.validate();
-    const std::uint64_t seed = ste::run_seed(a->seed, 0, 0, 0);
-    const Vec3 source = a->source.empty() ? ste::random_tunnel_source(o, seed)
-                                          : parse_point3(a->source, "--source");
-    ste::check_tunnel_point(o, source, "source");
-    const Vec3 start = a->start.empty() ? ste::random_tunnel_start(o, source, seed)
-                                        : parse_point3(a->start, "--start");
+    std::optional<Vec3> source, start;
+    if (!a->source.empty()) source = parse_point3(a->source, "--source");
+    if (!a->start.empty()) start = parse_point3(a->start, "--start");
     std::optional<OutputDirectory> out;
     if (!a->out.empty()) out.emplace(a->out, "localize");
-    const ste::TunnelRun run = ste::run_tunnel(o, source, start, seed);
+    const ste::TunnelRun run = ste::localize_tunnel(o, source, start, a->seed);
     ordered_json j{{"ok", true}, {"seed", a->seed}};
     j["settings"] = ste::tunnel_settings(o);
     j.update(ste::tunnel_run_json(run, false));
@@ -161,7 +153,7 @@ void add_localize_tunnel(CLI::App* localize) {
       ordered_json file = j;
       file.update(ste::tunnel_run_json(run, true));
       write_file_atomic(dir / "run.json", file.dump(2) + "\n");
-      write_picture(dir / "trajectory.png", ste::draw_tunnel_run(run, o.tunnel, text));
+      write_png(ste::draw_tunnel_run(run, o.tunnel, text), dir / "trajectory.png");
       out->commit();
       const fs::path d = a->out;
       j["out"] = {{"run", (d / "run.json").string()},
@@ -177,7 +169,7 @@ std::size_t median_run(const std::vector<ste::TunnelRun>& runs) {
   std::vector<double> key;
   for (const ste::TunnelRun& r : runs)
     key.push_back(ste::is_tracker(r.method) ? r.mission_s : r.error_m());
-  const double m = percentile(key, 0.5);
+  const double m = median(key);
   std::size_t best = 0;
   for (std::size_t k = 1; k < key.size(); ++k)
     if (std::abs(key[k] - m) < std::abs(key[best] - m)) best = k;
@@ -241,15 +233,15 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
       write_file_atomic(dir / "runs.csv", ste::tunnel_runs_csv(runs));
       write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
       const std::string name = ste::to_string(methods[m]);
-      write_picture(dir / "boxplot.png",
-                    ste::draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) +
-                                                        " runs, wind " +
-                                                        compact(each[m].tunnel.speed) + " m/s"));
+      write_png(ste::draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) +
+                                                    " runs, wind " + compact(each[m].tunnel.speed) +
+                                                    " m/s"),
+                dir / "boxplot.png");
       const std::size_t k = median_run(runs);
-      write_picture(dir / "trajectory-median.png",
-                    ste::draw_tunnel_run(runs[k], each[m].tunnel,
-                                         "run " + std::to_string(k) +
-                                             " (median): " + ste::tunnel_run_line(runs[k])));
+      write_png(ste::draw_tunnel_run(
+                    runs[k], each[m].tunnel,
+                    "run " + std::to_string(k) + " (median): " + ste::tunnel_run_line(runs[k])),
+                dir / "trajectory-median.png");
       dirs[m]->commit();
       j["methods"].push_back(summary);
       const ordered_json& s = summary;

@@ -2,6 +2,7 @@
 // Plain 2-D geometry on doubles: points, polygons, predicates.
 // Exact predicates for planning live in planner/ (CGAL); these serve validation,
 // rasterization and drawing, where a tolerance of ~1e-12 m is harmless.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -80,6 +81,12 @@ struct Box3 {
   Vec3 hi;
   bool contains(Vec3 p) const {
     return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && p.z >= lo.z && p.z <= hi.z;
+  }
+  // The box shrunk by m on every side (a margin kept from the walls).
+  Box3 inset(double m) const { return {lo + Vec3{m, m, m}, hi - Vec3{m, m, m}}; }
+  // The point of the box nearest to p.
+  Vec3 clamp(Vec3 p) const {
+    return {std::clamp(p.x, lo.x, hi.x), std::clamp(p.y, lo.y, hi.y), std::clamp(p.z, lo.z, hi.z)};
   }
 };
 

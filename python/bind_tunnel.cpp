@@ -10,7 +10,6 @@
 #include "core/seed.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
-#include "ste/seeds.hpp"
 #include "ste/tunnel_report.hpp"
 #include "ste/tunnel_run.hpp"
 
@@ -54,14 +53,13 @@ void bind_tunnel(py::module_& m) {
          double threshold, double time_limit, double noise, double sigma_rel) {
         const ste::TunnelOptions o = tunnel_options(method, tunnel, wind_speed, release_rate,
                                                     threshold, time_limit, noise, sigma_rel);
-        const std::uint64_t s = ste::run_seed(seed, 0, 0, 0);
-        const Vec3 src = source ? to_point3(*source, "source") : ste::random_tunnel_source(o, s);
-        ste::check_tunnel_point(o, src, "source");
-        const Vec3 from = start ? to_point3(*start, "start") : ste::random_tunnel_start(o, src, s);
+        std::optional<Vec3> src, from;
+        if (source) src = to_point3(*source, "source");
+        if (start) from = to_point3(*start, "start");
         nlohmann::ordered_json j;
         {
           py::gil_scoped_release release;
-          j = ste::tunnel_run_json(ste::run_tunnel(o, src, from, s), true);
+          j = ste::tunnel_run_json(ste::localize_tunnel(o, src, from, seed), true);
         }
         return from_json(j);
       },

@@ -18,11 +18,6 @@ int bins_along(double extent, double bin) {
   return std::max(1, static_cast<int>(std::ceil(extent / bin - 1e-9)));
 }
 
-Vec3 clamp_into(Vec3 p, const Box3& box, double margin) {
-  return {std::clamp(p.x, box.lo.x + margin, box.hi.x - margin),
-          std::clamp(p.y, box.lo.y + margin, box.hi.y - margin),
-          std::clamp(p.z, box.lo.z + margin, box.hi.z - margin)};
-}
 }  // namespace
 
 void Ste3dOptions::validate() const {
@@ -139,8 +134,7 @@ Decision3 decide_3d(Vec3 robot, const Ste3dEstimator& estimator, const Posterior
   Decision3 d;
   const double s = options.step;
   const Vec3 moves[6] = {{s, 0, 0}, {-s, 0, 0}, {0, s, 0}, {0, -s, 0}, {0, 0, s}, {0, 0, -s}};
-  const Box3 inner{tunnel.lo + Vec3{margin, margin, margin},
-                   tunnel.hi - Vec3{margin, margin, margin}};
+  const Box3 inner = tunnel.inset(margin);
   double best = -1.0;
   d.kld_target = robot;
   for (const Vec3& m : moves) {
@@ -154,7 +148,7 @@ Decision3 decide_3d(Vec3 robot, const Ste3dEstimator& estimator, const Posterior
   d.source_target = posterior.map;
   const Vec3 v =
       options.alpha * (d.kld_target - robot) + (1.0 - options.alpha) * (d.source_target - robot);
-  d.goal = clamp_into(robot + v, tunnel, margin);
+  d.goal = inner.clamp(robot + v);
   return d;
 }
 

@@ -183,7 +183,17 @@ Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std:
   const std::vector<std::string> lines = wrap_words(text, title, width - 20, text.scale());
   const int line_h = text.size("Ag").height + 6;
   const int top = 10 + static_cast<int>(lines.size()) * line_h + 30;
-  cv::Mat img(top + h1 + gap + h2 + 15, width, CV_8UC3, cv::Scalar(255, 255, 255));
+  // The legend, wrapped likewise, below the panels.
+  std::string legend = "red: source, cyan: start, magenta cross: ";
+  legend += is_tracker(r.method)
+                ? "end; path blue: Levy walk, green: surge, orange: " +
+                      std::string(r.method == TunnelMethod::SurgeSpiral ? "spiral" : "cast")
+                : "estimate; dots: samples";
+  const std::vector<std::string> legend_lines =
+      wrap_words(text, legend, width - left - 10, text.scale());
+  const int legend_y = top + h1 + gap + h2 + 15;
+  cv::Mat img(legend_y + static_cast<int>(legend_lines.size()) * line_h + 10, width, CV_8UC3,
+              cv::Scalar(255, 255, 255));
   for (std::size_t k = 0; k < lines.size(); ++k)
     text.put(img, lines[k], {10, 8 + static_cast<int>(k) * line_h});
   const cv::Rect panels[2] = {{left, top, w, h1}, {left, top + h1 + gap, w, h2}};
@@ -211,19 +221,6 @@ Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std:
     const cv::Point e = at(k, r.estimate);
     cv::drawMarker(img, e, colours::kEstimate, cv::MARKER_CROSS, 14, 2, cv::LINE_AA);
   }
-  std::string legend = "red: source, cyan: start, magenta cross: ";
-  legend += is_tracker(r.method)
-                ? "end; path blue: Levy walk, green: surge, orange: " +
-                      std::string(r.method == TunnelMethod::SurgeSpiral ? "spiral" : "cast")
-                : "estimate; dots: samples";
-  const std::vector<std::string> legend_lines =
-      wrap_words(text, legend, width - left - 10, text.scale());
-  const int legend_y = top + h1 + gap + h2 + 15;
-  cv::Mat framed(legend_y + static_cast<int>(legend_lines.size()) * line_h + 10, width, CV_8UC3,
-                 cv::Scalar(255, 255, 255));
-  img.rowRange(0, std::min(img.rows, framed.rows))
-      .copyTo(framed.rowRange(0, std::min(img.rows, framed.rows)));
-  img = framed;
   for (std::size_t k = 0; k < legend_lines.size(); ++k)
     text.put(img, legend_lines[k], {left, legend_y + static_cast<int>(k) * line_h});
   Picture p;

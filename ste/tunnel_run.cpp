@@ -26,9 +26,7 @@ std::string point_text(Vec3 p) {
 }
 
 Box3 inner_box(const TunnelOptions& o) {
-  const double m = o.margin;
-  const dataset::Tunnel& t = o.tunnel;
-  return {{m, m, m}, {t.length - m, t.width - m, t.height - m}};
+  return o.tunnel.box().inset(o.margin);
 }
 
 // The 2-D baseline flies 10 cm below the source (ch. 17, after Rahbar et al. 2017).
@@ -216,7 +214,7 @@ Vec3 random_tunnel_source(const TunnelOptions& o, std::uint64_t seed) {
 Vec3 random_tunnel_start(const TunnelOptions& o, Vec3 source, std::uint64_t seed) {
   std::mt19937_64 rng(splitmix64(stream_seed(seed, SteStream::Start)));
   const Box3 in = inner_box(o);
-  if (o.method == TunnelMethod::SurgeCast2d || o.method == TunnelMethod::SurgeSpiral) {
+  if (is_tracker(o.method)) {
     const double x = std::min(source.x + o.start_downwind, in.hi.x);
     const double y = uniform(rng, in.lo.y, in.hi.y);
     const double z = uniform(rng, in.lo.z, in.hi.z);
@@ -243,6 +241,15 @@ TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint6
   return run;
 }
 
+TunnelRun localize_tunnel(const TunnelOptions& o, std::optional<Vec3> source,
+                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run) {
+  const std::uint64_t s = run_seed(seed, 0, 0, run);
+  if (!source) source = random_tunnel_source(o, s);
+  check_tunnel_point(o, *source, "source");  // before a start is drawn about it
+  if (!start) start = random_tunnel_start(o, *source, s);
+  return run_tunnel(o, *source, *start, s);
+}
+
 std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::uint64_t seed,
                                        int threads, const std::function<void(int, int)>& progress) {
   o.validate();
@@ -252,9 +259,7 @@ std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::ui
   std::mutex mutex;
   int done = 0;
   pool.parallel_for(runs, [&](std::size_t k) {
-    const std::uint64_t s = run_seed(seed, 0, 0, k);
-    const Vec3 source = random_tunnel_source(o, s);
-    out[k] = run_tunnel(o, source, random_tunnel_start(o, source, s), s);
+    out[k] = localize_tunnel(o, std::nullopt, std::nullopt, seed, k);
     std::lock_guard<std::mutex> lock(mutex);
     if (progress) progress(++done, runs);
   });

@@ -99,8 +99,13 @@ void check_tunnel_point(const TunnelOptions& options, Vec3 p, const std::string&
 // draw from `seed`.
 TunnelRun run_tunnel(const TunnelOptions& options, Vec3 source, Vec3 start, std::uint64_t seed);
 
-// `runs` runs with seeds run_seed(seed, 0, 0, k), random sources and starts, on `threads`
-// threads (0: one per core); progress(done, total) after each run.
+// Run `run` of a command's `seed` (`localize tunnel` is run 0): its seed run_seed(seed, 0, 0,
+// run), and the source and start given, or drawn from it (random_tunnel_source, _start).
+TunnelRun localize_tunnel(const TunnelOptions& options, std::optional<Vec3> source,
+                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run = 0);
+
+// `runs` runs (localize_tunnel's runs 0 .. runs - 1) from random sources and starts, on
+// `threads` threads (0: one per core); progress(done, total) after each run.
 std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& options, int runs, std::uint64_t seed,
                                        int threads,
                                        const std::function<void(int, int)>& progress = {});

@@ -72,24 +72,7 @@ void TunnelWorld::travel(Vec3 from, Vec3 to) {
   advance(seconds - readings * interval);
 }
 
-Reading3 TunnelWorld::stop(Vec3 p) {
-  const int n =
-      std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate)));
-  Reading3 r;
-  for (int k = 0; k < n; ++k) {
-    r.wind = r.wind + plume_.wind();
-    r.gas += read(p);
-  }
-  r.gas /= n;
-  r.wind = (1.0 / n) * r.wind;
-  r.position = recorded(p, options_.position_noise);
-  return r;
-}
-
-Reading3 TunnelWorld::move(Vec3 from, Vec3 to, double speed) {
-  const double interval = 1.0 / options_.sample_rate;
-  const double seconds = norm(to - from) / speed;
-  const int n = std::max(1, static_cast<int>(std::lround(seconds / interval)));
+Reading3 TunnelWorld::readings(Vec3 from, Vec3 to, int n) {
   Reading3 r;
   for (int k = 1; k <= n; ++k) {
     r.wind = r.wind + plume_.wind();
@@ -99,6 +82,16 @@ Reading3 TunnelWorld::move(Vec3 from, Vec3 to, double speed) {
   r.wind = (1.0 / n) * r.wind;
   r.position = recorded(to, options_.position_noise);
   return r;
+}
+
+Reading3 TunnelWorld::stop(Vec3 p) {
+  return readings(
+      p, p, std::max(1, static_cast<int>(std::lround(options_.sample_s * options_.sample_rate))));
+}
+
+Reading3 TunnelWorld::move(Vec3 from, Vec3 to, double speed) {
+  const double interval = 1.0 / options_.sample_rate, seconds = norm(to - from) / speed;
+  return readings(from, to, std::max(1, static_cast<int>(std::lround(seconds / interval))));
 }
 
 }  // namespace plumekit::ste

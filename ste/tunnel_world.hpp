@@ -55,6 +55,9 @@ class TunnelWorld {
   void advance(double seconds);
   // One reading at p, then one reading interval passes.
   double read(Vec3 p);
+  // n readings at the points k / n of the way from `from` to `to` (k = 1 .. n; all at `to` for a
+  // stop) and their means, recorded at `to`.
+  Reading3 readings(Vec3 from, Vec3 to, int n);
   Vec3 recorded(Vec3 p, double sd);
 
   dataset::TunnelPlume plume_;

@@ -108,8 +108,6 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
     throw InputError(who + "source_distance form \"" + c.source_distance_form +
                      "\", this engine builds \"euclidean\" and \"inverse\"");
   }
-  inverse_source_ = c.source_distance_form == "inverse";
-  source_min_distance_ = c.source_min_distance;
   mean_channel_ = std_channel_ = -1;
   for (std::size_t o = 0; o < f.outputs.size(); ++o) {
     if (f.outputs[o].name == "mean") mean_channel_ = static_cast<int>(o);
@@ -141,10 +139,10 @@ void PlumeNetwork::check_source(Vec2 source) const {
 std::vector<float> PlumeNetwork::features(Vec2 source) const {
   std::vector<float> x = map_features_;
   std::vector<float> d = dataset::source_feature(source, grid_);
-  if (inverse_source_) {
-    const double floor = source_min_distance_;
+  const FeatureContract& c = network_->file().features;
+  if (c.source_distance_form == "inverse") {
     for (float& v : d)
-      v = static_cast<float>(1.0 / std::max(static_cast<double>(v), floor));
+      v = static_cast<float>(1.0 / std::max(static_cast<double>(v), c.source_min_distance));
   }
   x.insert(x.end(), d.begin(), d.end());
   return x;

@@ -71,8 +71,6 @@ class PlumeNetwork {
   std::vector<bool> obstacle_cell_;         // region label 0
   int mean_channel_ = 0, std_channel_ = 1;  // std_channel_ -1: a mean-only model
   std::vector<std::string> warnings_;
-  bool inverse_source_ = false;  // the source channel is 1 / distance
-  double source_min_distance_ = 0.0;
 };
 
 }  // namespace plumekit::surrogate
