@@ -73,8 +73,7 @@ double CrosswindSearch::uniform01() {
 }
 
 Vec3 CrosswindSearch::clamp_inside(Vec3 p) const {
-  return {std::clamp(p.x, inner_.lo.x, inner_.hi.x), std::clamp(p.y, inner_.lo.y, inner_.hi.y),
-          std::clamp(p.z, inner_.lo.z, inner_.hi.z)};
+  return inner_.clamp(p);
 }
 
 Vec3 CrosswindSearch::toward(Vec3 robot, Vec3 goal) const {
@@ -85,9 +84,9 @@ Vec3 CrosswindSearch::toward(Vec3 robot, Vec3 goal) const {
   // The clamp is non-expansive, so this only bites when the robot stands within the margin.
   if (d > options_.step) goal = robot + (options_.step / d) * (goal - robot);
   // A robot outside the tunnel is brought back in, whatever the step.
-  return {std::clamp(goal.x, tunnel_.lo.x, tunnel_.hi.x),
-          std::clamp(goal.y, tunnel_.lo.y, tunnel_.hi.y),
-          flat ? options_.altitude : std::clamp(goal.z, tunnel_.lo.z, tunnel_.hi.z)};
+  goal = tunnel_.clamp(goal);
+  if (flat) goal.z = options_.altitude;
+  return goal;
 }
 
 bool CrosswindSearch::arrived(Vec3 robot) const {
@@ -111,8 +110,8 @@ void CrosswindSearch::observe(const Observation3& o) {
   if (!calibrated_ && o.gas >= options_.detection) {
     calibration_readings_.push_back(o.gas);
     if (static_cast<int>(calibration_readings_.size()) == options_.calibration) {
-      threshold_ = std::max(options_.detection,
-                            percentile(calibration_readings_, 1.0 - options_.threshold));
+      threshold_ =
+          std::max(options_.detection, percentile(calibration_readings_, 1.0 - options_.threshold));
       calibrated_ = true;
       calibration_readings_.clear();
     }
