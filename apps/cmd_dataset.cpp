@@ -198,6 +198,7 @@ void add_generate(CLI::App* group) {
     DatasetOptions o;
     RunOptions run;
     std::string out, map_dir;
+    std::vector<double> inlet_speeds;  // LO,HI (dataset.inlet_speeds)
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--out,-o", a->out, "Dataset directory (created if missing)")->required();
@@ -222,10 +223,28 @@ void add_generate(CLI::App* group) {
   add_families_option(cmd, a->o.map);
   bind_field(cmd, cmd->add_option("--cell", a->o.flow.cell, cfd::kCellHelp), "flow.cell")
       ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--feature-cell", a->o.feature_cell,
+                             "Feature grid: 0, the thesis's 64 x 64 grid over the arena (3 input "
+                             "channels); else cells of about this size in m over the whole map, "
+                             "with the wind as 2 more channels (the v2 surrogate's data; 0.2)"),
+             "dataset.feature_cell")
+      ->capture_default_str();
+  bind_field(cmd,
+             cmd->add_option("--inlet-speeds", a->inlet_speeds,
+                             "LO,HI: each random map's inlets blow at a speed drawn uniformly "
+                             "from LO..HI m/s (default: 1 m/s)")
+                 ->delimiter(',')
+                 ->expected(2),
+             "dataset.inlet_speeds");
   add_plume_options(cmd, a->o.plume);
   add_common_flags(cmd);
   cmd->callback([a] {
     if (!a->map_dir.empty()) use_map_dir(a->o, a->map_dir);
+    if (a->inlet_speeds.size() == 2) {
+      a->o.inlet_speed_lo = a->inlet_speeds[0];
+      a->o.inlet_speed_hi = a->inlet_speeds[1];
+    }
     ProgressBar bar("dataset");
     ProgressNote note;
     a->run.progress = [&](long long done, long long total) {
@@ -276,16 +295,23 @@ void add_show(CLI::App* group) {
     // The one validating reader: the manifest, then the drawn shard against its checksums.
     const DatasetSample s = read_sample(a->dir, a->index);
     const Map& map = s.map;
-    write_png(
-        draw_field_panels(
-            map,
-            {{s.inputs[0], "input 0: region label", "region label [-]"},
-             {s.inputs[1], "input 1: signed distance to surfaces", "distance [m]"},
-             {s.inputs[2], "input 2: distance to the source", "distance [m]"},
-             {s.targets[0], "target 0: mean concentration", "mean [concentration units]", true},
-             {s.targets[1], "target 1: std of concentration", "std [concentration units]", true}},
-            s.source),
-        a->out);
+    // Thesis datasets have 3 input channels; physical-grid ones (--feature-cell) 5, with the wind.
+    const bool wind = s.inputs.size() == 5;
+    std::vector<FieldPanel> panels = {
+        {s.inputs[0], "input 0: region label", "region label [-]"},
+        {s.inputs[1], "input 1: signed distance to surfaces", "distance [m]"}};
+    if (wind) {
+      panels.push_back({s.inputs[2], "input 2: wind u", "u [m/s]"});
+      panels.push_back({s.inputs[3], "input 3: wind v", "v [m/s]"});
+    }
+    panels.push_back({s.inputs.back(),
+                      "input " + std::to_string(s.inputs.size() - 1) + ": distance to the source",
+                      "distance [m]"});
+    panels.push_back(
+        {s.targets[0], "target 0: mean concentration", "mean [concentration units]", true});
+    panels.push_back(
+        {s.targets[1], "target 1: std of concentration", "std [concentration units]", true});
+    write_png(draw_field_panels(map, panels, s.source), a->out);
     const Report r = show_report(a->out, s);
     report(r.json, r.text);
   });

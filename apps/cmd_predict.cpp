@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "apps/cli.hpp"
@@ -13,6 +14,7 @@
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
 #include "core/npy.hpp"
+#include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "surrogate/plume_network.hpp"
 #include "surrogate/prediction_report.hpp"
@@ -33,11 +35,12 @@ std::filesystem::path shipped_model() {
 void add_predict_commands(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "predict",
-      "The surrogate CNN's plume for one source: mean.npy, std.npy (float32 [64,64], row 0 at "
-      "y = 0) and plume.png");
+      "The surrogate CNN's plume for one source: mean.npy, std.npy (float32 [rows, cols] on the "
+      "model's grid, row 0 at y = 0) and plume.png");
   struct Args {
     std::string cnn = shipped_model().string();
-    std::string map, source, out;
+    std::string map, source, out, wind;
+    double flow_cell = surrogate::kModelWindCell;
     surrogate::EngineOptions engine;
   };
   auto a = std::make_shared<Args>();
@@ -49,6 +52,15 @@ void add_predict_commands(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `predict` output")
       ->required();
   add_threads_flag(cmd, a->engine.threads, "engine.threads", "Engine threads (0: one per core)");
+  cmd->add_option("--wind", a->wind,
+                  "A model that takes the wind (a physical-grid model): use this `plumekit flow` "
+                  "output's wind instead of solving one")
+      ->check(CLI::ExistingDirectory);
+  bind_field(cmd,
+             cmd->add_option("--flow-cell", a->flow_cell,
+                             "A model that takes the wind: the flow cell its wind is solved on, m"),
+             "flow.cell")
+      ->capture_default_str();
   add_common_flags(cmd);
   cmd->callback([a] {
     const auto start = std::chrono::steady_clock::now();
@@ -66,9 +78,19 @@ void add_predict_commands(CLI::App& app) {
     OutputDirectory out(a->out, "predict", {a->map, a->cnn});
     auto network =
         std::make_shared<const surrogate::Network>(surrogate::Network::load(a->cnn, a->engine));
+    // A physical-grid model reads the map's wind (solved here: well under a second on small
+    // maps, tens of seconds on a large building).
+    std::optional<cfd::WindField> wind;
+    double flow_s = 0.0;
+    if (surrogate::PlumeNetwork::takes_wind(*network)) {
+      check_range("flow.cell", a->flow_cell, 0.01, 1.0, "m", "the default is 0.1 m");
+      const auto tw = std::chrono::steady_clock::now();
+      wind = surrogate::model_wind(map, a->flow_cell, a->wind);
+      flow_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();
+    }
     std::unique_ptr<surrogate::PlumeNetwork> model;
     try {
-      model = std::make_unique<surrogate::PlumeNetwork>(network, map);
+      model = std::make_unique<surrogate::PlumeNetwork>(network, map, wind ? &*wind : nullptr);
     } catch (const InputError& e) {
       throw InputError(a->cnn + ": " + e.what());
     }
@@ -93,6 +115,7 @@ void add_predict_commands(CLI::App& app) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     Report r = surrogate::prediction_report(
         {a->cnn, a->map, a->out, source, map.frame, predict_s, seconds}, p, *network);
+    if (wind) r.json["flow_s"] = flow_s;
     // Outside what the model was trained on: said, not refused.
     if (!model->warnings().empty()) {
       r.json["warnings"] = model->warnings();

@@ -18,7 +18,7 @@ inline std::uint64_t splitmix64(std::uint64_t x) {
 }
 
 // Purposes keep the streams of one (map, source) of a dataset apart.
-enum class Stream : std::uint64_t { MapGeometry = 1, Sources = 2, Filaments = 3 };
+enum class Stream : std::uint64_t { MapGeometry = 1, Sources = 2, Filaments = 3, InletSpeed = 4 };
 
 inline std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t map_index,
                                  std::uint64_t source_index, Stream stream) {

@@ -16,6 +16,18 @@ void DatasetOptions::validate() const {
     throw std::logic_error("DatasetOptions: given_maps and map_files differ in length");
   check_non_negative("dataset.source_clearance", source_clearance, 10.0, "m",
                      "the default is 0.1 m");
+  if (feature_cell != 0.0)
+    check_range("dataset.feature_cell", feature_cell, 0.02, 2.0, "m",
+                "0 (the thesis's 64 x 64 grid) or a cell size; the v2 model uses 0.2 m");
+  if (inlet_speed_hi != 0.0 || inlet_speed_lo != 0.0) {
+    check_range("dataset.inlet_speeds", inlet_speed_lo, 0.01, 100.0, "m/s",
+                "LO,HI with 0 < LO <= HI; unset, maps.inlet_speed");
+    check_range("dataset.inlet_speeds", inlet_speed_hi, inlet_speed_lo, 100.0, "m/s",
+                "LO,HI with 0 < LO <= HI; unset, maps.inlet_speed");
+    if (!given_maps.empty())
+      throw OptionError("dataset.inlet_speeds",
+                        "draws the speed of random maps; given maps keep their own");
+  }
   flow.validate();
   plume.validate();
   // Each map's flow grid (cell count and memory) before any is solved: a

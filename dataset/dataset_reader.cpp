@@ -264,12 +264,27 @@ void check_shard(const fs::path& dir, const Checksums& expected) {
   }
 }
 
-ShardArrays read_shard(const fs::path& dataset_dir, const ManifestShard& entry) {
+double feature_cell(const Manifest& m) {
+  const auto it = m.generator.find("feature_cell");
+  if (it == m.generator.end()) return 0.0;
+  if (!it->is_number() || !(it->get<double>() > 0))
+    throw InputError("manifest.json: generator.feature_cell: expected a cell size > 0, found " +
+                     it->dump());
+  return it->get<double>();
+}
+
+ShardArrays read_shard(const fs::path& dataset_dir, const ManifestShard& entry, int channels) {
   const fs::path dir = dataset_dir / "shards" / entry.name;
   check_shard(dir, entry.sha256);
-  const auto load = [&](const char* file, std::vector<std::size_t> shape) {
+  const auto load = [&](const char* file, std::vector<std::size_t> shape,
+                        NpyArray* keep = nullptr) {
     NpyArray a = read_npy(dir / file);
-    if (a.shape != shape) {
+    // The grid is the map's: the inputs give it (nx, ny of 0 below), the targets must match it.
+    if (a.shape.size() == 4 && shape.size() == 4 && shape[2] == 0) {
+      shape[2] = a.shape[2];
+      shape[3] = a.shape[3];
+    }
+    if (a.shape != shape || (shape.size() == 4 && (shape[2] == 0 || shape[3] == 0))) {
       std::string want, got;
       for (std::size_t d : shape)
         want += (want.empty() ? "" : ", ") + std::to_string(d);
@@ -278,13 +293,18 @@ ShardArrays read_shard(const fs::path& dataset_dir, const ManifestShard& entry) 
       fail((dir / file).string(), "", "shape (" + got + "), the manifest needs (" + want + ")",
            "; the dataset is inconsistent: make it again");
     }
+    if (keep) keep->shape = a.shape;
     return std::vector<float>(a.values.begin(), a.values.end());
   };
   ShardArrays a;
   a.samples = entry.samples;
-  const std::size_t n = entry.samples, ny = a.ny, nx = a.nx;
-  a.inputs = load("inputs.npy", {n, 3, ny, nx});
-  a.targets = load("targets.npy", {n, 2, ny, nx});
+  a.channels = channels;
+  const std::size_t n = entry.samples;
+  NpyArray shape;
+  a.inputs = load("inputs.npy", {n, static_cast<std::size_t>(channels), 0, 0}, &shape);
+  a.ny = static_cast<int>(shape.shape[2]);
+  a.nx = static_cast<int>(shape.shape[3]);
+  a.targets = load("targets.npy", {n, 2, shape.shape[2], shape.shape[3]});
   a.sources = load("sources.npy", {n, 2});
   return a;
 }
@@ -328,15 +348,17 @@ DatasetSample read_sample(const fs::path& dir, long long index) {
     }
     start += e.samples;
   }
-  const ShardArrays arrays = read_shard(dir, s.shard);
+  const double cell = feature_cell(m);
+  const int channels = input_channels(cell);
+  const ShardArrays arrays = read_shard(dir, s.shard, channels);
   s.map = read_map(dir / s.shard.map);
-  const GridShape g = feature_grid(s.map);
-  if (g.size() != static_cast<std::size_t>(arrays.nx) * arrays.ny)
+  const GridShape g = sample_grid(s.map, cell);
+  if (g.nx != arrays.nx || g.ny != arrays.ny)
     throw InputError((dir / s.shard.map).string() + ": its feature grid is not the shard's");
   s.source = {arrays.sources[2 * s.row], arrays.sources[2 * s.row + 1]};
-  s.inputs = channels_of(arrays.inputs, 3, s.row, g);
+  s.inputs = channels_of(arrays.inputs, channels, s.row, g);
   s.targets = channels_of(arrays.targets, 2, s.row, g);
-  s.inputs_sha256 = rows_sha256(arrays.inputs, 3, s.row, g.size());
+  s.inputs_sha256 = rows_sha256(arrays.inputs, channels, s.row, g.size());
   s.targets_sha256 = rows_sha256(arrays.targets, 2, s.row, g.size());
   return s;
 }

@@ -58,9 +58,14 @@ Checksums parse_checksums(std::string_view bytes, const std::string& name);
 // against the manifest's checksums. InputError naming the first file that does not match.
 void check_shard(const std::filesystem::path& dir, const Checksums& expected);
 
+// The dataset's feature cell (generator.feature_cell; 0 for the thesis's 64 x 64 grid).
+double feature_cell(const Manifest& m);
+
 // The checked arrays of `entry` in the dataset `dataset_dir` (map_ids left empty: they equal
-// entry.map_index, which the checksum covers): shapes as manifest.json's contract says.
-ShardArrays read_shard(const std::filesystem::path& dataset_dir, const ManifestShard& entry);
+// entry.map_index, which the checksum covers): shapes as manifest.json's contract says, `channels`
+// input channels (input_channels(feature_cell(manifest))); the grid is the shard's own (its map's).
+ShardArrays read_shard(const std::filesystem::path& dataset_dir, const ManifestShard& entry,
+                       int channels);
 
 // One sample of a dataset, by its index over the whole dataset (shards in manifest order), with
 // the map it was made on: what `dataset show` draws and what the trainer's reader must agree with.
@@ -71,7 +76,7 @@ struct DatasetSample {
   Map map;              // the shard's map file
   Vec2 source;
   // On the map's feature grid (row 0 at y = 0), channels as manifest.json's contract says.
-  std::vector<Grid<double>> inputs;   // region label, signed distance, source distance
+  std::vector<Grid<double>> inputs;   // region label, signed distance, [wind u, v,] source distance
   std::vector<Grid<double>> targets;  // mean, std
   // SHA-256 of the sample's raw float32 rows as stored (inputs [3,64,64], targets [2,64,64]):
   // what another reader of the same files must reproduce bit for bit.

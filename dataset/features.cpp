@@ -52,6 +52,24 @@ std::vector<float> map_features(const Map& map, const GridShape& shape) {
   return out;
 }
 
+GridShape physical_grid(const Map& map, double cell) {
+  const int nx = std::max(1, static_cast<int>(std::lround(map.width / cell)));
+  const int ny = std::max(1, static_cast<int>(std::lround(map.height / cell)));
+  return GridShape{nx, ny, map.width, map.height};
+}
+
+std::vector<float> wind_features(const cfd::WindField& wind, const GridShape& shape) {
+  std::vector<float> out(2 * shape.size());
+  for (int j = 0; j < shape.ny; ++j)
+    for (int i = 0; i < shape.nx; ++i) {
+      const std::size_t k = shape.index(i, j);
+      const Vec2 w = wind.at(shape.centre(i, j));
+      out[k] = static_cast<float>(w.x);
+      out[shape.size() + k] = static_cast<float>(w.y);
+    }
+  return out;
+}
+
 std::vector<float> source_feature(Vec2 source, const GridShape& shape) {
   std::vector<float> out(shape.size());
   for (int j = 0; j < shape.ny; ++j)

@@ -6,8 +6,12 @@
 //      surface (obstacle edges and the arena walls outside the openings),
 //      computed exactly from the polygons; negative inside obstacles
 //   2  Euclidean distance in metres from the cell centre to the source
+// Datasets for the v2 surrogate (issue 19, `--feature-cell`) use a physical grid instead, and
+// five channels: region, signed distance, the steady wind's u and v in m/s at the cell centre,
+// and the source distance.
 #include <vector>
 
+#include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
 
@@ -19,9 +23,25 @@ inline GridShape feature_grid(const Map& map) {
   return GridShape{kFeatureGrid, kFeatureGrid, map.width, map.height};
 }
 
+// The v2 grid: nominal cells of `cell` metres over the whole map, max(1, round(W / cell)) columns
+// and max(1, round(H / cell)) rows, so a cell is within half a cell over the map's side of `cell`
+// (exact when the side is a multiple of it).
+GridShape physical_grid(const Map& map, double cell);
+// A dataset's grid: the thesis's 64 x 64 one when `feature_cell` is 0, else physical_grid.
+inline GridShape sample_grid(const Map& map, double feature_cell) {
+  return feature_cell > 0 ? physical_grid(map, feature_cell) : feature_grid(map);
+}
+// Input channels of a dataset's samples: 3 on the thesis grid, 5 (with the wind) on a physical one.
+inline int input_channels(double feature_cell) {
+  return feature_cell > 0 ? 5 : 3;
+}
+
 // Channels 0 and 1: they depend on the map only. [2][ny][nx], row 0 at y = 0.
 std::vector<float> map_features(const Map& map, const GridShape& shape);
-// Channel 2. [ny][nx].
+// The steady wind at each cell centre (WindField::at: 0 inside obstacles), u then v, m/s.
+// [2][ny][nx].
+std::vector<float> wind_features(const cfd::WindField& wind, const GridShape& shape);
+// The source distance channel. [ny][nx].
 std::vector<float> source_feature(Vec2 source, const GridShape& shape);
 // Signed distance from p to the nearest solid surface (see above).
 double signed_distance(const Map& map, Vec2 p);

@@ -59,6 +59,11 @@ constexpr int kMaxRedraws = 8;
 std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redraw) {
   if (!o.given_maps.empty()) return {o.given_maps[i], o.map_files[i]};
   RandomMap r = random_map(o.map, o.seed, i, redraw);
+  if (o.inlet_speed_hi > 0) {
+    const double u = drawn_inlet_speed(o, i, redraw);
+    for (Opening& op : r.map.openings)
+      if (op.is_inlet()) op.speed = u;
+  }
   r.map.sources = random_sources(r.map, o.sources, o.source_clearance, o.seed, i);
   return {r.map, r.family};
 }
@@ -220,13 +225,20 @@ MapAndWind map_and_wind(const DatasetOptions& o, int index, const MapFiles& file
 // each source's randomness derived from (seed, map index, source index).
 ShardArrays map_samples(const DatasetOptions& o, int index, const Map& map,
                         const cfd::WindField& wind, int samples, SampleProgress& progress) {
-  const GridShape sensors = feature_grid(map);
-  const std::vector<float> base = map_features(map, sensors);
+  const GridShape sensors = sample_grid(map, o.feature_cell);
+  std::vector<float> base = map_features(map, sensors);
+  if (o.feature_cell > 0) {
+    const std::vector<float> w = wind_features(wind, sensors);
+    base.insert(base.end(), w.begin(), w.end());
+  }
   const MapPlumes plumes(map, wind, sensors, o.plume);
   ShardArrays a;
   a.samples = samples;
+  a.channels = input_channels(o.feature_cell);
+  a.nx = sensors.nx;
+  a.ny = sensors.ny;
   const std::size_t cells = sensors.size();
-  a.inputs.reserve(a.samples * 3 * cells);
+  a.inputs.reserve(a.samples * a.channels * cells);
   a.targets.reserve(a.samples * 2 * cells);
   for (int s = 0; s < a.samples; ++s) {
     const Vec2 src = map.sources[s];

@@ -1,6 +1,8 @@
 #include "dataset/manifest.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <random>
 
 #include "core/map_json.hpp"
 
@@ -29,6 +31,15 @@ nlohmann::ordered_json flow_cell_json(const DatasetOptions& o) {
 
 }  // namespace
 
+double drawn_inlet_speed(const DatasetOptions& o, int index, int redraw) {
+  // Its own stream (not the geometry's), so the maps' shapes are those of the same seed without it.
+  std::mt19937_64 rng(
+      derive_seed(o.seed, index, static_cast<std::uint64_t>(redraw), Stream::InletSpeed));
+  const double unit = static_cast<double>(rng() >> 11) * 0x1.0p-53;
+  return std::round((o.inlet_speed_lo + (o.inlet_speed_hi - o.inlet_speed_lo) * unit) * 100.0) /
+         100.0;
+}
+
 nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
   const FilamentOptions& f = o.plume.filament;
   const AdvectionDiffusionOptions& a = o.plume.advection_diffusion;
@@ -54,6 +65,9 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
     j["map_files"] = o.map_files;
     j["sources_per_map"] = "each map's own sources";
   }
+  // The v2 grid and drawn inlet speeds, only when used, so that older manifests match on resume.
+  if (o.feature_cell > 0) j["feature_cell"] = o.feature_cell;
+  if (o.inlet_speed_hi > 0) j["inlet_speeds"] = {o.inlet_speed_lo, o.inlet_speed_hi};
   j["flow"] = {{"cell", flow_cell_json(o)},
                {"nu", o.flow.nu},
                {"turbulence", cfd::to_string(o.flow.turbulence)},
@@ -106,30 +120,52 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
   return j;
 }
 
-nlohmann::ordered_json contract_json() {
+nlohmann::ordered_json contract_json(double feature_cell) {
   nlohmann::ordered_json j;
-  j["grid"] = {{"nx", 64},
-               {"ny", 64},
-               {"extent",
-                "the whole arena, cell-centred: centre (i + 0.5) * W / 64, "
-                "(j + 0.5) * H / 64"},
-               {"order",
-                "C order, [..., row j, column i]; row 0 at y = 0 (bottom), column 0 at "
-                "x = 0 (left): flip rows to show with y up"}};
-  j["inputs"] = {
-      {"dtype", "float32"},
-      {"shape", "[n, 3, 64, 64]"},
-      {"channels",
-       {"0: region label of the cell centre as a float: inside obstacle 0, free 1, wall 2, "
-        "inlet 3, outlet 4 (plumekit's rasterization rule: centre inside or on an obstacle "
-        "boundary is obstacle; free cells on the arena edge take their wall's label)",
-        "1: signed distance in metres from the cell centre to the nearest solid surface "
-        "(obstacle edges and the arena walls outside the inlet and outlet), computed exactly "
-        "from the polygons; negative inside obstacles",
-        "2: Euclidean distance in metres from the cell centre to the source (not its inverse)"}}};
+  const bool physical = feature_cell > 0;
+  const std::string order =
+      "C order, [..., row j, column i]; row 0 at y = 0 (bottom), column 0 at x = 0 (left): flip "
+      "rows to show with y up";
+  if (physical) {
+    j["grid"] = {{"cell", feature_cell},
+                 {"nx", "max(1, round(W / cell)), per map"},
+                 {"ny", "max(1, round(H / cell)), per map"},
+                 {"extent",
+                  "the whole map, cell-centred: centre (i + 0.5) * W / nx, (j + 0.5) * H / ny; "
+                  "each shard (one map) has its own nx, ny"},
+                 {"order", order}};
+  } else {
+    j["grid"] = {{"nx", 64},
+                 {"ny", 64},
+                 {"extent",
+                  "the whole arena, cell-centred: centre (i + 0.5) * W / 64, "
+                  "(j + 0.5) * H / 64"},
+                 {"order", order}};
+  }
+  nlohmann::ordered_json channels = {
+      "0: region label of the cell centre as a float: inside obstacle 0, free 1, wall 2, "
+      "inlet 3, outlet 4 (plumekit's rasterization rule: centre inside or on an obstacle "
+      "boundary is obstacle; free cells on the arena edge take their wall's label)",
+      "1: signed distance in metres from the cell centre to the nearest solid surface "
+      "(obstacle edges and the arena walls outside the inlet and outlet), computed exactly "
+      "from the polygons; negative inside obstacles"};
+  if (physical) {
+    channels.push_back(
+        "2: the map's steady wind (wind/map-NNNNN/), u in m/s at the cell centre, bilinear "
+        "between the flow's cell centres, 0 inside obstacles");
+    channels.push_back("3: the same wind's v in m/s");
+    channels.push_back(
+        "4: Euclidean distance in metres from the cell centre to the source (not its inverse)");
+  } else {
+    channels.push_back(
+        "2: Euclidean distance in metres from the cell centre to the source (not its inverse)");
+  }
+  j["inputs"] = {{"dtype", "float32"},
+                 {"shape", physical ? "[n, 5, ny, nx]" : "[n, 3, 64, 64]"},
+                 {"channels", channels}};
   j["targets"] = {
       {"dtype", "float32"},
-      {"shape", "[n, 2, 64, 64]"},
+      {"shape", physical ? "[n, 2, ny, nx]" : "[n, 2, 64, 64]"},
       {"channels",
        {"0: mean concentration at the sensor (the cell centre)",
         "1: standard deviation of the concentration over the recording (population std; "
@@ -152,7 +188,7 @@ nlohmann::ordered_json manifest_json(const nlohmann::ordered_json& parameters,
   j["format"] = kDatasetFormat;
   if (part_n > 1) j["part"] = {{"k", part_k}, {"n", part_n}};
   j["generator"] = parameters;
-  j["contract"] = contract_json();
+  j["contract"] = contract_json(parameters.value("feature_cell", 0.0));
   long long samples = 0;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const ShardEntry& s : shards) {

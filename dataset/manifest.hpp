@@ -27,6 +27,13 @@ struct DatasetOptions {
   cfd::FlowOptions flow;  // cell 0 (0.05 m up to building scale), nu 0.01 m^2/s, central
   // Sources lie at least this far from every obstacle and wall.
   double source_clearance = 0.1;
+  // dataset.feature_cell: 0, the thesis's 64 x 64 grid over the arena and three input channels;
+  // else the v2 surrogate's physical grid of this nominal cell (m) and five channels, with the
+  // wind (features.hpp, physical_grid).
+  double feature_cell = 0.0;
+  // dataset.inlet_speeds: when hi > 0, every random map's inlets blow at one speed drawn uniformly
+  // from [lo, hi] m/s (rounded to 0.01 m/s) from the map's own stream, instead of maps.inlet_speed.
+  double inlet_speed_lo = 0.0, inlet_speed_hi = 0.0;
   // Instead of random maps: these maps, each with its own `sources` (the test
   // maps' ground truth). `map_files` names them in the manifest.
   std::vector<Map> given_maps;
@@ -39,8 +46,11 @@ struct DatasetOptions {
 
 // Every parameter that changes the bytes of the dataset.
 nlohmann::ordered_json parameters_json(const DatasetOptions& o);
-// The feature/target contract, in words and numbers.
-nlohmann::ordered_json contract_json();
+// The feature/target contract, in words and numbers (the thesis grid, or the physical grid of
+// `feature_cell` m).
+nlohmann::ordered_json contract_json(double feature_cell = 0.0);
+// The random-map draw's inlet speed for map `index` when o.inlet_speed_hi > 0.
+double drawn_inlet_speed(const DatasetOptions& o, int index, int redraw);
 
 struct ShardEntry {
   int map_index = 0;

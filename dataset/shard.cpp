@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 Checksums write_shard(const fs::path& dir, const ShardArrays& a) {
   const std::size_t n = static_cast<std::size_t>(a.samples), ny = a.ny, nx = a.nx;
   const std::map<std::string, std::string> files{
-      {"inputs.npy", npy_float32(a.inputs, {n, 3, ny, nx})},
+      {"inputs.npy", npy_float32(a.inputs, {n, static_cast<std::size_t>(a.channels), ny, nx})},
       {"targets.npy", npy_float32(a.targets, {n, 2, ny, nx})},
       {"sources.npy", npy_float32(a.sources, {n, 2})},
       {"map_ids.npy", npy_int32(a.map_ids, {n})},

@@ -15,10 +15,11 @@ namespace plumekit::dataset {
 
 struct ShardArrays {
   int samples = 0;
-  std::vector<float> inputs;          // [n, 3, 64, 64]
-  std::vector<float> targets;         // [n, 2, 64, 64]: mean, std
+  std::vector<float> inputs;          // [n, channels, ny, nx] (features.hpp)
+  std::vector<float> targets;         // [n, 2, ny, nx]: mean, std
   std::vector<float> sources;         // [n, 2]: x, y in metres
   std::vector<std::int32_t> map_ids;  // [n]
+  int channels = 3;                   // 5 on a physical grid (dataset.feature_cell)
   int nx = 64, ny = 64;
 };
 

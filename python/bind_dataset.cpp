@@ -2,6 +2,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "core/error.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
@@ -18,11 +19,17 @@ void put(py::array_t<T>& out, std::size_t offset, const std::vector<T>& values) 
 
 py::dict read_dataset(const std::filesystem::path& dir) {
   const dataset::Manifest manifest = dataset::read_manifest(dir / "manifest.json");
+  if (dataset::feature_cell(manifest) > 0)
+    throw plumekit::InputError(
+        (dir / "manifest.json").string() +
+        ": a physical-grid dataset (generator.feature_cell) has one grid per map, "
+        "which read_dataset's single arrays cannot hold; read it with "
+        "surrogate/train/shards.py");
   std::vector<dataset::ShardArrays> shards;
   {
     py::gil_scoped_release release;
     for (const dataset::ManifestShard& entry : manifest.shards)
-      shards.push_back(dataset::read_shard(dir, entry));
+      shards.push_back(dataset::read_shard(dir, entry, 3));
   }
   const auto n = static_cast<py::ssize_t>(manifest.samples);
   const py::ssize_t ny = shards.empty() ? 64 : shards[0].ny,

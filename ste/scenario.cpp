@@ -67,6 +67,7 @@ std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& w
   so.cache_dir = options.table_cache;
   so.scale_lo = options.physics.scale_lo;
   so.scale_hi = options.physics.scale_hi;
+  so.wind = &wind;
   auto m = std::make_unique<SurrogatePlume>(map, so);
   from_cache = m->from_cache();
   return m;

@@ -104,7 +104,8 @@ void prepare_cache_dir(const fs::path& dir, const fs::path& file) {
 }
 
 // The cache key: the map's geometry, the model file and the candidate grid.
-std::string table_key(const Map& map, const fs::path& model, const GridShape& candidates) {
+std::string table_key(const Map& map, const fs::path& model, const GridShape& candidates,
+                      const cfd::WindField* wind) {
   Sha256 h;
   h.update("plumekit-surrogate-table/2\n");  // the key's own version; the file's is kMagic
   h.update(sha256_hex(geometry_text(map)) + "\n" + sha256_file(model) + "\n");
@@ -112,6 +113,15 @@ std::string table_key(const Map& map, const fs::path& model, const GridShape& ca
   g.precision(17);
   g << candidates.nx << ' ' << candidates.ny << ' ' << candidates.width << ' ' << candidates.height;
   h.update(g.str());
+  if (wind) {  // a model that reads the wind: another flow is another table
+    const auto bytes = [&](const std::vector<double>& v) {
+      h.update(
+          std::string_view(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(double)));
+    };
+    h.update("\nwind\n");
+    bytes(wind->face_u());
+    bytes(wind->face_v());
+  }
   return h.hex_digest();
 }
 
@@ -185,10 +195,12 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   surrogate::EngineOptions eo;
   eo.threads = resolve_threads(o.threads);
   auto network = std::make_shared<const surrogate::Network>(surrogate::Network::load(o.model, eo));
-  const surrogate::PlumeNetwork plume(network, map);  // checks the model's contract against the map
+  const cfd::WindField* wind = surrogate::PlumeNetwork::takes_wind(*network) ? o.wind : nullptr;
+  // Checks the model's contract against the map (and that a model that reads the wind has one).
+  const surrogate::PlumeNetwork plume(network, map, wind);
   grid_ = plume.grid();
   has_spreads_ = plume.has_std();
-  key_ = table_key(map, o.model, candidates_);
+  key_ = table_key(map, o.model, candidates_, wind);
   cache_file_ = o.cache_dir.empty()
                     ? fs::path()
                     : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");

@@ -16,6 +16,7 @@
 #include <string_view>
 #include <vector>
 
+#include "cfd/wind_field.hpp"
 #include "core/thread_pool.hpp"
 #include "ste/forward_model.hpp"
 
@@ -34,6 +35,9 @@ struct SurrogatePlumeOptions {
   // table is built. Only files named surrogate-table-*.bin (and their temporaries) are written.
   std::filesystem::path cache_dir;
   double scale_lo = 1.0, scale_hi = 1.0;
+  // The map's steady wind, for a model that takes it (a physical-grid model); read during
+  // construction only. Such a model refuses to build without it.
+  const cfd::WindField* wind = nullptr;
   // Told why a cache file was not used and is rebuilt (damaged, stale, older format). Null: a
   // "plumekit: note: ..." line on stderr.
   std::function<void(const std::string&)> on_note;

@@ -128,55 +128,88 @@ void check_layers(const json& j, const std::vector<LayerSpec>& expected,
   }
 }
 
-FeatureContract parse_features(const json& j, int in_channels, const std::string& source) {
+FeatureContract parse_features(const json& j, int in_channels, int levels,
+                               const std::string& source) {
   FeatureContract f;
-  const auto grid = get<std::vector<int>>(j, "grid", source, "features");
-  const auto arena = get<std::vector<double>>(j, "arena", source, "features");
-  if (grid.size() != 2 || grid[0] < 1 || grid[1] < 1 || grid[0] > 4096 || grid[1] > 4096) {
-    fail(source, "shape mismatch: features.grid must be [rows, cols], got " + shape_text(grid));
+  const bool physical = j.is_object() && j.contains("cell_size");
+  if (physical) {
+    if (j.contains("grid") || j.contains("arena"))
+      fail(source,
+           "header: features has cell_size (a physical grid) and grid or arena (a fixed "
+           "one); a model has one or the other");
+    f.cell_size = get<double>(j, "cell_size", source, "features");
+    if (!std::isfinite(f.cell_size) || f.cell_size < 0.01 || f.cell_size > 10.0)
+      fail(source, "header: features.cell_size must be a cell size in metres (0.01 .. 10)");
+    f.multiple = get<int>(j, "multiple", source, "features");
+    if (f.multiple != (1 << levels))
+      fail(source, "shape mismatch: features.multiple is " + std::to_string(f.multiple) +
+                       "; a network that pools " + std::to_string(levels) + " times needs " +
+                       std::to_string(1 << levels));
+    f.rows = f.cols = 0;
+    f.width = f.height = 0.0;
+  } else {
+    const auto grid = get<std::vector<int>>(j, "grid", source, "features");
+    const auto arena = get<std::vector<double>>(j, "arena", source, "features");
+    if (grid.size() != 2 || grid[0] < 1 || grid[1] < 1 || grid[0] > 4096 || grid[1] > 4096) {
+      fail(source, "shape mismatch: features.grid must be [rows, cols], got " + shape_text(grid));
+    }
+    if (arena.size() != 2 || !(arena[0] > 0) || !(arena[1] > 0)) {
+      fail(source, "header: features.arena must be [width, height] in metres, both positive");
+    }
+    f.rows = grid[0];
+    f.cols = grid[1];
+    f.width = arena[0];
+    f.height = arena[1];
   }
-  if (arena.size() != 2 || !(arena[0] > 0) || !(arena[1] > 0)) {
-    fail(source, "header: features.arena must be [width, height] in metres, both positive");
-  }
-  f.rows = grid[0];
-  f.cols = grid[1];
-  f.width = arena[0];
-  f.height = arena[1];
   const json& ch = j.contains("channels") ? j.at("channels") : json();
   if (!ch.is_array() || static_cast<int>(ch.size()) != in_channels) {
     fail(source, "shape mismatch: features.channels must list " + std::to_string(in_channels) +
                      " input channels");
   }
-  // The contract this engine's callers know how to build (DESIGN.md, features).
-  // The source channel's form decides its unit: metres, or 1/m for the inverse distance.
+  // The contracts this engine's callers know how to build (DESIGN.md, features).
+  // The source channel (the last) has a form that decides its unit: metres, or 1/m for the
+  // inverse distance.
+  const std::vector<std::string> names =
+      physical ? std::vector<std::string>{"region", "signed_distance", "wind_u", "wind_v",
+                                          "source_distance"}
+               : std::vector<std::string>{"region", "signed_distance", "source_distance"};
+  const std::size_t last = names.size() - 1;
+  const std::string last_where = "features.channels[" + std::to_string(last) + "]";
   f.source_distance_form =
-      ch.size() >= 3 ? get<std::string>(ch[2], "form", source, "features.channels[2]") : "";
-  if (f.source_distance_form != "euclidean" && f.source_distance_form != "inverse") {
+      ch.size() == names.size() ? get<std::string>(ch[last], "form", source, last_where) : "";
+  if (ch.size() == names.size() && f.source_distance_form != "euclidean" &&
+      f.source_distance_form != "inverse") {
     fail(source, "header: source_distance form \"" + f.source_distance_form +
                      "\" is unknown; this engine builds \"euclidean\" (metres) and \"inverse\" "
                      "(1 / metres)");
   }
   const bool inverse = f.source_distance_form == "inverse";
-  const char* names[] = {"region", "signed_distance", "source_distance"};
-  const char* units[] = {"label", "m", inverse ? "1/m" : "m"};
   for (std::size_t i = 0; i < ch.size(); ++i) {
     const std::string where = "features.channels[" + std::to_string(i) + "]";
     FeatureChannel c{get<std::string>(ch[i], "name", source, where),
                      get<std::string>(ch[i], "unit", source, where)};
-    if (i >= 3 || c.name != names[i] || c.unit != units[i]) {
-      fail(source, "header: " + where + " is \"" + c.name + "\" in \"" + c.unit +
-                       "\"; the feature contract is region (label), signed_distance (m), "
-                       "source_distance (m, or 1/m in the inverse form)");
+    const std::string unit = i == last ? (inverse ? "1/m" : "m")
+                             : i == 0  ? "label"
+                             : i == 1  ? "m"
+                                       : "m/s";
+    if (i >= names.size() || c.name != names[i] || c.unit != unit) {
+      fail(source, "header: " + where + " is \"" + c.name + "\" in \"" + c.unit + "\"; " +
+                       (physical ? "a physical-grid model's contract is region (label), "
+                                   "signed_distance (m), wind_u (m/s), wind_v (m/s), "
+                                   "source_distance (m, or 1/m in the inverse form)"
+                                 : "the feature contract is region (label), signed_distance "
+                                   "(m), source_distance (m, or 1/m in the inverse form)"));
     }
     f.channels.push_back(c);
   }
   // 1 / max(d, min_distance): by default half the smaller cell side, so the source's own cell
   // reads a finite value.
-  f.source_min_distance = 0.5 * std::min(f.width / f.cols, f.height / f.rows);
-  if (inverse && ch[2].contains("min_distance")) {
-    f.source_min_distance = get<double>(ch[2], "min_distance", source, "features.channels[2]");
+  f.source_min_distance =
+      physical ? 0.5 * f.cell_size : 0.5 * std::min(f.width / f.cols, f.height / f.rows);
+  if (inverse && ch[last].contains("min_distance")) {
+    f.source_min_distance = get<double>(ch[last], "min_distance", source, last_where);
     if (!std::isfinite(f.source_min_distance) || f.source_min_distance <= 0.0)
-      fail(source, "header: features.channels[2].min_distance must be a positive number of metres");
+      fail(source, "header: " + last_where + ".min_distance must be a positive number of metres");
   }
   return f;
 }
@@ -335,9 +368,11 @@ TrainingRanges parse_trained_on(const json& j, const std::string& source) {
     if (!w.is_array()) fail(source, "header: trained_on.inlet_walls must be a list of walls");
     for (const json& side : w) {
       const std::string name = side.is_string() ? side.get<std::string>() : "";
-      if (name != "left" && name != "right" && name != "bottom" && name != "top")
+      if (name != "left" && name != "right" && name != "bottom" && name != "top" &&
+          name != "interior")
         fail(source, "header: trained_on.inlet_walls holds \"" + name +
-                         "\"; walls are left, right, bottom, top");
+                         "\"; walls are left, right, bottom, top, and interior (an inlet on an "
+                         "obstacle's edge, a window)");
       t.inlet_walls.push_back(name);
     }
   }
@@ -357,10 +392,11 @@ void parse_description(const Framing& f, ModelFile& m, const std::string& source
                      " parameters (" + std::to_string(4 * params) + " bytes), the file holds " +
                      std::to_string(f.data_bytes) + " bytes");
   }
-  m.features =
-      parse_features(member_or_null(f.header, "features"), m.architecture.in_channels, source);
   const int levels = static_cast<int>(m.architecture.filters.size());
-  if ((m.features.rows >> levels) < 1 || (m.features.cols >> levels) < 1) {
+  m.features = parse_features(member_or_null(f.header, "features"), m.architecture.in_channels,
+                              levels, source);
+  if (!m.features.physical() &&
+      ((m.features.rows >> levels) < 1 || (m.features.cols >> levels) < 1)) {
     fail(source, "shape mismatch: a " + std::to_string(m.features.rows) + "x" +
                      std::to_string(m.features.cols) + " grid cannot be pooled " +
                      std::to_string(levels) + " times");

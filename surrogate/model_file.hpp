@@ -46,21 +46,32 @@ struct LayerSpec {
 std::vector<LayerSpec> deepcfd_layers(const Architecture& arch);
 std::size_t parameter_count(const std::vector<LayerSpec>& layers);
 
-// What the inputs must hold: the engine's callers build features by this contract.
+// What the inputs must hold: the engine's callers build features by this contract. Two kinds:
+// - the thesis's (v1): a fixed grid of rows x cols over a fixed arena, channels region,
+//   signed_distance, source_distance;
+// - a physical grid (v2, issue 19; cell_size > 0): nominal cells of cell_size metres over any map,
+//   padded with zeros to a multiple of `multiple` (2^levels) on the high side, channels region,
+//   signed_distance, wind_u, wind_v, source_distance. rows, cols, width and height are 0.
 struct FeatureChannel {
-  std::string name;  // region, signed_distance, source_distance
+  std::string name;  // region, signed_distance, [wind_u, wind_v,] source_distance
   std::string unit;
 };
 struct FeatureContract {
-  int rows = 64;        // grid rows (along y), row 0 at y = 0, cell-centred
-  int cols = 64;        // grid columns (along x)
-  double width = 10.0;  // arena size in metres (x)
-  double height = 4.0;  // (y)
+  int rows = 64;           // grid rows (along y), row 0 at y = 0, cell-centred
+  int cols = 64;           // grid columns (along x)
+  double width = 10.0;     // arena size in metres (x)
+  double height = 4.0;     // (y)
+  double cell_size = 0.0;  // m; > 0: a physical-grid model
+  int multiple = 1;        // input sides: multiples of it (physical grids)
   std::vector<FeatureChannel> channels;
   // "euclidean": metres from each cell centre to the source; "inverse": 1 / max(that,
   // source_min_distance), in 1/m (the thesis's code and DeepCFD-style inputs).
   std::string source_distance_form;
   double source_min_distance = 0.0;  // m, the inverse form's floor (header min_distance)
+
+  bool physical() const { return cell_size > 0; }
+  bool has_wind() const { return physical(); }
+  int source_channel() const { return static_cast<int>(channels.size()) - 1; }
 };
 
 struct OutputSpec {
@@ -79,7 +90,9 @@ struct TrainingRanges {
   std::optional<ValueRange> map_width, map_height;  // m (map_width_m, map_height_m)
   std::optional<ValueRange> inlet_speed;            // m/s, every inlet (inlet_speed_m_s)
   std::optional<ValueRange> openings;               // inlets and outlets counted together
-  std::vector<std::string> inlet_walls;             // "left", "right", "bottom", "top"; empty: any
+  // "left", "right", "bottom", "top", "interior" (an inlet on an obstacle's edge: a window);
+  // empty: any.
+  std::vector<std::string> inlet_walls;
 };
 
 struct ModelFile {

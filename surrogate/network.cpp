@@ -51,11 +51,11 @@ Network::Network(ModelFile file, EngineOptions options)
   threads_ = std::make_unique<ThreadPool>(options_.threads);
   // A ModelFile from parse_model_file is consistent; one put together by hand must be too.
   const std::vector<LayerSpec> expected = deepcfd_layers(file_.architecture);
-  bool consistent = expected.size() == file_.layers.size() &&
-                    file_.weights.size() == expected.size() &&
-                    file_.biases.size() == expected.size() &&
-                    static_cast<int>(file_.outputs.size()) == file_.architecture.out_channels &&
-                    file_.features.rows >= 1 && file_.features.cols >= 1;
+  bool consistent =
+      expected.size() == file_.layers.size() && file_.weights.size() == expected.size() &&
+      file_.biases.size() == expected.size() &&
+      static_cast<int>(file_.outputs.size()) == file_.architecture.out_channels &&
+      (file_.features.physical() || (file_.features.rows >= 1 && file_.features.cols >= 1));
   for (std::size_t i = 0; consistent && i < expected.size(); ++i) {
     const LayerSpec& e = expected[i];
     const LayerSpec& l = file_.layers[i];
@@ -96,13 +96,19 @@ std::size_t Network::parameter_count() const {
 }
 
 double Network::flops_per_sample() const {
+  if (file_.features.physical())
+    throw std::logic_error("flops_per_sample(): a physical-grid model needs the input's size");
+  return flops_per_sample(file_.features.rows, file_.features.cols);
+}
+
+double Network::flops_per_sample(int rows, int cols) const {
   const auto& a = file_.architecture;
   const int levels = static_cast<int>(a.filters.size());
   double flops = 0;
   auto conv_flops = [](const Conv& c, int h, int w) {
     return 2.0 * c.out * c.in * c.kernel * c.kernel * h * w;
   };
-  int h = file_.features.rows, w = file_.features.cols;
+  int h = rows, w = cols;
   std::vector<int> hs, ws;
   for (int b = 0; b < levels; ++b) {
     hs.push_back(h);
@@ -122,11 +128,12 @@ double Network::flops_per_sample() const {
   return flops;
 }
 
-void Network::encode(const float* x, Workspace& ws, const std::int32_t* const* forced) const {
+void Network::encode(const float* x, int rows, int cols, Workspace& ws,
+                     const std::int32_t* const* forced) const {
   const auto& a = file_.architecture;
   const int levels = static_cast<int>(a.filters.size());
   const int n = a.convs_per_block;
-  const std::size_t plane0 = static_cast<std::size_t>(file_.features.rows) * file_.features.cols;
+  const std::size_t plane0 = static_cast<std::size_t>(rows) * cols;
   const std::size_t widest =
       plane0 * 2 *
       static_cast<std::size_t>(
@@ -138,7 +145,7 @@ void Network::encode(const float* x, Workspace& ws, const std::int32_t* const* f
   ws.hs.resize(levels);
   ws.ws.resize(levels);
 
-  int h = file_.features.rows, w = file_.features.cols;
+  int h = rows, w = cols;
   const float* in = x;
   for (int b = 0; b < levels; ++b) {
     ws.hs[b] = h;
@@ -177,7 +184,7 @@ void Network::decode(int o, const Workspace& enc, Workspace& ws, float* y) const
   const auto& a = file_.architecture;
   const int levels = static_cast<int>(a.filters.size());
   const int n = a.convs_per_block;
-  const std::size_t plane0 = static_cast<std::size_t>(file_.features.rows) * file_.features.cols;
+  const std::size_t plane0 = static_cast<std::size_t>(enc.hs[0]) * enc.ws[0];
   ws.a.resize(enc.a.size());
   ws.b.resize(enc.b.size());
   // Unpool into the upper half of the concatenation [skip, unpooled].
@@ -211,13 +218,23 @@ void Network::decode(int o, const Workspace& enc, Workspace& ws, float* y) const
 
 void Network::check_input(const Tensor& input) const {
   const auto& a = file_.architecture;
-  if (input.c != a.in_channels || input.h != file_.features.rows ||
-      input.w != file_.features.cols || input.data.size() != input.sample() * input.n) {
+  const FeatureContract& f = file_.features;
+  const auto shape = [](const Tensor& t) {
+    return "[" + std::to_string(t.n) + "," + std::to_string(t.c) + "," + std::to_string(t.h) + "," +
+           std::to_string(t.w) + "]";
+  };
+  const bool sizes = input.c == a.in_channels && input.data.size() == input.sample() * input.n &&
+                     (f.physical() ? input.h >= f.multiple && input.w >= f.multiple &&
+                                         input.h % f.multiple == 0 && input.w % f.multiple == 0 &&
+                                         input.h <= kMaxInputSide && input.w <= kMaxInputSide
+                                   : input.h == f.rows && input.w == f.cols);
+  if (!sizes) {
     throw std::invalid_argument(
-        "Network::predict: input is [" + std::to_string(input.n) + "," + std::to_string(input.c) +
-        "," + std::to_string(input.h) + "," + std::to_string(input.w) + "], the model takes [n," +
-        std::to_string(a.in_channels) + "," + std::to_string(file_.features.rows) + "," +
-        std::to_string(file_.features.cols) + "]");
+        "Network::predict: input is " + shape(input) + ", the model takes [n," +
+        std::to_string(a.in_channels) + "," +
+        (f.physical() ? "rows,cols] with rows and cols multiples of " + std::to_string(f.multiple) +
+                            " up to " + std::to_string(kMaxInputSide)
+                      : std::to_string(f.rows) + "," + std::to_string(f.cols) + "]"));
   }
 }
 
@@ -254,7 +271,7 @@ Tensor Network::predict_with_pool_indices(const Tensor& input, const PoolIndices
   for (int i = 0; i < input.n; ++i) {
     for (int b = 0; b < levels; ++b)
       forced[b] = indices[b].data() + per_sample[b] * i;
-    encode(input.sample_data(i), ws, forced.data());
+    encode(input.sample_data(i), input.h, input.w, ws, forced.data());
     for (int o = 0; o < a.out_channels; ++o)
       decode(o, ws, ws, out.sample_data(i) + o * plane);
   }
@@ -270,7 +287,7 @@ Tensor Network::predict(const Tensor& input) const {
     // Fewer samples than threads: each sample's encoder, then its decoders side by side.
     std::unique_ptr<Workspace> enc = pool_->take();
     for (int i = 0; i < input.n; ++i) {
-      encode(input.sample_data(i), *enc);
+      encode(input.sample_data(i), input.h, input.w, *enc);
       threads_->parallel_for(a.out_channels, [&](std::size_t o) {
         std::unique_ptr<Workspace> ws = pool_->take();
         decode(static_cast<int>(o), *enc, *ws, out.sample_data(i) + o * plane);
@@ -282,7 +299,7 @@ Tensor Network::predict(const Tensor& input) const {
   }
   threads_->parallel_for(input.n, [&](std::size_t i) {
     std::unique_ptr<Workspace> ws = pool_->take();
-    encode(input.sample_data(static_cast<int>(i)), *ws);
+    encode(input.sample_data(static_cast<int>(i)), input.h, input.w, *ws);
     for (int o = 0; o < a.out_channels; ++o)
       decode(o, *ws, *ws, out.sample_data(static_cast<int>(i)) + o * plane);
     pool_->give(std::move(ws));

@@ -34,7 +34,9 @@ class Network {
   static Network load(const std::filesystem::path& path, EngineOptions options = {});
 
   // input [n, in_channels, rows, cols] -> [n, out_channels, rows, cols], each output channel
-  // multiplied by its scale from the file (so in the file's output units).
+  // multiplied by its scale from the file (so in the file's output units). rows x cols is the
+  // file's grid, or for a physical-grid model any multiples of features.multiple up to
+  // kMaxInputSide. std::invalid_argument otherwise.
   Tensor predict(const Tensor& input) const;
 
   // For tests against PyTorch that must not hinge on max-pool near-ties (surrogate/README.md): the
@@ -49,8 +51,12 @@ class Network {
   // converted into the layers, so `weights` and `biases` are empty here.
   const ModelFile& file() const { return file_; }
   std::size_t parameter_count() const;
-  // Multiply-adds times two, per sample, of all convolutions at the file's grid.
+  // Multiply-adds times two, per sample, of all convolutions at the file's grid (a thesis model)
+  // or at rows x cols.
   double flops_per_sample() const;
+  double flops_per_sample(int rows, int cols) const;
+  // The largest input side a physical-grid model takes (409.6 m at 0.1 m cells).
+  static constexpr int kMaxInputSide = 4096;
 
  private:
   struct Workspace;
@@ -58,7 +64,8 @@ class Network {
   // The encoder fills ws.skips, ws.indices and ws.bottom; decode() reads them (from `enc`) and
   // uses its own `ws` for activations, so the decoders of one sample can run at once.
   // `forced`, when given, holds each level's pool indices for this sample.
-  void encode(const float* x, Workspace& ws, const std::int32_t* const* forced = nullptr) const;
+  void encode(const float* x, int rows, int cols, Workspace& ws,
+              const std::int32_t* const* forced = nullptr) const;
   void check_input(const Tensor& input) const;
   void decode(int output, const Workspace& enc, Workspace& ws, float* y) const;
 

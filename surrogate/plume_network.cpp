@@ -5,6 +5,8 @@
 #include <sstream>
 #include <string>
 
+#include "cfd/flow_policy.hpp"
+#include "cfd/wind_file.hpp"
 #include "core/error.hpp"
 #include "dataset/features.hpp"
 
@@ -56,7 +58,7 @@ std::vector<std::string> training_warnings(const TrainingRanges& t, const Map& m
                     range(*t.inlet_speed) + " m/s");
     if (t.inlet_walls.empty()) continue;
     const std::optional<Side> side = map.wall_of(o);
-    const std::string wall = side ? to_string(*side) : "";
+    const std::string wall = side ? to_string(*side) : "interior";
     if (std::find(t.inlet_walls.begin(), t.inlet_walls.end(), wall) == t.inlet_walls.end()) {
       std::string walls;
       for (const std::string& w : t.inlet_walls)
@@ -69,6 +71,13 @@ std::vector<std::string> training_warnings(const TrainingRanges& t, const Map& m
   return out;
 }
 
+cfd::WindField model_wind(const Map& map, double flow_cell, const std::filesystem::path& wind_dir) {
+  if (!wind_dir.empty()) return cfd::read_wind(wind_dir, map);
+  cfd::FlowOptions o;
+  o.cell = flow_cell;
+  return cfd::solve_wind(map, o).flow.wind;
+}
+
 double PlumePrediction::mean_at(Vec2 p) const {
   return sample(grid, mean, map.get(), p);
 }
@@ -76,34 +85,44 @@ double PlumePrediction::std_at(Vec2 p) const {
   return std.empty() ? 0.0 : sample(grid, std, map.get(), p);
 }
 
-PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& map)
+PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& map,
+                           const cfd::WindField* wind)
     : network_(std::move(network)), map_(std::make_shared<const Map>(map)) {
   if (!network_) throw std::invalid_argument("PlumeNetwork: null network");
   const ModelFile& f = network_->file();
   const FeatureContract& c = f.features;
   const std::string who = "surrogate model feature contract vs map \"" + map.name + "\": ";
-  if (c.rows != dataset::kFeatureGrid || c.cols != dataset::kFeatureGrid) {
+  if (!c.physical() && (c.rows != dataset::kFeatureGrid || c.cols != dataset::kFeatureGrid)) {
     throw InputError(who + "the model's grid is " + std::to_string(c.rows) + "x" +
                      std::to_string(c.cols) + ", the dataset's features are " +
                      std::to_string(dataset::kFeatureGrid) + "x" +
                      std::to_string(dataset::kFeatureGrid));
   }
-  if (!same_length(c.width, map.width) || !same_length(c.height, map.height)) {
+  if (!c.physical() && (!same_length(c.width, map.width) || !same_length(c.height, map.height))) {
     throw InputError(who + "the model was trained on a " + fmt(c.width) + " x " + fmt(c.height) +
                      " m arena, the map is " + fmt(map.width) + " x " + fmt(map.height) + " m");
   }
-  const char* names[] = {"region", "signed_distance", "source_distance"};
-  if (f.architecture.in_channels != 3 || c.channels.size() != 3) {
+  const std::vector<std::string> names =
+      c.physical() ? std::vector<std::string>{"region", "signed_distance", "wind_u", "wind_v",
+                                              "source_distance"}
+                   : std::vector<std::string>{"region", "signed_distance", "source_distance"};
+  const int n_in = static_cast<int>(names.size());
+  if (f.architecture.in_channels != n_in || static_cast<int>(c.channels.size()) != n_in) {
+    std::string list;
+    for (const std::string& n : names)
+      list += (list.empty() ? "" : ", ") + n;
     throw InputError(who + "the model takes " + std::to_string(f.architecture.in_channels) +
-                     " input channels, the dataset's features are 3 (region, signed_distance, "
-                     "source_distance)");
+                     " input channels, the dataset's features are " + std::to_string(n_in) + " (" +
+                     list + ")");
   }
-  for (int i = 0; i < 3; ++i) {
+  for (int i = 0; i < n_in; ++i) {
     if (c.channels[i].name != names[i]) {
       throw InputError(who + "input channel " + std::to_string(i) + " is \"" + c.channels[i].name +
                        "\", the dataset's is \"" + names[i] + "\"");
     }
   }
+  if (c.has_wind() && !wind)
+    throw InputError(who + "the model takes the map's wind as an input; solve it first");
   if (c.source_distance_form != "euclidean" && c.source_distance_form != "inverse") {
     throw InputError(who + "source_distance form \"" + c.source_distance_form +
                      "\", this engine builds \"euclidean\" and \"inverse\"");
@@ -117,11 +136,37 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   if (mean_channel_ < 0) throw InputError(who + "the model's outputs must include \"mean\"");
 
   warnings_ = training_warnings(f.trained_on, map);
-  grid_ = dataset::feature_grid(map);
-  map_features_ = dataset::map_features(map, grid_);
+  channels_ = n_in;
+  if (c.physical()) {
+    grid_ = dataset::physical_grid(map, c.cell_size);
+    const auto up = [&](int n) { return (n + c.multiple - 1) / c.multiple * c.multiple; };
+    rows_ = up(grid_.ny);
+    cols_ = up(grid_.nx);
+    if (rows_ > Network::kMaxInputSide || cols_ > Network::kMaxInputSide)
+      throw InputError(who + "the map's grid of " + std::to_string(grid_.nx) + " x " +
+                       std::to_string(grid_.ny) + " cells of " + fmt(c.cell_size) +
+                       " m is larger than the engine's " + std::to_string(Network::kMaxInputSide) +
+                       " cells a side");
+  } else {
+    grid_ = dataset::feature_grid(map);
+    rows_ = grid_.ny;
+    cols_ = grid_.nx;
+  }
+  // The map's channels on its grid, then copied into the padded input planes (zeros beyond).
+  std::vector<float> planes = dataset::map_features(map, grid_);
+  if (c.has_wind()) {
+    const std::vector<float> w = dataset::wind_features(*wind, grid_);
+    planes.insert(planes.end(), w.begin(), w.end());
+  }
+  const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
+  map_features_.assign((channels_ - 1) * plane, 0.0f);
+  for (int ch = 0; ch < channels_ - 1; ++ch)
+    for (int j = 0; j < grid_.ny; ++j)
+      std::copy_n(planes.begin() + (ch * grid_.size() + grid_.index(0, j)), grid_.nx,
+                  map_features_.begin() + (ch * plane + static_cast<std::size_t>(j) * cols_));
   obstacle_cell_.resize(grid_.size());
   for (std::size_t k = 0; k < grid_.size(); ++k)
-    obstacle_cell_[k] = map_features_[k] == 0.0f;  // region label 0: centre inside an obstacle
+    obstacle_cell_[k] = planes[k] == 0.0f;  // region label 0: centre inside an obstacle
 }
 
 void PlumeNetwork::check_source(Vec2 source) const {
@@ -138,13 +183,18 @@ void PlumeNetwork::check_source(Vec2 source) const {
 
 std::vector<float> PlumeNetwork::features(Vec2 source) const {
   std::vector<float> x = map_features_;
-  std::vector<float> d = dataset::source_feature(source, grid_);
+  const std::vector<float> d = dataset::source_feature(source, grid_);
   const FeatureContract& c = network_->file().features;
-  if (c.source_distance_form == "inverse") {
-    for (float& v : d)
-      v = static_cast<float>(1.0 / std::max(static_cast<double>(v), c.source_min_distance));
-  }
-  x.insert(x.end(), d.begin(), d.end());
+  const std::size_t first = x.size();
+  x.resize(first + static_cast<std::size_t>(rows_) * cols_, 0.0f);
+  const bool inverse = c.source_distance_form == "inverse";
+  for (int j = 0; j < grid_.ny; ++j)
+    for (int i = 0; i < grid_.nx; ++i) {
+      const double v = d[grid_.index(i, j)];
+      x[first + static_cast<std::size_t>(j) * cols_ + i] =
+          inverse ? static_cast<float>(1.0 / std::max(v, c.source_min_distance))
+                  : static_cast<float>(v);
+    }
   return x;
 }
 
@@ -158,11 +208,12 @@ std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>
   for (Vec2 s : sources)
     check_source(s);
   const std::size_t cells = grid_.size();
+  const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
   std::vector<PlumePrediction> out;
   out.reserve(sources.size());
   for (std::size_t first = 0; first < sources.size(); first += batch_size) {
     const int n = static_cast<int>(std::min<std::size_t>(batch_size, sources.size() - first));
-    Tensor input(n, 3, grid_.ny, grid_.nx);
+    Tensor input(n, channels_, rows_, cols_);
     for (int i = 0; i < n; ++i) {
       const std::vector<float> x = features(sources[first + i]);
       std::copy(x.begin(), x.end(), input.sample_data(i));
@@ -172,16 +223,19 @@ std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>
       PlumePrediction p;
       p.grid = grid_;
       p.map = map_;
-      const float* m = y.sample_data(i) + cells * mean_channel_;
-      p.mean.resize(cells);
-      for (std::size_t k = 0; k < cells; ++k)
-        p.mean[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, m[k]);
-      if (std_channel_ >= 0) {
-        const float* s = y.sample_data(i) + cells * std_channel_;
-        p.std.resize(cells);
-        for (std::size_t k = 0; k < cells; ++k)
-          p.std[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, s[k]);
-      }
+      // The map's cells of the (possibly padded) output planes.
+      const auto crop = [&](int channel, std::vector<float>& to) {
+        const float* v = y.sample_data(i) + plane * channel;
+        to.resize(cells);
+        for (int j = 0; j < grid_.ny; ++j)
+          for (int c = 0; c < grid_.nx; ++c) {
+            const std::size_t k = grid_.index(c, j);
+            to[k] = obstacle_cell_[k] ? 0.0f
+                                      : std::max(0.0f, v[static_cast<std::size_t>(j) * cols_ + c]);
+          }
+      };
+      crop(mean_channel_, p.mean);
+      if (std_channel_ >= 0) crop(std_channel_, p.std);
       out.push_back(std::move(p));
     }
   }

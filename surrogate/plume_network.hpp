@@ -2,10 +2,12 @@
 // The surrogate as the rest of plumekit sees it: a network plus one map gives the plume of any
 // source in that map's free space. The input features are built by the dataset module's own
 // functions (dataset/features.hpp), so the network sees exactly what it was trained on.
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cfd/wind_field.hpp"
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
@@ -13,7 +15,8 @@
 
 namespace plumekit::surrogate {
 
-// One source's plume on the model's grid (64 x 64 cells over the arena).
+// One source's plume on the model's grid over the map: 64 x 64 cells over the arena (a thesis
+// model), or the physical grid of the model's cell size (dataset::physical_grid).
 struct PlumePrediction {
   GridShape grid;
   // [ny][nx], row 0 at y = 0, in the model's output units (model file `outputs[].unit`). Cells
@@ -35,13 +38,22 @@ struct PlumePrediction {
 // or when the file states no ranges.
 std::vector<std::string> training_warnings(const TrainingRanges& trained_on, const Map& map);
 
+// The wind a model that takes it is given: the map's steady flow (cfd::solve_wind, upwind if
+// Newton stalls) on cells of `flow_cell` m, by default the v2 training data's 0.1 m; or, when
+// `wind_dir` is given, the wind of that `plumekit flow` output for this map (cfd/wind_file.hpp).
+inline constexpr double kModelWindCell = 0.1;
+cfd::WindField model_wind(const Map& map, double flow_cell = kModelWindCell,
+                          const std::filesystem::path& wind_dir = {});
+
 class PlumeNetwork {
  public:
   // Builds the map-only feature channels once. Checks the model's feature contract against the map
-  // and the dataset's features (grid 64 x 64, arena size, channel names, the source channel's
-  // form: euclidean or inverse, an output named mean, and optionally std); InputError naming what
-  // disagrees.
-  PlumeNetwork(std::shared_ptr<const Network> network, const Map& map);
+  // and the dataset's features (a thesis model: grid 64 x 64 and the arena's size; channel names,
+  // the source channel's form: euclidean or inverse, an output named mean, and optionally std);
+  // InputError naming what disagrees. A model that takes the wind (a physical-grid model) needs
+  // the map's steady wind (`wind`, used only here); InputError without it.
+  PlumeNetwork(std::shared_ptr<const Network> network, const Map& map,
+               const cfd::WindField* wind = nullptr);
 
   // InputError if `source` is not in the map's free space.
   PlumePrediction predict(Vec2 source) const;
@@ -57,9 +69,14 @@ class PlumeNetwork {
   const std::vector<std::string>& warnings() const { return warnings_; }
   // Whether the model predicts the std of the readings (not a mean-only model).
   bool has_std() const { return std_channel_ >= 0; }
-  // The network's input for one source, [3][ny][nx] (channels as in dataset/features.hpp; the
-  // source channel in the model's form).
+  // The network's input for one source, [channels][rows][cols] (channels as in
+  // dataset/features.hpp; the source channel in the model's form). For a physical-grid model,
+  // the map's grid padded with zeros to input_rows() x input_cols().
   std::vector<float> features(Vec2 source) const;
+  int input_rows() const { return rows_; }
+  int input_cols() const { return cols_; }
+  // Whether the model's inputs include the wind (it then needs one; see the constructor).
+  static bool takes_wind(const Network& network) { return network.file().features.has_wind(); }
 
  private:
   void check_source(Vec2 source) const;
@@ -67,7 +84,9 @@ class PlumeNetwork {
   std::shared_ptr<const Network> network_;
   std::shared_ptr<const Map> map_;
   GridShape grid_;
-  std::vector<float> map_features_;         // channels 0 and 1, [2][ny][nx]
+  int rows_ = 0, cols_ = 0;                 // the network's input size (grid_, or padded)
+  int channels_ = 0;                        // input channels
+  std::vector<float> map_features_;         // all but the source channel, padded, [c-1][rows][cols]
   std::vector<bool> obstacle_cell_;         // region label 0
   int mean_channel_ = 0, std_channel_ = 1;  // std_channel_ -1: a mean-only model
   std::vector<std::string> warnings_;

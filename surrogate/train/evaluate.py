@@ -18,6 +18,17 @@ Figures, per channel (mean, std), in dataset units:
 Writes OUT/evaluation.json (overall and per test map), OUT/evaluation.md (the same as tables) and
 OUT/test-K-NAME.png: for three sources of each test map, ground truth, prediction and absolute
 error of the mean (as the thesis's Fig. 14.5), one shared colour scale per row, obstacles in grey.
+
+v2 models (header features.cell_size) on v2 datasets (each map on its own grid): every sample is
+fed as the model's contract says (channel 4 as 1 / max(distance, min_distance), zero padding up to
+a multiple of features.multiple on the high side), the output is cropped back to the map's cells,
+and every figure is over map cells only (rmse pools the squared errors of all map cells of all
+samples). The dataset's feature_cell must be the model's cell_size. --test then takes any v2
+dataset (its maps are named from maps/*.json), and the pictures keep each map's aspect.
+
+--json prints the result on stdout (the human lines go to stderr); --out may then be left out.
+Per-sample figures (`per_sample`: shard, row, map, rmse of the mean over map cells, peak of the true
+mean) are in the result for v2 models, and for v1 with --per-sample.
 """
 import argparse
 import json
@@ -30,8 +41,8 @@ import numpy as np
 import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from model_file import output_scales, read_model  # noqa: E402
-from shards import open_dataset  # noqa: E402
+from model_file import is_v2, output_scales, read_model  # noqa: E402
+from shards import SOURCE_CHANNEL, feature_cell, map_file, open_dataset, padded_size, v2_input  # noqa: E402
 
 CHANNELS = ("mean", "std")
 
@@ -76,6 +87,104 @@ def load_rows(directory, keep_maps=None):
     return np.concatenate(xs), np.concatenate(ys), np.concatenate(ids)
 
 
+# --- v2: each map on its own grid, padded for the network, scored on the map's cells ---
+
+class V2Set:
+    """Samples of a v2 dataset as lists (shapes differ from map to map): x, y (float32, [c, ny, nx]),
+    map ids, sources and (shard name, row)."""
+
+    def __init__(self, directory, header, keep_maps=None):
+        manifest, shards = open_dataset(directory)
+        cell, want = feature_cell(directory, manifest), float(header["features"]["cell_size"])
+        if any(s.inputs.shape[1] != 5 for s in shards) or cell <= 0:
+            raise ValueError(f"{directory}: not a v2 dataset (5 channels and a feature_cell), "
+                             "which the v2 model needs")
+        if abs(cell - want) > 1e-9 * want:
+            raise ValueError(f"{directory}: feature cell {cell:g} m, the model's cell_size is {want:g} m")
+        self.directory, self.manifest = directory, manifest
+        self.x, self.y, self.ids, self.sources, self.where = [], [], [], [], []
+        for s in shards:
+            for row in range(len(s.map_ids)):
+                if keep_maps is not None and int(s.map_ids[row]) not in keep_maps:
+                    continue
+                self.x.append(np.asarray(s.inputs[row], dtype=np.float32))
+                self.y.append(np.asarray(s.targets[row], dtype=np.float32))
+                self.ids.append(int(s.map_ids[row]))
+                self.sources.append([float(v) for v in s.sources[row]])
+                self.where.append((os.path.basename(s.directory), row))
+        if not self.x:
+            raise ValueError(f"{directory}: no samples to score")
+        self.ids = np.array(self.ids)
+
+    def subset(self, sel):
+        return [self.x[i] for i in sel], [self.y[i] for i in sel]
+
+
+def predict_v2(model, header, scales, xs, batch=32):
+    """Predictions [2, ny, nx] in dataset units for each v2 sample [5, ny, nx]: padded as the model's
+    features say, batched by padded shape, cropped back."""
+    features = header["features"]
+    multiple = int(features["multiple"])
+    source = features["channels"][SOURCE_CHANNEL]
+    min_distance = float(source.get("min_distance", float(features["cell_size"]) / 2))
+    groups = {}
+    for i, x in enumerate(xs):
+        groups.setdefault((padded_size(x.shape[1], multiple), padded_size(x.shape[2], multiple)), []).append(i)
+    out = [None] * len(xs)
+    with torch.no_grad():
+        for (rows, cols), members in groups.items():
+            for k in range(0, len(members), batch):
+                part = members[k:k + batch]
+                inp = np.concatenate([v2_input(xs[i][None], min_distance, rows, cols) for i in part])
+                p = model(torch.from_numpy(inp)).numpy() * scales[None, :, None, None]
+                for j, i in enumerate(part):
+                    out[i] = p[j, :, :xs[i].shape[1], :xs[i].shape[2]]
+    return out
+
+
+def scores_v2(preds, truths):
+    """scores() over samples of differing shapes, each sample's map cells only: rmse pools every
+    cell of every sample; sse is each sample's sum, averaged."""
+    peaks = [float(t[0].max()) for t in truths]
+    peak = float(np.mean(peaks))
+    cells = sum(t[0].size for t in truths)
+    out = {"samples": len(truths), "average_peak_mean": peak}
+    for c, name in enumerate(CHANNELS):
+        sq = [float(np.sum((p[c].astype(np.float64) - t[c]) ** 2)) for p, t in zip(preds, truths)]
+        norm = sum(float(np.sum(t[c].astype(np.float64) ** 2)) for t in truths)
+        rmse = float(np.sqrt(sum(sq) / cells))
+        out[name] = {"rmse": rmse, "rmse_rel_peak": rmse / peak if peak > 0 else None,
+                     "sse": float(np.mean(sq)),
+                     "rel_l2": float(np.sqrt(sum(sq) / norm)) if norm > 0 else None,
+                     "zero_rmse_rel_peak": float(np.sqrt(norm / cells)) / peak if peak > 0 else None}
+    return out
+
+
+def per_sample(preds, truths, ids, where):
+    """Each sample's RMSE of the mean over its map cells, and its peak true mean."""
+    return [{"shard": w[0], "row": int(w[1]), "map": int(m),
+             "rmse_mean": float(np.sqrt(np.mean((p[0].astype(np.float64) - t[0]) ** 2))),
+             "peak_mean": float(t[0].max())}
+            for p, t, m, w in zip(preds, truths, ids, where)]
+
+
+def picture_v2(path, xs, truths, preds, sources, size, picks):
+    """picture() for one v2 map of size (W, H) m: square cells, about 240 pixels on the long side."""
+    ny, nx = truths[0].shape[1:]
+    px = max(1, 240 // max(nx, ny))
+    rows = []
+    for k in picks:
+        t, p = truths[k][0], preds[k][0]
+        vmax = float(max(t.max(), p.max()))
+        labels = xs[k][0]
+        gap = np.full((ny * px, 6, 3), 255, np.uint8)
+        args = (labels, vmax, sources[k], px, px, size)
+        rows.append(np.concatenate([panel(t, *args), gap, panel(p, *args), gap,
+                                    panel(np.abs(p - t), *args)], axis=1))
+        rows.append(np.full((6, rows[-1].shape[1], 3), 255, np.uint8))
+    write_png(path, np.concatenate(rows[:-1], axis=0))
+
+
 # --- PNG pictures, written with zlib only (no plotting library is needed) ---
 
 _ANCHORS = np.array([  # perceptually ordered dark blue -> teal -> yellow (viridis-like)
@@ -106,12 +215,13 @@ def write_png(path, rgb):
     os.replace(tmp, path)
 
 
-def panel(field, labels, vmax, source, sx=5, sy=2):
-    """One 64x64 field as an image of (64*sy) x (64*sx) pixels (10 x 4 m: cells 5:2), y up."""
+def panel(field, labels, vmax, source, sx=5, sy=2, size=(10.0, 4.0)):
+    """One 64x64 field as an image of (64*sy) x (64*sx) pixels (10 x 4 m: cells 5:2), y up (any
+    field of a map of `size` metres, with cells sx x sy pixels)."""
     rgb = colour(field / vmax if vmax > 0 else field * 0)
     rgb[labels == 0] = (150, 150, 150)  # inside obstacles
     rows, cols = field.shape
-    c, r = int(source[0] / 10.0 * cols), int(source[1] / 4.0 * rows)
+    c, r = int(source[0] / size[0] * cols), int(source[1] / size[1] * rows)
     if 0 <= r < rows and 0 <= c < cols:
         rgb[max(r - 1, 0):r + 2, c] = (255, 0, 0)
         rgb[r, max(c - 1, 0):c + 2] = (255, 0, 0)
@@ -147,11 +257,12 @@ def markdown(result):
     if "held_out" in result:
         row("held-out maps", result["held_out"])
     if "test_maps" in result:
-        row("**nine test maps**", result["test_maps"]["all"])
+        v2 = result.get("features") == "v2"
+        row("**test maps**" if v2 else "**nine test maps**", result["test_maps"]["all"])
         for name, s in result["test_maps"]["per_map"].items():
             row(name, s)
         lines.append("")
-        lines.append(f"Mean over the nine maps of each map's mean RMSE / peak: "
+        lines.append(f"Mean over the {'' if v2 else 'nine '}maps of each map's mean RMSE / peak: "
                      f"{100 * result['test_maps']['mean_of_map_rel_rmse']:.2f} %")
     return "\n".join(lines) + "\n"
 
@@ -161,28 +272,41 @@ def main(argv=None):
     ap.add_argument("--model", required=True)
     ap.add_argument("--data", help="the training dataset (its validation maps are scored)")
     ap.add_argument("--test", help="the test maps' ground-truth dataset")
-    ap.add_argument("--out", required=True)
+    ap.add_argument("--out", help="folder for evaluation.json, evaluation.md and the pictures")
+    ap.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
+    ap.add_argument("--per-sample", action="store_true",
+                    help="per-sample figures in the result (always for v2 models)")
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 1)
     args = ap.parse_args(argv)
+    if not args.out and not args.json:
+        ap.error("give --out, --json or both")
     torch.set_num_threads(max(1, args.threads))
     try:
         model, header = read_model(args.model)
     except (OSError, ValueError, KeyError) as e:
         sys.exit(f"evaluate.py: {e}")
     scales = output_scales(header["outputs"])
-    os.makedirs(args.out, exist_ok=True)
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+    if is_v2(header):
+        return main_v2(args, model, header, scales)
     result = {"model": os.path.basename(args.model), "training": header.get("training", {})}
+    say = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
     if args.data:
         val_maps = header.get("training", {}).get("val_maps")
         if not val_maps:
             sys.exit(f"evaluate.py: {args.model}: header has no training.val_maps")
         x, y, _ = load_rows(args.data, set(val_maps))
-        result["held_out"] = dict(scores(predict(model, scales, x), y), maps=val_maps)
-        print("held-out maps: mean RMSE %.3f (%.2f %% of peak)" % (
+        pred = predict(model, scales, x)
+        result["held_out"] = dict(scores(pred, y), maps=val_maps)
+        if args.per_sample:
+            result["held_out"]["per_sample"] = per_sample(pred, y, *_where(args.data, set(val_maps)))
+        say("held-out maps: mean RMSE %.3f (%.2f %% of peak)" % (
             result["held_out"]["mean"]["rmse"], 100 * result["held_out"]["mean"]["rmse_rel_peak"]))
     if args.test:
         x, y, ids = load_rows(args.test)
         pred = predict(model, scales, x)
+
         manifest_dir = os.path.join(args.test, "maps")
         per_map = {}
         for m in sorted(set(int(i) for i in ids)):
@@ -191,22 +315,96 @@ def main(argv=None):
             sel = np.flatnonzero(ids == m)
             per_map[name] = scores(pred[sel], y[sel])
             sources = [tuple(v) for v in _sources(args.test, m)]
-            picture(os.path.join(args.out, f"{name}.png"), x[sel], y[sel], pred[sel],
-                    [sources[i] for i in range(len(sel))], picks=[0, 1, 2][:len(sel)])
-            print("%-22s mean RMSE %.2f = %.2f %% of its average peak %.1f" % (
+            if args.out:
+                picture(os.path.join(args.out, f"{name}.png"), x[sel], y[sel], pred[sel],
+                        [sources[i] for i in range(len(sel))], picks=[0, 1, 2][:len(sel)])
+            say("%-22s mean RMSE %.2f = %.2f %% of its average peak %.1f" % (
                 name, per_map[name]["mean"]["rmse"], 100 * per_map[name]["mean"]["rmse_rel_peak"],
                 per_map[name]["average_peak_mean"]))
         result["test_maps"] = {
             "all": scores(pred, y), "per_map": per_map,
             "mean_of_map_rel_rmse": float(np.mean(
                 [s["mean"]["rmse_rel_peak"] for s in per_map.values()]))}
-        print("nine test maps: mean RMSE %.3f = %.2f %% of the average peak" % (
+        if args.per_sample:
+            result["test_maps"]["per_sample"] = per_sample(pred, y, *_where(args.test, None))
+        say("nine test maps: mean RMSE %.3f = %.2f %% of the average peak" % (
             result["test_maps"]["all"]["mean"]["rmse"],
             100 * result["test_maps"]["all"]["mean"]["rmse_rel_peak"]))
-    with open(os.path.join(args.out, "evaluation.json"), "w") as f:
-        json.dump(result, f, indent=1)
-    with open(os.path.join(args.out, "evaluation.md"), "w") as f:
-        f.write(markdown(result))
+    finish(args, result)
+
+
+def finish(args, result):
+    if args.out:
+        with open(os.path.join(args.out, "evaluation.json"), "w") as f:
+            json.dump(result, f, indent=1)
+        with open(os.path.join(args.out, "evaluation.md"), "w") as f:
+            f.write(markdown(result))
+    if args.json:
+        json.dump(result, sys.stdout, indent=1)
+        print()
+
+
+def _where(directory, keep_maps):
+    """map ids and (shard name, row) of the samples load_rows() returns, in its order."""
+    _, shards = open_dataset(directory)
+    ids, where = [], []
+    for s in shards:
+        for row, m in enumerate(s.map_ids):
+            if keep_maps is None or int(m) in keep_maps:
+                ids.append(int(m))
+                where.append((os.path.basename(s.directory), row))
+    return ids, where
+
+
+def main_v2(args, model, header, scales):
+    """main() for a v2 model: the same sets and figures, over each sample's map cells."""
+    result = {"model": os.path.basename(args.model), "features": "v2",
+              "cell_size": header["features"]["cell_size"], "training": header.get("training", {})}
+    say = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+    try:
+        if args.data:
+            val_maps = header.get("training", {}).get("val_maps")
+            if not val_maps:
+                sys.exit(f"evaluate.py: {args.model}: header has no training.val_maps")
+            held = V2Set(args.data, header, set(val_maps))
+            pred = predict_v2(model, header, scales, held.x)
+            result["held_out"] = dict(scores_v2(pred, held.y), maps=val_maps,
+                                      per_sample=per_sample(pred, held.y, held.ids, held.where))
+            say("held-out maps: mean RMSE %.3f (%.2f %% of the average peak)" % (
+                result["held_out"]["mean"]["rmse"], 100 * result["held_out"]["mean"]["rmse_rel_peak"]))
+        if args.test:
+            test = V2Set(args.test, header)
+            pred = predict_v2(model, header, scales, test.x)
+            per_map = {}
+            for m in sorted(set(int(i) for i in test.ids)):
+                path = map_file(args.test, test.manifest, m)
+                with open(path) as f:
+                    spec = json.load(f)
+                name = spec.get("name", "map-%05d" % m)
+                sel = np.flatnonzero(test.ids == m)
+                xs, ys = test.subset(sel)
+                ps = [pred[i] for i in sel]
+                per_map[name] = scores_v2(ps, ys)
+                if args.out:
+                    origin = (spec.get("frame") or {}).get("origin", [0.0, 0.0])
+                    sources = [(test.sources[i][0] - origin[0], test.sources[i][1] - origin[1])
+                               for i in sel]
+                    picture_v2(os.path.join(args.out, f"{name}.png"), xs, ys, ps, sources,
+                               spec["size"], picks=[0, 1, 2][:len(sel)])
+                say("%-22s mean RMSE %.2f = %.2f %% of its average peak %.1f" % (
+                    name, per_map[name]["mean"]["rmse"], 100 * per_map[name]["mean"]["rmse_rel_peak"],
+                    per_map[name]["average_peak_mean"]))
+            result["test_maps"] = {
+                "all": scores_v2(pred, test.y), "per_map": per_map,
+                "mean_of_map_rel_rmse": float(np.mean(
+                    [s["mean"]["rmse_rel_peak"] for s in per_map.values()])),
+                "per_sample": per_sample(pred, test.y, test.ids, test.where)}
+            say("test maps: mean RMSE %.3f = %.2f %% of the average peak" % (
+                result["test_maps"]["all"]["mean"]["rmse"],
+                100 * result["test_maps"]["all"]["mean"]["rmse_rel_peak"]))
+    except (OSError, ValueError) as e:
+        sys.exit(f"evaluate.py: {e}")
+    finish(args, result)
 
 
 def _sources(directory, map_index):

@@ -99,13 +99,16 @@ if __name__ == "__main__":
     print(parameter_count(PlumeUNet()))
 
 
-def pool_margin(model, x):
+def pool_margin(model, x, ignore_exact_ties=False):
     """Per sample, the smallest margin of any 2x2 max-pool decision, relative to that level's
     largest |pre-activation|, computed in float64. A window is decided by max(v1 - v2, -z_max): the
     gap between its two largest post-ReLU values, or how far below zero all its pre-activations
     are (then every value is an exact 0 and the first wins). Float32 engines that sum in different
     orders agree on every argmax, and so within rounding everywhere, when this is well above
-    float32's accumulated rounding (~1e-6 for these layers); below it, max-unpool may move a value."""
+    float32's accumulated rounding (~1e-6 for these layers); below it, max-unpool may move a value.
+    ignore_exact_ties: windows decided by exactly 0 do not count. Such a tie in float64 comes from
+    bit-identical computations (v2's zero padding: every column of a row of it computes the same
+    values), which every engine breaks alike, to the first; otherwise every padded sample scores 0."""
     m64 = PlumeUNet(model.in_channels, model.out_channels, model.filters, model.kernel, model.convs)
     m64.load_state_dict(model.state_dict())
     m64 = m64.double().eval()
@@ -126,6 +129,8 @@ def pool_margin(model, x):
             v = torch.sort(windows(h), dim=-1, descending=True).values
             z_max = windows(z).max(dim=-1).values
             decided = torch.maximum(v[..., 0] - v[..., 1], -z_max)
+            if ignore_exact_ties:
+                decided = torch.where(decided == 0, torch.full_like(decided, float("inf")), decided)
             scale = z.abs().reshape(n, -1).max(dim=1).values.clamp_min(1e-300)
             margin = torch.minimum(margin, decided.reshape(n, -1).min(dim=1).values / scale)
             h = F.max_pool2d(h, 2, 2)

@@ -30,6 +30,33 @@ DEFAULT_FEATURES = {
     ],
 }
 
+def v2_features(cell_size, multiple):
+    """The v2 feature contract (physical grid, any map size; no grid/arena keys): 5 channels, the
+    source channel in inverse form with min_distance half a cell."""
+    return {
+        "cell_size": float(cell_size),
+        "multiple": int(multiple),
+        "cells": "nominal cell size cell_size: a map W x H m gets round(W/cell_size) x "
+                 "round(H/cell_size) cells over the whole map (at least 1 each way), cell-centred, "
+                 "row 0 at y = 0; the input is padded with zeros in every channel up to the next "
+                 "multiple of `multiple`, on the high side (extra columns at the right, extra rows "
+                 "at the top)",
+        "channels": [
+            dict(DEFAULT_FEATURES["channels"][0]),
+            dict(DEFAULT_FEATURES["channels"][1]),
+            {"name": "wind_u", "unit": "m/s"},
+            {"name": "wind_v", "unit": "m/s"},
+            {"name": "source_distance", "unit": "1/m", "form": "inverse",
+             "min_distance": float(cell_size) / 2},
+        ],
+    }
+
+
+def is_v2(header):
+    """A v2 model: its features give a cell size (a physical grid) instead of a grid and arena."""
+    return "cell_size" in header.get("features", {})
+
+
 DEFAULT_OUTPUTS = [
     {"name": "mean", "unit": "concentration (dataset units)", "scale": 1.0},
     {"name": "std", "unit": "concentration (dataset units)", "scale": 1.0},

@@ -4,6 +4,13 @@ DIR/manifest.json lists `shards` (each with `name`, else `map_index`); DIR/shard
 inputs.npy float32 [n,3,64,64], targets.npy float32 [n,2,64,64], sources.npy float32 [n,2] and
 map_ids.npy int [n]. Arrays stay on disk (numpy mmap_mode='r'); a batch copies only its rows.
 
+v2 datasets (`plumekit dataset generate --feature-cell C`; feature_cell() finds C in the manifest)
+hold 5 input channels (region, signed distance, wind u, wind v, Euclidean source distance) on each
+map's own physical grid, round(W / C) x round(H / C) cells, so the shapes differ from shard to
+shard (one shard, one map). v2_input() turns a v2 sample into what a v2 network reads: channel 4
+as 1 / max(distance, C / 2), zero-padded on the high side up to a multiple of 2 ** levels.
+map_ranges() reads the maps' files for a model header's `trained_on`.
+
 The C++ reader (dataset/dataset_reader.hpp) is the format's reference: `python3 shards.py DIR INDEX`
 prints what this reader loads for one sample in the fields of `plumekit dataset show --json`, and
 tests/surrogate/train_smoke_test.cpp checks that the two agree.
@@ -25,7 +32,7 @@ class Shard:
         self.sources = load("sources.npy")
         self.map_ids = np.asarray(load("map_ids.npy")).astype(np.int64)
         n = self.inputs.shape[0]
-        if (self.inputs.ndim != 4 or self.inputs.shape[1] != 3 or self.targets.shape[0] != n
+        if (self.inputs.ndim != 4 or self.inputs.shape[1] not in (3, 5) or self.targets.shape[0] != n
                 or self.targets.shape[1] != 2 or self.targets.shape[2:] != self.inputs.shape[2:]
                 or self.map_ids.shape != (n,)):
             raise ValueError(f"{directory}: inconsistent shard shapes {self.inputs.shape}, "
@@ -64,6 +71,110 @@ def batch(shards, rows):
     x = np.stack([shards[s].inputs[r] for s, r in rows]).astype(np.float32)
     y = np.stack([shards[s].targets[r] for s, r in rows]).astype(np.float32)
     return x, y
+
+
+V2_CHANNELS = 5
+SOURCE_CHANNEL = 4  # v2: the Euclidean distance to the source, in metres
+
+
+def feature_cell(directory, manifest=None):
+    """The v2 feature cell size in metres, or 0 for a v1 dataset (the key absent or 0). Looked up in
+    manifest.json's generator (generator.dataset.feature_cell or generator.feature_cell), then
+    parameters.json (the same two places), then manifest.json's contract.grid.cell."""
+    if manifest is None:
+        with open(os.path.join(directory, "manifest.json")) as f:
+            manifest = json.load(f)
+    candidates = [manifest.get("generator")]
+    params = os.path.join(directory, "parameters.json")
+    if os.path.exists(params):
+        with open(params) as f:
+            candidates.append(json.load(f))
+    for c in candidates:
+        if not isinstance(c, dict):
+            continue
+        for where in (c.get("dataset"), c):
+            if isinstance(where, dict) and isinstance(where.get("feature_cell"), (int, float)):
+                if where["feature_cell"] > 0:
+                    return float(where["feature_cell"])
+    grid = (manifest.get("contract") or {}).get("grid") or {}
+    if isinstance(grid.get("cell"), (int, float)) and grid["cell"] > 0:
+        return float(grid["cell"])
+    return 0.0
+
+
+def padded_size(n, multiple):
+    return -(-int(n) // multiple) * multiple
+
+
+def v2_input(x, min_distance, rows, cols):
+    """Network input of v2 samples x [b,5,ny,nx] (dataset units): channel 4 (metres) becomes
+    1 / max(distance, min_distance), then every channel is zero-padded to [b,5,rows,cols] (extra rows
+    at the top, y > H; extra columns at the right)."""
+    x = np.asarray(x, dtype=np.float32)
+    out = np.zeros(x.shape[:2] + (rows, cols), np.float32)
+    out[:, :, :x.shape[2], :x.shape[3]] = x
+    d = out[:, SOURCE_CHANNEL, :x.shape[2], :x.shape[3]]
+    out[:, SOURCE_CHANNEL, :x.shape[2], :x.shape[3]] = 1.0 / np.maximum(d, np.float32(min_distance))
+    return out
+
+
+def map_file(directory, manifest, map_index):
+    """Path of map `map_index`'s file: the manifest's shard entry's `map`, else maps/map-NNNNN.json."""
+    for s in manifest.get("shards", []):
+        if s.get("map_index") == map_index and s.get("map"):
+            return os.path.join(directory, s["map"])
+    return os.path.join(directory, "maps", "map-%05d.json" % map_index)
+
+
+def _opening_wall(opening, width, height, origin, tol=1e-6):
+    """left/right/bottom/top for a plumekit-map/2 opening on an arena wall (as core's
+    Map::wall_of), None for one on an obstacle's edge (a window or vent)."""
+    (x0, y0), (x1, y1) = opening["from"], opening["to"]
+    x0, x1, y0, y1 = x0 - origin[0], x1 - origin[0], y0 - origin[1], y1 - origin[1]
+    if abs(x0 - x1) <= tol:
+        return "left" if abs(x0) <= tol else "right" if abs(x0 - width) <= tol else None
+    return "bottom" if abs(y0) <= tol else "top" if abs(y0 - height) <= tol else None
+
+
+def map_summary(path):
+    """width, height, inlets [(speed, wall or None)], opening count of a plumekit-map/1 or /2 file."""
+    with open(path) as f:
+        m = json.load(f)
+    width, height = (float(v) for v in m["size"])
+    if "openings" in m:  # plumekit-map/2
+        origin = (m.get("frame") or {}).get("origin", [0.0, 0.0])
+        inlets = [(float(o["speed"]), _opening_wall(o, width, height, origin))
+                  for o in m["openings"] if o.get("kind") == "inlet"]
+        count = len(m["openings"])
+    else:  # plumekit-map/1: one inlet and one outlet, each on a wall
+        inlets = [(float(m["inlet"]["speed"]), m["inlet"]["side"])]
+        count = 2
+    return {"width": width, "height": height, "inlets": inlets, "openings": count}
+
+
+def map_ranges(directory, manifest, map_ids):
+    """A model header's `trained_on` (surrogate/README.md) over the maps map_ids: map_width_m,
+    map_height_m, inlet_speed_m_s, openings as [lo, hi], inlet_walls (sorted; an inlet not on an
+    arena wall, a window on an obstacle's edge, counts as "interior"). None when the dataset holds no map files (the synthetic smoke datasets)."""
+    maps = []
+    for m in sorted(set(int(i) for i in map_ids)):
+        path = map_file(directory, manifest, m)
+        if not os.path.exists(path):
+            return None
+        maps.append(map_summary(path))
+    if not maps:
+        return None
+    span = lambda v: [min(v), max(v)]  # noqa: E731
+    speeds = [s for m in maps for s, _ in m["inlets"]]
+    out = {"map_width_m": span([m["width"] for m in maps]),
+           "map_height_m": span([m["height"] for m in maps])}
+    if speeds:
+        out["inlet_speed_m_s"] = span(speeds)
+    out["openings"] = span([m["openings"] for m in maps])
+    walls = sorted({w or "interior" for m in maps for _, w in m["inlets"]})
+    if walls:
+        out["inlet_walls"] = walls
+    return out
 
 
 def sample(directory, index):

@@ -32,6 +32,18 @@ Each process takes every WORLD_SIZE-th sample of each batch (--batch stays the w
 batches, the epochs and the learning rate are those of one process), DistributedDataParallel
 averages the gradients (NCCL on GPUs, gloo on CPUs), and rank 0 alone writes the log, the
 checkpoints and the model. The result is one process's, up to the order of float sums.
+
+v2 datasets (manifest generator.dataset.feature_cell > 0: 5 input channels on each map's own
+physical grid, shapes differing from map to map) train a 5-input network the same way, except:
+channel 4 (Euclidean source distance, m) is fed as 1 / max(distance, cell / 2); every sample is
+zero-padded (all channels) on the high side up to a multiple of 2 ** len(filters) (16); samples are
+bucketed by padded shape, so each batch has one shape, and a batch holds at most --batch x 64 x 64
+cells (--batch-cells), at least one sample; the loss is the MSE of target / s over the map's cells
+only (the padding is masked out). The log gains val_rmse_over_peak (validation RMSE of the mean
+over the average of each sample's peak mean) as its last column. The model file's header carries
+the v2 `features` (cell_size, multiple, 5 channels) and, for v1 and v2 alike, `trained_on` from
+the training maps' files (when the dataset has them). The golden pair is padded inputs of one
+padded shape, [k,5,H,W], and the network's scaled output over the whole padded grid.
 """
 import argparse
 import csv
@@ -49,7 +61,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: E402
 from model_file import (DEFAULT_FEATURES, DEFAULT_OUTPUTS, provenance_path, read_model,  # noqa: E402
                         write_model)
-from shards import batch, open_dataset, split_by_map  # noqa: E402
+from model_file import is_v2, v2_features  # noqa: E402
+from shards import (batch, feature_cell, map_ranges, open_dataset, padded_size,  # noqa: E402
+                    split_by_map, v2_input)
 
 
 def parse_args(argv=None):
@@ -83,7 +97,14 @@ def parse_args(argv=None):
                     help="copy the whole dataset into the device's memory once instead of reading\n"
                          "each batch from the memory maps (auto: on CUDA only; the batches and\n"
                          "the results are the same, only faster)")
-    return ap.parse_args(argv)
+    # Hidden: the architecture (tests train tiny networks) and the v2 batch size in cells.
+    ap.add_argument("--filters", default="8,16,32,32", help=argparse.SUPPRESS)
+    ap.add_argument("--kernel", type=int, default=5, help=argparse.SUPPRESS)
+    ap.add_argument("--convs", type=int, default=3, help=argparse.SUPPRESS)
+    ap.add_argument("--batch-cells", type=int, default=0, help=argparse.SUPPRESS)
+    args = ap.parse_args(argv)
+    args.filters = tuple(int(f) for f in str(args.filters).split(","))
+    return args
 
 
 class Batches:
@@ -106,6 +127,131 @@ class Batches:
             return torch.from_numpy(x).to(self.device), torch.from_numpy(y).to(self.device)
         index = torch.as_tensor([int(self.offsets[s]) + int(r) for s, r in rows], device=self.device)
         return self.x[index], self.y[index]
+
+
+def available_memory():
+    """Bytes of memory available (MemAvailable), or 0 when unknown."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return 0
+
+
+def masked_squares(p, y, mask):
+    """(p - y)^2 on the map's cells, 0 on the padding (whatever p and y hold there, NaN included)."""
+    d = torch.where(mask, p - y, torch.zeros((), dtype=p.dtype, device=p.device))
+    return d * d
+
+
+class V2Batches:
+    """v2 samples (each map on its own grid) as padded device tensors, bucketed by padded shape.
+
+    A sample of shard s, [5, ny, nx], becomes the network input v2_input() makes, [5, H, W] with H, W
+    the next multiples of `multiple`; its targets are zero-padded alike, and a mask [1, H, W] is
+    True on the map's ny x nx cells. One batch holds samples of one padded shape only, at most
+    max(1, cells // (H * W)) of them. With preload every shard is padded once and kept in the
+    device's memory; otherwise each batch reads its rows from the memory maps."""
+
+    def __init__(self, shards, device, preload, cell, multiple, cells):
+        self.shards, self.device = shards, device
+        self.min_distance = cell / 2
+        self.raw = [tuple(int(v) for v in s.inputs.shape[2:]) for s in shards]
+        self.shapes = [(padded_size(r, multiple), padded_size(c, multiple)) for r, c in self.raw]
+        self.cap = {hw: max(1, cells // (hw[0] * hw[1])) for hw in self.shapes}
+        self.x = self.y = None
+        if preload:
+            self.x = [torch.from_numpy(self._inputs(si, slice(None))).to(device)
+                      for si in range(len(shards))]
+            self.y = [torch.from_numpy(self._targets(si, slice(None))).to(device)
+                      for si in range(len(shards))]
+
+    @staticmethod
+    def bytes_needed(shards, multiple):
+        return sum(4 * s.inputs.shape[0] * (s.inputs.shape[1] + s.targets.shape[1])
+                   * padded_size(s.inputs.shape[2], multiple) * padded_size(s.inputs.shape[3], multiple)
+                   for s in shards)
+
+    def _inputs(self, si, rows):
+        return v2_input(self.shards[si].inputs[rows], self.min_distance, *self.shapes[si])
+
+    def _targets(self, si, rows):
+        t = np.asarray(self.shards[si].targets[rows], dtype=np.float32)
+        out = np.zeros(t.shape[:2] + self.shapes[si], np.float32)
+        out[:, :, :t.shape[2], :t.shape[3]] = t
+        return out
+
+    def shape(self, row):
+        return self.shapes[row[0]]
+
+    def numpy_inputs(self, rows):
+        """The padded network inputs of rows (one padded shape), as a numpy array."""
+        return np.concatenate([self._inputs(s, [r]) for s, r in rows])
+
+    def __call__(self, rows):
+        """x [b,5,H,W], y [b,2,H,W] (dataset units, zero padding) and mask [b,1,H,W] of rows, which
+        share one padded shape."""
+        h, w = self.shape(rows[0])
+        if any(self.shape(r) != (h, w) for r in rows):
+            raise ValueError("a v2 batch mixes padded shapes")
+        if self.x is None:
+            x = torch.from_numpy(self.numpy_inputs(rows)).to(self.device)
+            y = torch.from_numpy(np.concatenate([self._targets(s, [r]) for s, r in rows])).to(self.device)
+        else:
+            x = torch.stack([self.x[s][r] for s, r in rows])
+            y = torch.stack([self.y[s][r] for s, r in rows])
+        mask = torch.zeros((len(rows), 1, h, w), dtype=torch.bool)
+        for i, (s, _) in enumerate(rows):
+            ny, nx = self.raw[s]
+            mask[i, :, :ny, :nx] = True
+        return x, y, mask.to(self.device)
+
+    def batches(self, rows):
+        """Lists of rows, one padded shape each: walking `rows` in order, a shape's batch is given
+        out when it holds its cap of samples; then the unfilled ones, in the order their shapes
+        first appeared. Each batch's rows are sorted (shard, row). The count depends only on how
+        many rows each shape has, so every epoch has the same number of steps."""
+        out, open_ = [], {}
+        for row in rows:
+            hw = self.shape(row)
+            pending = open_.setdefault(hw, [])
+            pending.append(row)
+            if len(pending) == self.cap[hw]:
+                out.append(sorted(pending))
+                open_[hw] = []
+        out.extend(sorted(p) for p in open_.values() if p)
+        return out
+
+    def loss(self, model, rows, mine, weight, world, scale):
+        """This rank's part of the batch's loss: squared error of the scaled targets summed over
+        its rows' map cells (both channels), over the whole batch's map cells x 2."""
+        x, y, mask = self(mine)
+        total = 2 * sum(self.raw[s][0] * self.raw[s][1] for s, _ in rows)
+        return masked_squares(model(x), y / scale, mask).sum() * (weight * world / total)
+
+
+def evaluate_v2(model, batches, rows, scale):
+    """(loss on scaled targets over map cells, RMSE of the mean channel over map cells in dataset
+    units, that RMSE over the average of each sample's peak mean)."""
+    model.eval()
+    sq, sq_mean, cells, peaks = 0.0, 0.0, 0, []
+    with torch.no_grad():
+        for group in batches.batches(rows):
+            x, y, mask = batches(group)
+            e = masked_squares(model(x), y / scale, mask)
+            sq += e.sum().item()
+            sq_mean += e[:, 0].sum().item()
+            cells += int(mask.sum().item())
+            peaks += torch.where(mask[:, 0], y[:, 0], torch.full_like(y[:, 0], -math.inf)).amax(
+                dim=(1, 2)).tolist()
+    if not cells:
+        return 0.0, 0.0, 0.0
+    rmse = math.sqrt(sq_mean / cells) * scale
+    peak = float(np.mean(peaks))  # y is in dataset units
+    return sq / (2 * cells), rmse, rmse / peak if peak > 0 else 0.0
 
 
 class Team:
@@ -203,6 +349,24 @@ def golden_pair(model, shards, rows, count, tries=64):
     return x[best], y
 
 
+def golden_pair_v2(model, batches, rows, count, tries=64):
+    """golden_pair() for v2: the candidates are the first `tries` rows of rows[0]'s padded shape, so
+    the pair is one array [k,5,H,W] of padded network inputs; margins leave out exact ties (the
+    zero padding is full of them, and every engine breaks them alike)."""
+    hw = batches.shape(rows[0])
+    rows = [r for r in rows if batches.shape(r) == hw][:tries]
+    x = batches.numpy_inputs(rows)
+    margins = pool_margin(model, x, ignore_exact_ties=True)
+    best = np.argsort(-margins)[:count]
+    with torch.no_grad():
+        y = model(torch.from_numpy(x[best])).numpy()
+    print("golden pair: samples (shard, row) %s, padded %dx%d, pool margins %s (exact ties of "
+          "identical computations, as in the padding, left out)" % (
+        [tuple(int(v) for v in rows[i]) for i in best], hw[0], hw[1],
+        ", ".join("%.2g" % margins[i] for i in best)))
+    return x[best], y
+
+
 def main(argv=None):
     args = parse_args(argv)
     torch.set_num_threads(max(1, args.threads))
@@ -211,15 +375,36 @@ def main(argv=None):
     say = print if team.lead else (lambda *a, **k: None)
     os.makedirs(args.work, exist_ok=True)
     manifest, shards = open_dataset(args.data)
+    channels = {int(s.inputs.shape[1]) for s in shards}
+    cell = feature_cell(args.data, manifest)
+    v2 = cell > 0 or channels == {5}
+    if channels != {5 if v2 else 3}:
+        sys.exit(f"train.py: {args.data}: input channels {sorted(channels)}, "
+                 f"a {'v2' if v2 else 'v1'} dataset has {5 if v2 else 3}")
+    if v2 and cell <= 0:
+        sys.exit(f"train.py: {args.data}: 5-channel inputs but no generator.dataset.feature_cell "
+                 "in manifest.json")
+    in_channels, multiple = (5 if v2 else 3), 2 ** len(args.filters)
     train_rows, val_rows, val_maps = split_by_map(shards, args.val_fraction, args.seed)
     if not train_rows or not val_rows:
         sys.exit("train.py: need at least two maps (one for validation)")
+    # The header's trained_on: what the training maps' files say (none without map files).
+    train_maps = sorted({int(m) for s in shards for m in np.unique(s.map_ids)} - set(val_maps))
+    try:
+        trained_on = map_ranges(args.data, manifest, train_maps)
+    except (OSError, ValueError, KeyError, TypeError) as e:
+        sys.exit(f"train.py: {args.data}: a map file cannot be read for trained_on: {e!r}")
     init_model = init_header = None
     if args.init:
         try:
             init_model, init_header = read_model(args.init)
         except (OSError, ValueError) as e:
             sys.exit(f"train.py: --init: {e}")
+        if is_v2(init_header) != v2 or (
+                v2 and abs(float(init_header["features"]["cell_size"]) - cell) > 1e-9 * cell):
+            sys.exit(f"train.py: --init {args.init}: its features ("
+                     f"{'cell ' + str(init_header['features'].get('cell_size')) if is_v2(init_header) else 'v1 grid'}"
+                     f") are not this dataset's ({'cell ' + str(cell) if v2 else 'v1 grid'})")
     scale = args.target_scale
     if scale <= 0 and init_header is not None:  # keep the start's units
         scale = float(init_header["outputs"][0]["scale"])
@@ -232,11 +417,22 @@ def main(argv=None):
                 scale = max(scale, float(np.max(s.targets[np.flatnonzero(keep), 0])))
         scale = scale if scale > 0 else 1.0
 
-    preload = args.preload == "yes" or (args.preload == "auto" and device.type == "cuda")
-    batches = Batches(shards, device, preload)
+    if v2:  # on the CPU too when the padded dataset takes at most a quarter of the free memory
+        need = V2Batches.bytes_needed(shards, multiple)
+        preload = args.preload == "yes" or (args.preload == "auto" and (
+            device.type == "cuda" or need <= available_memory() // 4))
+        batches = V2Batches(shards, device, preload, cell, multiple,
+                            args.batch_cells or args.batch * 64 * 64)
+        validate = lambda m: evaluate_v2(m, batches, val_rows, scale)  # noqa: E731
+        say(f"v2 dataset: cell {cell:g} m, {len(set(batches.shapes))} padded shapes "
+            f"(multiple {multiple}), {'preloaded, %.0f MB' % (need / 2**20) if preload else 'memory-mapped'}")
+    else:
+        preload = args.preload == "yes" or (args.preload == "auto" and device.type == "cuda")
+        batches = Batches(shards, device, preload)
+        validate = lambda m: evaluate(m, batches, val_rows, scale, args.batch)  # noqa: E731
 
     torch.manual_seed(args.seed)
-    model = PlumeUNet().to(device)
+    model = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs).to(device)
     if init_model is not None:
         try:
             model.load_state_dict(init_model.state_dict())
@@ -265,12 +461,12 @@ def main(argv=None):
     start_row = None
     if init_model is not None and not resuming and fresh:
         # Epoch 0 is the start itself: a fine-tuning that only hurts returns the start.
-        val_loss, val_rmse = evaluate(model, batches, val_rows, scale, args.batch)
-        val_loss, val_rmse = team.share([val_loss, val_rmse])
+        val = team.share(list(validate(model)))
+        val_loss, val_rmse = val[:2]
         state["best_val"] = val_loss
         if team.lead:
             torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
-        start_row = [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"]
+        start_row = [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"] + [f"{v:.6g}" for v in val[2:]]
         say(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
     say(f"{parameter_count(model)} parameters on {device}"
         f"{f' x {team.world} processes' if team.world > 1 else ''}; {len(train_rows)} training and "
@@ -282,7 +478,8 @@ def main(argv=None):
     with open(log_path, "a", newline="") as log_file:
         log = csv.writer(log_file)
         if new_log:
-            log.writerow(["epoch", "step", "train_loss", "val_loss", "val_rmse_mean", "seconds"])
+            log.writerow(["epoch", "step", "train_loss", "val_loss", "val_rmse_mean", "seconds"]
+                         + (["val_rmse_over_peak"] if v2 else []))
         if start_row:
             log.writerow(start_row)
         def save_checkpoint():
@@ -294,7 +491,10 @@ def main(argv=None):
 
         started = last_save = time.time()
         out_of_time = False
-        steps_per_epoch = (len(train_rows) + args.batch - 1) // args.batch
+        if v2:
+            steps_per_epoch = len(batches.batches(train_rows))
+        else:
+            steps_per_epoch = (len(train_rows) + args.batch - 1) // args.batch
         while state["epoch"] < args.epochs and state["stale"] < args.patience and not out_of_time:
             if args.max_steps and state["step"] >= args.max_steps:
                 break
@@ -302,6 +502,8 @@ def main(argv=None):
             model.train()
             # Seeded by epoch, so a resumed run draws the same batches as an uninterrupted one.
             order = np.random.default_rng([args.seed, state["epoch"]]).permutation(len(train_rows))
+            if v2:
+                epoch_batches = batches.batches([train_rows[j] for j in order])
             while state["batch"] < steps_per_epoch:
                 if args.max_steps and state["step"] >= args.max_steps:
                     break
@@ -309,14 +511,20 @@ def main(argv=None):
                         [time.time() - started > 60.0 * args.max_minutes])[0]:
                     out_of_time = True
                     break
-                i = state["batch"] * args.batch
-                rows = sorted(train_rows[j] for j in order[i:i + args.batch])
+                if v2:
+                    rows = epoch_batches[state["batch"]]
+                else:
+                    i = state["batch"] * args.batch
+                    rows = sorted(train_rows[j] for j in order[i:i + args.batch])
                 mine, weight = team.my_rows(rows)
-                x, y = batches(mine)
-                y = y / scale
+                if not v2:
+                    x, y = batches(mine)
+                    y = y / scale
                 for group in opt.param_groups:
                     group["lr"] = learning_rate(args, state["step"], steps_per_epoch)
-                if team.world == 1:
+                if v2:
+                    loss = batches.loss(model, rows, mine, weight, team.world, scale)
+                elif team.world == 1:
                     loss = torch.mean((model(x) - y) ** 2)
                 else:  # this rank's part of the whole batch's mean; DDP averages over ranks
                     per_sample = torch.mean((model(x) - y) ** 2, dim=(1, 2, 3))
@@ -334,19 +542,21 @@ def main(argv=None):
             if state["batch"] < steps_per_epoch:  # stopped inside the epoch (time or steps)
                 save_checkpoint()
                 if team.lead and not os.path.exists(best_path):  # no finished epoch: keep these
-                    val_loss, _ = evaluate(core, batches, val_rows, scale, args.batch)
+                    val_loss = validate(core)[0]
                     torch.save({"model": core.state_dict(), "state": dict(state, best_val=val_loss)},
                                best_path)
                 break
             state["epoch"] += 1
-            val_loss, val_rmse = team.share(list(evaluate(core, batches, val_rows, scale, args.batch)))
+            val = team.share(list(validate(core)))
+            val_loss, val_rmse = val[:2]
             train_loss = state["running"] / max(state["seen"], 1)
             state["batch"], state["running"], state["seen"] = 0, 0.0, 0
             log.writerow([state["epoch"], state["step"], f"{train_loss:.6g}", f"{val_loss:.6g}",
-                          f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"])
+                          f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"] + [f"{v:.6g}" for v in val[2:]])
             log_file.flush()
             say(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
-                  f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
+                  f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g}"
+                  f"{', %.2f %% of the average peak' % (100 * val[2]) if v2 else ''})", flush=True)
             if val_loss < state["best_val"]:
                 state["best_val"], state["stale"] = val_loss, 0
                 if team.lead:
@@ -361,11 +571,14 @@ def main(argv=None):
     if not team.lead:
         return
     best = torch.load(best_path, map_location="cpu")
-    final = PlumeUNet()
+    final = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs)
     final.load_state_dict(best["model"])
     final.eval()
     outputs = [dict(o, scale=scale) for o in DEFAULT_OUTPUTS]
-    features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
+    if v2:
+        features = v2_features(cell, multiple)
+    else:
+        features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
     training = {"dataset": provenance_path(args.data), "dataset_format": manifest.get("format"),
                 "train_samples": len(train_rows), "val_samples": len(val_rows),
                 "val_maps": val_maps, "epochs": best["state"]["epoch"],
@@ -373,11 +586,19 @@ def main(argv=None):
                 "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
                 "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay, "batch": args.batch,
                 "seed": args.seed}
+    if v2:
+        training.update(loss="MSE of target/scale over both channels, on map cells only (padding "
+                        "masked)", batch_cells=args.batch_cells or args.batch * 64 * 64,
+                        feature_cell=cell)
     if args.init:
         training["init"] = {"model": os.path.basename(args.init),
                             "sha256": hashlib.sha256(open(args.init, "rb").read()).hexdigest()}
-    size = write_model(args.out, final, features, outputs, training)
-    x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
+    size = write_model(args.out, final, features, outputs, training, trained_on)
+    if v2:
+        x, y = golden_pair_v2(final, V2Batches(shards, torch.device("cpu"), False, cell, multiple, 1),
+                              val_rows + train_rows, args.golden)
+    else:
+        x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
     y = y * scale
     stem = os.path.splitext(args.out)[0]
     np.save(stem + "_input.npy", x)

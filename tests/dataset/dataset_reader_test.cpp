@@ -309,7 +309,7 @@ TEST_F(DatasetReader, ReadSampleReturnsTheShardsRow) {
   EXPECT_EQ(s.shard.name, "shard-00000");
   EXPECT_EQ(s.row, 1);
   const Manifest m = read_manifest(data / "manifest.json");
-  const ShardArrays a = read_shard(data, m.shards.at(0));
+  const ShardArrays a = read_shard(data, m.shards.at(0), 3);
   EXPECT_EQ(s.source.x, a.sources[2]);
   EXPECT_EQ(s.source.y, a.sources[3]);
   ASSERT_EQ(s.inputs.size(), 3u);
