@@ -1,5 +1,6 @@
 #include "dataset/manifest.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -36,8 +37,9 @@ double drawn_inlet_speed(const DatasetOptions& o, int index, int redraw) {
   std::mt19937_64 rng(
       derive_seed(o.seed, index, static_cast<std::uint64_t>(redraw), Stream::InletSpeed));
   const double unit = static_cast<double>(rng() >> 11) * 0x1.0p-53;
-  return std::round((o.inlet_speed_lo + (o.inlet_speed_hi - o.inlet_speed_lo) * unit) * 100.0) /
-         100.0;
+  const double u =
+      std::round((o.inlet_speed_lo + (o.inlet_speed_hi - o.inlet_speed_lo) * unit) * 100.0) / 100.0;
+  return std::clamp(u, o.inlet_speed_lo, o.inlet_speed_hi);  // bounds that are not whole cm/s
 }
 
 nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
@@ -152,7 +154,7 @@ nlohmann::ordered_json contract_json(double feature_cell) {
   if (physical) {
     channels.push_back(
         "2: the map's steady wind (wind/map-NNNNN/), u in m/s at the cell centre, bilinear "
-        "between the flow's cell centres, 0 inside obstacles");
+        "between the flow's cell centres, 0 in the flow's solid cells");
     channels.push_back("3: the same wind's v in m/s");
     channels.push_back(
         "4: Euclidean distance in metres from the cell centre to the source (not its inverse)");

@@ -1,6 +1,7 @@
 // The CNN surrogate (surrogate/): plumes predicted from a map and a source.
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
@@ -22,16 +23,22 @@ std::filesystem::path cnn_path(const py::object& cnn) {
 }
 
 // The CLI's errors: a model that is not there, a model that does not fit the map, named.
+// A model that takes the wind (a physical-grid model) gets the map's, solved as `plumekit
+// predict` does (surrogate::model_wind), or read from `wind` (a `plumekit flow` folder).
 std::unique_ptr<surrogate::PlumeNetwork> load_surrogate(const Map& map,
                                                         const std::filesystem::path& cnn,
-                                                        int threads) {
+                                                        int threads,
+                                                        const std::filesystem::path& wind = {}) {
   std::error_code ec;
   if (!std::filesystem::exists(cnn, ec)) throw InputError(cnn.string() + ": no such model file");
   surrogate::EngineOptions engine;
   engine.threads = threads;
   auto network = std::make_shared<const surrogate::Network>(surrogate::Network::load(cnn, engine));
   try {
-    return std::make_unique<surrogate::PlumeNetwork>(network, map);
+    std::optional<cfd::WindField> field;
+    if (surrogate::PlumeNetwork::takes_wind(*network))
+      field = surrogate::model_wind(map, surrogate::kModelWindCell, wind);
+    return std::make_unique<surrogate::PlumeNetwork>(network, map, field ? &*field : nullptr);
   } catch (const InputError& e) {
     throw InputError(cnn.string() + ": " + e.what());
   }
@@ -52,12 +59,21 @@ void bind_surrogate(py::module_& m) {
       m, "Surrogate",
       "The CNN surrogate on one map (`plumekit predict`): the network is loaded and the map's "
       "features built once, then each predict() is one forward pass.")
-      .def(py::init([](const Map& map, const py::object& cnn, int threads) {
-             return load_surrogate(map, cnn_path(cnn), threads);
+      .def(py::init([](const Map& map, const py::object& cnn, int threads, const py::object& wind) {
+             const std::filesystem::path w =
+                 wind.is_none()
+                     ? std::filesystem::path()
+                     : std::filesystem::path(py::str(py::module_::import("os").attr("fspath")(wind))
+                                                 .cast<std::string>());
+             py::gil_scoped_release release;
+             return load_surrogate(map, cnn_path(cnn), threads, w);
            }),
            py::arg("map"), py::arg("cnn") = py::none(), py::arg("threads") = 1,
+           py::arg("wind") = py::none(),
            "`cnn`: a plumekit-cnn model file (default: the shipped model); `threads`: the "
-           "engine's threads (0: one per core).")
+           "engine's threads (0: one per core); `wind`: for a model that takes the wind, a "
+           "`plumekit flow` folder of this map (default: solved here, as `plumekit predict` "
+           "does).")
       .def(
           "predict",
           [](const surrogate::PlumeNetwork& net, const py::handle& source) {
@@ -70,8 +86,9 @@ void bind_surrogate(py::module_& m) {
             return prediction_dict(p, net.network());
           },
           py::arg("source"),
-          "The plume of a source (map frame): a dict with 'mean' and 'std' float32 [64, 64] "
-          "('std' None for a mean-only model) and the mean's 'unit'.")
+          "The plume of a source (map frame): a dict with 'mean' and 'std' float32 [rows, cols] "
+          "on the model's grid over the map ([64, 64] for a thesis model; 'std' None for a "
+          "mean-only model) and the mean's 'unit'.")
       .def_property_readonly(
           "warnings", &surrogate::PlumeNetwork::warnings,
           "Where the map lies outside what the model was trained on (its file's trained_on), "
@@ -81,15 +98,18 @@ void bind_surrogate(py::module_& m) {
           [](const surrogate::PlumeNetwork& net, const py::handle& source) {
             const Vec2 s = net.map().from_frame(to_point(source, "source"));
             const std::vector<float> x = net.features(s);
-            const GridShape& g = net.grid();
-            py::array_t<float> out({3, g.ny, g.nx});
+            const py::ssize_t c =
+                static_cast<py::ssize_t>(x.size()) / (net.input_rows() * net.input_cols());
+            py::array_t<float> out(
+                {c, py::ssize_t{net.input_rows()}, py::ssize_t{net.input_cols()}});
             std::copy(x.begin(), x.end(), out.mutable_data());
             return out;
           },
           py::arg("source"),
-          "The network's input for a source (map frame): float32 [3, 64, 64], the channels of "
-          "the model's feature contract (region, signed distance, the source channel in the "
-          "model's form), row 0 at y = 0.");
+          "The network's input for a source (map frame): float32 [channels, rows, cols], the "
+          "channels of the model's feature contract (region, signed distance, [wind u, v,] the "
+          "source channel in the model's form), row 0 at y = 0; [3, 64, 64] for a thesis model, "
+          "the map's grid padded with zeros to the network's multiple for a physical-grid one.");
   m.def(
       "predict",
       [](const Map& map, const py::handle& source, const py::object& cnn) {

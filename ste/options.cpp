@@ -2,6 +2,7 @@
 // names are the options' dotted paths under "ste."; the filament plume of the
 // simulated world and the physics model's advection-diffusion check their own
 // fields ("plume.*", dataset/).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -121,6 +122,16 @@ double SteOptions::source_cell_in_use() const {
       break;
   }
   return 0.0;
+}
+
+double surrogate_source_cell(const Map& map) {
+  const double cell = std::sqrt(map.width * map.height / kSurrogateSources);
+  return std::max(SurrogatePlumeOptions{}.source_cell, std::ceil(cell / 0.05 - 1e-9) * 0.05);
+}
+
+double SteOptions::source_cell_in_use(const Map& map) const {
+  if (model == PlumeModelKind::Surrogate && !source_cell) return surrogate_source_cell(map);
+  return source_cell_in_use();
 }
 
 void SteOptions::validate() const {

@@ -54,7 +54,7 @@ std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& w
       return std::make_unique<GaussianPlume>(map, options.gaussian);
     case PlumeModelKind::Physics: {
       PhysicsPlumeOptions po = options.physics;
-      po.source_cell = options.source_cell_in_use();
+      po.source_cell = options.source_cell_in_use(map);
       return std::make_unique<PhysicsPlume>(map, wind, po);
     }
     case PlumeModelKind::Surrogate:
@@ -62,7 +62,7 @@ std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& w
   }
   SurrogatePlumeOptions so;
   so.model = options.model_path;
-  so.source_cell = options.source_cell_in_use();
+  so.source_cell = options.source_cell_in_use(map);
   so.threads = options.threads;
   so.cache_dir = options.table_cache;
   so.scale_lo = options.physics.scale_lo;
@@ -171,9 +171,10 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
   const bool model = uses_plume_model(options.method.kind);
   if (model && options.model == PlumeModelKind::Physics)
-    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell", kBytesPerSourceCell);
+    check_source_grid(map_, options.source_cell_in_use(map_), "ste.source_cell",
+                      kBytesPerSourceCell);
   if (model && options.model == PlumeModelKind::Surrogate)
-    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
+    check_source_grid(map_, options.source_cell_in_use(map_), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
   if (same_map) {

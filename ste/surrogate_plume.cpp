@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/map_json.hpp"
+#include "core/memory_limit.hpp"
 #include "core/sha256.hpp"
 #include "core/thread_pool.hpp"
 #include "surrogate/network.hpp"
@@ -200,6 +201,12 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   const surrogate::PlumeNetwork plume(network, map, wind);
   grid_ = plume.grid();
   has_spreads_ = plume.has_std();
+  // The table: a mean and a std plume per allowed cell, on the model's grid (a physical-grid
+  // model's grows with the map).
+  check_memory(8.0 * static_cast<double>(cells.size()) * static_cast<double>(grid_.size()),
+               "the surrogate table of " + std::to_string(cells.size()) + " source cells x " +
+                   std::to_string(grid_.size()) + " plume cells",
+               "use a larger ste.source_cell");
   key_ = table_key(map, o.model, candidates_, wind);
   cache_file_ = o.cache_dir.empty()
                     ? fs::path()

@@ -173,12 +173,15 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
       physical ? std::vector<std::string>{"region", "signed_distance", "wind_u", "wind_v",
                                           "source_distance"}
                : std::vector<std::string>{"region", "signed_distance", "source_distance"};
+  if (ch.size() != names.size()) {
+    fail(source, "shape mismatch: features.channels lists " + std::to_string(ch.size()) +
+                     " channels; " +
+                     (physical ? "a physical-grid model's contract has 5" : "the contract has 3"));
+  }
   const std::size_t last = names.size() - 1;
   const std::string last_where = "features.channels[" + std::to_string(last) + "]";
-  f.source_distance_form =
-      ch.size() == names.size() ? get<std::string>(ch[last], "form", source, last_where) : "";
-  if (ch.size() == names.size() && f.source_distance_form != "euclidean" &&
-      f.source_distance_form != "inverse") {
+  f.source_distance_form = get<std::string>(ch[last], "form", source, last_where);
+  if (f.source_distance_form != "euclidean" && f.source_distance_form != "inverse") {
     fail(source, "header: source_distance form \"" + f.source_distance_form +
                      "\" is unknown; this engine builds \"euclidean\" (metres) and \"inverse\" "
                      "(1 / metres)");

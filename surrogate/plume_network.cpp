@@ -123,6 +123,11 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   }
   if (c.has_wind() && !wind)
     throw InputError(who + "the model takes the map's wind as an input; solve it first");
+  if (c.has_wind() && (!same_length(wind->shape().width, map.width) ||
+                       !same_length(wind->shape().height, map.height)))
+    throw InputError(who + "the wind given covers " + fmt(wind->shape().width) + " x " +
+                     fmt(wind->shape().height) + " m, the map is " + fmt(map.width) + " x " +
+                     fmt(map.height) + " m: it is another map's");
   if (c.source_distance_form != "euclidean" && c.source_distance_form != "inverse") {
     throw InputError(who + "source_distance form \"" + c.source_distance_form +
                      "\", this engine builds \"euclidean\" and \"inverse\"");

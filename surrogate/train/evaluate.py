@@ -8,6 +8,14 @@
 dataset of the nine test maps (`plumekit dataset generate --map-dir data/test-maps --seed 0`). Either may
 be left out.
 
+Several datasets (scripts/train-model-v2.sh: --data FAMILIES BUILDINGS --test TEST_BUILDINGS
+TEST_MAPS): --data must name the model's training datasets (header training.datasets) in the same
+order, and each one's own validation maps are scored; held_out then pools them all and
+held_out.datasets holds each one's figures (by folder name). Each --test dataset is scored as one
+alone would be, in test_sets (by folder name; pictures in OUT/NAME/), and all together in
+test_pooled (all samples, and the mean over all maps of each map's mean RMSE / peak). With one
+--data and one --test the result is as it always was (held_out, test_maps).
+
 Figures, per channel (mean, std), in dataset units:
   rmse          per-pixel root mean squared error over every pixel of every sample
   rmse_rel_peak rmse / the average over samples of the sample's peak ground-truth mean
@@ -256,6 +264,8 @@ def markdown(result):
                      f"{100 * d['rel_l2']:.1f} % |")
     if "held_out" in result:
         row("held-out maps", result["held_out"])
+        for name, s in result["held_out"].get("datasets", {}).items():
+            row(f"held-out maps of {name}", s)
     if "test_maps" in result:
         v2 = result.get("features") == "v2"
         row("**test maps**" if v2 else "**nine test maps**", result["test_maps"]["all"])
@@ -264,14 +274,28 @@ def markdown(result):
         lines.append("")
         lines.append(f"Mean over the {'' if v2 else 'nine '}maps of each map's mean RMSE / peak: "
                      f"{100 * result['test_maps']['mean_of_map_rel_rmse']:.2f} %")
+    if "test_sets" in result:
+        for name, t in result["test_sets"].items():
+            row(f"**{name}**", t["all"])
+            for map_name, s in t["per_map"].items():
+                row(map_name, s)
+        row("**all test sets**", result["test_pooled"]["all"])
+        lines.append("")
+        lines.append("Mean over the maps of each map's mean RMSE / peak:")
+        lines.append("")
+        for name, t in result["test_sets"].items():
+            lines.append(f"- {name}: {100 * t['mean_of_map_rel_rmse']:.2f} %")
+        lines.append(f"- all test sets: {100 * result['test_pooled']['mean_of_map_rel_rmse']:.2f} %")
     return "\n".join(lines) + "\n"
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--model", required=True)
-    ap.add_argument("--data", help="the training dataset (its validation maps are scored)")
-    ap.add_argument("--test", help="the test maps' ground-truth dataset")
+    ap.add_argument("--data", nargs="+", metavar="DIR",
+                    help="the training dataset(s) (their validation maps are scored)")
+    ap.add_argument("--test", nargs="+", metavar="DIR",
+                    help="ground-truth dataset(s): the test maps' (several: each scored and pooled)")
     ap.add_argument("--out", help="folder for evaluation.json, evaluation.md and the pictures")
     ap.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     ap.add_argument("--per-sample", action="store_true",
@@ -292,45 +316,141 @@ def main(argv=None):
         return main_v2(args, model, header, scales)
     result = {"model": os.path.basename(args.model), "training": header.get("training", {})}
     say = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
-    if args.data:
-        val_maps = header.get("training", {}).get("val_maps")
-        if not val_maps:
-            sys.exit(f"evaluate.py: {args.model}: header has no training.val_maps")
-        x, y, _ = load_rows(args.data, set(val_maps))
+
+    def held_out(directory, val_maps):
+        x, y, _ = load_rows(directory, set(val_maps))
         pred = predict(model, scales, x)
-        result["held_out"] = dict(scores(pred, y), maps=val_maps)
+        entry = dict(scores(pred, y), maps=val_maps)
         if args.per_sample:
-            result["held_out"]["per_sample"] = per_sample(pred, y, *_where(args.data, set(val_maps)))
-        say("held-out maps: mean RMSE %.3f (%.2f %% of peak)" % (
-            result["held_out"]["mean"]["rmse"], 100 * result["held_out"]["mean"]["rmse_rel_peak"]))
-    if args.test:
-        x, y, ids = load_rows(args.test)
+            entry["per_sample"] = per_sample(pred, y, *_where(directory, set(val_maps)))
+        return entry, pred, y
+
+    def test_set(directory, picture_dir):
+        x, y, ids = load_rows(directory)
         pred = predict(model, scales, x)
 
-        manifest_dir = os.path.join(args.test, "maps")
+        manifest_dir = os.path.join(directory, "maps")
         per_map = {}
         for m in sorted(set(int(i) for i in ids)):
             with open(os.path.join(manifest_dir, "map-%05d.json" % m)) as f:
                 name = json.load(f).get("name", "map-%05d" % m)
             sel = np.flatnonzero(ids == m)
             per_map[name] = scores(pred[sel], y[sel])
-            sources = [tuple(v) for v in _sources(args.test, m)]
-            if args.out:
-                picture(os.path.join(args.out, f"{name}.png"), x[sel], y[sel], pred[sel],
+            sources = [tuple(v) for v in _sources(directory, m)]
+            if picture_dir:
+                picture(os.path.join(picture_dir, f"{name}.png"), x[sel], y[sel], pred[sel],
                         [sources[i] for i in range(len(sel))], picks=[0, 1, 2][:len(sel)])
             say("%-22s mean RMSE %.2f = %.2f %% of its average peak %.1f" % (
                 name, per_map[name]["mean"]["rmse"], 100 * per_map[name]["mean"]["rmse_rel_peak"],
                 per_map[name]["average_peak_mean"]))
-        result["test_maps"] = {
+        entry = {
             "all": scores(pred, y), "per_map": per_map,
             "mean_of_map_rel_rmse": float(np.mean(
                 [s["mean"]["rmse_rel_peak"] for s in per_map.values()]))}
         if args.per_sample:
-            result["test_maps"]["per_sample"] = per_sample(pred, y, *_where(args.test, None))
-        say("nine test maps: mean RMSE %.3f = %.2f %% of the average peak" % (
-            result["test_maps"]["all"]["mean"]["rmse"],
-            100 * result["test_maps"]["all"]["mean"]["rmse_rel_peak"]))
+            entry["per_sample"] = per_sample(pred, y, *_where(directory, None))
+        return entry, pred, y
+
+    pool = lambda preds, truths: scores(np.concatenate(preds), np.concatenate(truths))  # noqa: E731
+    if args.data:
+        score_held_out(args, header, result, say, held_out, pool, "held-out maps: mean RMSE %.3f "
+                       "(%.2f %% of peak)")
+    if args.test:
+        score_tests(args, result, say, test_set, pool, "nine test maps")
     finish(args, result)
+
+
+def folder_names(directories):
+    """Each directory's folder name, made unique with -2, -3, ... where two share one."""
+    names = []
+    for d in directories:
+        base = os.path.basename(os.path.abspath(d))
+        name, k = base, 1
+        while name in names:
+            k += 1
+            name = f"{base}-{k}"
+        names.append(name)
+    return names
+
+
+def held_out_maps(args, header):
+    """[(directory, validation map ids)] for --data: each dataset's validation maps as the model's
+    header records them (train.py's split): training.val_maps for a model of one dataset,
+    training.datasets[k].val_maps for one of several, whose folder names --data must give in the
+    same order. A dataset without validation maps (one of a single map) is left out."""
+    training = header.get("training", {})
+    if "datasets" not in training:
+        val_maps = training.get("val_maps")
+        if not val_maps:
+            sys.exit(f"evaluate.py: {args.model}: header has no training.val_maps")
+        if len(args.data) > 1:
+            sys.exit(f"evaluate.py: {args.model} was trained on one dataset "
+                     f"({training.get('dataset')}), --data gives {len(args.data)}")
+        return [(args.data[0], val_maps)]
+    recorded = training["datasets"]
+    names = [os.path.basename(str(r.get("dataset", "")).rstrip("/\\")) for r in recorded]
+    given = [os.path.basename(os.path.abspath(d)) for d in args.data]
+    if given != names:
+        sys.exit(f"evaluate.py: {args.model} was trained on {len(names)} datasets, "
+                 f"{', '.join(names)} in that order; --data gives {', '.join(given)}: the validation "
+                 "maps are each dataset's own, so give the same datasets in the same order")
+    out = [(d, r["val_maps"]) for d, r in zip(args.data, recorded) if r.get("val_maps")]
+    if not out:
+        sys.exit(f"evaluate.py: {args.model}: header has no training.datasets[].val_maps")
+    return out
+
+
+def score_held_out(args, header, result, say, one, pool, line):
+    """result["held_out"]: one(directory, val_maps) -> (figures, predictions, truths) per dataset;
+    with several datasets the figures pool them all, and `datasets` holds each one's (by folder
+    name)."""
+    sets = held_out_maps(args, header)
+    if len(args.data) == 1:
+        result["held_out"] = one(*sets[0])[0]
+        held = result["held_out"]
+    else:
+        names = dict(zip(args.data, folder_names(args.data)))
+        per, preds, truths = {}, [], []
+        for directory, val_maps in sets:
+            per[names[directory]], p, t = one(directory, val_maps)
+            preds.append(p)
+            truths.append(t)
+        held = result["held_out"] = dict(pool(preds, truths), datasets=per)
+        for name, s in per.items():
+            say("held-out maps of %s: mean RMSE %.3f (%.2f %% of the average peak)" % (
+                name, s["mean"]["rmse"], 100 * s["mean"]["rmse_rel_peak"]))
+    say(line % (held["mean"]["rmse"], 100 * held["mean"]["rmse_rel_peak"]))
+
+
+def score_tests(args, result, say, one, pool, label):
+    """result["test_maps"] for one --test dataset; for several, result["test_sets"] (each one's
+    figures by folder name, its pictures in OUT/NAME/) and result["test_pooled"] (all their
+    samples together, and the mean over all their maps of each map's mean RMSE / peak).
+    one(directory, picture folder or None) -> (figures, predictions, truths)."""
+    line = "%s: mean RMSE %.3f = %.2f %% of the average peak"
+    if len(args.test) == 1:
+        result["test_maps"] = one(args.test[0], args.out)[0]
+        say(line % (label, result["test_maps"]["all"]["mean"]["rmse"],
+                    100 * result["test_maps"]["all"]["mean"]["rmse_rel_peak"]))
+        return
+    names = folder_names(args.test)
+    sets, preds, truths = {}, [], []
+    for name, directory in zip(names, args.test):
+        pictures = os.path.join(args.out, name) if args.out else None
+        if pictures:
+            os.makedirs(pictures, exist_ok=True)
+        sets[name], p, t = one(directory, pictures)
+        preds.append(p)
+        truths.append(t)
+        say(line % (name, sets[name]["all"]["mean"]["rmse"],
+                    100 * sets[name]["all"]["mean"]["rmse_rel_peak"]))
+    result["test_sets"] = sets
+    result["test_pooled"] = {
+        "sets": names, "all": pool(preds, truths),
+        "mean_of_map_rel_rmse": float(np.mean([s["mean"]["rmse_rel_peak"] for t in sets.values()
+                                               for s in t["per_map"].values()]))}
+    say(line % ("all test sets", result["test_pooled"]["all"]["mean"]["rmse"],
+                100 * result["test_pooled"]["all"]["mean"]["rmse_rel_peak"]))
 
 
 def finish(args, result):
@@ -361,47 +481,50 @@ def main_v2(args, model, header, scales):
     result = {"model": os.path.basename(args.model), "features": "v2",
               "cell_size": header["features"]["cell_size"], "training": header.get("training", {})}
     say = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
+
+    def held_out(directory, val_maps):
+        held = V2Set(directory, header, set(val_maps))
+        pred = predict_v2(model, header, scales, held.x)
+        entry = dict(scores_v2(pred, held.y), maps=val_maps,
+                     per_sample=per_sample(pred, held.y, held.ids, held.where))
+        return entry, pred, held.y
+
+    def test_set(directory, picture_dir):
+        test = V2Set(directory, header)
+        pred = predict_v2(model, header, scales, test.x)
+        per_map = {}
+        for m in sorted(set(int(i) for i in test.ids)):
+            path = map_file(directory, test.manifest, m)
+            with open(path) as f:
+                spec = json.load(f)
+            name = spec.get("name", "map-%05d" % m)
+            sel = np.flatnonzero(test.ids == m)
+            xs, ys = test.subset(sel)
+            ps = [pred[i] for i in sel]
+            per_map[name] = scores_v2(ps, ys)
+            if picture_dir:
+                origin = (spec.get("frame") or {}).get("origin", [0.0, 0.0])
+                sources = [(test.sources[i][0] - origin[0], test.sources[i][1] - origin[1])
+                           for i in sel]
+                picture_v2(os.path.join(picture_dir, f"{name}.png"), xs, ys, ps, sources,
+                           spec["size"], picks=[0, 1, 2][:len(sel)])
+            say("%-22s mean RMSE %.2f = %.2f %% of its average peak %.1f" % (
+                name, per_map[name]["mean"]["rmse"], 100 * per_map[name]["mean"]["rmse_rel_peak"],
+                per_map[name]["average_peak_mean"]))
+        entry = {
+            "all": scores_v2(pred, test.y), "per_map": per_map,
+            "mean_of_map_rel_rmse": float(np.mean(
+                [s["mean"]["rmse_rel_peak"] for s in per_map.values()])),
+            "per_sample": per_sample(pred, test.y, test.ids, test.where)}
+        return entry, pred, test.y
+
+    pool = lambda preds, truths: scores_v2(sum(preds, []), sum(truths, []))  # noqa: E731
     try:
         if args.data:
-            val_maps = header.get("training", {}).get("val_maps")
-            if not val_maps:
-                sys.exit(f"evaluate.py: {args.model}: header has no training.val_maps")
-            held = V2Set(args.data, header, set(val_maps))
-            pred = predict_v2(model, header, scales, held.x)
-            result["held_out"] = dict(scores_v2(pred, held.y), maps=val_maps,
-                                      per_sample=per_sample(pred, held.y, held.ids, held.where))
-            say("held-out maps: mean RMSE %.3f (%.2f %% of the average peak)" % (
-                result["held_out"]["mean"]["rmse"], 100 * result["held_out"]["mean"]["rmse_rel_peak"]))
+            score_held_out(args, header, result, say, held_out, pool,
+                           "held-out maps: mean RMSE %.3f (%.2f %% of the average peak)")
         if args.test:
-            test = V2Set(args.test, header)
-            pred = predict_v2(model, header, scales, test.x)
-            per_map = {}
-            for m in sorted(set(int(i) for i in test.ids)):
-                path = map_file(args.test, test.manifest, m)
-                with open(path) as f:
-                    spec = json.load(f)
-                name = spec.get("name", "map-%05d" % m)
-                sel = np.flatnonzero(test.ids == m)
-                xs, ys = test.subset(sel)
-                ps = [pred[i] for i in sel]
-                per_map[name] = scores_v2(ps, ys)
-                if args.out:
-                    origin = (spec.get("frame") or {}).get("origin", [0.0, 0.0])
-                    sources = [(test.sources[i][0] - origin[0], test.sources[i][1] - origin[1])
-                               for i in sel]
-                    picture_v2(os.path.join(args.out, f"{name}.png"), xs, ys, ps, sources,
-                               spec["size"], picks=[0, 1, 2][:len(sel)])
-                say("%-22s mean RMSE %.2f = %.2f %% of its average peak %.1f" % (
-                    name, per_map[name]["mean"]["rmse"], 100 * per_map[name]["mean"]["rmse_rel_peak"],
-                    per_map[name]["average_peak_mean"]))
-            result["test_maps"] = {
-                "all": scores_v2(pred, test.y), "per_map": per_map,
-                "mean_of_map_rel_rmse": float(np.mean(
-                    [s["mean"]["rmse_rel_peak"] for s in per_map.values()])),
-                "per_sample": per_sample(pred, test.y, test.ids, test.where)}
-            say("test maps: mean RMSE %.3f = %.2f %% of the average peak" % (
-                result["test_maps"]["all"]["mean"]["rmse"],
-                100 * result["test_maps"]["all"]["mean"]["rmse_rel_peak"]))
+            score_tests(args, result, say, test_set, pool, "test maps")
     except (OSError, ValueError) as e:
         sys.exit(f"evaluate.py: {e}")
     finish(args, result)

@@ -54,16 +54,33 @@ def open_dataset(directory):
 def split_by_map(shards, val_fraction, seed):
     """Rows (shard, row) of training and validation, and the validation map ids; no map is in
     both."""
-    maps = sorted({int(m) for s in shards for m in np.unique(s.map_ids)})
-    rng = np.random.default_rng(seed)
-    order = rng.permutation(len(maps))
-    n_val = max(1, int(round(val_fraction * len(maps)))) if len(maps) > 1 else 0
-    val_maps = {maps[i] for i in order[:n_val]}
+    train, val, val_maps = split_datasets(shards, [0] * len(shards), val_fraction, seed)
+    return train, val, val_maps[0]
+
+
+def split_datasets(shards, dataset_of, val_fraction, seed):
+    """split_by_map() over several datasets, whose shards are `shards` (all datasets' shards, in
+    order) with shard i from dataset dataset_of[i]. Map m of dataset k is the map (k, m): map ids of
+    different datasets never name the same map. Each dataset's maps are split on their own by the
+    same rule (round(val_fraction x its maps), at least one, none of a dataset with one map), drawn
+    from numpy's default_rng(seed) for dataset 0 (so a lone dataset, and the first of several,
+    splits as it would alone) and default_rng([seed, k]) for dataset k > 0. Rows (shard, row) of
+    training and validation, and each dataset's sorted validation map ids (a list per dataset)."""
+    count = max(dataset_of) + 1 if dataset_of else 0
+    val_maps = []
+    for k in range(count):
+        maps = sorted({int(m) for s, d in zip(shards, dataset_of) if d == k
+                       for m in np.unique(s.map_ids)})
+        rng = np.random.default_rng(seed if k == 0 else [seed, k])
+        order = rng.permutation(len(maps))
+        n_val = max(1, int(round(val_fraction * len(maps)))) if len(maps) > 1 else 0
+        val_maps.append({maps[i] for i in order[:n_val]})
     train, val = [], []
     for si, s in enumerate(shards):
+        held = val_maps[dataset_of[si]]
         for row, m in enumerate(s.map_ids):
-            (val if int(m) in val_maps else train).append((si, row))
-    return train, val, sorted(val_maps)
+            (val if int(m) in held else train).append((si, row))
+    return train, val, [sorted(v) for v in val_maps]
 
 
 def batch(shards, rows):
@@ -152,16 +169,20 @@ def map_summary(path):
     return {"width": width, "height": height, "inlets": inlets, "openings": count}
 
 
-def map_ranges(directory, manifest, map_ids):
-    """A model header's `trained_on` (surrogate/README.md) over the maps map_ids: map_width_m,
-    map_height_m, inlet_speed_m_s, openings as [lo, hi], inlet_walls (sorted; an inlet not on an
-    arena wall, a window on an obstacle's edge, counts as "interior"). None when the dataset holds no map files (the synthetic smoke datasets)."""
+def map_summaries(directory, manifest, map_ids):
+    """map_summary() of each of the maps map_ids (sorted, each once), or None when one has no map
+    file (the synthetic smoke datasets hold none)."""
     maps = []
     for m in sorted(set(int(i) for i in map_ids)):
         path = map_file(directory, manifest, m)
         if not os.path.exists(path):
             return None
         maps.append(map_summary(path))
+    return maps
+
+
+def ranges(maps):
+    """map_ranges() of map summaries (of one dataset or several), or None for none."""
     if not maps:
         return None
     span = lambda v: [min(v), max(v)]  # noqa: E731
@@ -175,6 +196,14 @@ def map_ranges(directory, manifest, map_ids):
     if walls:
         out["inlet_walls"] = walls
     return out
+
+
+def map_ranges(directory, manifest, map_ids):
+    """A model header's `trained_on` (surrogate/README.md) over the maps map_ids: map_width_m,
+    map_height_m, inlet_speed_m_s, openings as [lo, hi], inlet_walls (sorted; an inlet not on an
+    arena wall, a window on an obstacle's edge, counts as "interior"). None when the dataset holds no map files (the synthetic smoke datasets)."""
+    maps = map_summaries(directory, manifest, map_ids)
+    return None if maps is None else ranges(maps)
 
 
 def sample(directory, index):

@@ -5,6 +5,9 @@
 A synthetic v2 dataset of 3 maps of different sizes (synthetic_dataset.py --feature-cell), a tiny
 network (hidden --filters/--kernel/--convs), 3 steps on one thread; then the header, the padding
 and its mask, the bucketing, the golden pair, read_model's round trip, resuming and evaluate.py.
+Then two synthetic v2 datasets trained as one (--data A B): the split by map within each dataset,
+the header's datasets, trained_on and target scale over both, the refusals (a v1 and a v2 dataset,
+a dataset twice, resuming or evaluating with other datasets), and evaluate.py with two --test sets.
 """
 import csv
 import json
@@ -22,7 +25,7 @@ sys.path.insert(0, HERE)
 from model import PlumeUNet  # noqa: E402
 from model_file import read_model  # noqa: E402
 from shards import (feature_cell, map_ranges, map_summary, open_dataset, padded_size,  # noqa: E402
-                    split_by_map)
+                    ranges, split_by_map, split_datasets)
 from train import V2Batches, evaluate_v2, masked_squares  # noqa: E402
 
 CELL = 0.2
@@ -33,9 +36,12 @@ REPO = os.path.normpath(os.path.join(HERE, "..", ".."))
 torch.set_num_threads(1)
 
 
-def run(*args):
+def run(*args, fail=False):
     r = subprocess.run([sys.executable, *map(str, args)], capture_output=True, text=True,
                        cwd=REPO)
+    if fail:  # the run must be refused: its message
+        assert r.returncode != 0, r.stdout + r.stderr
+        return r.stderr
     assert r.returncode == 0, r.stdout + r.stderr
     return r.stdout
 
@@ -121,7 +127,7 @@ def test_map_ranges_reads_framed_v2_maps_and_v1_maps(tmp_path):
             {"kind": "inlet", "from": [0.2, 1], "to": [0.2, 2], "speed": 0.7},
             {"kind": "outlet", "from": [6, 1], "to": [6, 2]}]}, f)
     r = map_ranges(str(tmp_path), {"shards": []}, [0])
-    assert r["inlet_speed_m_s"] == [0.7, 0.7] and "inlet_walls" not in r
+    assert r["inlet_speed_m_s"] == [0.7, 0.7] and r["inlet_walls"] == ["interior"]
     assert map_ranges(str(tmp_path), {"shards": []}, [1]) is None  # no map file: no ranges
 
 
@@ -262,3 +268,145 @@ def test_v1_datasets_train_as_before(tmp_path):
     assert header["architecture"]["in_channels"] == 3
     assert "trained_on" not in header  # the synthetic v1 dataset has no map files
     assert np.load(tmp_path / "m_input.npy").shape[1:] == (3, 64, 64)
+
+
+# --- several datasets (--data A B), as scripts/train-model-v2.sh trains families and buildings ---
+
+SIZES_B = [(5.0, 2.4), (3.6, 4.2), (6.2, 3.0), (2.8, 2.2), (4.0, 5.6)]
+
+
+@pytest.fixture(scope="module")
+def two(tmp_path_factory):
+    d = tmp_path_factory.mktemp("two")
+    a, b = d / "fam", d / "bld"  # the folder names name the datasets
+    run(os.path.join(HERE, "synthetic_dataset.py"), a, "--feature-cell", CELL, "--per-map", 2,
+        "--sizes", ",".join("%gx%g" % s for s in SIZES + [(3.4, 2.8)]))
+    run(os.path.join(HERE, "synthetic_dataset.py"), b, "--feature-cell", CELL, "--per-map", 2,
+        "--seed", 4, "--sizes", ",".join("%gx%g" % s for s in SIZES_B))
+    train = [os.path.join(HERE, "train.py"), "--data", a, b, "--work", d / "work", "--out",
+             d / "model.pkcnn", "--threads", "1", "--batch", "1", "--epochs", 1, *TINY]
+    out = run(*train)
+    return {"dir": d, "data": [str(a), str(b)], "model": str(d / "model.pkcnn"), "log": out,
+            "train": train}
+
+
+def opened(dirs):
+    shards, dataset_of = [], []
+    for k, d in enumerate(dirs):
+        own = open_dataset(d)[1]
+        shards += own
+        dataset_of += [k] * len(own)
+    return shards, dataset_of
+
+
+def test_several_datasets_split_each_one_s_maps_apart():
+    # Map ids 0..3 in both datasets: map m of dataset k is the map (k, m).
+    shards = [type("S", (), {"map_ids": np.full(3, m % 4)})() for m in range(8)]
+    dataset_of = [0] * 4 + [1] * 4
+    pooled = set()
+    for seed in range(8):
+        train, val, val_maps = split_datasets(shards, dataset_of, 0.3, seed)
+        assert split_datasets(shards, dataset_of, 0.3, seed) == (train, val, val_maps)
+        assert [len(v) for v in val_maps] == [1, 1]  # round(0.3 x 4): each dataset has its own
+        assert sorted(train + val) == [(s, r) for s in range(8) for r in range(3)]
+        maps = lambda rows: {(dataset_of[s], int(shards[s].map_ids[r])) for s, r in rows}  # noqa: E731
+        assert not maps(train) & maps(val)  # no map in both splits
+        assert maps(val) == {(k, m) for k in (0, 1) for m in val_maps[k]}
+        # Dataset 0 splits as it would alone.
+        assert val_maps[0] == split_by_map(shards[:4], 0.3, seed)[2]
+        pooled.add(tuple(val_maps[0]) == tuple(val_maps[1]))
+    assert False in pooled  # the same id is not held out in both datasets alike
+    # A lone dataset: split_by_map as before (its first dataset's split).
+    assert split_by_map(shards, 0.3, 5)[2] == split_datasets(shards, [0] * 8, 0.3, 5)[2][0]
+
+
+def test_header_lists_both_datasets_with_their_validation_maps(two):
+    _, header = read_model(two["model"])
+    t = header["training"]
+    assert "dataset" not in t and "val_maps" not in t and t["val_fraction"] == 0.1
+    assert [os.path.basename(e["dataset"]) for e in t["datasets"]] == ["fam", "bld"]
+    shards, dataset_of = opened(two["data"])
+    train, val, val_maps = split_datasets(shards, dataset_of, 0.1, 1)
+    assert [e["val_maps"] for e in t["datasets"]] == val_maps
+    assert all(len(v) == 1 for v in val_maps)  # round(0.1 x 4 or 5) -> at least one each
+    assert [e["train_samples"] for e in t["datasets"]] == [2 * 3, 2 * 4]
+    assert [e["val_samples"] for e in t["datasets"]] == [2, 2]
+    assert (t["train_samples"], t["val_samples"]) == (len(train), len(val)) == (14, 4)
+    assert "validation maps fam %s; bld %s" % tuple(val_maps) in two["log"]
+    # trained_on: the union over both datasets' training maps, read from their map files.
+    maps = [map_summary(os.path.join(d, "maps", "map-%05d.json" % m))
+            for k, d in enumerate(two["data"]) for m in range(len(SIZES) + 1 if k == 0 else 5)
+            if m not in val_maps[k]]
+    assert header["trained_on"] == ranges(maps)
+    sizes = [s for k, sz in enumerate((SIZES + [(3.4, 2.8)], SIZES_B)) for m, s in enumerate(sz)
+             if m not in val_maps[k]]
+    assert header["trained_on"]["map_width_m"] == [min(w for w, _ in sizes), max(w for w, _ in sizes)]
+    # The target scale: the largest training mean of both.
+    want = max(float(np.max(s.targets[r, 0])) for s, k in zip(shards, dataset_of)
+               for r in range(len(s.map_ids)) if int(s.map_ids[r]) not in val_maps[k])
+    assert header["outputs"][0]["scale"] == pytest.approx(want, rel=1e-6)
+
+
+def test_mixed_or_repeated_datasets_and_other_resumes_are_refused(two, tmp_path):
+    v1 = tmp_path / "v1data"
+    run(os.path.join(HERE, "synthetic_dataset.py"), v1, "--maps", 2, "--per-map", 1)
+    common = ["--work", tmp_path / "w", "--out", tmp_path / "m.pkcnn", "--threads", "1", *TINY]
+    err = run(os.path.join(HERE, "train.py"), "--data", two["data"][0], v1, *common, fail=True)
+    assert "v1data is a v1 (grid 64x64) dataset" in err and "v2 (feature cell 0.2 m)" in err
+    err = run(os.path.join(HERE, "train.py"), "--data", v1, two["data"][1], *common, fail=True)
+    assert "bld is a v2 (feature cell 0.2 m) dataset, but" in err and "v1data" in err
+    err = run(os.path.join(HERE, "train.py"), "--data", two["data"][0], two["data"][0], *common,
+              fail=True)
+    assert "gives" in err and "twice" in err
+    # The checkpoint records its datasets: another order (or set) does not resume it.
+    train = list(two["train"])
+    i = train.index("--data")
+    train[i + 1:i + 3] = train[i + 2:i + 3] + train[i + 1:i + 2]
+    err = run(*train, fail=True)
+    assert "was written for --data fam (8 samples, 4 maps), bld (10 samples, 5 maps)" in err
+    assert "this run gives bld" in err
+    err = run(*two["train"][:i + 2], *two["train"][i + 3:], fail=True)
+    assert "this run gives fam (8 samples, 4 maps). Resume with the same datasets" in err
+
+
+def test_evaluate_scores_each_dataset_and_pools_them(two):
+    d = two["dir"]
+    ev = [os.path.join(HERE, "evaluate.py"), "--model", two["model"], "--threads", "1"]
+    out = run(*ev, "--data", *two["data"], "--test", *two["data"], "--json", "--out", d / "eval")
+    r = json.loads(out)
+    _, header = read_model(two["model"])
+    held = r["held_out"]
+    assert list(held["datasets"]) == ["fam", "bld"]
+    for e, h in zip(header["training"]["datasets"], held["datasets"].values()):
+        assert h["maps"] == e["val_maps"] and h["samples"] == e["val_samples"]
+    assert held["samples"] == 4
+    # The held-out figures are the trainer's validation figures over both datasets.
+    with open(d / "work" / "log.csv") as f:
+        log = list(csv.DictReader(f))
+    assert len(log) == 1
+    assert held["mean"]["rmse"] == pytest.approx(float(log[0]["val_rmse_mean"]), rel=1e-4)
+    assert held["mean"]["rmse_rel_peak"] == pytest.approx(float(log[0]["val_rmse_over_peak"]), rel=1e-4)
+    # Two --test sets: each alone, by folder name, and pooled.
+    assert "test_maps" not in r and list(r["test_sets"]) == ["fam", "bld"]
+    sets = r["test_sets"]
+    assert [s["all"]["samples"] for s in sets.values()] == [8, 10]
+    assert len(sets["fam"]["per_map"]) == 4 and len(sets["bld"]["per_map"]) == 5
+    pooled = r["test_pooled"]
+    assert pooled["sets"] == ["fam", "bld"] and pooled["all"]["samples"] == 18
+    per = sets["fam"]["per_sample"] + sets["bld"]["per_sample"]
+    cells = {}
+    for k, name in enumerate(["fam", "bld"]):
+        for s in open_dataset(two["data"][k])[1]:
+            cells[name, os.path.basename(s.directory)] = s.inputs.shape[2] * s.inputs.shape[3]
+    weights = [cells[name, p["shard"]] for name in ["fam", "bld"] for p in sets[name]["per_sample"]]
+    want = math.sqrt(sum(p["rmse_mean"] ** 2 * w for p, w in zip(per, weights)) / sum(weights))
+    assert pooled["all"]["mean"]["rmse"] == pytest.approx(want, rel=1e-9)
+    alone = json.loads(run(*ev, "--test", two["data"][1], "--json"))["test_maps"]
+    assert alone == sets["bld"]  # a set among several scores as it does alone
+    md = open(d / "eval" / "evaluation.md").read()
+    assert "| **fam** | 8 |" in md and "| **bld** | 10 |" in md and "| **all test sets** | 18 |" in md
+    assert "held-out maps of bld" in md
+    assert sorted(os.listdir(d / "eval" / "bld")) == ["synthetic-%d.png" % m for m in range(5)]
+    # --data must be the model's datasets, in its order.
+    err = run(*ev, "--data", *two["data"][::-1], "--json", fail=True)
+    assert "trained on 2 datasets, fam, bld in that order; --data gives bld, fam" in err

@@ -9,6 +9,18 @@ division keeps AdamW's lr 1e-3 in a sensible range and changes nothing else, sin
 output scale is s and the engine multiplies by it, so predictions come out in dataset units.
 
 Split: by map id, --val-fraction of the maps (default 10 %) for validation, never seen in training.
+
+Several datasets (--data DIR DIR ...; scripts/train-model-v2.sh trains on its families and its
+buildings) train as one: they must be of one kind (all v1 on one grid, or all v2 with one feature
+cell; else the run stops naming the dataset that differs). Map ids name maps within a dataset, so
+dataset k's map m is the map (k, m), and each dataset's maps are split on their own by the same
+rule (shards.split_datasets: dataset 0 as it would split alone, dataset k > 0 from the seed and k),
+so every dataset of two maps or more has validation maps. The target scale is the largest training
+mean over all datasets, trained_on spans the training maps of all (none when one has no map
+files), and the header's `training` lists each dataset (`datasets`: its provenance path, format,
+sample counts and validation maps, which evaluate.py scores) with the `val_fraction`. The
+checkpoint records the datasets (each folder's name, sample and map count, in order): resuming
+with other ones is refused. One dataset trains, logs and writes exactly as before.
 Optimiser: AdamW, lr 1e-3, weight decay 5e-3 (DESIGN.md). Batches of 32 by default.
 Every epoch: WORK/log.csv gains a line (epoch, step, train loss, val loss, val RMSE of the mean in
 dataset units, seconds); WORK/checkpoint.pt is rewritten (model, optimiser, epoch, RNG, best), and
@@ -62,13 +74,14 @@ from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: 
 from model_file import (DEFAULT_FEATURES, DEFAULT_OUTPUTS, provenance_path, read_model,  # noqa: E402
                         write_model)
 from model_file import is_v2, v2_features  # noqa: E402
-from shards import (batch, feature_cell, map_ranges, open_dataset, padded_size,  # noqa: E402
-                    split_by_map, v2_input)
+from shards import (batch, feature_cell, map_summaries, open_dataset,  # noqa: E402
+                    padded_size, ranges, split_datasets, v2_input)
 
 
 def parse_args(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("--data", required=True, help="dataset directory (manifest.json, shards/)")
+    ap.add_argument("--data", required=True, nargs="+", metavar="DIR",
+                    help="dataset directory (manifest.json, shards/), or several of one kind")
     ap.add_argument("--work", required=True, help="checkpoints and log.csv")
     ap.add_argument("--out", required=True, help="model file to write")
     ap.add_argument("--epochs", type=int, default=1000)
@@ -367,6 +380,68 @@ def golden_pair_v2(model, batches, rows, count, tries=64):
     return x[best], y
 
 
+def open_datasets(dirs):
+    """Opens the --data datasets, which must be of one kind: all v1 (3 channels) on one grid, or
+    all v2 (5 channels) with one feature cell. Returns their manifests, all their shards in order,
+    the dataset index of each shard, whether they are v2, and the v2 feature cell (0 for v1)."""
+    manifests, shards, dataset_of, kinds = [], [], [], []
+    seen = [os.path.realpath(d) for d in dirs]
+    for k, d in enumerate(dirs):
+        if seen.index(seen[k]) != k:  # its maps would be in both splits, as (j, m) and (k, m)
+            sys.exit(f"train.py: --data gives {d} twice")
+        manifest, own = open_dataset(d)
+        channels = {int(s.inputs.shape[1]) for s in own}
+        cell = feature_cell(d, manifest)
+        v2 = cell > 0 or channels == {5}
+        if channels != {5 if v2 else 3}:
+            sys.exit(f"train.py: {d}: input channels {sorted(channels)}, "
+                     f"a {'v2' if v2 else 'v1'} dataset has {5 if v2 else 3}")
+        if v2 and cell <= 0:
+            sys.exit(f"train.py: {d}: 5-channel inputs but no generator.dataset.feature_cell "
+                     "in manifest.json")
+        grids = sorted({tuple(int(v) for v in s.inputs.shape[2:]) for s in own})
+        kinds.append((v2, cell, grids))
+        if k and not same_kind(kinds[0], kinds[k]):
+            sys.exit(f"train.py: {d} is a {kind_name(kinds[k])} dataset, but {dirs[0]} is a "
+                     f"{kind_name(kinds[0])} one: the --data datasets must be of one kind (all v1 "
+                     "on one grid, or all v2 with one feature cell)")
+        manifests.append(manifest)
+        shards += own
+        dataset_of += [k] * len(own)
+    return manifests, shards, dataset_of, kinds[0][0], kinds[0][1]
+
+
+def same_kind(a, b):
+    (v2_a, cell_a, grids_a), (v2_b, cell_b, grids_b) = a, b
+    if v2_a != v2_b:
+        return False
+    return abs(cell_a - cell_b) <= 1e-9 * cell_a if v2_a else grids_a == grids_b
+
+
+def kind_name(kind):
+    v2, cell, grids = kind
+    return (f"v2 (feature cell {cell:g} m)" if v2
+            else "v1 (grid %s)" % ", ".join("%dx%d" % g for g in grids))
+
+
+def dataset_record(dirs, shards, dataset_of):
+    """What a checkpoint records of its --data datasets, in order: each one's folder name, sample
+    count and map count (not the path, so a moved work tree still resumes)."""
+    out = []
+    for k, d in enumerate(dirs):
+        own = [s for s, o in zip(shards, dataset_of) if o == k]
+        out.append({"name": os.path.basename(os.path.abspath(d)),
+                    "samples": int(sum(len(s.map_ids) for s in own)),
+                    "maps": len({int(m) for s in own for m in np.unique(s.map_ids)})})
+    return out
+
+
+def describe_record(record):
+    if record is None:
+        return "one dataset (the checkpoint does not say which)"
+    return ", ".join(f"{r['name']} ({r['samples']} samples, {r['maps']} maps)" for r in record)
+
+
 def main(argv=None):
     args = parse_args(argv)
     torch.set_num_threads(max(1, args.threads))
@@ -374,26 +449,31 @@ def main(argv=None):
     device = team.device
     say = print if team.lead else (lambda *a, **k: None)
     os.makedirs(args.work, exist_ok=True)
-    manifest, shards = open_dataset(args.data)
-    channels = {int(s.inputs.shape[1]) for s in shards}
-    cell = feature_cell(args.data, manifest)
-    v2 = cell > 0 or channels == {5}
-    if channels != {5 if v2 else 3}:
-        sys.exit(f"train.py: {args.data}: input channels {sorted(channels)}, "
-                 f"a {'v2' if v2 else 'v1'} dataset has {5 if v2 else 3}")
-    if v2 and cell <= 0:
-        sys.exit(f"train.py: {args.data}: 5-channel inputs but no generator.dataset.feature_cell "
-                 "in manifest.json")
+    manifests, shards, dataset_of, v2, cell = open_datasets(args.data)
+    dirs, several = args.data, len(args.data) > 1
     in_channels, multiple = (5 if v2 else 3), 2 ** len(args.filters)
-    train_rows, val_rows, val_maps = split_by_map(shards, args.val_fraction, args.seed)
+    # Map m of dataset k is the map (k, m); each dataset's maps are split on their own.
+    train_rows, val_rows, val_maps_of = split_datasets(shards, dataset_of, args.val_fraction, args.seed)
+    val_maps = val_maps_of[0]
     if not train_rows or not val_rows:
         sys.exit("train.py: need at least two maps (one for validation)")
-    # The header's trained_on: what the training maps' files say (none without map files).
-    train_maps = sorted({int(m) for s in shards for m in np.unique(s.map_ids)} - set(val_maps))
-    try:
-        trained_on = map_ranges(args.data, manifest, train_maps)
-    except (OSError, ValueError, KeyError, TypeError) as e:
-        sys.exit(f"train.py: {args.data}: a map file cannot be read for trained_on: {e!r}")
+    # The header's trained_on: what the training maps' files say (none without map files), over
+    # the training maps of every dataset.
+    summaries = []
+    for k, d in enumerate(dirs):
+        train_maps = sorted({int(m) for s, o in zip(shards, dataset_of) if o == k
+                             for m in np.unique(s.map_ids)} - set(val_maps_of[k]))
+        try:
+            got = map_summaries(d, manifests[k], train_maps)
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            sys.exit(f"train.py: {d}: a map file cannot be read for trained_on: {e!r}")
+        if got is None:  # ranges over some of the datasets would claim too little
+            if several:
+                say(f"no trained_on in the header: {d} has no map files")
+            summaries = None
+            break
+        summaries += got
+    trained_on = ranges(summaries) if summaries is not None else None
     init_model = init_header = None
     if args.init:
         try:
@@ -409,10 +489,9 @@ def main(argv=None):
     if scale <= 0 and init_header is not None:  # keep the start's units
         scale = float(init_header["outputs"][0]["scale"])
     if scale <= 0:  # the largest training mean, read shard by shard from the memory maps
-        val_set = set(val_maps)
         scale = 0.0
-        for s in shards:
-            keep = ~np.isin(s.map_ids, list(val_set))
+        for s, k in zip(shards, dataset_of):
+            keep = ~np.isin(s.map_ids, val_maps_of[k])
             if keep.any():
                 scale = max(scale, float(np.max(s.targets[np.flatnonzero(keep), 0])))
         scale = scale if scale > 0 else 1.0
@@ -448,8 +527,14 @@ def main(argv=None):
     resuming, fresh = os.path.exists(ckpt_path), not os.path.exists(best_path)
     if team.world > 1:
         dist.barrier()
+    data_record = dataset_record(dirs, shards, dataset_of)
     if resuming:
         ckpt = torch.load(ckpt_path, map_location=device)
+        # A checkpoint from before checkpoints recorded their datasets had one dataset.
+        if ckpt.get("data", None if several else data_record) != data_record:
+            sys.exit(f"train.py: {ckpt_path} was written for --data {describe_record(ckpt.get('data'))}; "
+                     f"this run gives {describe_record(data_record)}. Resume with the same datasets "
+                     "in the same order, or train in another --work folder")
         model.load_state_dict(ckpt["model"])
         opt.load_state_dict(ckpt["optimizer"])
         state = ckpt["state"]
@@ -468,9 +553,11 @@ def main(argv=None):
             torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
         start_row = [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"] + [f"{v:.6g}" for v in val[2:]]
         say(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
+    shown_val_maps = ("; ".join(f"{r['name']} {v}" for r, v in zip(data_record, val_maps_of))
+                      if several else val_maps)
     say(f"{parameter_count(model)} parameters on {device}"
         f"{f' x {team.world} processes' if team.world > 1 else ''}; {len(train_rows)} training and "
-        f"{len(val_rows)} validation samples (validation maps {val_maps}); target scale {scale:.6g}")
+        f"{len(val_rows)} validation samples (validation maps {shown_val_maps}); target scale {scale:.6g}")
     core, model = model, team.wrap(model)  # core: the network itself, for saving and validation
 
     log_path = os.path.join(args.work, "log.csv") if team.lead else os.devnull
@@ -486,7 +573,8 @@ def main(argv=None):
             if not team.lead:
                 return
             torch.save({"model": core.state_dict(), "optimizer": opt.state_dict(),
-                        "state": state, "torch_rng": torch.get_rng_state()}, ckpt_path + ".tmp")
+                        "state": state, "torch_rng": torch.get_rng_state(), "data": data_record},
+                       ckpt_path + ".tmp")
             os.replace(ckpt_path + ".tmp", ckpt_path)
 
         started = last_save = time.time()
@@ -579,13 +667,24 @@ def main(argv=None):
         features = v2_features(cell, multiple)
     else:
         features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
-    training = {"dataset": provenance_path(args.data), "dataset_format": manifest.get("format"),
-                "train_samples": len(train_rows), "val_samples": len(val_rows),
-                "val_maps": val_maps, "epochs": best["state"]["epoch"],
-                "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],
-                "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
-                "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay, "batch": args.batch,
-                "seed": args.seed}
+    if several:  # each dataset's own part, and its validation maps (evaluate.py reads them)
+        counts = [[sum(1 for s, _ in rows if dataset_of[s] == k) for k in range(len(dirs))]
+                  for rows in (train_rows, val_rows)]
+        training = {"datasets": [{"dataset": provenance_path(d), "dataset_format": m.get("format"),
+                                  "train_samples": counts[0][k], "val_samples": counts[1][k],
+                                  "val_maps": val_maps_of[k]}
+                                 for k, (d, m) in enumerate(zip(dirs, manifests))],
+                    "train_samples": len(train_rows), "val_samples": len(val_rows),
+                    "val_fraction": args.val_fraction}
+    else:
+        training = {"dataset": provenance_path(dirs[0]), "dataset_format": manifests[0].get("format"),
+                    "train_samples": len(train_rows), "val_samples": len(val_rows),
+                    "val_maps": val_maps}
+    training.update({"epochs": best["state"]["epoch"],
+                     "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],
+                     "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
+                     "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay,
+                     "batch": args.batch, "seed": args.seed})
     if v2:
         training.update(loss="MSE of target/scale over both channels, on map cells only (padding "
                         "masked)", batch_cells=args.batch_cells or args.batch * 64 * 64,
