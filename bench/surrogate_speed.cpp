@@ -1,6 +1,7 @@
 // Engine speed on the real architecture (the randomly initialised golden model): ms per sample
 // and GFLOP/s at batch 1 and 32, on 1 and 2 threads. The comparison with libtorch, and the GEMM
-// peak, are in surrogate_vs_libtorch.cpp (optional target).
+// peak, are in surrogate_vs_libtorch.cpp (optional target). Arguments: [MODEL.pkcnn [ROWS COLS]];
+// a physical-grid model runs at ROWS x COLS, by default 112 x 112 (a 20 x 20 m building at 0.2 m).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -17,8 +18,10 @@ int main(int argc, char** argv) {
   for (int threads : {1, 2}) {
     const Network net = Network::load(path, EngineOptions{threads});
     const auto& f = net.file().features;
+    const int rows = f.physical() ? (argc > 3 ? std::stoi(argv[2]) : 112) : f.rows;
+    const int cols = f.physical() ? (argc > 3 ? std::stoi(argv[3]) : 112) : f.cols;
     for (int batch : {1, 32}) {
-      Tensor x(batch, net.file().architecture.in_channels, f.rows, f.cols);
+      Tensor x(batch, net.file().architecture.in_channels, rows, cols);
       std::mt19937 rng(1);
       std::uniform_real_distribution<float> u(0.0f, 4.0f);
       for (float& v : x.data)
@@ -34,9 +37,9 @@ int main(int argc, char** argv) {
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / runs;
         best = std::min(best, s);
       }
-      std::printf("threads %d  batch %2d: %8.2f ms/batch  %6.2f ms/sample  %6.1f GFLOP/s\n",
-                  threads, batch, best * 1e3, best * 1e3 / batch,
-                  net.flops_per_sample() * batch / best / 1e9);
+      std::printf("%dx%d threads %d  batch %2d: %8.2f ms/batch  %6.2f ms/sample  %6.1f GFLOP/s\n",
+                  rows, cols, threads, batch, best * 1e3, best * 1e3 / batch,
+                  net.flops_per_sample(rows, cols) * batch / best / 1e9);
     }
   }
   return 0;

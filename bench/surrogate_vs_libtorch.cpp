@@ -163,8 +163,12 @@ int main(int argc, char** argv) {
   const ModelFile file = read_model_file(path);
   TorchUNet torch_net(file);
   const auto& f = file.features;
-  std::printf("model %s: %zu parameters; %d repeats, medians\n", path.c_str(),
-              parameter_count(file.layers), repeats);
+  // A physical-grid model runs at any multiple: by default 112 x 112, a 20 x 20 m building at
+  // 0.2 m cells (100 x 100) padded to 16; ROWS COLS override it.
+  const int rows = f.physical() ? (argc > 4 ? std::stoi(argv[3]) : 112) : f.rows;
+  const int cols = f.physical() ? (argc > 4 ? std::stoi(argv[4]) : 112) : f.cols;
+  std::printf("model %s: %zu parameters, input %d x %d; %d repeats, medians\n", path.c_str(),
+              parameter_count(file.layers), rows, cols, repeats);
 
   struct Row {
     int threads, batch;
@@ -178,7 +182,7 @@ int main(int argc, char** argv) {
     Gemm gemm(1024, threads);
     torch::set_num_threads(threads);
     for (int batch : {1, 32}) {
-      Tensor x(batch, file.architecture.in_channels, f.rows, f.cols);
+      Tensor x(batch, file.architecture.in_channels, rows, cols);
       std::mt19937 rng(1);
       std::uniform_real_distribution<float> u(0.0f, 4.0f);
       for (float& v : x.data)
@@ -193,8 +197,16 @@ int main(int argc, char** argv) {
         diff = std::max(diff, std::abs(double(ours.data[i]) - theirs.data_ptr<float>()[i]));
         top = std::max(top, std::abs(double(ours.data[i])));
       }
-      Row row{threads, batch, net.flops_per_sample(), top > 0 ? diff / top : diff, {}, {}, {}, {},
-              {},      {}};
+      Row row{threads,
+              batch,
+              net.flops_per_sample(rows, cols),
+              top > 0 ? diff / top : diff,
+              {},
+              {},
+              {},
+              {},
+              {},
+              {}};
       const int runs = batch == 1 ? 10 : 1;
       for (int r = 0; r < repeats; ++r) {
         const auto [gw, gc] = gemm.rate();

@@ -65,8 +65,9 @@ void bind_surrogate(py::module_& m) {
                      ? std::filesystem::path()
                      : std::filesystem::path(py::str(py::module_::import("os").attr("fspath")(wind))
                                                  .cast<std::string>());
-             py::gil_scoped_release release;
-             return load_surrogate(map, cnn_path(cnn), threads, w);
+             const std::filesystem::path model = cnn_path(cnn);
+             py::gil_scoped_release release;  // the flow of a large map takes seconds
+             return load_surrogate(map, model, threads, w);
            }),
            py::arg("map"), py::arg("cnn") = py::none(), py::arg("threads") = 1,
            py::arg("wind") = py::none(),

@@ -62,10 +62,10 @@ std::vector<std::string> training_warnings(const TrainingRanges& t, const Map& m
     if (std::find(t.inlet_walls.begin(), t.inlet_walls.end(), wall) == t.inlet_walls.end()) {
       std::string walls;
       for (const std::string& w : t.inlet_walls)
-        walls += (walls.empty() ? "" : ", ") + w;
+        walls += (walls.empty() ? "" : ", ") +
+                 (w == "interior" ? std::string("obstacle edges (windows)") : "the " + w + " wall");
       out.push_back(at + " is " + (side ? "on the " + wall + " wall" : "not on an arena wall") +
-                    "; the model was trained with inlets on the " + walls +
-                    (t.inlet_walls.size() > 1 ? " walls" : " wall"));
+                    "; the model was trained with inlets on " + walls);
     }
   }
   return out;
