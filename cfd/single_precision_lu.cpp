@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -21,10 +22,20 @@ constexpr int kSingular = -10;          // INFOG(1) of a numerically singular ma
 constexpr int kWorkspaceShort = -9;     // INFOG(1) when the estimated workspace was short
 }  // namespace
 
+// Sequential MUMPS is not reentrant: its Fortran modules (the load balancer, the out-of-core
+// layer) and the MPI stub it links keep process-wide state, so two instances working at once in
+// two threads corrupt the heap ("PB allocation in SMUMPS_LOAD_INIT", then a crash; seen with
+// `dataset generate -j 2` on random buildings, whose flows are large enough to use MUMPS). Every
+// call takes its turn, whatever the BLAS.
+namespace {
+std::mutex mumps_mutex;
+}  // namespace
+
 struct SinglePrecisionLU::Mumps {
   SMUMPS_STRUC_C id{};
   void call(int job) {
     id.job = job;
+    const std::lock_guard<std::mutex> one_at_a_time(mumps_mutex);
     const auto turn = blas_turn();
     smumps_c(&id);
   }
