@@ -165,10 +165,10 @@ int main(int argc, char** argv) {
   const auto& f = file.features;
   // A physical-grid model runs at any multiple: by default 112 x 112, a 20 x 20 m building at
   // 0.2 m cells (100 x 100) padded to 16; ROWS COLS override it.
-  const int rows = f.physical() ? (argc > 4 ? std::stoi(argv[3]) : 112) : f.rows;
-  const int cols = f.physical() ? (argc > 4 ? std::stoi(argv[4]) : 112) : f.cols;
+  const int in_rows = f.physical() ? (argc > 4 ? std::stoi(argv[3]) : 112) : f.rows;
+  const int in_cols = f.physical() ? (argc > 4 ? std::stoi(argv[4]) : 112) : f.cols;
   std::printf("model %s: %zu parameters, input %d x %d; %d repeats, medians\n", path.c_str(),
-              parameter_count(file.layers), rows, cols, repeats);
+              parameter_count(file.layers), in_rows, in_cols, repeats);
 
   struct Row {
     int threads, batch;
@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
     Gemm gemm(1024, threads);
     torch::set_num_threads(threads);
     for (int batch : {1, 32}) {
-      Tensor x(batch, file.architecture.in_channels, rows, cols);
+      Tensor x(batch, file.architecture.in_channels, in_rows, in_cols);
       std::mt19937 rng(1);
       std::uniform_real_distribution<float> u(0.0f, 4.0f);
       for (float& v : x.data)
@@ -199,7 +199,7 @@ int main(int argc, char** argv) {
       }
       Row row{threads,
               batch,
-              net.flops_per_sample(rows, cols),
+              net.flops_per_sample(in_rows, in_cols),
               top > 0 ? diff / top : diff,
               {},
               {},

@@ -9,16 +9,16 @@
 #   4. the evaluation on the validation maps, the held-out buildings and the test maps.
 # Every step resumes where it stopped when run again. WORK (default out/train-v2) holds the
 # datasets, checkpoints and the evaluation; the model and its log go to data/models/.
-# Settings (environment): FAMILY_MAPS (60), BUILDING_MAPS (72), SOURCES (16 per map), EPOCHS (30),
+# Settings (environment): FAMILY_MAPS (60), BUILDING_MAPS (65), SOURCES (16 per map), EPOCHS (10),
 # BATCH (8), THREADS (nproc), MAX_MINUTES (no limit), PYTHON (/usr/bin/python3; CUDA is used when
 # present). The shipped model's settings and timings are in surrogate/README.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=${1:-out/train-v2}
 family_maps=${FAMILY_MAPS:-60}
-building_maps=${BUILDING_MAPS:-72}
+building_maps=${BUILDING_MAPS:-65}
 sources=${SOURCES:-16}
-epochs=${EPOCHS:-30}
+epochs=${EPOCHS:-10}
 batch=${BATCH:-8}
 threads=${THREADS:-$(nproc)}
 python=${PYTHON:-/usr/bin/python3}
