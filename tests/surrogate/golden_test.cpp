@@ -67,6 +67,17 @@ TEST(Golden, FaithfulWorldModelMatchesPyTorch) {
   check_golden("plume-unet-faithful", 2, kModels);
 }
 
+// The v2 model (issue 19): a physical-grid network, its golden pair two held-out samples of one
+// padded shape (not 64 x 64), in concentration units.
+TEST(Golden, PhysicalGridModelMatchesPyTorch) {
+  check_golden("plume-unet-v2", 1, kModels);
+  check_golden("plume-unet-v2", 2, kModels);
+  const Network net = Network::load(kModels + "plume-unet-v2.pkcnn");
+  EXPECT_TRUE(net.file().features.physical());
+  EXPECT_EQ(net.file().features.multiple, 16);
+  EXPECT_EQ(net.parameter_count(), 600530u);  // the thesis's architecture with 5 inputs
+}
+
 TEST(Golden, OddChannelsOddGridMatchesPyTorch) {
   check_golden("odd", 1);
 }
