@@ -163,8 +163,7 @@ int main(int argc, char** argv) {
   const ModelFile file = read_model_file(path);
   TorchUNet torch_net(file);
   const auto& f = file.features;
-  // A physical-grid model runs at any multiple: by default 112 x 112, a 20 x 20 m building at
-  // 0.2 m cells (100 x 100) padded to 16; ROWS COLS override it.
+  // A physical-grid model: 112 x 112 by default (20 x 20 m at 0.2 m, padded to 16), or ROWS COLS.
   const int in_rows = f.physical() ? (argc > 4 ? std::stoi(argv[3]) : 112) : f.rows;
   const int in_cols = f.physical() ? (argc > 4 ? std::stoi(argv[4]) : 112) : f.cols;
   std::printf("model %s: %zu parameters, input %d x %d; %d repeats, medians\n", path.c_str(),
