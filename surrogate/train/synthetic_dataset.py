@@ -18,6 +18,25 @@ import os
 import numpy as np
 
 
+def plume_targets(xx, yy, sx, sy, region):
+    """Mean and std of a made-up plume blowing along +x from (sx, sy), 0 in obstacles."""
+    plume = 1000 * np.exp(-((yy - sy) ** 2) / (0.05 + 0.05 * np.maximum(xx - sx, 0)))
+    plume *= (xx >= sx) * (region > 0)
+    return [plume, 0.3 * plume]
+
+
+def write_shard(out, m, inputs, targets, sources):
+    """Map m's shard files; returns the shard's name."""
+    name = "shard-%05d" % m
+    d = os.path.join(out, "shards", name)
+    os.makedirs(d, exist_ok=True)
+    np.save(os.path.join(d, "inputs.npy"), inputs)
+    np.save(os.path.join(d, "targets.npy"), targets)
+    np.save(os.path.join(d, "sources.npy"), sources)
+    np.save(os.path.join(d, "map_ids.npy"), np.full(len(inputs), m, np.int32))
+    return name
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("out")
@@ -52,17 +71,9 @@ def main():
             sx, sy = rng.uniform(0.5, 2.0), rng.uniform(0.5, 3.5)
             d = np.hypot(xx - sx, yy - sy)
             inputs[i] = [region, sdf, d]
-            plume = 1000 * np.exp(-((yy - sy) ** 2) / (0.05 + 0.05 * np.maximum(xx - sx, 0)))
-            plume *= (xx >= sx) * (region > 0)
-            targets[i] = [plume, 0.3 * plume]
+            targets[i] = plume_targets(xx, yy, sx, sy, region)
             sources[i] = [sx, sy]
-        name = "shard-%05d" % m
-        d = os.path.join(args.out, "shards", name)
-        os.makedirs(d, exist_ok=True)
-        np.save(os.path.join(d, "inputs.npy"), inputs)
-        np.save(os.path.join(d, "targets.npy"), targets)
-        np.save(os.path.join(d, "sources.npy"), sources)
-        np.save(os.path.join(d, "map_ids.npy"), np.full(n, m, np.int32))
+        name = write_shard(args.out, m, inputs, targets, sources)
         shards.append({"name": name, "map_index": m, "samples": n})
     with open(os.path.join(args.out, "manifest.json"), "w") as f:
         json.dump({"format": "plumekit-dataset/1", "synthetic": True, "shards": shards}, f, indent=1)
@@ -115,17 +126,9 @@ def write_v2(args):
             sx, sy = rng.uniform(0.1, 0.3) * width, rng.uniform(0.2, 0.8) * height
             d = np.hypot(xx - sx, yy - sy)
             inputs[i] = [region, sdf, wind_u, wind_v, d]
-            plume = 1000 * np.exp(-((yy - sy) ** 2) / (0.05 + 0.05 * np.maximum(xx - sx, 0)))
-            plume *= (xx >= sx) * (region > 0)
-            targets[i] = [plume, 0.3 * plume]
+            targets[i] = plume_targets(xx, yy, sx, sy, region)
             sources[i] = [sx, sy]
-        name = "shard-%05d" % m
-        d = os.path.join(args.out, "shards", name)
-        os.makedirs(d, exist_ok=True)
-        np.save(os.path.join(d, "inputs.npy"), inputs)
-        np.save(os.path.join(d, "targets.npy"), targets)
-        np.save(os.path.join(d, "sources.npy"), sources)
-        np.save(os.path.join(d, "map_ids.npy"), np.full(n, m, np.int32))
+        name = write_shard(args.out, m, inputs, targets, sources)
         map_path = "maps/map-%05d.json" % m
         with open(os.path.join(args.out, map_path), "w") as f:
             json.dump({"format": "plumekit-map/2", "name": "synthetic-%d" % m, "size": [width, height],
