@@ -169,10 +169,7 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
   // The contracts this engine's callers know how to build (DESIGN.md, features).
   // The source channel (the last) has a form that decides its unit: metres, or 1/m for the
   // inverse distance.
-  const std::vector<std::string> names =
-      physical ? std::vector<std::string>{"region", "signed_distance", "wind_u", "wind_v",
-                                          "source_distance"}
-               : std::vector<std::string>{"region", "signed_distance", "source_distance"};
+  const std::vector<std::string> names = feature_channel_names(physical);
   if (ch.size() != names.size()) {
     fail(source, "shape mismatch: features.channels lists " + std::to_string(ch.size()) +
                      " channels; " +
@@ -218,6 +215,11 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
 }
 
 }  // namespace
+
+std::vector<std::string> feature_channel_names(bool physical) {
+  if (physical) return {"region", "signed_distance", "wind_u", "wind_v", "source_distance"};
+  return {"region", "signed_distance", "source_distance"};
+}
 
 std::vector<LayerSpec> deepcfd_layers(const Architecture& a) {
   std::vector<LayerSpec> layers;

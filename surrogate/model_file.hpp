@@ -74,6 +74,10 @@ struct FeatureContract {
   int source_channel() const { return static_cast<int>(channels.size()) - 1; }
 };
 
+// The input channels of a contract, in order: region, signed_distance, [wind_u, wind_v,]
+// source_distance (the wind on a physical grid).
+std::vector<std::string> feature_channel_names(bool physical);
+
 struct OutputSpec {
   std::string name;  // mean, std
   std::string unit;

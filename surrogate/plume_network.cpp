@@ -102,10 +102,7 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
     throw InputError(who + "the model was trained on a " + fmt(c.width) + " x " + fmt(c.height) +
                      " m arena, the map is " + fmt(map.width) + " x " + fmt(map.height) + " m");
   }
-  const std::vector<std::string> names =
-      c.physical() ? std::vector<std::string>{"region", "signed_distance", "wind_u", "wind_v",
-                                              "source_distance"}
-                   : std::vector<std::string>{"region", "signed_distance", "source_distance"};
+  const std::vector<std::string> names = feature_channel_names(c.physical());
   const int n_in = static_cast<int>(names.size());
   if (f.architecture.in_channels != n_in || static_cast<int>(c.channels.size()) != n_in) {
     std::string list;
