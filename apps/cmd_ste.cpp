@@ -95,6 +95,12 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
                     compact(ste::SurrogatePlumeOptions{}.source_cell) + " for the surrogate, " +
                     compact(o.physics.source_cell) + " for physics)",
                 "ste.source_cell");
+  bind_optional(cmd, "--table-cell", o.table_cell,
+                "The surrogate's table grid, m: one network run per free cell, each candidate "
+                "source reads the cells around it (default: the source cell, coarser on maps of "
+                "over 100 m^2 free: about " +
+                    compact(ste::kSurrogateTableCells) + " cells)",
+                "ste.table_cell");
   bind_to(cmd, "--diffusivity", o.physics.advection_diffusion.diffusivity,
           "Eddy diffusivity of the physics model, m^2/s", "plume.diffusivity");
   bind_to(cmd, "--decay-rate", o.physics.advection_diffusion.decay_rate,

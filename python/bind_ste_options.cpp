@@ -144,6 +144,8 @@ void bind_ste_options_class(py::module_& m) {
   PK_FIELD(o, SteOptions, physics, "PhysicsPlumeOptions");
   PK_FIELD(o, SteOptions, gaussian, "GaussianPlumeBounds");
   PK_FIELD(o, SteOptions, source_cell, "Candidate source grid, m (None: the model's default)");
+  PK_FIELD(o, SteOptions, table_cell,
+           "The surrogate's table grid, m (None: the source cell, coarser on large maps)");
   PK_FIELD(o, SteOptions, margin, "The planner's clearance, m");
   PK_FIELD(o, SteOptions, table_cache, "Folder caching surrogate tables (empty: none)");
   PK_FIELD(o, SteOptions, threads, "Threads of the surrogate's table build (0: one per core)");

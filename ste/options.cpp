@@ -124,14 +124,21 @@ double SteOptions::source_cell_in_use() const {
   return 0.0;
 }
 
-double surrogate_source_cell(const Map& map) {
-  const double cell = std::sqrt(map.width * map.height / kSurrogateSources);
-  return std::max(SurrogatePlumeOptions{}.source_cell, std::ceil(cell / 0.05 - 1e-9) * 0.05);
+double surrogate_table_cell(const Map& map, double source_cell) {
+  if (map.width * map.height <= kSurrogateTableArea) return source_cell;  // small: no free count
+  const GridShape probe = GridShape::with_cell(map.width, map.height, 0.2);
+  const std::vector<std::uint8_t> free = free_cells(map, probe, 0.0);
+  const double area = static_cast<double>(std::count(free.begin(), free.end(), std::uint8_t{1})) *
+                      probe.dx() * probe.dy();
+  if (area <= kSurrogateTableArea) return source_cell;
+  const double cell = std::sqrt(area / kSurrogateTableCells);
+  return std::max(source_cell, std::ceil(cell / 0.05 - 1e-9) * 0.05);
 }
 
-double SteOptions::source_cell_in_use(const Map& map) const {
-  if (model == PlumeModelKind::Surrogate && !source_cell) return surrogate_source_cell(map);
-  return source_cell_in_use();
+double SteOptions::table_cell_in_use(const Map& map) const {
+  if (model != PlumeModelKind::Surrogate) return 0.0;
+  const double cell = source_cell_in_use();
+  return table_cell ? std::max(cell, *table_cell) : surrogate_table_cell(map, cell);
 }
 
 void SteOptions::validate() const {
@@ -165,6 +172,12 @@ void SteOptions::validate() const {
                         "plume's MH runs on the bins); leave it unset");
     check_positive("ste.source_cell", *source_cell, 10.0, "m",
                    "the defaults are 0.2 m (surrogate) and 0.1 m (physics)");
+  }
+  if (table_cell) {
+    if (model != PlumeModelKind::Surrogate)
+      throw OptionError("ste.table_cell", "only the surrogate has a table; leave it unset");
+    check_range("ste.table_cell", *table_cell, source_cell_in_use(), 10.0, "m",
+                "it must be at least the source cell (" + compact(source_cell_in_use()) + " m)");
   }
   check_non_negative("ste.margin", margin, 10.0, "m", "the thesis's clearance is 0.15 m");
   check_count("ste.threads", threads, 0, 1024, "0 means one per core");

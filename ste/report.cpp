@@ -34,8 +34,14 @@ ordered_json point_json(Vec2 p) {
 }
 
 // The candidate source grid of a table model; null for the Gaussian plume (MH on the bins).
-ordered_json source_cell_json(const SteOptions& o, const Map* map = nullptr) {
-  const double cell = map ? o.source_cell_in_use(*map) : o.source_cell_in_use();
+ordered_json source_cell_json(const SteOptions& o) {
+  const double cell = o.source_cell_in_use();
+  return cell > 0.0 ? ordered_json(cell) : ordered_json(nullptr);
+}
+
+// The surrogate's table grid; null for the other models.
+ordered_json table_cell_json(const SteOptions& o, const Map& map) {
+  const double cell = o.table_cell_in_use(map);
   return cell > 0.0 ? ordered_json(cell) : ordered_json(nullptr);
 }
 
@@ -100,7 +106,8 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
                  {"median_step_s", r.median_step_s},
                  {"mission_s", r.time_s},
                  {"map_estimate", point_json(f.to_frame(r.map))},
-                 {"source_cell", source_cell_json(sc.options(), &sc.map())},
+                 {"source_cell", source_cell_json(sc.options())},
+                 {"table_cell", table_cell_json(sc.options(), sc.map())},
                  {"expected_parameters", expected},
                  {"entropy", r.posterior.entropy},
                  {"max_entropy", r.posterior.max_entropy},

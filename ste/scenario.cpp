@@ -26,10 +26,11 @@ double since(Clock::time_point t0) {
 }
 
 // Bytes per candidate source cell: the estimators' sums and likelihoods and
-// one table column, a few doubles each. The surrogate also keeps, per cell,
-// its predicted mean and std plumes on the 64 x 64 grid as float32.
+// one table column, a few doubles each. The surrogate also ties each candidate
+// to up to four table cells (32 bytes each); its table, one mean and std plume
+// per table cell, is checked where it is built (SurrogatePlume).
 constexpr double kBytesPerSourceCell = 128.0;
-constexpr double kSurrogateBytesPerSourceCell = kBytesPerSourceCell + 2 * 4 * 64 * 64;
+constexpr double kSurrogateBytesPerSourceCell = kBytesPerSourceCell + 4 * 32;
 
 void check_source_grid(const Map& map, double cell, const std::string& field,
                        double bytes_per_cell) {
@@ -54,7 +55,7 @@ std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& w
       return std::make_unique<GaussianPlume>(map, options.gaussian);
     case PlumeModelKind::Physics: {
       PhysicsPlumeOptions po = options.physics;
-      po.source_cell = options.source_cell_in_use(map);
+      po.source_cell = options.source_cell_in_use();
       return std::make_unique<PhysicsPlume>(map, wind, po);
     }
     case PlumeModelKind::Surrogate:
@@ -62,7 +63,8 @@ std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& w
   }
   SurrogatePlumeOptions so;
   so.model = options.model_path;
-  so.source_cell = options.source_cell_in_use(map);
+  so.source_cell = options.source_cell_in_use();
+  so.table_cell = options.table_cell_in_use(map);
   so.threads = options.threads;
   so.cache_dir = options.table_cache;
   so.scale_lo = options.physics.scale_lo;
@@ -171,10 +173,9 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
   const bool model = uses_plume_model(options.method.kind);
   if (model && options.model == PlumeModelKind::Physics)
-    check_source_grid(map_, options.source_cell_in_use(map_), "ste.source_cell",
-                      kBytesPerSourceCell);
+    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell", kBytesPerSourceCell);
   if (model && options.model == PlumeModelKind::Surrogate)
-    check_source_grid(map_, options.source_cell_in_use(map_), "ste.source_cell",
+    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   auto t0 = Clock::now();
   if (same_map) {

@@ -78,9 +78,11 @@ struct SteOptions {
   PhysicsPlumeOptions physics;
   GaussianPlumeBounds gaussian;
   // Candidate source grid, m, of the surrogate and physics models; unset: the model's own default
-  // (SurrogatePlumeOptions: 0.2 m, coarser on maps over 100 m^2, surrogate_source_cell;
-  // physics.source_cell: 0.1 m). The Gaussian plume has none.
+  // (SurrogatePlumeOptions: 0.2 m; physics.source_cell: 0.1 m). The Gaussian plume has none.
   std::optional<double> source_cell;
+  // The surrogate's table grid, m (one network run per allowed cell); unset: source_cell, or
+  // coarser on maps of over 100 m^2 of free space (surrogate_table_cell). At least source_cell.
+  std::optional<double> table_cell;
   double margin = 0.15;             // m, the planner's clearance (thesis 14.3.1)
   std::string table_cache;          // folder caching surrogate tables; empty: none
   int threads = kDefaultThreads;    // for the surrogate's table build; 0: one per core
@@ -91,10 +93,10 @@ struct SteOptions {
 
   // The likelihood the plume model runs with (the unset sigmas filled in).
   LikelihoodOptions likelihood_options() const;
-  // The candidate source grid in use (0 for the Gaussian plume, which has none): on the thesis's
-  // arena, and on `map`.
+  // The candidate source grid in use (0 for the Gaussian plume, which has none).
   double source_cell_in_use() const;
-  double source_cell_in_use(const Map& map) const;
+  // The surrogate's table grid in use on `map` (0 for the other models).
+  double table_cell_in_use(const Map& map) const;
   // Every field, the nested options' too (OptionError naming it: "ste.world.noise", ...), and
   // that a surrogate's model file exists. Scenario's constructor calls it.
   void validate() const;
@@ -103,11 +105,14 @@ struct SteOptions {
   void check_model_file() const;
 };
 
-// The surrogate's default candidate source cell on `map`: 0.2 m, or on maps over 100 m^2 the cell
-// (rounded up to 5 cm) that gives about kSurrogateSources cells, so that the table (one plume per
-// cell) stays within a minute to build and its memory bounded (ste/README.md, "Building scale").
-inline constexpr double kSurrogateSources = 2500;
-double surrogate_source_cell(const Map& map);
+// The surrogate's default table cell on `map` for candidates of `source_cell`: the source cell
+// itself, or on maps with over kSurrogateTableArea of free space the cell (rounded up to 5 cm,
+// at least source_cell) that gives about kSurrogateTableCells free cells, so that the table (one
+// plume per cell) stays within a minute to build and its memory bounded (ste/README.md, "The
+// learned model at building scale").
+inline constexpr double kSurrogateTableArea = 100.0;  // m^2
+inline constexpr double kSurrogateTableCells = 2500;
+double surrogate_table_cell(const Map& map, double source_cell);
 
 // What a run is labelled with in reports and pictures: STE's plume model ("surrogate", ...), or
 // the method's name ("surge-cast", ...).

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -104,7 +105,7 @@ void prepare_cache_dir(const fs::path& dir, const fs::path& file) {
                      "you can write, or run without a table cache");
 }
 
-// The cache key: the map's geometry, the model file and the candidate grid.
+// The cache key: the map's geometry, the model file, the table grid and the wind.
 std::string table_key(const Map& map, const fs::path& model, const GridShape& candidates,
                       const cfd::WindField* wind) {
   Sha256 h;
@@ -176,23 +177,34 @@ std::string table_cache_bytes(const SurrogateTable& t) {
 
 SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
     : map_(map),
-      parameters_{
-          {"x", 0.0, map.width}, {"y", 0.0, map.height}, {"release_scale", o.scale_lo, o.scale_hi}},
-      candidates_(GridShape::with_cell(map.width, map.height, o.source_cell)),
-      allowed_(free_cells(map, candidates_, 0.0)) {
+      parameters_{{"x", 0.0, map.width},
+                  {"y", 0.0, map.height},
+                  {"release_scale", o.scale_lo, o.scale_hi}} {
   if (!(o.source_cell > 0.0))
     throw InputError("surrogate plume model: source_cell must be positive");
+  if (!(o.table_cell == 0.0 || o.table_cell >= o.source_cell))
+    throw InputError(
+        "surrogate plume model: table_cell must be 0 (the source cell) or at least "
+        "source_cell");
   if (o.threads < 0 || o.batch < 1)
     throw InputError("surrogate plume model: threads >= 0 and batch >= 1");
+  candidates_ = GridShape::with_cell(map.width, map.height, o.source_cell);
+  allowed_ = free_cells(map, candidates_, 0.0);
+  table_grid_ =
+      o.table_cell > 0.0 ? GridShape::with_cell(map.width, map.height, o.table_cell) : candidates_;
+  shifted_ = table_grid_.nx != candidates_.nx || table_grid_.ny != candidates_.ny;
+  const std::vector<std::uint8_t> table_allowed =
+      shifted_ ? free_cells(map, table_grid_, 0.0) : allowed_;
   std::vector<Vec2> cells;
-  row_.assign(candidates_.size(), -1);
-  for (int j = 0; j < candidates_.ny; ++j)
-    for (int i = 0; i < candidates_.nx; ++i)
-      if (allowed_[candidates_.index(i, j)]) {
-        row_[candidates_.index(i, j)] = static_cast<int>(cells.size());
-        cells.push_back(candidates_.centre(i, j));
+  row_.assign(table_grid_.size(), -1);
+  for (int j = 0; j < table_grid_.ny; ++j)
+    for (int i = 0; i < table_grid_.nx; ++i)
+      if (table_allowed[table_grid_.index(i, j)]) {
+        row_[table_grid_.index(i, j)] = static_cast<int>(cells.size());
+        cells.push_back(table_grid_.centre(i, j));
       }
-
+  rows_ = cells.size();
+  if (shifted_) anchor_candidates();
   surrogate::EngineOptions eo;
   eo.threads = resolve_threads(o.threads);
   auto network = std::make_shared<const surrogate::Network>(surrogate::Network::load(o.model, eo));
@@ -204,10 +216,10 @@ SurrogatePlume::SurrogatePlume(const Map& map, const SurrogatePlumeOptions& o)
   // The table: a mean and a std plume per allowed cell, on the model's grid (a physical-grid
   // model's grows with the map).
   check_memory(8.0 * static_cast<double>(cells.size()) * static_cast<double>(grid_.size()),
-               "the surrogate table of " + std::to_string(cells.size()) + " source cells x " +
+               "the surrogate table of " + std::to_string(cells.size()) + " table cells x " +
                    std::to_string(grid_.size()) + " plume cells",
-               "use a larger ste.source_cell");
-  key_ = table_key(map, o.model, candidates_, wind);
+               "use a larger ste.table_cell (or ste.source_cell)");
+  key_ = table_key(map, o.model, table_grid_, wind);
   cache_file_ = o.cache_dir.empty()
                     ? fs::path()
                     : o.cache_dir / ("surrogate-table-" + key_.substr(0, 16) + ".bin");
@@ -228,7 +240,7 @@ bool SurrogatePlume::load_cache(std::size_t rows, const Note& note) {
     SurrogateTable t = parse_table_cache(read_file(cache_file_), cache_file_.string());
     if (t.key != key_ || t.rows != rows || t.per != grid_.size())
       throw InputError(cache_file_.string() +
-                       ": made for another map, model or source grid (its key differs)");
+                       ": made for another map, model or table grid (its key differs)");
     table_ = std::move(t.mean);
     table_std_ = std::move(t.std);
     from_cache_ = true;
@@ -283,8 +295,23 @@ std::vector<double> SurrogatePlume::spreads_at(Vec2 p) const {
 std::vector<double> SurrogatePlume::lookup(const std::vector<float>& table, Vec2 p) const {
   std::vector<double> out(candidates_.size(), 0.0);
   if (!map_.is_free(p)) return out;  // the surrogate predicts 0 inside obstacles
-  const GridShape::Bilinear b = grid_.bilinear(p);
   const std::size_t per = grid_.size();
+  // The plume of `row` at q, bilinear between the model grid's cell centres.
+  const auto at = [&](int row, Vec2 q) {
+    const GridShape::Bilinear b = grid_.bilinear(q);
+    const float* t = table.data() + static_cast<std::size_t>(row) * per;
+    return (1 - b.tx) * (1 - b.ty) * t[grid_.index(b.i0, b.j0)] +
+           b.tx * (1 - b.ty) * t[grid_.index(b.i1, b.j0)] +
+           (1 - b.tx) * b.ty * t[grid_.index(b.i0, b.j1)] +
+           b.tx * b.ty * t[grid_.index(b.i1, b.j1)];
+  };
+  if (shifted_) {
+    for (std::size_t c = 0; c < out.size(); ++c)
+      for (std::size_t a = first_anchor_[c]; a < first_anchor_[c + 1]; ++a)
+        out[c] += anchors_[a].weight * at(anchors_[a].row, p - anchors_[a].shift);
+    return out;
+  }
+  const GridShape::Bilinear b = grid_.bilinear(p);
   const std::size_t k00 = grid_.index(b.i0, b.j0), k10 = grid_.index(b.i1, b.j0),
                     k01 = grid_.index(b.i0, b.j1), k11 = grid_.index(b.i1, b.j1);
   const double w00 = (1 - b.tx) * (1 - b.ty), w10 = b.tx * (1 - b.ty), w01 = (1 - b.tx) * b.ty,
@@ -295,6 +322,73 @@ std::vector<double> SurrogatePlume::lookup(const std::vector<float>& table, Vec2
     out[c] = w00 * t[k00] + w10 * t[k10] + w01 * t[k01] + w11 * t[k11];
   }
   return out;
+}
+
+void SurrogatePlume::anchor_candidates() {
+  // Free in a straight line from a to b: every point along it, at steps of a quarter of the
+  // finer cell, lies in an allowed candidate cell (the rasterised free space).
+  const double step = 0.25 * std::min(candidates_.dx(), candidates_.dy());
+  const auto cell_free = [&](Vec2 q) {
+    const int i = std::clamp(static_cast<int>(q.x / candidates_.dx()), 0, candidates_.nx - 1);
+    const int j = std::clamp(static_cast<int>(q.y / candidates_.dy()), 0, candidates_.ny - 1);
+    return allowed_[candidates_.index(i, j)] != 0;
+  };
+  const auto sees = [&](Vec2 a, Vec2 b) {
+    const int n = static_cast<int>(std::ceil(norm(b - a) / step));
+    for (int k = 1; k < n; ++k)
+      if (!cell_free(a + (static_cast<double>(k) / n) * (b - a))) return false;
+    return true;
+  };
+  first_anchor_.assign(candidates_.size() + 1, 0);
+  for (int j = 0; j < candidates_.ny; ++j)
+    for (int i = 0; i < candidates_.nx; ++i) {
+      const std::size_t c = candidates_.index(i, j);
+      first_anchor_[c] = anchors_.size();
+      if (!allowed_[c]) continue;
+      const Vec2 s = candidates_.centre(i, j);
+      // The four table cells around s, bilinear weights (renormalised over those it may use).
+      const GridShape::Bilinear b = table_grid_.bilinear(s);
+      const int is[2] = {b.i0, b.i1}, js[2] = {b.j0, b.j1};
+      const double wx[2] = {1 - b.tx, b.tx}, wy[2] = {1 - b.ty, b.ty};
+      double total = 0.0;
+      for (int bj = 0; bj < 2; ++bj)
+        for (int bi = 0; bi < 2; ++bi) {
+          if (bi == 1 && is[1] == is[0]) continue;  // clamped at the grid's edge: one column
+          if (bj == 1 && js[1] == js[0]) continue;
+          const double w = (is[1] == is[0] ? 1.0 : wx[bi]) * (js[1] == js[0] ? 1.0 : wy[bj]);
+          const int row = row_[table_grid_.index(is[bi], js[bj])];
+          const Vec2 centre = table_grid_.centre(is[bi], js[bj]);
+          if (w <= 0.0 || row < 0 || !sees(s, centre)) continue;
+          anchors_.push_back({row, w, s - centre});
+          total += w;
+        }
+      if (total > 0.0) {
+        for (std::size_t a = first_anchor_[c]; a < anchors_.size(); ++a)
+          anchors_[a].weight /= total;
+        continue;
+      }
+      // None around it (next to a wall): the nearest allowed table cell it sees, within two
+      // table cells.
+      const int ci = std::clamp(static_cast<int>(s.x / table_grid_.dx()), 0, table_grid_.nx - 1);
+      const int cj = std::clamp(static_cast<int>(s.y / table_grid_.dy()), 0, table_grid_.ny - 1);
+      double best = std::numeric_limits<double>::infinity();
+      Anchor nearest{-1, 1.0, {}};
+      for (int tj = cj - 2; tj <= cj + 2; ++tj)
+        for (int ti = ci - 2; ti <= ci + 2; ++ti) {
+          if (!table_grid_.contains(ti, tj)) continue;
+          const int row = row_[table_grid_.index(ti, tj)];
+          const Vec2 centre = table_grid_.centre(ti, tj);
+          const double d = norm(s - centre);
+          if (row < 0 || d >= best || !sees(s, centre)) continue;
+          best = d;
+          nearest = {row, 1.0, s - centre};
+        }
+      if (nearest.row >= 0)
+        anchors_.push_back(nearest);
+      else
+        allowed_[c] = 0;  // no plume to give it: not a candidate
+    }
+  first_anchor_[candidates_.size()] = anchors_.size();
 }
 
 }  // namespace plumekit::ste

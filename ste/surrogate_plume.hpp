@@ -1,11 +1,16 @@
 #pragma once
 // The surrogate plume model: the CNN (surrogate/plume_network.hpp) over the
-// source position, tabulated. At construction every allowed source cell's
-// predicted mean and std plumes (64 x 64) are computed, in batches split across
-// threads, so that during a run readings_at(p) is one bilinear lookup per
-// cell and no network runs inside the loop. The table can be cached on disk,
+// source position, tabulated. At construction every allowed table cell's
+// predicted mean and std plumes (the model's grid) are computed, in batches
+// split across threads, so that during a run readings_at(p) is a few bilinear
+// lookups per candidate and no network runs inside the loop. On large maps the
+// table is coarser than the candidate sources (table_cell > source_cell): a
+// candidate then reads the plumes of the table cells around it, each shifted
+// by the offset from that cell to the candidate and blended bilinearly (a
+// plume moves with its source over a fraction of a metre; ste/README.md,
+// "Candidates finer than the table"). The table can be cached on disk,
 // keyed by the SHA-256 of the map's geometry, of the model file and of the
-// source grid, and carries a SHA-256 of its own bytes: a damaged or stale
+// table grid, and carries a SHA-256 of its own bytes: a damaged or stale
 // file is rebuilt (with a note), never trusted. The release rate is a scale
 // factor on the table (parameter release_scale), fixed or marginalised by the
 // grid estimator.
@@ -27,8 +32,11 @@ class PlumeNetwork;
 namespace plumekit::ste {
 
 struct SurrogatePlumeOptions {
-  std::filesystem::path model;    // plumekit-cnn file
-  double source_cell = 0.2;       // m: 50 x 20 candidate sources on the 10 x 4 arena
+  std::filesystem::path model;  // plumekit-cnn file
+  double source_cell = 0.2;     // m: 50 x 20 candidate sources on the 10 x 4 arena
+  // m: the cell of the table the network fills (one plume per allowed cell); 0: source_cell.
+  // At least source_cell; coarser keeps the table's build time and memory bounded on large maps.
+  double table_cell = 0.0;
   int threads = kDefaultThreads;  // for the table build; 0: one per core
   int batch = 32;
   // Empty: no disk cache. Created if missing; it must be a writable folder, checked before the
@@ -45,7 +53,7 @@ struct SurrogatePlumeOptions {
 
 // A table cache file's contents (format in ste/README.md, "Table cache").
 struct SurrogateTable {
-  std::string key;               // 64 hex digits: map geometry, model file, source grid
+  std::string key;               // 64 hex digits: map geometry, model file, table grid
   std::uint32_t rows = 0;        // allowed source cells
   std::uint32_t per = 0;         // plume cells of one row (grid ny * nx)
   std::vector<float> mean, std;  // [rows][per] each; finite, >= 0
@@ -75,13 +83,29 @@ class SurrogatePlume final : public SourceTableModel {
   const std::filesystem::path& cache_file() const { return cache_file_; }  // empty: no cache
   const std::string& key() const { return key_; }                          // the cache key (hex)
   const GridShape& plume_grid() const { return grid_; }
+  const GridShape& table_grid() const { return table_grid_; }
+  std::size_t table_rows() const { return rows_; }
 
  private:
   Map map_;
   std::vector<Parameter> parameters_;
-  GridShape candidates_, grid_;
+  GridShape candidates_, grid_, table_grid_;
   std::vector<std::uint8_t> allowed_;
-  std::vector<int> row_;  // source cell -> row of table_, or -1
+  std::size_t rows_ = 0;
+  std::vector<int> row_;  // table cell -> row of table_, or -1
+  // A candidate's plume is sum_a weight_a * (row_a's plume at p - shift_a). Without a finer
+  // candidate grid each candidate has one anchor, its own row unshifted (anchors_ is then unused).
+  struct Anchor {
+    int row;
+    double weight;
+    Vec2 shift;  // candidate - table cell centre
+  };
+  bool shifted_ = false;
+  std::vector<std::size_t> first_anchor_;  // per candidate, into anchors_; size candidates + 1
+  std::vector<Anchor> anchors_;
+  // Ties each candidate to the allowed table cells around it that it sees in a straight line
+  // through free candidate cells; a candidate with none is not allowed.
+  void anchor_candidates();
   // Per allowed source cell (row), the predicted mean and std plumes: [rows][grid_.ny][grid_.nx].
   std::vector<float> table_, table_std_;
   bool has_spreads_ = true;

@@ -160,7 +160,7 @@ TEST(Scenario, OversizedSourceGridIsRefused) {
   } catch (const MemoryLimitError& e) {
     expect_has(e.what(), "use a larger ste.source_cell (");
   }
-  // The surrogate keeps two 64 x 64 plumes per cell: 2 cm cells on 10 x 4 m are 3.3 GB.
+  // The surrogate's table keeps two 64 x 64 plumes per cell: 2 cm cells on 10 x 4 m are 3.3 GB.
   set_memory_limit(parse_memory_size("1G"));
   SteOptions surrogate;
   surrogate.model_path = kModel;
@@ -169,8 +169,8 @@ TEST(Scenario, OversizedSourceGridIsRefused) {
     Scenario s(default_arena(), surrogate);
     ADD_FAILURE() << "no MemoryLimitError";
   } catch (const MemoryLimitError& e) {
-    expect_has(e.what(), "the source grid of 1e+05 cells of 0.02 m");
-    expect_has(e.what(), "use a larger ste.source_cell (");
+    expect_has(e.what(), "the surrogate table of 100000 table cells x 4096 plume cells");
+    expect_has(e.what(), "use a larger ste.table_cell (or ste.source_cell)");
   }
   set_memory_limit(default_memory_limit());
 }
