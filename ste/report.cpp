@@ -33,16 +33,14 @@ ordered_json point_json(Vec2 p) {
   return ordered_json::array({p.x, p.y});
 }
 
-// The candidate source grid of a table model; null for the Gaussian plume (MH on the bins).
-ordered_json source_cell_json(const SteOptions& o) {
-  const double cell = o.source_cell_in_use();
+// A grid's cell, m; null where there is none (0).
+ordered_json cell_json(double cell) {
   return cell > 0.0 ? ordered_json(cell) : ordered_json(nullptr);
 }
 
-// The surrogate's table grid; null for the other models.
-ordered_json table_cell_json(const SteOptions& o, const Map& map) {
-  const double cell = o.table_cell_in_use(map);
-  return cell > 0.0 ? ordered_json(cell) : ordered_json(nullptr);
+// The candidate source grid of a table model; null for the Gaussian plume (MH on the bins).
+ordered_json source_cell_json(const SteOptions& o) {
+  return cell_json(o.source_cell_in_use());
 }
 
 // Every position a report holds is in the map's frame (MapFrame).
@@ -107,7 +105,7 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
                  {"mission_s", r.time_s},
                  {"map_estimate", point_json(f.to_frame(r.map))},
                  {"source_cell", source_cell_json(sc.options())},
-                 {"table_cell", table_cell_json(sc.options(), sc.map())},
+                 {"table_cell", cell_json(sc.table_cell())},
                  {"expected_parameters", expected},
                  {"entropy", r.posterior.entropy},
                  {"max_entropy", r.posterior.max_entropy},

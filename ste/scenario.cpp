@@ -46,10 +46,11 @@ void check_source_grid(const Map& map, double cell, const std::string& field,
                "use a larger " + field + " (" + fit + " m fits)");
 }
 
-// The plume model of `options.model` on `map`; `from_cache` says whether a surrogate table came
-// from its cache.
+// The plume model of `options.model` on `map` (a surrogate's table on `table_cell`); `from_cache`
+// says whether a surrogate table came from its cache.
 std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& wind,
-                                         const SteOptions& options, bool& from_cache) {
+                                         const SteOptions& options, double table_cell,
+                                         bool& from_cache) {
   switch (options.model) {
     case PlumeModelKind::Gaussian:
       return std::make_unique<GaussianPlume>(map, options.gaussian);
@@ -64,7 +65,7 @@ std::unique_ptr<ForwardModel> make_model(const Map& map, const cfd::WindField& w
   SurrogatePlumeOptions so;
   so.model = options.model_path;
   so.source_cell = options.source_cell_in_use();
-  so.table_cell = options.table_cell_in_use(map);
+  so.table_cell = table_cell;
   so.threads = options.threads;
   so.cache_dir = options.table_cache;
   so.scale_lo = options.physics.scale_lo;
@@ -187,8 +188,10 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
     wind_s_ = since(t0);
   }
   t0 = Clock::now();
-  if (uses_plume_model(options.method.kind))
-    model_ = make_model(map_, wind_, options, table_from_cache_);
+  if (model) {
+    table_cell_ = options.table_cell_in_use(map_);  // counts the free space once
+    model_ = make_model(map_, wind_, options, table_cell_, table_from_cache_);
+  }
   model_build_s_ = since(t0);
   planner::PlannerOptions po;
   po.margin = options.margin;

@@ -158,6 +158,8 @@ class Scenario {
   // The plume model's build: the surrogate's table, and the readings at the floor's goals.
   double model_build_s() const { return model_build_s_; }
   bool table_from_cache() const { return table_from_cache_; }
+  // The surrogate's table grid in use, m (SteOptions::table_cell_in_use); 0 for the other models.
+  double table_cell() const { return table_cell_; }
 
   // Checks a true source and a start (OptionError on ste.source / ste.start naming the fault);
   // a start inside the planner's margin is moved to the nearest free point (the caller reports
@@ -221,6 +223,7 @@ class Scenario {
   GridShape bins_;
   double wind_s_ = 0.0, model_build_s_ = 0.0;
   bool table_from_cache_ = false;
+  double table_cell_ = 0.0;
 };
 
 }  // namespace plumekit::ste

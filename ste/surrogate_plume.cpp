@@ -127,6 +127,22 @@ std::string table_key(const Map& map, const fs::path& model, const GridShape& ca
   return h.hex_digest();
 }
 
+// Bilinear interpolation of a plume on `grid` at p, between cell centres: four cells and weights.
+struct Taps {
+  std::size_t k00, k10, k01, k11;
+  double w00, w10, w01, w11;
+  Taps(const GridShape& grid, Vec2 p) {
+    const GridShape::Bilinear b = grid.bilinear(p);
+    k00 = grid.index(b.i0, b.j0), k10 = grid.index(b.i1, b.j0);
+    k01 = grid.index(b.i0, b.j1), k11 = grid.index(b.i1, b.j1);
+    w00 = (1 - b.tx) * (1 - b.ty), w10 = b.tx * (1 - b.ty), w01 = (1 - b.tx) * b.ty;
+    w11 = b.tx * b.ty;
+  }
+  double operator()(const float* t) const {
+    return w00 * t[k00] + w10 * t[k10] + w01 * t[k01] + w11 * t[k11];
+  }
+};
+
 void print_note(const std::string& note) {
   std::cerr << "plumekit: note: " << note << "\n";
 }
@@ -295,32 +311,18 @@ std::vector<double> SurrogatePlume::spreads_at(Vec2 p) const {
 std::vector<double> SurrogatePlume::lookup(const std::vector<float>& table, Vec2 p) const {
   std::vector<double> out(candidates_.size(), 0.0);
   if (!map_.is_free(p)) return out;  // the surrogate predicts 0 inside obstacles
-  const std::size_t per = grid_.size();
-  // The plume of `row` at q, bilinear between the model grid's cell centres.
-  const auto at = [&](int row, Vec2 q) {
-    const GridShape::Bilinear b = grid_.bilinear(q);
-    const float* t = table.data() + static_cast<std::size_t>(row) * per;
-    return (1 - b.tx) * (1 - b.ty) * t[grid_.index(b.i0, b.j0)] +
-           b.tx * (1 - b.ty) * t[grid_.index(b.i1, b.j0)] +
-           (1 - b.tx) * b.ty * t[grid_.index(b.i0, b.j1)] +
-           b.tx * b.ty * t[grid_.index(b.i1, b.j1)];
+  const auto plume = [&](int row) {
+    return table.data() + static_cast<std::size_t>(row) * grid_.size();
   };
   if (shifted_) {
     for (std::size_t c = 0; c < out.size(); ++c)
       for (std::size_t a = first_anchor_[c]; a < first_anchor_[c + 1]; ++a)
-        out[c] += anchors_[a].weight * at(anchors_[a].row, p - anchors_[a].shift);
+        out[c] += anchors_[a].weight * Taps(grid_, p - anchors_[a].shift)(plume(anchors_[a].row));
     return out;
   }
-  const GridShape::Bilinear b = grid_.bilinear(p);
-  const std::size_t k00 = grid_.index(b.i0, b.j0), k10 = grid_.index(b.i1, b.j0),
-                    k01 = grid_.index(b.i0, b.j1), k11 = grid_.index(b.i1, b.j1);
-  const double w00 = (1 - b.tx) * (1 - b.ty), w10 = b.tx * (1 - b.ty), w01 = (1 - b.tx) * b.ty,
-               w11 = b.tx * b.ty;
-  for (std::size_t c = 0; c < out.size(); ++c) {
-    if (row_[c] < 0) continue;
-    const float* t = table.data() + static_cast<std::size_t>(row_[c]) * per;
-    out[c] = w00 * t[k00] + w10 * t[k10] + w01 * t[k01] + w11 * t[k11];
-  }
+  const Taps taps(grid_, p);
+  for (std::size_t c = 0; c < out.size(); ++c)
+    if (row_[c] >= 0) out[c] = taps(plume(row_[c]));
   return out;
 }
 
@@ -347,15 +349,14 @@ void SurrogatePlume::anchor_candidates() {
       if (!allowed_[c]) continue;
       const Vec2 s = candidates_.centre(i, j);
       // The four table cells around s, bilinear weights (renormalised over those it may use).
+      // (A one-cell axis has t = 0, so its second cell's weight is 0 and skipped.)
       const GridShape::Bilinear b = table_grid_.bilinear(s);
       const int is[2] = {b.i0, b.i1}, js[2] = {b.j0, b.j1};
       const double wx[2] = {1 - b.tx, b.tx}, wy[2] = {1 - b.ty, b.ty};
       double total = 0.0;
       for (int bj = 0; bj < 2; ++bj)
         for (int bi = 0; bi < 2; ++bi) {
-          if (bi == 1 && is[1] == is[0]) continue;  // clamped at the grid's edge: one column
-          if (bj == 1 && js[1] == js[0]) continue;
-          const double w = (is[1] == is[0] ? 1.0 : wx[bi]) * (js[1] == js[0] ? 1.0 : wy[bj]);
+          const double w = wx[bi] * wy[bj];
           const int row = row_[table_grid_.index(is[bi], js[bj])];
           const Vec2 centre = table_grid_.centre(is[bi], js[bj]);
           if (w <= 0.0 || row < 0 || !sees(s, centre)) continue;

@@ -146,6 +146,18 @@ TEST(Scenario, FlowCellFaultNamesTheFlowCell) {
   expect_option_error([&] { Scenario s(map, o); }, "flow.cell", "0.03 m apart");
 }
 
+TEST(SteOptions, TableCellIsAtLeastTheSourceCellAndOnlyTheSurrogates) {
+  SteOptions o;
+  o.model_path = kModel;
+  o.source_cell = 0.3;
+  o.table_cell = 0.2;
+  expect_option_error([&] { o.validate(); }, "ste.table_cell", "at least the source cell");
+  o.table_cell = 0.3;
+  EXPECT_NO_THROW(o.validate());
+  o.model = PlumeModelKind::Physics;
+  expect_option_error([&] { o.validate(); }, "ste.table_cell", "only the surrogate has a table");
+}
+
 TEST(Scenario, OversizedSourceGridIsRefused) {
   SteOptions o;
   o.model = PlumeModelKind::Physics;

@@ -135,27 +135,5 @@ TEST(SurrogateTableGrid, TheDefaultTableCellCountsTheFreeSpace) {
   EXPECT_DOUBLE_EQ(o.table_cell_in_use(empty_map(10, 4)), 0.0);
 }
 
-TEST(SurrogateTableGrid, TableCellOptionIsChecked) {
-  SteOptions o;
-  o.model_path = (kData / "models" / "plume-unet-v2.pkcnn").string();
-  o.source_cell = 0.3;
-  o.table_cell = 0.2;
-  try {
-    o.validate();
-    ADD_FAILURE() << "no OptionError";
-  } catch (const OptionError& e) {
-    EXPECT_EQ(e.field(), "ste.table_cell");
-  }
-  o.table_cell = 0.3;
-  EXPECT_NO_THROW(o.validate());
-  o.model = PlumeModelKind::Physics;
-  try {
-    o.validate();
-    ADD_FAILURE() << "no OptionError";
-  } catch (const OptionError& e) {
-    EXPECT_EQ(e.field(), "ste.table_cell");
-  }
-}
-
 }  // namespace
 }  // namespace plumekit::ste
