@@ -8,6 +8,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake pkg-config git
+  # a compiler cache: rebuilds of unchanged files, in any clone, come from it (docs/ci.md)
+  ccache
   # fuzzing (scripts/fuzz.sh): clang and its sanitizer runtimes. -fsanitize=fuzzer links
   # libclang_rt.fuzzer from libclang-rt-14-dev, which clang-14 only recommends; libfuzzer-14-dev
   # (a standalone libFuzzer.a) is not needed. GCC's ThreadSanitizer runtime, libtsan2, comes
