@@ -35,12 +35,11 @@ fi
 [[ -n "$cxx" ]] || { echo "fuzz.sh: needs clang++ with libFuzzer (scripts/install-deps.sh)" >&2; exit 2; }
 
 if [[ ! -f $build/CMakeCache.txt ]]; then
-  launcher=()
-  command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   # -O1, no NDEBUG (asserts stay on), line tables only: stacks with line numbers, faster builds.
+  # The compiler cache, when installed, comes from CMakeLists.txt.
   CXX=$cxx cmake -S . -B $build -DPLUMEKIT_FUZZ=ON -DBUILD_TESTING=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only" \
-    -DPLUMEKIT_NATIVE=OFF "${launcher[@]}"
+    -DPLUMEKIT_NATIVE=OFF
 fi
 cmake --build $build -j "$(nproc)" --target "${targets[@]}"
 
