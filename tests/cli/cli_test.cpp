@@ -13,7 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const fs::path kData = PLUMEKIT_DATA_DIR;
-const fs::path kBadMaps = PLUMEKIT_TEST_DATA "/bad-maps";
+const fs::path kBadMaps = fs::path(PLUMEKIT_TEST_DATA) / "bad-maps";
 
 using Result = plumekit::test::CliResult;
 class Cli : public plumekit::test::CliTest {};
