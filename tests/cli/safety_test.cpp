@@ -84,11 +84,11 @@ class Safety : public plumekit::test::CliTest {
     posix_spawnattr_destroy(&attr);
     return rc == 0 ? pid : -1;
   }
-  // Waits (up to 30 s) until an entry whose name holds `part` appears in `folder`.
+  // Waits (up to 30 s) until an entry whose name holds `part` appears under `folder`.
   static bool appears(const fs::path& folder, const std::string& part) {
     for (int i = 0; i < 600; ++i) {
       std::error_code ec;
-      for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+      for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
         if (it->path().filename().string().find(part) != std::string::npos) return true;
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
@@ -181,7 +181,7 @@ TEST_F(Safety, StoppedEvaluateOfSeveralMethodsLeavesNothing) {
   const auto before = snapshot(dir);
   const pid_t pid = start(slow_evaluate(maps, dir / "new" / "eval", "all"));
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(appears(dir / "new", ".plumekit-tmp-")) << "the run never started writing";
+  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
   EXPECT_EQ(stop(pid, SIGTERM), 143);
   EXPECT_EQ(snapshot(dir), before);
 }
