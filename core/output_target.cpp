@@ -164,6 +164,12 @@ std::string command_name(const std::string& command) {
 }
 
 // Throws unless `dir` (an existing folder) is empty or this command's own output.
+void drop_nested_outputs(const fs::path& target, const std::string& command,
+                         std::vector<std::string>& files);
+void check_marked_files(const fs::path& target, const Marker& m,
+                        const std::vector<std::string>& files,
+                        const std::vector<std::string>& other);
+
 void check_existing_folder(const fs::path& target, const std::string& command) {
   std::vector<std::string> files, other;
   list_files(target, "", files, other);
@@ -180,12 +186,46 @@ void check_existing_folder(const fs::path& target, const std::string& command) {
     throw InputError(quoted(target) + ": holds the output of `" + command_name(m.command) +
                      "`, not of `" + command_name(command) + "`; name another folder");
   std::sort(files.begin(), files.end());
+  drop_nested_outputs(target, command, files);
+  check_marked_files(target, m, files, other);
+}
+
+// Removes from `files` those of nested outputs of `command` (evaluate --method
+// a,b: a folder per method, each with its own marker, which may be rewritten
+// alone), after checking each of those as an output folder of its own.
+void drop_nested_outputs(const fs::path& target, const std::string& command,
+                         std::vector<std::string>& files) {
+  const std::string suffix = std::string("/") + kOutputMarker;
+  std::vector<std::string> nested;
+  for (const std::string& f : files)
+    if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0)
+      if (const std::string sub = f.substr(0, f.size() - suffix.size() + 1);
+          read_marker(target / sub).command == command &&
+          std::none_of(nested.begin(), nested.end(),
+                       [&](const std::string& n) { return sub.rfind(n, 0) == 0; }))
+        nested.push_back(sub);  // sorted: an outer folder comes before those inside it
+  for (const std::string& sub : nested)
+    check_existing_folder(target / sub, command);
+  files.erase(std::remove_if(files.begin(), files.end(),
+                             [&](const std::string& f) {
+                               return std::any_of(
+                                   nested.begin(), nested.end(),
+                                   [&](const std::string& n) { return f.rfind(n, 0) == 0; });
+                             }),
+              files.end());
+}
+
+// Throws unless every file but the marker is listed by `m` with its size and SHA-256.
+void check_marked_files(const fs::path& target, const Marker& m,
+                        const std::vector<std::string>& files,
+                        const std::vector<std::string>& other) {
   std::vector<std::string> foreign = other;
   for (const std::string& f : files)
     if (f != kOutputMarker && !m.files.count(f)) foreign.push_back(f);
   if (!foreign.empty())
-    throw InputError(quoted(target) + ": holds the output of an earlier `" + command_name(command) +
-                     "` and files it did not write (" + some_entries(foreign) +
+    throw InputError(quoted(target) + ": holds the output of an earlier `" +
+                     command_name(m.command) + "` and files it did not write (" +
+                     some_entries(foreign) +
                      "); move them away or name another folder, plumekit never deletes them");
   for (const std::string& f : files) {
     if (f == kOutputMarker) continue;
@@ -374,7 +414,8 @@ OutputLock::OutputLock(const fs::path& target, bool shared) : file_(lock_file_of
       ::close(fd);
       continue;
     }
-    const std::string text = read_fd(fd);
+    struct stat st {};
+    const std::string text = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) ? read_fd(fd) : "?";
     if (text == kLockText) {
       fd_ = fd;
       register_lock(file_, fd_);

@@ -125,7 +125,7 @@ Temporary::Temporary(const fs::path& target) {
     const fs::path folder = dir / name;
     std::error_code ec;
     if (!fs::create_directory(folder, ec)) {
-      if (!ec && attempt < 1000) continue;  // exists
+      if ((!ec || ec == std::errc::file_exists) && attempt < 1000) continue;  // taken
       throw InputError(t.string() + ": cannot create a temporary folder beside it: " +
                        (ec ? ec.message() : std::string("every name is taken")));
     }

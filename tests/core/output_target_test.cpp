@@ -302,6 +302,28 @@ TEST_F(OutputTargetTest, ForgedOrOlderMarkersDoNotMakeFilesOurs) {
   EXPECT_EQ(slurp("old/result.txt"), "new");
 }
 
+// evaluate --method a,b: one output holding one per method, each of which may be rewritten alone.
+TEST_F(OutputTargetTest, NestedOutputsAreCheckedByTheirOwnMarkers) {
+  {
+    OutputDirectory whole("all", "evaluate");
+    for (const char* name : {"ste", "zigzag"}) {
+      OutputDirectory one(whole.open() / name, "evaluate");
+      put(one.open() / "runs.csv", name);
+      one.commit();
+    }
+    whole.commit();
+  }
+  EXPECT_EQ(slurp("all/zigzag/runs.csv"), "zigzag");
+  EXPECT_TRUE(fs::exists("all/zigzag/.plumekit-output.json"));
+  write_run("all/zigzag", "evaluate", "alone");  // rewritten alone: still ours
+  EXPECT_NO_THROW(OutputDirectory again("all", "evaluate"));
+  put("all/ste/runs.csv", "edited");
+  const std::string e = input_error([&] { OutputDirectory again("all", "evaluate"); });
+  EXPECT_NE(e.find("runs.csv is not the file plumekit wrote there"), std::string::npos) << e;
+  EXPECT_NE(e.find("all/ste"), std::string::npos) << e;
+  EXPECT_EQ(slurp("all/ste/runs.csv"), "edited");
+}
+
 // Issue 44: one run at a time writes an output; the lock file goes when done.
 TEST_F(OutputTargetTest, SecondWriterOfAnOutputIsRefusedAtOnce) {
   {
