@@ -277,6 +277,27 @@ TEST_F(Safety, AStaleTemporaryOfAKilledRunIsRemovedByTheNextRun) {
   EXPECT_TRUE(fs::exists(dir / "wind" / "u.npy"));
 }
 
+// Issue 44: a resumed dataset removes its own stale temporaries, never a look-alike.
+TEST_F(Safety, AResumedDatasetRemovesOnlyMarkedTemporaries) {
+  const fs::path ds = dir / "ds";
+  const std::string args =
+      "dataset generate --maps 1 --sources 1 --plume-model "
+      "advection-diffusion --out " +
+      ds.string();
+  ASSERT_EQ(run(args).code, 0);
+  const fs::path stale = ds / "shards" / "shard-00000.plumekit-tmp-999999999-0";
+  put(stale / "shard-00000" / "inputs.npy", "half");
+  put(stale / ".plumekit-temporary",
+      "plumekit-temporary/1\nshard-00000.plumekit-tmp-999999999-0\n");
+  put(ds / "shards" / "shard-00000.plumekit-tmp-999999999-1" / "notes.txt", "mine");
+  put(ds / "wind" / "map-00000.tmp-999999999-0" / "notes.txt", "mine too");  // an older form
+  const Result r = run(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_EQ(slurp(ds / "shards" / "shard-00000.plumekit-tmp-999999999-1" / "notes.txt"), "mine");
+  EXPECT_EQ(slurp(ds / "wind" / "map-00000.tmp-999999999-0" / "notes.txt"), "mine too");
+}
+
 TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {
   const fs::path work = thesis();
   const auto before = snapshot(work);
