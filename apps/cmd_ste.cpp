@@ -611,14 +611,20 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
       args.methods.size() > 1 ? args.methods : std::vector<ste::MethodKind>{eo.ste.method.kind};
   const bool several = kinds.size() > 1;
   std::vector<ste::EvaluationOptions> each(kinds.size(), eo);
+  const std::vector<fs::path> inputs{args.map_dir, eo.ste.table_cache, eo.ste.model_path};
+  // Several: OUT is one output, checked and locked like any before the work,
+  // and written whole, so that no earlier method's results mix with these and
+  // an interrupt leaves nothing; each method's folder inside is its own output.
+  std::optional<OutputDirectory> whole;
+  if (several) whole.emplace(args.out, "evaluate", inputs);
   std::vector<fs::path> outs;
   std::vector<std::unique_ptr<OutputDirectory>> dirs;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
     each[m].ste.method.kind = kinds[m];
-    outs.push_back(several ? fs::path(args.out) / ste::to_string(kinds[m]) : fs::path(args.out));
-    dirs.push_back(std::make_unique<OutputDirectory>(
-        outs[m], "evaluate",
-        std::vector<fs::path>{args.map_dir, eo.ste.table_cache, eo.ste.model_path}));
+    const std::string name = ste::to_string(kinds[m]);
+    outs.push_back(several ? fs::path(args.out) / name : fs::path(args.out));
+    dirs.push_back(std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m],
+                                                     "evaluate", inputs));
   }
   std::vector<ste::AfterMap> pictures;
   for (std::size_t m = 0; m < kinds.size(); ++m)
@@ -657,6 +663,7 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
     reports.push_back(rep);
   }
   if (!several) return report(reports.front().json, reports.front().text);
+  whole->commit();
   ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
   std::string text;
   for (std::size_t m = 0; m < kinds.size(); ++m) {

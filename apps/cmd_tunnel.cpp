@@ -207,13 +207,20 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
     const std::vector<ste::TunnelMethod> methods = ste::parse_tunnel_methods(a->methods);
     const bool several = methods.size() > 1;
     std::vector<ste::TunnelOptions> each(methods.size(), a->options);
-    std::vector<std::unique_ptr<OutputDirectory>> dirs;
     for (std::size_t m = 0; m < methods.size(); ++m) {
       each[m].method = methods[m];
       each[m].validate();
-      const fs::path out =
-          several ? fs::path(a->out) / ste::to_string(methods[m]) : fs::path(a->out);
-      dirs.push_back(std::make_unique<OutputDirectory>(out, "evaluate"));
+    }
+    // Several: OUT is one output written whole, each method's folder inside its own.
+    std::optional<OutputDirectory> whole;
+    if (several) whole.emplace(a->out, "evaluate");
+    std::vector<fs::path> outs;
+    std::vector<std::unique_ptr<OutputDirectory>> dirs;
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+      const std::string name = ste::to_string(methods[m]);
+      outs.push_back(several ? fs::path(a->out) / name : fs::path(a->out));
+      dirs.push_back(
+          std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m], "evaluate"));
     }
     ordered_json j{{"ok", true}, {"seed", a->seed}, {"methods", ordered_json::array()}};
     std::string text;
@@ -251,11 +258,12 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
            << " %, median error " << s["median_error_m"].get<double>() << " m (z "
            << s["median_error_z_m"].get<double>() << " m), median distance "
            << s["median_distance_m"].get<double>() << " m, median time "
-           << s["median_mission_s"].get<double>() << " s\n  wrote " << dirs[m]->target().string()
+           << s["median_mission_s"].get<double>() << " s\n  wrote " << outs[m].string()
            << "/{runs.csv, summary.json, boxplot.png, trajectory-median.png}\n";
       text += line.str();
     }
     bar.finish();
+    if (whole) whole->commit();
     report(j, text);
   });
 }

@@ -19,44 +19,32 @@ void write_file_atomic(const std::filesystem::path& path, std::string_view bytes
     throw InputError(path.string() + ": output folder " + dir.string() + " does not exist");
   if (fs::is_directory(path, ec))
     throw InputError(path.string() + ": is a folder, but this output is a file; name a file");
-  const fs::path tmp = make_temporary_path(path);
-  struct Forget {
-    const fs::path& p;
-    ~Forget() { forget_temporary(p); }
-  } forget{tmp};
+  const Temporary tmp(path);
   {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    std::ofstream out(tmp.path(), std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.close();
-    if (!out) {
-      fs::remove(tmp, ec);
-      throw InputError(path.string() + ": cannot write (permission, or the disk is full?)");
-    }
+    if (!out) throw InputError(path.string() + ": cannot write (permission, or the disk is full?)");
   }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(tmp, ec);
-    throw InputError(path.string() + ": cannot move the finished file into place: " + why);
-  }
+  fs::rename(tmp.path(), path, ec);
+  if (ec)
+    throw InputError(path.string() + ": cannot move the finished file into place: " + ec.message());
 }
 
 AtomicDirectory::AtomicDirectory(std::filesystem::path target)
-    : target_(std::move(target)), temporary_(make_temporary_path(target_)) {
-  std::filesystem::remove_all(temporary_);
-  std::filesystem::create_directories(temporary_);
+    : target_(std::move(target)), temporary_(std::make_unique<Temporary>(target_)) {
+  std::filesystem::create_directory(temporary_->path());
 }
 
-AtomicDirectory::~AtomicDirectory() {
-  std::error_code ec;
-  if (!committed_) std::filesystem::remove_all(temporary_, ec);
-  forget_temporary(temporary_);
+AtomicDirectory::~AtomicDirectory() = default;
+
+const std::filesystem::path& AtomicDirectory::path() const {
+  return temporary_->path();
 }
 
 void AtomicDirectory::commit() {
   std::filesystem::remove_all(target_);  // an incomplete or corrupt earlier copy of our own
-  std::filesystem::rename(temporary_, target_);
-  committed_ = true;
+  temporary_->move_to(target_);
 }
 
 std::string read_file(const std::filesystem::path& path) {

@@ -2,9 +2,12 @@
 // Output files appear whole or not at all: bytes go to a temporary file in the
 // same directory, which is renamed over the target only once fully written.
 #include <filesystem>
+#include <memory>
 #include <string_view>
 
 namespace plumekit {
+
+class Temporary;
 
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
 
@@ -21,12 +24,12 @@ class AtomicDirectory {
   AtomicDirectory(const AtomicDirectory&) = delete;
   AtomicDirectory& operator=(const AtomicDirectory&) = delete;
 
-  const std::filesystem::path& path() const { return temporary_; }
+  const std::filesystem::path& path() const;
   void commit();
 
  private:
-  std::filesystem::path target_, temporary_;
-  bool committed_ = false;
+  std::filesystem::path target_;
+  std::unique_ptr<Temporary> temporary_;
 };
 
 // Whole file as a string; InputError naming the file when it cannot be read.

@@ -1,6 +1,8 @@
 #include "core/output_target.hpp"
 
 #include <stdio.h>  // renameat2
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -8,13 +10,18 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <fstream>
+#include <map>
 #include <set>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/sha256.hpp"
 #include "core/temporary_files.hpp"
 
 namespace plumekit {
@@ -95,11 +102,20 @@ std::string some_entries(const std::vector<std::string>& names) {
   return s;
 }
 
+// A file as the marker records it; `bound` is false for an older marker's bare name.
+struct MarkedFile {
+  bool bound = false;
+  std::uintmax_t size = 0;
+  std::string sha256;
+};
+
 struct Marker {
   bool present = false, readable = false;
   std::string command;
-  std::set<std::string> files;
+  std::map<std::string, MarkedFile> files;
 };
+
+constexpr const char* kOldMarkerFormat = "plumekit-output/1";
 
 Marker read_marker(const fs::path& dir) {
   Marker m;
@@ -109,11 +125,18 @@ Marker read_marker(const fs::path& dir) {
   m.present = true;
   try {
     const auto j = nlohmann::json::parse(read_file(f));
-    if (j.at("format").get<std::string>() != kOutputMarkerFormat) return m;
+    const std::string format = j.at("format").get<std::string>();
+    if (format != kOutputMarkerFormat && format != kOldMarkerFormat) return m;
     m.command = j.at("command").get<std::string>();
     if (j.contains("files"))
-      for (const auto& name : j.at("files"))
-        m.files.insert(name.get<std::string>());
+      for (const auto& e : j.at("files")) {
+        if (e.is_string()) {
+          m.files[e.get<std::string>()] = MarkedFile{};
+          continue;
+        }
+        m.files[e.at("path").get<std::string>()] = {true, e.at("size").get<std::uintmax_t>(),
+                                                    e.at("sha256").get<std::string>()};
+      }
     m.readable = true;
   } catch (const std::exception&) {
   }
@@ -141,6 +164,12 @@ std::string command_name(const std::string& command) {
 }
 
 // Throws unless `dir` (an existing folder) is empty or this command's own output.
+void drop_nested_outputs(const fs::path& target, const std::string& command,
+                         std::vector<std::string>& files);
+void check_marked_files(const fs::path& target, const Marker& m,
+                        const std::vector<std::string>& files,
+                        const std::vector<std::string>& other);
+
 void check_existing_folder(const fs::path& target, const std::string& command) {
   std::vector<std::string> files, other;
   list_files(target, "", files, other);
@@ -156,13 +185,65 @@ void check_existing_folder(const fs::path& target, const std::string& command) {
   if (m.command != command)
     throw InputError(quoted(target) + ": holds the output of `" + command_name(m.command) +
                      "`, not of `" + command_name(command) + "`; name another folder");
+  std::sort(files.begin(), files.end());
+  drop_nested_outputs(target, command, files);
+  check_marked_files(target, m, files, other);
+}
+
+// Removes from `files` those of nested outputs of `command` (evaluate --method
+// a,b: a folder per method, each with its own marker, which may be rewritten
+// alone), after checking each of those as an output folder of its own.
+void drop_nested_outputs(const fs::path& target, const std::string& command,
+                         std::vector<std::string>& files) {
+  const std::string suffix = std::string("/") + kOutputMarker;
+  std::vector<std::string> nested;
+  for (const std::string& f : files)
+    if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0)
+      if (const std::string sub = f.substr(0, f.size() - suffix.size() + 1);
+          read_marker(target / sub).command == command &&
+          std::none_of(nested.begin(), nested.end(),
+                       [&](const std::string& n) { return sub.rfind(n, 0) == 0; }))
+        nested.push_back(sub);  // sorted: an outer folder comes before those inside it
+  for (const std::string& sub : nested)
+    check_existing_folder(target / sub, command);
+  files.erase(std::remove_if(files.begin(), files.end(),
+                             [&](const std::string& f) {
+                               return std::any_of(
+                                   nested.begin(), nested.end(),
+                                   [&](const std::string& n) { return f.rfind(n, 0) == 0; });
+                             }),
+              files.end());
+}
+
+// Throws unless every file but the marker is listed by `m` with its size and SHA-256.
+void check_marked_files(const fs::path& target, const Marker& m,
+                        const std::vector<std::string>& files,
+                        const std::vector<std::string>& other) {
   std::vector<std::string> foreign = other;
   for (const std::string& f : files)
     if (f != kOutputMarker && !m.files.count(f)) foreign.push_back(f);
   if (!foreign.empty())
-    throw InputError(quoted(target) + ": holds the output of an earlier `" + command_name(command) +
-                     "` and files it did not write (" + some_entries(foreign) +
+    throw InputError(quoted(target) + ": holds the output of an earlier `" +
+                     command_name(m.command) + "` and files it did not write (" +
+                     some_entries(foreign) +
                      "); move them away or name another folder, plumekit never deletes them");
+  for (const std::string& f : files) {
+    if (f == kOutputMarker) continue;
+    const MarkedFile& mf = m.files.at(f);
+    if (!mf.bound)
+      throw InputError(quoted(target) + ": its " + kOutputMarker +
+                       " is an older plumekit's, which lists " + f +
+                       " without its SHA-256, so nothing proves plumekit wrote it; plumekit never "
+                       "deletes such files: delete the folder yourself or name another folder");
+    std::error_code ec;
+    const fs::path p = target / f;
+    if (fs::file_size(p, ec) != mf.size || ec || sha256_file(p) != mf.sha256)
+      throw InputError(quoted(target) + ": " + f +
+                       " is not the file plumekit wrote there (its size or SHA-256 differs from " +
+                       kOutputMarker +
+                       "); plumekit never deletes a file it cannot prove it wrote: move it away "
+                       "or name another folder");
+  }
 }
 
 void check_folder_target(const fs::path& target, const std::string& command,
@@ -190,20 +271,45 @@ std::vector<fs::path> missing_folders(const fs::path& dir) {
   return missing;
 }
 
-void create_folders(const std::vector<fs::path>& folders, const fs::path& target) {
-  for (const fs::path& f : folders) {
+// Removes the folders of `folders` (outermost first) that are empty, and forgets them.
+void remove_created_folders(const std::vector<fs::path>& folders) {
+  for (auto it = folders.rbegin(); it != folders.rend(); ++it) {
     std::error_code ec;
-    fs::create_directory(f, ec);
-    if (ec)
-      throw InputError(quoted(target) + ": cannot create the folder " + quoted(f) + ": " +
-                       ec.message());
+    fs::remove(*it, ec);  // only if still empty
+    forget_created_folder(*it);
   }
 }
 
+// Creates `folders` (outermost first), each registered for removal on an interrupt.
+void create_folders(const std::vector<fs::path>& folders, const fs::path& target) {
+  for (std::size_t i = 0; i < folders.size(); ++i) {
+    std::error_code ec;
+    fs::create_directory(folders[i], ec);
+    if (ec) {
+      remove_created_folders({folders.begin(), folders.begin() + static_cast<long>(i)});
+      throw InputError(quoted(target) + ": cannot create the folder " + quoted(folders[i]) + ": " +
+                       ec.message());
+    }
+    register_created_folder(folders[i]);
+  }
+}
+
+void forget_created_folders(const std::vector<fs::path>& folders) {
+  for (const fs::path& f : folders)
+    forget_created_folder(f);
+}
+
+// The marker of a folder written whole binds each file by size and SHA-256;
+// one written in place (files == nullptr) lists none.
 void write_marker(const fs::path& dir, const std::string& command,
                   const std::vector<std::string>* files) {
   nlohmann::ordered_json j{{"format", kOutputMarkerFormat}, {"command", command}};
-  if (files) j["files"] = *files;
+  if (files) {
+    j["files"] = nlohmann::ordered_json::array();
+    for (const std::string& f : *files)
+      j["files"].push_back(
+          {{"path", f}, {"size", fs::file_size(dir / f)}, {"sha256", sha256_file(dir / f)}});
+  }
   write_file_atomic(dir / kOutputMarker, j.dump(2) + "\n");
 }
 
@@ -248,79 +354,217 @@ bool png_has_mark(const std::string& bytes) {
 
 }  // namespace
 
+// ---- OutputLock ----------------------------------------------------------------
+
+namespace {
+
+constexpr const char* kLockText = "plumekit-lock/1\n";
+
+fs::path lock_file_of(const fs::path& target) {
+  const fs::path t = fs::absolute(target).lexically_normal();
+  const fs::path file = t.has_filename() ? t : t.parent_path();
+  return file.parent_path() / (file.filename().string() + kOutputLockTag);
+}
+
+// Puts the lock file in place whole (written beside it, then linked: never seen
+// empty); does nothing if one appeared meanwhile.
+void create_lock_file(const fs::path& file) {
+  const Temporary tmp(file);
+  write_file_atomic(tmp.path(), kLockText);
+  if (::link(tmp.path().c_str(), file.c_str()) == 0 || errno == EEXIST) return;
+  // A file system without hard links: create and fill it (then briefly empty).
+  const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) return;  // exists by now, or fails again when opened
+  const ssize_t n = ::write(fd, kLockText, std::strlen(kLockText));
+  (void)n;
+  ::close(fd);
+}
+
+std::string read_fd(int fd) {
+  char buf[64];
+  const ssize_t n = ::pread(fd, buf, sizeof buf, 0);
+  return n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
+}
+
+bool same_file(int fd, const fs::path& file) {
+  struct stat a {
+  }, b{};
+  return ::fstat(fd, &a) == 0 && ::lstat(file.c_str(), &b) == 0 && a.st_dev == b.st_dev &&
+         a.st_ino == b.st_ino;
+}
+
+}  // namespace
+
+OutputLock::OutputLock(const fs::path& target, bool shared) : file_(lock_file_of(target)) {
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    const int fd = ::open(file_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0 && errno == ENOENT) {
+      create_lock_file(file_);
+      continue;
+    }
+    if (fd < 0)
+      throw InputError(quoted(target) + ": cannot open its lock file " + quoted(file_) + ": " +
+                       std::strerror(errno) + "; if it is yours, move it away");
+    if (::flock(fd, (shared ? LOCK_SH : LOCK_EX) | LOCK_NB) != 0) {
+      ::close(fd);
+      throw InputError(quoted(target) + ": another plumekit run is writing it (it holds " +
+                       quoted(file_) + "); wait for that run to end, or name another output");
+    }
+    if (!same_file(fd, file_)) {  // removed by the run that held it before: lock the new one
+      ::close(fd);
+      continue;
+    }
+    struct stat st {};
+    const std::string text = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) ? read_fd(fd) : "?";
+    if (text == kLockText) {
+      fd_ = fd;
+      register_lock(file_, fd_);
+      return;
+    }
+    ::close(fd);
+    if (text.empty() && attempt < 100) {  // being filled (no hard links)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      continue;
+    }
+    break;
+  }
+  throw InputError(quoted(file_) + ": exists beside the output " + quoted(target) +
+                   " and was not written by plumekit; move it away (plumekit never deletes it)");
+}
+
+OutputLock::OutputLock(OutputLock&& other) noexcept
+    : file_(std::move(other.file_)), fd_(other.fd_) {
+  other.fd_ = -1;
+}
+
+OutputLock& OutputLock::operator=(OutputLock&& other) noexcept {
+  if (this != &other) {
+    release();
+    file_ = std::move(other.file_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+void OutputLock::release() {
+  if (fd_ < 0) return;
+  forget_lock(file_);
+  // Removed only when no other run shares it, and only while it is the file we locked.
+  if (::flock(fd_, LOCK_EX | LOCK_NB) == 0 && same_file(fd_, file_)) ::unlink(file_.c_str());
+  ::close(fd_);
+  fd_ = -1;
+}
+
 // ---- OutputDirectory ---------------------------------------------------------
 
 OutputDirectory::OutputDirectory(fs::path target, std::string command, std::vector<fs::path> inputs)
     : target_(std::move(target)), command_(std::move(command)) {
-  check_folder_target(target_, command_, inputs);
+  check_placement(target_, inputs);
+  // The lock file goes beside the target: its parent must exist first.
+  created_parents_ = missing_folders(fs::absolute(target_).parent_path());
+  create_folders(created_parents_, target_);
+  try {
+    lock_ = OutputLock(target_);
+    check_folder_target(target_, command_, {});
+  } catch (...) {
+    lock_.release();
+    remove_created_folders(created_parents_);
+    throw;
+  }
 }
 
 OutputDirectory::~OutputDirectory() {
   if (committed_) return;
-  std::error_code ec;
-  if (!temporary_.empty()) {
-    fs::remove_all(temporary_, ec);
-    forget_temporary(temporary_);
-  }
-  for (auto it = created_parents_.rbegin(); it != created_parents_.rend(); ++it)
-    fs::remove(*it, ec);  // only if still empty
+  temporary_.reset();
+  lock_.release();
+  remove_created_folders(created_parents_);
 }
 
 const fs::path& OutputDirectory::open() {
-  if (!temporary_.empty()) return temporary_;
+  if (temporary_) return temporary_->path();
   const fs::path abs = fs::absolute(target_);
-  created_parents_ = missing_folders(abs.parent_path());
-  create_folders(created_parents_, target_);
   remove_stale_temporaries(abs);
-  temporary_ = make_temporary_path(abs);
+  temporary_ = std::make_unique<Temporary>(abs);
   std::error_code ec;
-  fs::create_directory(temporary_, ec);
+  fs::create_directory(temporary_->path(), ec);
   if (ec) throw InputError(quoted(target_) + ": cannot create a folder beside it: " + ec.message());
-  return temporary_;
+  return temporary_->path();
 }
 
 void OutputDirectory::commit() {
-  open();
+  const fs::path& written = open();
   std::vector<std::string> files, other;
-  list_files(temporary_, "", files, other);
+  list_files(written, "", files, other);
   std::sort(files.begin(), files.end());
-  write_marker(temporary_, command_, &files);
+  write_marker(written, command_, &files);
   const fs::path abs = fs::absolute(target_);
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(abs, ec))) {
-    fs::rename(temporary_, abs, ec);
+    fs::rename(written, abs, ec);
     if (ec)
       throw InputError(quoted(target_) + ": cannot move the output into place: " + ec.message());
   } else {
-    // It was checked to be empty or our own output; check again (another run
-    // may have written since), then swap the two folders in one step.
+    // It was checked to be empty or our own output; check again (it may have
+    // changed by hand since), then swap the two folders in one step.
     check_existing_folder(abs, command_);
-    if (::renameat2(AT_FDCWD, temporary_.c_str(), AT_FDCWD, abs.c_str(), RENAME_EXCHANGE) != 0) {
+    if (::renameat2(AT_FDCWD, written.c_str(), AT_FDCWD, abs.c_str(), RENAME_EXCHANGE) != 0) {
       // File systems without the exchange: move the old folder aside first.
-      const fs::path old = make_temporary_path(abs);
-      fs::rename(abs, old, ec);
-      if (!ec) fs::rename(temporary_, abs, ec);
+      const Temporary old(abs);
+      fs::rename(abs, old.path(), ec);
+      if (!ec) fs::rename(written, abs, ec);
       if (ec) throw InputError(quoted(target_) + ": cannot replace the folder: " + ec.message());
-      fs::remove_all(old, ec);
-      forget_temporary(old);
-    } else {
-      fs::remove_all(temporary_, ec);  // now the earlier output
     }
   }
-  forget_temporary(temporary_);
+  temporary_.reset();  // now empty, or the earlier output
+  lock_.release();
+  forget_created_folders(created_parents_);
   committed_ = true;
 }
 
 // ---- folders written in place -------------------------------------------------
 
-bool claim_output_directory(const fs::path& target, const std::string& command,
-                            const std::vector<std::string>& commands,
-                            const std::function<bool(const std::string&)>& own_entry,
-                            const std::string& legacy_mark, const std::vector<fs::path>& inputs) {
+namespace {
+
+// Throws unless the existing folder `target` may be written in place (see the header).
+void check_claimed_folder(const fs::path& target, const std::string& command,
+                          const std::vector<std::string>& commands,
+                          const std::function<bool(const std::string&)>& own_entry,
+                          const std::string& legacy_mark, const std::vector<std::string>& names) {
+  std::error_code ec;
+  const Marker m = read_marker(target);
+  const bool legacy = !m.present && fs::is_regular_file(target / legacy_mark, ec);
+  if (!legacy && !(m.readable && std::count(commands.begin(), commands.end(), m.command))) {
+    if (m.readable)
+      throw InputError(quoted(target) + ": holds the output of `" + command_name(m.command) +
+                       "`, not of `" + command_name(command) + "`; name another folder");
+    throw InputError(quoted(target) + ": holds files plumekit did not write (" +
+                     some_entries(names) +
+                     "); name a new or empty folder, plumekit never deletes them");
+  }
+  std::vector<std::string> foreign;
+  for (const std::string& n : names)
+    if (n != kOutputMarker && !own_entry(n)) foreign.push_back(n);
+  if (!foreign.empty())
+    throw InputError(quoted(target) + ": holds files `" + command_name(command) +
+                     "` did not write (" + some_entries(foreign) +
+                     "); move them away or name another folder");
+}
+
+}  // namespace
+
+OutputClaim claim_output_directory(const fs::path& target, const std::string& command,
+                                   const std::vector<std::string>& commands,
+                                   const std::function<bool(const std::string&)>& own_entry,
+                                   const std::string& legacy_mark,
+                                   const std::vector<fs::path>& inputs) {
   check_placement(target, inputs);
+  const std::vector<fs::path> parents = missing_folders(fs::absolute(target).parent_path());
+  create_folders(parents, target);
+  forget_created_folders(parents);  // they hold the output from now on
+  OutputClaim claim{false, OutputLock(target, true)};
   std::error_code ec;
   const fs::file_status s = fs::status(target, ec);
-  bool existed = false;
   if (fs::exists(s)) {
     if (!fs::is_directory(s))
       throw InputError(quoted(target) +
@@ -330,30 +574,15 @@ bool claim_output_directory(const fs::path& target, const std::string& command,
       names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     if (!names.empty()) {
-      existed = true;
-      const Marker m = read_marker(target);
-      const bool legacy = !m.present && fs::is_regular_file(target / legacy_mark, ec);
-      if (!legacy && !(m.readable && std::count(commands.begin(), commands.end(), m.command))) {
-        if (m.readable)
-          throw InputError(quoted(target) + ": holds the output of `" + command_name(m.command) +
-                           "`, not of `" + command_name(command) + "`; name another folder");
-        throw InputError(quoted(target) + ": holds files plumekit did not write (" +
-                         some_entries(names) +
-                         "); name a new or empty folder, plumekit never deletes them");
-      }
-      std::vector<std::string> foreign;
-      for (const std::string& n : names)
-        if (n != kOutputMarker && !own_entry(n)) foreign.push_back(n);
-      if (!foreign.empty())
-        throw InputError(quoted(target) + ": holds files `" + command_name(command) +
-                         "` did not write (" + some_entries(foreign) +
-                         "); move them away or name another folder");
+      claim.existed = true;
+      check_claimed_folder(target, command, commands, own_entry, legacy_mark, names);
     }
   }
   create_folders(missing_folders(fs::absolute(target)), target);
+  forget_created_folders({fs::absolute(target)});
   const Marker m = read_marker(target);
   if (!m.readable) write_marker(target, command, nullptr);
-  return existed;
+  return claim;
 }
 
 // ---- output files ----------------------------------------------------------------
@@ -372,7 +601,11 @@ void check_output_file(const fs::path& target, const std::vector<fs::path>& inpu
 void write_output_file(const fs::path& target, std::string_view bytes) {
   check_output_file(target);
   const fs::path abs = fs::absolute(target);
-  create_folders(missing_folders(abs.parent_path()), target);
+  const std::vector<fs::path> parents = missing_folders(abs.parent_path());
+  create_folders(parents, target);
+  forget_created_folders(parents);
+  const OutputLock lock(abs);
+  check_output_file(target);  // another run may have written it meanwhile
   remove_stale_temporaries(abs);
   write_file_atomic(abs, bytes);
 }

@@ -18,6 +18,7 @@
 #include "core/output_target.hpp"
 #include "core/seed.hpp"
 #include "core/sha256.hpp"
+#include "core/temporary_files.hpp"
 #include "core/thread_pool.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
@@ -32,15 +33,16 @@ namespace {
 // The output rule for a dataset folder, which grows in place over resumable
 // runs: new, empty, or holding only what generate and merge write. Both mark
 // it as a "dataset" folder, so that a merged dataset is byte for byte an
-// unsplit one.
-void claim_dataset_folder(const fs::path& out) {
+// unsplit one. Returns the folder's lock, shared with the other parts of a
+// split run, to hold while writing.
+OutputLock claim_dataset_folder(const fs::path& out) {
   const auto own = [](const std::string& name) {
     return name == "maps" || name == "wind" || name == "shards" || name == "parameters.json" ||
            name == "manifest.json" ||
            (name.rfind("manifest.part-", 0) == 0 && fs::path(name).extension() == ".json") ||
            name.find(".plumekit-tmp-") != std::string::npos;
   };
-  claim_output_directory(out, "dataset", {"dataset"}, own, "parameters.json");
+  return claim_output_directory(out, "dataset", {"dataset"}, own, "parameters.json").lock;
 }
 
 using Clock = std::chrono::steady_clock;
@@ -109,15 +111,18 @@ bool check_resume(const fs::path& out, const nlohmann::ordered_json& params) {
                    "\nwrite to another folder, or resume it with the dataset's parameters");
 }
 
-// Claims the folder, creates its parts and removes what interrupted runs left.
-void prepare_dataset_folder(const fs::path& out, const nlohmann::ordered_json& params,
-                            bool resumed) {
-  claim_dataset_folder(out);
+// Claims the folder, creates its parts and removes what interrupted runs left;
+// returns the folder's lock.
+OutputLock prepare_dataset_folder(const fs::path& out, const nlohmann::ordered_json& params,
+                                  bool resumed) {
+  OutputLock lock = claim_dataset_folder(out);
   for (const char* part : {"maps", "wind", "shards"})
     fs::create_directories(out / part);
   if (!resumed) write_file_atomic(out / "parameters.json", params.dump(2) + "\n");
   for (const char* part : {"maps", "wind", "shards"})
-    remove_temporaries(out / part);
+    remove_stale_temporaries_in(out / part);
+  remove_stale_temporaries_in(out);
+  return lock;
 }
 
 // One map of this run (part): its index and sample count.
@@ -324,7 +329,7 @@ DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
   o.validate();
   check_run_options(o, run);
   const nlohmann::ordered_json params = parameters_json(o);
-  prepare_dataset_folder(out, params, check_resume(out, params));
+  const OutputLock lock = prepare_dataset_folder(out, params, check_resume(out, params));
 
   const std::vector<MapJob> jobs = part_jobs(o, run);
   long long total = 0;
@@ -415,16 +420,15 @@ MergePlan plan_merge(const std::vector<std::pair<fs::path, Manifest>>& manifests
 }
 
 void copy_dir(const fs::path& src, const fs::path& dst) {
-  const fs::path tmp = dst.string() + ".tmp-merge";
-  fs::remove_all(tmp);
-  fs::copy(src, tmp, fs::copy_options::recursive);
-  fs::remove_all(dst);
-  fs::rename(tmp, dst);
+  AtomicDirectory copy(dst);
+  fs::copy(src, copy.path(), fs::copy_options::recursive);
+  copy.commit();
 }
 
-// Copies each map's shard, wind and map file (those not in `out` already) and the parameters.
-void copy_parts(const fs::path& out, const MergePlan& plan) {
-  claim_dataset_folder(out);
+// Copies each map's shard, wind and map file (those not in `out` already) and
+// the parameters; returns the folder's lock.
+OutputLock copy_parts(const fs::path& out, const MergePlan& plan) {
+  OutputLock lock = claim_dataset_folder(out);
   for (const char* part : {"shards", "maps", "wind"})
     fs::create_directories(out / part);
   for (std::size_t k = 0; k < plan.from.size(); ++k) {
@@ -438,6 +442,7 @@ void copy_parts(const fs::path& out, const MergePlan& plan) {
   }
   if (fs::weakly_canonical(plan.first) != fs::weakly_canonical(out))
     write_file_atomic(out / "parameters.json", read_file(plan.first / "parameters.json"));
+  return lock;
 }
 
 }  // namespace
@@ -452,7 +457,7 @@ MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& pa
       manifests.emplace_back(dir, std::move(m));
   }
   const MergePlan plan = plan_merge(manifests);
-  copy_parts(out, plan);
+  const OutputLock lock = copy_parts(out, plan);
   write_file_atomic(out / "manifest.json",
                     manifest_json(plan.params, plan.entries, 0, 1).dump(2) + "\n");
   return plan.summary;

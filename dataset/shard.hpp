@@ -3,7 +3,7 @@
 // checksums.json (SHA-256 of each file). It is written under a temporary
 // name and renamed into place when complete, so a shard directory either is
 // whole or does not exist; a run killed mid-shard leaves only a temporary
-// directory, which the next run removes.
+// directory, which the next run removes (core/temporary_files.hpp).
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -35,9 +35,5 @@ Checksums write_shard(const std::filesystem::path& dir, const ShardArrays& a);
 // nullopt when it is missing, incomplete or corrupt (then it is redone). To report
 // the fault instead: check_shard (dataset_reader.hpp).
 std::optional<Checksums> verify_shard(const std::filesystem::path& dir);
-
-// Removes leftovers of interrupted writes in `dir`: *.tmp-* and *.tmp.* entries, and
-// *.plumekit-tmp-PID-N entries whose process is gone.
-void remove_temporaries(const std::filesystem::path& dir);
 
 }  // namespace plumekit::dataset

@@ -13,6 +13,7 @@
 #include <fstream>
 #include <map>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -56,6 +57,55 @@ class Safety : public plumekit::test::CliTest {
   }
   static std::string quick_ste() {
     return " --plume-model gaussian --runs 1 --sources 1 --max-samples 2 --threads 1";
+  }
+  // Starts `plumekit ARGS...` in the background with its output discarded and
+  // SIGINT at its default, as from a terminal, even if this test runs in the background.
+  static pid_t start(std::vector<std::string> args) {
+    const std::string exe = PLUMEKIT_EXE;
+    args.insert(args.begin(), exe);
+    std::vector<char*> argv;
+    for (std::string& a : args)
+      argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    sigset_t defaults;
+    sigemptyset(&defaults);
+    sigaddset(&defaults, SIGINT);
+    posix_spawnattr_setsigdefault(&attr, &defaults);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, exe.c_str(), &actions, &attr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attr);
+    return rc == 0 ? pid : -1;
+  }
+  // Waits (up to 30 s) until an entry whose name holds `part` appears under `folder`.
+  static bool appears(const fs::path& folder, const std::string& part) {
+    for (int i = 0; i < 600; ++i) {
+      std::error_code ec;
+      for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().find(part) != std::string::npos) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+  // Sends `sig` to `pid` and returns its exit status (-1 if it did not exit).
+  static int stop(pid_t pid, int sig) {
+    int status = 0;
+    if (::kill(pid, sig) != 0 || ::waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+    return WEXITSTATUS(status);
+  }
+  // A slow evaluation (the physics plume) that is still running when the test acts.
+  std::vector<std::string> slow_evaluate(const fs::path& maps, const fs::path& out,
+                                         const std::string& method = "ste") {
+    return {"evaluate", "--map-dir", maps.string(), "--out",     out.string(), "--plume-model",
+            "physics",  "--runs",    "3",           "--threads", "1",          "--method",
+            method};
   }
 };
 
@@ -114,56 +164,138 @@ TEST_F(Safety, EvaluateNamesPicturesAfterFilesNotMapNamesAndReplacesItsOwnOutput
 TEST_F(Safety, InterruptedEvaluateLeavesNoTemporary) {
   const fs::path maps = one_map_dir();
   const fs::path out = dir / "eval";
-  const std::string exe = PLUMEKIT_EXE;
-  std::vector<std::string> args{exe,      "evaluate",   "--map-dir",     maps.string(),
-                                "--out",  out.string(), "--plume-model", "physics",
-                                "--runs", "3",          "--threads",     "1"};
-  std::vector<char*> argv;
-  for (std::string& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  // As from a terminal: SIGINT at its default, even if this test runs in the background.
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  sigaddset(&defaults, SIGINT);
-  posix_spawnattr_setsigdefault(&attr, &defaults);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGDEF);
-  pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, &attr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
+  const pid_t pid = start(slow_evaluate(maps, out));
+  ASSERT_GT(pid, 0);
   // Wait for the temporary output folder to appear, then press Ctrl-C.
-  bool seen = false;
-  for (int i = 0; i < 600 && !seen; ++i) {
-    for (const auto& e : fs::directory_iterator(dir))
-      seen |= e.path().filename().string().find(".plumekit-tmp-") != std::string::npos;
-    if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  ASSERT_TRUE(seen) << "the run never started writing";
-  ASSERT_EQ(::kill(pid, SIGINT), 0);
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 130);
+  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
+  EXPECT_EQ(stop(pid, SIGINT), 130);
   for (const auto& e : fs::directory_iterator(dir))
-    EXPECT_EQ(e.path().filename().string().find("plumekit-tmp"), std::string::npos) << e.path();
+    EXPECT_EQ(e.path().filename().string().find("plumekit-"), std::string::npos) << e.path();
   EXPECT_FALSE(fs::exists(out));
 }
 
+// Issue 44: the folder made for the methods' folders, and the parents made for
+// it, go too: nothing is left that was not there before.
+TEST_F(Safety, StoppedEvaluateOfSeveralMethodsLeavesNothing) {
+  const fs::path maps = one_map_dir();
+  const auto before = snapshot(dir);
+  const pid_t pid = start(slow_evaluate(maps, dir / "new" / "eval", "all"));
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
+  EXPECT_EQ(stop(pid, SIGTERM), 143);
+  EXPECT_EQ(snapshot(dir), before);
+}
+
+// Issue 44: two runs into one --out: the second fails at once, the first is untouched.
+TEST_F(Safety, ASecondRunIntoTheSameOutputIsRefusedAtOnce) {
+  const fs::path maps = one_map_dir();
+  const fs::path out = dir / "eval";
+  const pid_t pid = start(slow_evaluate(maps, out));
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
+  const Result r =
+      run("evaluate --map-dir " + maps.string() + " --out " + out.string() + quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(out.string() + ": another plumekit run is writing it"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(fs::exists(dir / "eval.plumekit-lock"));  // the first run's, still held
+  EXPECT_EQ(stop(pid, SIGTERM), 143);
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(dir / "eval.plumekit-lock"));
+}
+
+// Issue 44: the folder of several methods is an output like any other: checked
+// before any work, and replaced whole, so that no earlier method's results stay.
+TEST_F(Safety, EvaluateOfSeveralMethodsChecksAndReplacesTheWholeFolder) {
+  const fs::path maps = one_map_dir();
+  const fs::path work = thesis();
+  const auto before = snapshot(work);
+  Result r = run("evaluate --map-dir " + maps.string() + " --out " + work.string() +
+                 " --method zigzag,sweeping --max-steps 30" + quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(work.string() + ": holds files plumekit did not write"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(snapshot(work), before);
+  const fs::path out = dir / "eval";
+  r = run("evaluate --map-dir " + maps.string() + " --out " + out.string() +
+          " --method zigzag,sweeping --max-steps 30" + quick_ste());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "zigzag" / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "sweeping" / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "zigzag" / ".plumekit-output.json"));  // each its own output too
+  r = run("evaluate --map-dir " + maps.string() + " --out " + out.string() +
+          " --method zigzag,surge-cast --max-steps 30" + quick_ste());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "surge-cast" / "summary.json"));
+  EXPECT_FALSE(fs::exists(out / "sweeping"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}),
+            3);  // + maps, work
+}
+
+// Issue 44: a marker that lists a user's file (copied, or of an older plumekit
+// without checksums) does not make it plumekit's to delete.
+TEST_F(Safety, AForgedMarkerDoesNotGetFilesDeleted) {
+  const fs::path maps = one_map_dir();
+  const fs::path work = thesis();
+  put(work / ".plumekit-output.json", R"({"format": "plumekit-output/1", "command": "evaluate",)"
+                                      R"( "files": ["thesis.tex", "data/run.csv"]})");
+  const auto before = snapshot(work);
+  Result r = run("evaluate --map-dir " + maps.string() + " --out " + work.string() + quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(work.string() + ": its .plumekit-output.json is an older plumekit's"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("data/run.csv"), std::string::npos) << r.err;
+  // A marker of plumekit's own output copied beside the user's files.
+  const fs::path ev = dir / "ev";
+  ASSERT_EQ(run("evaluate --map-dir " + maps.string() + " --out " + ev.string() + quick_ste()).code,
+            0);
+  put(ev / "runs.csv", "my edited results\n");
+  const auto edited = snapshot(ev);
+  r = run("evaluate --map-dir " + maps.string() + " --out " + ev.string() + quick_ste());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(ev.string() + ": runs.csv is not the file plumekit wrote there"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(snapshot(ev), edited);
+  EXPECT_EQ(snapshot(work), before);
+}
+
 TEST_F(Safety, AStaleTemporaryOfAKilledRunIsRemovedByTheNextRun) {
-  fs::create_directories(dir / "wind.plumekit-tmp-999999999-0");
-  put(dir / "wind.plumekit-tmp-999999999-0" / "u.npy", "half");
+  // As a run killed outright leaves it: marked, its process (above pid_max) gone.
+  const fs::path stale = dir / "wind.plumekit-tmp-999999999-0";
+  put(stale / "wind" / "u.npy", "half");
+  put(stale / ".plumekit-temporary", "plumekit-temporary/1\nwind.plumekit-tmp-999999999-0\n");
+  // Issue 44: a user's folder of that look, without the marker, stays.
+  const fs::path mine = dir / "wind.plumekit-tmp-999999999-1";
+  put(mine / "thesis.tex", "years of work");
   const Result r = run("flow " + (kData / "maps" / "empty.json").string() + " --cell 0.2 --out " +
                        (dir / "wind").string());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_FALSE(fs::exists(dir / "wind.plumekit-tmp-999999999-0"));
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_EQ(slurp(mine / "thesis.tex"), "years of work");
   EXPECT_TRUE(fs::exists(dir / "wind" / "u.npy"));
+}
+
+// Issue 44: a resumed dataset removes its own stale temporaries, never a look-alike.
+TEST_F(Safety, AResumedDatasetRemovesOnlyMarkedTemporaries) {
+  const fs::path ds = dir / "ds";
+  const std::string args =
+      "dataset generate --maps 1 --sources 1 --plume-model "
+      "advection-diffusion --out " +
+      ds.string();
+  ASSERT_EQ(run(args).code, 0);
+  const fs::path stale = ds / "shards" / "shard-00000.plumekit-tmp-999999999-0";
+  put(stale / "shard-00000" / "inputs.npy", "half");
+  put(stale / ".plumekit-temporary",
+      "plumekit-temporary/1\nshard-00000.plumekit-tmp-999999999-0\n");
+  put(ds / "shards" / "shard-00000.plumekit-tmp-999999999-1" / "notes.txt", "mine");
+  put(ds / "wind" / "map-00000.tmp-999999999-0" / "notes.txt", "mine too");  // an older form
+  const Result r = run(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_EQ(slurp(ds / "shards" / "shard-00000.plumekit-tmp-999999999-1" / "notes.txt"), "mine");
+  EXPECT_EQ(slurp(ds / "wind" / "map-00000.tmp-999999999-0" / "notes.txt"), "mine too");
 }
 
 TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {

@@ -9,8 +9,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/image_io.hpp"
+#include "core/sha256.hpp"
 #include "core/temporary_files.hpp"
 #include "support/files.hpp"
 
@@ -177,17 +180,64 @@ TEST_F(OutputTargetTest, FilesAreOverwrittenOnlyWhenPlumekitWroteThem) {
   EXPECT_NO_THROW(check_output_file("empty.png"));
 }
 
+// What a run killed outright leaves: a marked temporary folder (temporary_files.hpp) of a
+// process id that cannot run (above the kernel's pid_max).
+void put_stale_temporary(const std::string& name, const std::string& payload) {
+  fs::create_directories(name + "/" + payload);
+  put(name + "/" + payload + "/half.txt", "half");
+  put(name + "/.plumekit-temporary", "plumekit-temporary/1\n" + name + "\n");
+}
+
 TEST_F(OutputTargetTest, StaleTemporariesOfDeadRunsAreRemovedOthersKept) {
-  // A pid that cannot run: above the kernel's pid_max.
-  fs::create_directories("run.plumekit-tmp-999999999-0/x");
-  fs::create_directories("run.plumekit-tmp-" + std::to_string(::getpid()) + "-0");
-  fs::create_directories("run.tmp-999999999-0");  // not our pattern
-  fs::create_directories("other.plumekit-tmp-999999999-0");
+  put_stale_temporary("run.plumekit-tmp-999999999-0", "run");
+  // a live process's, another target's, and not our pattern
+  put_stale_temporary("run.plumekit-tmp-" + std::to_string(::getpid()) + "-0", "run");
+  put_stale_temporary("other.plumekit-tmp-999999999-0", "other");
+  fs::create_directories("run.tmp-999999999-0");
   EXPECT_EQ(remove_stale_temporaries(dir / "run"), 1);
   EXPECT_FALSE(fs::exists("run.plumekit-tmp-999999999-0"));
   EXPECT_TRUE(fs::exists("run.plumekit-tmp-" + std::to_string(::getpid()) + "-0"));
   EXPECT_TRUE(fs::exists("run.tmp-999999999-0"));
   EXPECT_TRUE(fs::exists("other.plumekit-tmp-999999999-0"));
+  EXPECT_EQ(remove_stale_temporaries_in(dir), 1);
+  EXPECT_FALSE(fs::exists("other.plumekit-tmp-999999999-0"));
+}
+
+// Issue 44: a name alone never gets anything removed.
+TEST_F(OutputTargetTest, LookAlikesOfTemporariesSurvive) {
+  put("run.plumekit-tmp-999999999-1/thesis.tex", "years of work");  // no marker
+  put("run.plumekit-tmp-999999999-2", "a file");
+  put_stale_temporary("run.plumekit-tmp-999999999-3", "run");
+  put("run.plumekit-tmp-999999999-3/.plumekit-temporary",
+      "plumekit-temporary/1\nrun.plumekit-tmp-999999999-0\n");  // another folder's marker
+  put_stale_temporary("run.plumekit-tmp-999999999-4", "run");
+  put("run.plumekit-tmp-999999999-4/notes.txt", "added by hand");
+  fs::create_directories("elsewhere");
+  put_stale_temporary("elsewhere/run.plumekit-tmp-999999999-5", "run");
+  fs::create_directory_symlink("elsewhere/run.plumekit-tmp-999999999-5",
+                               "run.plumekit-tmp-999999999-5");
+  const auto before = snapshot(".");
+  EXPECT_EQ(remove_stale_temporaries(dir / "run"), 0);
+  EXPECT_EQ(remove_stale_temporaries_in(dir), 0);
+  write_run("run", "evaluate", "one");
+  fs::remove_all("run");
+  EXPECT_EQ(snapshot("."), before);
+}
+
+TEST_F(OutputTargetTest, TemporaryIsAMarkedFolderRemovedWithItsContents) {
+  fs::path folder;
+  {
+    const Temporary t(dir / "out.npy");
+    folder = t.folder();
+    EXPECT_EQ(t.path(), folder / "out.npy");
+    EXPECT_EQ(folder.parent_path(), dir);
+    EXPECT_EQ(slurp(folder / ".plumekit-temporary"),
+              "plumekit-temporary/1\n" + folder.filename().string() + "\n");
+    put(t.path(), "x");
+  }
+  EXPECT_FALSE(fs::exists(folder));
+  write_output_file("out.npy", "bytes");
+  EXPECT_EQ(std::distance(fs::directory_iterator("."), fs::directory_iterator{}), 1);
 }
 
 TEST_F(OutputTargetTest, SafeFileNamesFromFileContents) {
@@ -210,14 +260,120 @@ TEST_F(OutputTargetTest, ProvenanceNeverRecordsAnAbsolutePath) {
   EXPECT_EQ(provenance_path("/usr/share/somewhere/"), "somewhere");
 }
 
+// Issue 44: a marker lists each file with its size and SHA-256, so that one
+// copied or edited to list a user's file never gets it deleted.
+TEST_F(OutputTargetTest, MarkerBindsFilesBySizeAndHash) {
+  write_run("run", "evaluate", "one");
+  const auto marker = nlohmann::json::parse(slurp("run/.plumekit-output.json"));
+  EXPECT_EQ(marker["format"], "plumekit-output/2");
+  ASSERT_EQ(marker["files"].size(), 2u);
+  EXPECT_EQ(marker["files"][0]["path"], "result.txt");
+  EXPECT_EQ(marker["files"][0]["size"], 3);
+  EXPECT_EQ(marker["files"][0]["sha256"], sha256_hex("one"));
+  put("run/result.txt", "mine");  // rewritten by hand
+  const auto before = snapshot("run");
+  const std::string e = input_error([&] { OutputDirectory out("run", "evaluate"); });
+  EXPECT_NE(e.find("run: result.txt is not the file plumekit wrote there"), std::string::npos) << e;
+  EXPECT_EQ(snapshot("run"), before);
+}
+
+TEST_F(OutputTargetTest, ForgedOrOlderMarkersDoNotMakeFilesOurs) {
+  put("thesis/thesis.tex", "years of work");
+  put("thesis/.plumekit-output.json",
+      R"({"format": "plumekit-output/1", "command": "evaluate", "files": ["thesis.tex"]})");
+  put("copied/thesis.tex", "years of work");
+  put("copied/.plumekit-output.json",
+      R"({"format": "plumekit-output/2", "command": "evaluate", "files": [{"path": "thesis.tex",
+          "size": 13, "sha256": ")" +
+          sha256_hex("something else") + "\"}]}");
+  const auto before = snapshot(".");
+  std::string e = input_error([&] { OutputDirectory out("thesis", "evaluate"); });
+  EXPECT_NE(e.find("thesis: its .plumekit-output.json is an older plumekit's, which lists "
+                   "thesis.tex without its SHA-256"),
+            std::string::npos)
+      << e;
+  e = input_error([&] { OutputDirectory out("copied", "evaluate"); });
+  EXPECT_NE(e.find("copied: thesis.tex is not the file plumekit wrote there"), std::string::npos)
+      << e;
+  EXPECT_EQ(snapshot("."), before);
+  // An older marker alone in its folder lists nothing to delete.
+  put("old/.plumekit-output.json", R"({"format": "plumekit-output/1", "command": "evaluate"})");
+  write_run("old", "evaluate", "new");
+  EXPECT_EQ(slurp("old/result.txt"), "new");
+}
+
+// evaluate --method a,b: one output holding one per method, each of which may be rewritten alone.
+TEST_F(OutputTargetTest, NestedOutputsAreCheckedByTheirOwnMarkers) {
+  {
+    OutputDirectory whole("all", "evaluate");
+    for (const char* name : {"ste", "zigzag"}) {
+      OutputDirectory one(whole.open() / name, "evaluate");
+      put(one.open() / "runs.csv", name);
+      one.commit();
+    }
+    whole.commit();
+  }
+  EXPECT_EQ(slurp("all/zigzag/runs.csv"), "zigzag");
+  EXPECT_TRUE(fs::exists("all/zigzag/.plumekit-output.json"));
+  write_run("all/zigzag", "evaluate", "alone");  // rewritten alone: still ours
+  EXPECT_NO_THROW(OutputDirectory again("all", "evaluate"));
+  put("all/ste/runs.csv", "edited");
+  const std::string e = input_error([&] { OutputDirectory again("all", "evaluate"); });
+  EXPECT_NE(e.find("runs.csv is not the file plumekit wrote there"), std::string::npos) << e;
+  EXPECT_NE(e.find("all/ste"), std::string::npos) << e;
+  EXPECT_EQ(slurp("all/ste/runs.csv"), "edited");
+}
+
+// Issue 44: one run at a time writes an output; the lock file goes when done.
+TEST_F(OutputTargetTest, SecondWriterOfAnOutputIsRefusedAtOnce) {
+  {
+    OutputDirectory first("runs/run", "evaluate");
+    put(first.open() / "result.txt", "first");
+    EXPECT_TRUE(fs::exists("runs/run.plumekit-lock"));
+    const std::string e = input_error([&] { OutputDirectory second("runs/run", "evaluate"); });
+    EXPECT_NE(e.find("runs/run: another plumekit run is writing it"), std::string::npos) << e;
+    EXPECT_NE(input_error([&] { write_output_file("runs/run", "x"); }).find("another plumekit run"),
+              std::string::npos);
+    first.commit();
+    EXPECT_FALSE(fs::exists("runs/run.plumekit-lock"));
+  }
+  EXPECT_EQ(slurp("runs/run/result.txt"), "first");
+  write_run("runs/run", "evaluate", "second");  // free again
+  EXPECT_EQ(std::distance(fs::directory_iterator("runs"), fs::directory_iterator{}), 1);
+  // A refused or uncommitted run leaves no lock behind either.
+  { OutputDirectory never("runs/other", "evaluate"); }
+  EXPECT_EQ(std::distance(fs::directory_iterator("runs"), fs::directory_iterator{}), 1);
+  // A user's file of the lock's name is refused, never removed.
+  put("runs/run.plumekit-lock", "my notes");
+  const std::string e = input_error([&] { write_run("runs/run", "evaluate", "third"); });
+  EXPECT_NE(e.find("runs/run.plumekit-lock: exists beside the output"), std::string::npos) << e;
+  EXPECT_EQ(slurp("runs/run.plumekit-lock"), "my notes");
+  EXPECT_EQ(slurp("runs/run/result.txt"), "second");
+}
+
+TEST_F(OutputTargetTest, PartsShareAnInPlaceFolderButNotWithAWholeWriter) {
+  auto own = [](const std::string& n) { return n == "shards"; };
+  OutputClaim a = claim_output_directory("ds", "dataset", {"dataset"}, own, "parameters.json");
+  OutputClaim b = claim_output_directory("ds", "dataset", {"dataset"}, own, "parameters.json");
+  EXPECT_FALSE(a.existed);
+  EXPECT_NE(input_error([&] { OutputDirectory out("ds", "dataset"); }).find("another plumekit run"),
+            std::string::npos);
+  a.lock.release();
+  EXPECT_TRUE(fs::exists("ds.plumekit-lock"));  // b holds it still
+  b.lock.release();
+  EXPECT_FALSE(fs::exists("ds.plumekit-lock"));
+}
+
 TEST_F(OutputTargetTest, InPlaceClaimAcceptsOwnLayoutOnly) {
   auto own = [](const std::string& n) { return n == "shards" || n == "parameters.json"; };
-  EXPECT_FALSE(claim_output_directory("ds", "dataset generate", {"dataset generate"}, own,
-                                      "parameters.json"));
+  EXPECT_FALSE(
+      claim_output_directory("ds", "dataset generate", {"dataset generate"}, own, "parameters.json")
+          .existed);
   EXPECT_TRUE(fs::exists("ds/.plumekit-output.json"));
   put("ds/parameters.json", "{}");
-  EXPECT_TRUE(claim_output_directory("ds", "dataset generate", {"dataset generate"}, own,
-                                     "parameters.json"));
+  EXPECT_TRUE(
+      claim_output_directory("ds", "dataset generate", {"dataset generate"}, own, "parameters.json")
+          .existed);
   put("ds/thesis.pdf", "x");
   EXPECT_NE(input_error([&] {
               claim_output_directory("ds", "dataset generate", {"dataset generate"}, own,
@@ -227,7 +383,8 @@ TEST_F(OutputTargetTest, InPlaceClaimAcceptsOwnLayoutOnly) {
   // a dataset from before markers: recognised by its parameters.json
   put("legacy/parameters.json", "{}");
   EXPECT_TRUE(claim_output_directory("legacy", "dataset generate", {"dataset generate"}, own,
-                                     "parameters.json"));
+                                     "parameters.json")
+                  .existed);
   put("foreign/a.txt", "x");
   EXPECT_NE(input_error([&] {
               claim_output_directory("foreign", "dataset generate", {"dataset generate"}, own,
