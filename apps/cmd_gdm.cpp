@@ -80,7 +80,9 @@ Inputs read_inputs(const GdmArgs& a) {
   in.map_file =
       a.map_given
           ? a.map
-          : gdm::find_run_map(j, run, {data_dir() / "maps", data_dir() / "test-maps"}).string();
+          : gdm::find_run_map(
+                j, run, {data_dir() / "maps", data_dir() / "test-maps", data_dir() / "floors"})
+                .string();
   in.map = read_map(in.map_file);
   in.samples = gdm::run_samples(j, run.string(), in.map);
   return in;
@@ -144,6 +146,8 @@ void add_gdm_commands(CLI::App& app) {
     gdm::GdmRun r{in.map_file, a->samples.empty() ? a->run : a->samples, a->out, a->options, {},
                   {}};
     if (!a->source.empty()) r.source = in.map.from_frame(parse_point(a->source, "--source"));
+    gdm::check_grid_memory(in.map, a->options.cell,
+                           gdm::kGdmBytesPerCell + (r.source ? gdm::kScoreBytesPerCell : 0.0));
     OutputDirectory out(a->out, "gdm", {in.map_file, a->samples, a->run, a->wind});
     const gdm::GdmMaps maps = make_maps(in, *a);
     if (r.source) {

@@ -96,10 +96,10 @@ class Progress {
   std::mutex mutex_;
 };
 
-constexpr int kMaxBands = 64;
-
-int band_count(const GridShape& g) {
-  return std::min(g.ny, kMaxBands);
+// Bands of rows: a few per thread, for balance, but no more (each band visits every sample whose
+// box reaches it, so thin bands repeat that work), and at least 8, for the progress bar.
+int band_count(const GridShape& g, const GdmWork& work) {
+  return std::min(g.ny, std::max(8, 4 * (work.pool ? work.pool->size() : 1)));
 }
 
 // Runs pass(first row, last row) over bands of rows, on the pool when there is one. Each cell's
@@ -107,7 +107,7 @@ int band_count(const GridShape& g) {
 // for any thread count.
 void over_bands(const GridShape& g, const GdmWork& work, Progress& progress,
                 const std::function<void(int, int)>& pass) {
-  const int bands = band_count(g);
+  const int bands = band_count(g, work);
   const auto band = [&](std::size_t b) {
     pass(static_cast<int>(b * g.ny / bands), static_cast<int>((b + 1) * g.ny / bands) - 1);
     progress.step();
@@ -137,29 +137,6 @@ double reading_scale(const std::vector<Sample>& samples) {
   int exponent = 0;
   std::frexp(top, &exponent);
   return std::ldexp(1.0, exponent);
-}
-
-// The maps' grid, once its memory estimate fits the limit (the count in doubles first: a tiny
-// cell's would not fit an int).
-GridShape map_grid(const Map& map, const GdmOptions& o) {
-  const auto cells_of = [&](double cell) {
-    return std::max(1.0, std::round(map.width / cell)) *
-           std::max(1.0, std::round(map.height / cell));
-  };
-  const double cells = cells_of(o.cell);
-  if (!fits_in_memory(cells * kGdmBytesPerCell)) {
-    // Rounded up to two digits, then grown until the rounded cell counts fit too.
-    double fit = std::sqrt(map.width * map.height * kGdmBytesPerCell / memory_limit());
-    const double unit = std::pow(10.0, std::floor(std::log10(fit)) - 1.0);
-    fit = std::ceil(fit / unit) * unit;
-    while (!fits_in_memory(cells_of(fit) * kGdmBytesPerCell))
-      fit += unit;
-    check_memory(cells * kGdmBytesPerCell,
-                 "the gas maps' grid of " + compact(cells) + " cells of " + compact(o.cell) +
-                     " m on the " + compact(map.width) + " x " + compact(map.height) + " m arena",
-                 "use a larger gdm.cell (" + compact(fit) + " m fits)");
-  }
-  return GridShape::with_cell(map.width, map.height, o.cell);
 }
 
 // Bounded inputs keep every sum finite; should a cell still come out otherwise, the maps are
@@ -198,6 +175,25 @@ void GdmOptions::validate() const {
   check_non_negative("gdm.wind_stretch", wind_stretch, 100.0, "s",
                      "0 (the default) gives Kernel DM+V; the seed used 0.2-0.6 s");
   check_range("gdm.cutoff", cutoff, 1.0, 10.0, "kernel widths", "the default is 4");
+}
+
+void check_grid_memory(const Map& map, double cell, double bytes_per_cell) {
+  // The count in doubles: a tiny cell's would not fit an int.
+  const auto cells_of = [&](double c) {
+    return std::max(1.0, std::round(map.width / c)) * std::max(1.0, std::round(map.height / c));
+  };
+  const double cells = cells_of(cell);
+  if (fits_in_memory(cells * bytes_per_cell)) return;
+  // Rounded up to two digits, then grown until the rounded cell counts fit too.
+  double fit = std::sqrt(map.width * map.height * bytes_per_cell / memory_limit());
+  const double unit = std::pow(10.0, std::floor(std::log10(fit)) - 1.0);
+  fit = std::ceil(fit / unit) * unit;
+  while (!fits_in_memory(cells_of(fit) * bytes_per_cell))
+    fit += unit;
+  check_memory(cells * bytes_per_cell,
+               "the gas maps' grid of " + compact(cells) + " cells of " + compact(cell) +
+                   " m on the " + compact(map.width) + " x " + compact(map.height) + " m arena",
+               "use a larger gdm.cell (" + compact(fit) + " m fits)");
 }
 
 SampleFault sample_fault(const Map& map, const Sample& s) {
@@ -244,6 +240,7 @@ void mean_maps(const GridShape& g, const std::vector<Sample>& samples,
   m.weight = Grid<double>(g, 0.0);
   over_bands(g, work, progress, [&](int row0, int row1) {
     for (std::size_t n = 0; n < samples.size(); ++n) {
+      if (boxes[n].j1 < row0 || boxes[n].j0 > row1) continue;
       const double r = samples[n].reading / scale;
       for_each_weight(g, samples[n], kernels[n], boxes[n], row0, row1,
                       [&](std::size_t c, double w) {
@@ -283,8 +280,9 @@ void variance_map(const GridShape& g, const std::vector<Sample>& samples,
   Grid<double> spread(g, 0.0);
   over_bands(g, work, progress, [&](int row0, int row1) {
     for (std::size_t n = 0; n < samples.size(); ++n)
-      for_each_weight(g, samples[n], kernels[n], boxes[n], row0, row1,
-                      [&](std::size_t c, double w) { spread.values[c] += w * departure[n]; });
+      if (boxes[n].j1 >= row0 && boxes[n].j0 <= row1)
+        for_each_weight(g, samples[n], kernels[n], boxes[n], row0, row1,
+                        [&](std::size_t c, double w) { spread.values[c] += w * departure[n]; });
   });
   for (std::size_t c = 0; c < g.size(); ++c) {
     const double omega = m.weight.values[c], alpha = m.confidence.values[c];
@@ -318,7 +316,8 @@ GdmMaps kernel_dmv(const Map& map, const std::vector<Sample>& samples, const Gdm
                    const GdmWork& work) {
   o.validate();
   check_samples(map, samples);
-  const GridShape g = map_grid(map, o);
+  check_grid_memory(map, o.cell, kGdmBytesPerCell);
+  const GridShape g = GridShape::with_cell(map.width, map.height, o.cell);
   GdmMaps m;
   m.samples = static_cast<int>(samples.size());
   std::vector<Kernel> kernels;
@@ -335,7 +334,7 @@ GdmMaps kernel_dmv(const Map& map, const std::vector<Sample>& samples, const Gdm
     m.outside_arena += map.in_arena(s.position) ? 0 : 1;
   }
   m.background_mean = o.background == Background::Mean ? sum / samples.size() * scale : lowest;
-  Progress progress(work, 2 * static_cast<std::size_t>(band_count(g)));
+  Progress progress(work, 2 * static_cast<std::size_t>(band_count(g, work)));
   mean_maps(g, samples, kernels, boxes, scale, o, work, progress, m);
   variance_map(g, samples, kernels, boxes, scale, work, progress, m);
   check_finite(map, m);

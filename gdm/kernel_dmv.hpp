@@ -65,9 +65,14 @@ struct SampleFault {
 };
 SampleFault sample_fault(const Map& map, const Sample& sample);
 
-// Bytes kernel_dmv and the gdm command hold per cell of the maps (six grids of doubles, the
-// pictures' and files' copies), for check_memory; calibrated in gdm/README.md.
-inline constexpr double kGdmBytesPerCell = 80.0;
+// Bytes per cell of the maps: kernel_dmv's six grids of doubles and the gdm command's copies as
+// it writes them (measured 34-44 B per cell of peak RSS; gdm/README.md).
+inline constexpr double kGdmBytesPerCell = 64.0;
+
+// MemoryLimitError naming gdm.cell and a cell that fits, unless `bytes_per_cell` on the maps' grid
+// of `cell` fits the memory limit (core/memory_limit.hpp). kernel_dmv checks kGdmBytesPerCell;
+// callers that score the maps too check the sum with kScoreBytesPerCell (map_score.hpp) first.
+void check_grid_memory(const Map& map, double cell, double bytes_per_cell);
 
 // How kernel_dmv runs: on `pool` (serial without one; the maps are the same bytes for any thread
 // count), calling `progress` (from one thread at a time) with the fraction done.

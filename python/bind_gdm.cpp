@@ -93,6 +93,7 @@ void bind_gdm(py::module_& m) {
         if (!source.is_none()) s = map.from_frame(to_point(source, "source"));
         const Wind* w = wind.is_none() ? nullptr : &wind.cast<const Wind&>();
         if (s && !w) throw py::type_error("gas_map: scoring against a source needs wind=");
+        if (s) gdm::check_grid_memory(map, o.cell, gdm::kGdmBytesPerCell + gdm::kScoreBytesPerCell);
         gdm::GdmMaps maps;
         std::optional<gdm::MapScore> score;
         {
