@@ -198,7 +198,6 @@ void check_grid_memory(const Map& map, double cell, double bytes_per_cell) {
 
 SampleFault sample_fault(const Map& map, const Sample& s) {
   const double margin = std::max(map.width, map.height);
-  const Vec2 framed = map.to_frame(s.position);
   // Along one axis: the arena position `at` of `extent`, whose map frame starts at `origin`.
   const auto position = [&](const char* column, double at, double extent,
                             double origin) -> SampleFault {
@@ -209,10 +208,9 @@ SampleFault sample_fault(const Map& map, const Sample& s) {
                         " to " + compact(origin + extent) +
                         " m): is it the map and the frame (metres) the samples were taken in?"};
   };
-  if (SampleFault f = position("x", s.position.x, map.width, framed.x - s.position.x);
-      !f.column.empty())
+  if (SampleFault f = position("x", s.position.x, map.width, map.frame.origin.x); !f.column.empty())
     return f;
-  if (SampleFault f = position("y", s.position.y, map.height, framed.y - s.position.y);
+  if (SampleFault f = position("y", s.position.y, map.height, map.frame.origin.y);
       !f.column.empty())
     return f;
   if (!std::isfinite(s.reading)) return {"reading", "not finite"};

@@ -71,12 +71,12 @@ TEST(SamplesCsv, AByteOrderMarkAndAnyCaseOfTheHeaderAreRead) {
 
 TEST(SamplesCsv, AbsurdValuesAreRefusedNamingTheLineAndColumn) {
   EXPECT_NE(message_of("x,y,reading\n1,1,1e308\n")
-                .find("log.csv:2, column 'reading': 1e+308 is "
-                      "beyond +-1e+150"),
+                .find("log.csv:2, column 'reading': 1e+308 is beyond +-1e+150"),
             std::string::npos);
+  // The arena is 10 x 4 m from (-1, -2) in the map frame.
   EXPECT_NE(message_of("x,y,reading\n1,1,1\n1e300,1,1\n")
-                .find("log.csv:3, column 'x': 1e+300 m "
-                      "lies more than"),
+                .find("log.csv:3, column 'x': 1e+300 m lies more than the arena's larger side (10 "
+                      "m) outside the map's arena (-1 to 9 m)"),
             std::string::npos);
   EXPECT_NE(message_of("x,y,reading,u,v\n1,1,1,0,-1e300\n").find("log.csv:2, column 'v'"),
             std::string::npos);
