@@ -111,7 +111,7 @@ nlohmann::json parse_run_json(std::string_view text, const std::string& name) {
   nlohmann::json run;
   try {
     run = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // a parse error, or a number beyond a double
     throw InputError(name + ": not JSON (" + e.what() + ")");
   }
   if (!run.is_object())

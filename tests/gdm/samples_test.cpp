@@ -139,6 +139,10 @@ TEST(RunSamples, ATeamRunGivesEveryRobotsSteps) {
   EXPECT_NE(run_message(R"({"team": {"members": 3}})").find("no \"members\" list"),
             std::string::npos);
   EXPECT_NE(run_message("[1, 2]").find("not a JSON object"), std::string::npos);
+  // A number beyond a double (found by fuzz_gdm_run): nlohmann's out_of_range, not a parse error.
+  EXPECT_NE(
+      run_message(R"({"steps": [{"recorded_position": [1e360, 0]}]})").find("run.json: not JSON"),
+      std::string::npos);
 }
 
 TEST(RunMap, TheRecordedMapIsFoundFromTheRunsFolderOrRefused) {
