@@ -8,7 +8,10 @@
 #include "core/atomic_file.hpp"
 #include "core/map_json.hpp"
 #include "core/npy.hpp"
+#include "core/option_check.hpp"
 #include "core/output_target.hpp"
+#include "core/progress.hpp"
+#include "core/thread_pool.hpp"
 #include "gdm/kernel_dmv.hpp"
 #include "gdm/map_score.hpp"
 #include "gdm/render.hpp"
@@ -23,6 +26,8 @@ namespace fs = std::filesystem;
 
 struct GdmArgs {
   std::string map, samples, run, out, source, wind, background = "mean";
+  bool map_given = false;  // MAP typed: it replaces the map a --run recorded
+  int threads = kDefaultThreads;
   gdm::GdmOptions options;
   cfd::FlowOptions flow;
 };
@@ -54,10 +59,52 @@ void bind_gdm_options(CLI::App* cmd, GdmArgs& a) {
       ->capture_default_str();
 }
 
-std::vector<gdm::Sample> read_samples(const GdmArgs& a, const Map& map) {
-  if (!a.samples.empty()) return gdm::read_samples_csv(a.samples, map);
+// The map and samples to work on: the CSV's on MAP, or a run's on the map it recorded (MAP when
+// typed) with every robot's samples.
+struct Inputs {
+  std::string map_file;
+  Map map;
+  std::vector<gdm::Sample> samples;
+};
+
+Inputs read_inputs(const GdmArgs& a) {
+  Inputs in;
+  if (!a.samples.empty()) {
+    in.map_file = a.map;
+    in.map = read_map(a.map);
+    in.samples = gdm::read_samples_csv(a.samples, in.map);
+    return in;
+  }
   const fs::path run = fs::is_directory(a.run) ? fs::path(a.run) / "run.json" : fs::path(a.run);
-  return gdm::read_run_samples(run, map);
+  const nlohmann::json j = gdm::parse_run_json(read_file(run), run.string());
+  in.map_file =
+      a.map_given
+          ? a.map
+          : gdm::find_run_map(
+                j, run, {data_dir() / "maps", data_dir() / "test-maps", data_dir() / "floors"})
+                .string();
+  in.map = read_map(in.map_file);
+  in.samples = gdm::run_samples(j, run.string(), in.map);
+  return in;
+}
+
+// The maps, on --threads, with a progress bar (on a terminal) for long work.
+gdm::GdmMaps make_maps(const Inputs& in, const GdmArgs& a) {
+  ThreadPool pool(a.threads);
+  ProgressBar bar("gdm");
+  gdm::GdmWork work{&pool, [&](double done) { bar.update(done); }};
+  gdm::GdmMaps maps = gdm::kernel_dmv(in.map, in.samples, a.options, work);
+  bar.finish();
+  return maps;
+}
+
+void write_maps(const fs::path& dir, const gdm::GdmMaps& maps) {
+  const GridShape& g = maps.mean.shape;
+  const std::vector<std::size_t> shape{static_cast<std::size_t>(g.ny),
+                                       static_cast<std::size_t>(g.nx)};
+  write_file_atomic(dir / "mean.npy", npy_float64(maps.mean.values, shape));
+  write_file_atomic(dir / "variance.npy", npy_float64(maps.variance.values, shape));
+  write_file_atomic(dir / "confidence.npy", npy_float64(maps.confidence.values, shape));
 }
 
 }  // namespace
@@ -72,8 +119,10 @@ void add_gdm_commands(CLI::App& app) {
   auto* csv =
       cmd->add_option("--samples", a->samples,
                       "CSV of readings: a header naming x, y, reading (and u, v), map frame");
-  auto* run = cmd->add_option("--run", a->run,
-                              "A `plumekit localize --out` folder (or its run.json): its samples");
+  auto* run = cmd->add_option(
+      "--run", a->run,
+      "A `plumekit localize --out` folder (or its run.json): every robot's samples, "
+      "on the map the run recorded (MAP, when given, replaces it)");
   csv->excludes(run);
   cmd->add_option("--source", a->source, "The true source X,Y: score the maps against its plume");
   cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
@@ -82,35 +131,37 @@ void add_gdm_commands(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `gdm` output")
       ->required();
   bind_gdm_options(cmd, *a);
+  add_threads_flag(cmd, a->threads, "gdm.threads",
+                   "Threads of the kernel sums (0: one per core; the maps are the same bytes for "
+                   "any count)");
   add_common_flags(cmd);
-  cmd->callback([a] {
+  cmd->callback([a, cmd] {
     if (a->samples.empty() && a->run.empty())
       throw OptionError("gdm.samples", "give --samples CSV or --run DIR");
     a->options.background = gdm::parse_background(a->background);
     a->options.validate();
-    const Map map = read_map(a->map);
-    const std::vector<gdm::Sample> samples = read_samples(*a, map);
-    gdm::GdmRun r{a->map, a->samples.empty() ? a->run : a->samples, a->out, a->options, {}, {}};
-    if (!a->source.empty()) r.source = map.from_frame(parse_point(a->source, "--source"));
-    OutputDirectory out(a->out, "gdm", {a->map, a->samples, a->run, a->wind});
-    const gdm::GdmMaps maps = gdm::kernel_dmv(map, samples, a->options);
+    check_count("gdm.threads", a->threads, 0, 1024, "0 means one per core");
+    a->map_given = cmd->get_option("MAP")->count() > 0;
+    const Inputs in = read_inputs(*a);
+    gdm::GdmRun r{in.map_file, a->samples.empty() ? a->run : a->samples, a->out, a->options, {},
+                  {}};
+    if (!a->source.empty()) r.source = in.map.from_frame(parse_point(a->source, "--source"));
+    gdm::check_grid_memory(in.map, a->options.cell,
+                           gdm::kGdmBytesPerCell + (r.source ? gdm::kScoreBytesPerCell : 0.0));
+    OutputDirectory out(a->out, "gdm", {in.map_file, a->samples, a->run, a->wind});
+    const gdm::GdmMaps maps = make_maps(in, *a);
     if (r.source) {
-      const cfd::WindField wind =
-          a->wind.empty() ? cfd::solve_wind(map, a->flow).flow.wind : cfd::read_wind(a->wind, map);
-      r.score =
-          gdm::score_mean(maps.mean, gdm::true_mean_plume(map, wind, *r.source, maps.mean.shape));
+      const cfd::WindField wind = a->wind.empty() ? cfd::solve_wind(in.map, a->flow).flow.wind
+                                                  : cfd::read_wind(a->wind, in.map);
+      r.score = gdm::score_mean(maps.mean,
+                                gdm::true_mean_plume(in.map, wind, *r.source, maps.mean.shape));
     }
     const fs::path& dir = out.open();
-    const GridShape& g = maps.mean.shape;
-    const std::vector<std::size_t> shape{static_cast<std::size_t>(g.ny),
-                                         static_cast<std::size_t>(g.nx)};
-    write_file_atomic(dir / "mean.npy", npy_float64(maps.mean.values, shape));
-    write_file_atomic(dir / "variance.npy", npy_float64(maps.variance.values, shape));
-    write_file_atomic(dir / "confidence.npy", npy_float64(maps.confidence.values, shape));
-    write_png(
-        gdm::draw_gdm(map, maps, samples, r.source, gdm::method_name(a->options, samples), ""),
-        dir / "gdm.png");
-    const Report rep = gdm::gdm_report(map, maps, r);
+    write_maps(dir, maps);
+    write_png(gdm::draw_gdm(in.map, maps, in.samples, r.source,
+                            gdm::method_name(a->options, in.samples), ""),
+              dir / "gdm.png");
+    const Report rep = gdm::gdm_report(in.map, maps, r);
     write_file_atomic(dir / "gdm.json", rep.json.dump(2) + "\n");
     out.commit();
     report(rep.json, rep.text + "\nwrote " + a->out +

@@ -1,6 +1,6 @@
 // Fuzzes the readings reader (gdm/samples: parse_samples_csv) with arbitrary text. Bad input must
-// end in InputError; an accepted CSV gives at least one sample, every one finite, with a wind for
-// all or for none.
+// end in InputError; an accepted CSV gives at least one sample, every one within sample_fault's
+// rules, with a wind for all or for none, and finite maps (kernel_dmv) in every cell.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/map.hpp"
+#include "gdm/kernel_dmv.hpp"
 #include "gdm/samples.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -27,6 +28,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort();
     if (s.wind.has_value() != samples[0].wind.has_value()) std::abort();
     if (s.wind && (!std::isfinite(s.wind->x) || !std::isfinite(s.wind->y))) std::abort();
+    if (!plumekit::gdm::sample_fault(map, s).column.empty()) std::abort();
   }
+  plumekit::gdm::GdmOptions o;
+  o.cell = 0.5;  // 20 x 8 cells: quick
+  o.wind_stretch = 0.6;
+  const plumekit::gdm::GdmMaps m = plumekit::gdm::kernel_dmv(map, samples, o);
+  for (const auto* g : {&m.mean, &m.variance, &m.confidence, &m.weight})
+    for (double v : g->values)
+      if (!std::isfinite(v)) std::abort();
   return 0;
 }

@@ -3,6 +3,7 @@
 // Lilienthal): maps of the mean, the variance and the confidence of gas readings taken at points,
 // each reading spread over the cells around it by a Gaussian kernel. DM+V/W stretches a reading's
 // kernel along the wind measured with it (a, b below) and keeps its area.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
+#include "core/thread_pool.hpp"
 
 namespace plumekit::gdm {
 
@@ -47,10 +49,42 @@ struct GdmMaps {
   Grid<double> weight;  // Omega, the kernel weight each cell received
   double background_mean = 0.0, background_variance = 0.0;  // r̄, v̄
   int samples = 0;
+  int outside_arena = 0;  // of `samples`, those outside the arena (counted: their kernels reach in)
 };
 
-// The maps of `samples` over `map`'s arena. InputError when there is no sample, or a sample is not
-// finite; samples outside the arena count like any other (their kernels reach in).
-GdmMaps kernel_dmv(const Map& map, const std::vector<Sample>& samples, const GdmOptions& options);
+// What a sample may hold. Readings within +-kMaxReading, so that the variance map (their squares)
+// stays finite; winds within kMaxWind m/s per component; positions at most the arena's larger side
+// outside the arena (farther is a wrong map or frame; nearer ones count, their kernels reach in).
+inline constexpr double kMaxReading = 1e150;
+inline constexpr double kMaxWind = 1000.0;
+
+// The first unusable field of a sample: its column ("x", "y", "reading", "u", "v") and why, values
+// in the map's frame; an empty column when the sample is usable. Readers name the file and line.
+struct SampleFault {
+  std::string column, reason;
+};
+SampleFault sample_fault(const Map& map, const Sample& sample);
+
+// Bytes per cell of the maps: kernel_dmv's six grids of doubles and the gdm command's copies as
+// it writes them (measured 34-44 B per cell of peak RSS; gdm/README.md).
+inline constexpr double kGdmBytesPerCell = 64.0;
+
+// MemoryLimitError naming gdm.cell and a cell that fits, unless `bytes_per_cell` on the maps' grid
+// of `cell` fits the memory limit (core/memory_limit.hpp). kernel_dmv checks kGdmBytesPerCell;
+// callers that score the maps too check the sum with kScoreBytesPerCell (map_score.hpp) first.
+void check_grid_memory(const Map& map, double cell, double bytes_per_cell);
+
+// How kernel_dmv runs: on `pool` (serial without one; the maps are the same bytes for any thread
+// count), calling `progress` (from one thread at a time) with the fraction done.
+struct GdmWork {
+  ThreadPool* pool = nullptr;
+  std::function<void(double fraction)> progress;
+};
+
+// The maps of `samples` over `map`'s arena. InputError when there is no sample or a sample breaks
+// sample_fault's rules; MemoryLimitError (naming gdm.cell and a cell that fits) when the grid would
+// not fit in the memory limit. Samples outside the arena count like any other.
+GdmMaps kernel_dmv(const Map& map, const std::vector<Sample>& samples, const GdmOptions& options,
+                   const GdmWork& work = {});
 
 }  // namespace plumekit::gdm

@@ -28,6 +28,7 @@ Report gdm_report(const Map& map, const GdmMaps& maps, const GdmRun& run) {
                  {"map", run.map_file},
                  {"samples_file", run.samples_file},
                  {"samples", maps.samples},
+                 {"samples_outside_arena", maps.outside_arena},
                  {"grid", {maps.mean.shape.nx, maps.mean.shape.ny}},
                  {"cell", o.cell},
                  {"kernel_width", o.kernel_width},
@@ -39,6 +40,9 @@ Report gdm_report(const Map& map, const GdmMaps& maps, const GdmRun& run) {
   std::ostringstream text;
   text << std::setprecision(3) << "mapped " << maps.samples << " samples on " << maps.mean.shape.nx
        << " x " << maps.mean.shape.ny << " cells";
+  if (maps.outside_arena > 0)
+    text << " (" << maps.outside_arena
+         << " of them outside the map's arena: counted, their kernels reach in)";
   ordered_json estimates = ordered_json::array();
   for (const SourceEstimate& e : source_estimates(maps)) {
     ordered_json entry{{"name", e.name}, {"position", point(map.to_frame(e.position))}};

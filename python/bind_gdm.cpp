@@ -1,5 +1,8 @@
 // Gas distribution maps (gdm/): Kernel DM+V and DM+V/W from readings a user brings.
+#include <pybind11/numpy.h>
 #include <pybind11/stl.h>
+
+#include "core/error.hpp"
 
 #include "gdm/kernel_dmv.hpp"
 #include "gdm/map_score.hpp"
@@ -12,18 +15,55 @@ namespace plumekit::python {
 
 namespace {
 
-// Rows (x, y, reading) or (x, y, reading, u, v), map frame, as a sequence or an [n, 3|5] array.
+constexpr const char* kRowsExpected =
+    "samples: expected rows (x, y, reading) or (x, y, reading, u, v), map frame: an [n, 3] or "
+    "[n, 5] array or a list of such tuples";
+
+// One row's numbers; InputError (a ValueError) naming the row and the expected shape otherwise.
+std::vector<double> row_values(const py::handle& row, std::size_t n) {
+  std::vector<double> v;
+  try {
+    v = row.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw InputError(std::string(kRowsExpected) + "; row " + std::to_string(n) + " is " +
+                     std::string(py::str(py::repr(row))).substr(0, 60));
+  }
+  if (v.size() != 3 && v.size() != 5)
+    throw InputError(std::string(kRowsExpected) + "; row " + std::to_string(n) + " has " +
+                     std::to_string(v.size()) + " values");
+  return v;
+}
+
+// Rows (x, y, reading) or (x, y, reading, u, v), map frame, as a sequence or an [n, 3|5] array;
+// each sample keeps gdm::sample_fault's rules.
 std::vector<gdm::Sample> samples_from(const Map& map, const py::handle& rows) {
+  if (py::isinstance<py::array>(rows)) {
+    const auto a = py::reinterpret_borrow<py::array>(rows);
+    if (a.ndim() != 2 || (a.shape(1) != 3 && a.shape(1) != 5)) {
+      std::string shape;
+      for (py::ssize_t d = 0; d < a.ndim(); ++d)
+        shape += (d ? ", " : "") + std::to_string(a.shape(d));
+      throw InputError(std::string(kRowsExpected) + "; got an array of shape (" + shape + ")" +
+                       (a.ndim() == 1 ? " (one sample: [[x, y, reading]]; flat rows: "
+                                        "rows.reshape(-1, 3))"
+                                      : ""));
+    }
+  } else if (!py::isinstance<py::sequence>(rows) || py::isinstance<py::str>(rows)) {
+    throw InputError(std::string(kRowsExpected) + "; got " +
+                     std::string(py::str(py::type::of(rows).attr("__name__"))));
+  }
   std::vector<gdm::Sample> out;
+  std::size_t n = 0;
   for (const py::handle row : rows) {
-    const auto v = row.cast<std::vector<double>>();
-    if (v.size() != 3 && v.size() != 5)
-      throw py::type_error("samples: each row is (x, y, reading) or (x, y, reading, u, v)");
+    const std::vector<double> v = row_values(row, n);
     gdm::Sample s;
     s.position = map.from_frame({v[0], v[1]});
     s.reading = v[2];
     if (v.size() == 5) s.wind = Vec2{v[3], v[4]};
+    if (const gdm::SampleFault f = gdm::sample_fault(map, s); !f.column.empty())
+      throw InputError("samples: row " + std::to_string(n) + ", " + f.column + ": " + f.reason);
     out.push_back(s);
+    ++n;
   }
   return out;
 }
@@ -53,6 +93,7 @@ void bind_gdm(py::module_& m) {
         if (!source.is_none()) s = map.from_frame(to_point(source, "source"));
         const Wind* w = wind.is_none() ? nullptr : &wind.cast<const Wind&>();
         if (s && !w) throw py::type_error("gas_map: scoring against a source needs wind=");
+        if (s) gdm::check_grid_memory(map, o.cell, gdm::kGdmBytesPerCell + gdm::kScoreBytesPerCell);
         gdm::GdmMaps maps;
         std::optional<gdm::MapScore> score;
         {
@@ -70,6 +111,7 @@ void bind_gdm(py::module_& m) {
         for (const gdm::SourceEstimate& e : gdm::source_estimates(maps))
           estimates.append(py::make_tuple(e.name, from_point(map.to_frame(e.position))));
         out["source_estimates"] = estimates;
+        out["samples_outside_arena"] = maps.outside_arena;
         if (score) {
           out["kl_distance"] = score->kl_distance;
           out["rmse"] = score->rmse;
@@ -80,7 +122,8 @@ void bind_gdm(py::module_& m) {
       py::arg("wind") = py::none(), py::arg("options") = py::none(),
       "Kernel DM+V (or DM+V/W with wind_stretch > 0 and rows with u, v) maps of readings "
       "(`plumekit gdm`): a dict of 'mean', 'variance', 'confidence' [ny, nx] (NaN in obstacles) "
-      "and the six 'source_estimates'; with source= and wind= (a Wind of the map) also the "
+      "and the six 'source_estimates', and 'samples_outside_arena' (counted: their kernels reach "
+      "in); with source= and wind= (a Wind of the map) also the "
       "'kl_distance' and 'rmse' against the true mean plume.");
 }
 

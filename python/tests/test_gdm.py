@@ -45,3 +45,19 @@ def test_scores_need_a_wind_and_improve_with_readings(block):
         plumekit.gas_map(block, [(1.0, 1.0, float("nan"))])
     with pytest.raises(plumekit.OptionError):
         plumekit.gas_map(block, rows, kernel_width=-1)
+
+
+def test_gas_map_names_bad_shapes_and_absurd_values(block):
+    with pytest.raises(ValueError, match=r"an \[n, 3\] or \[n, 5\] array.*shape \(3\)"):
+        plumekit.gas_map(block, np.array([1.0, 1.0, 5.0]))
+    with pytest.raises(ValueError, match=r"shape \(2, 4\)"):
+        plumekit.gas_map(block, np.zeros((2, 4)))
+    with pytest.raises(ValueError, match="row 1 is 'abc'"):
+        plumekit.gas_map(block, [(1.0, 1.0, 5.0), "abc"])
+    with pytest.raises(ValueError, match=r"row 0, reading: 1e\+308 is beyond"):
+        plumekit.gas_map(block, [(1.0, 1.0, 1e308)])
+    with pytest.raises(ValueError, match=r"row 1, x: 1e\+300 m lies more than"):
+        plumekit.gas_map(block, [(1.0, 1.0, 5.0), (1e300, 1.0, 5.0)])
+    m = plumekit.gas_map(block, [(1.0, 1.0, 5.0), (-0.5, 1.0, 3.0)])
+    assert m["samples_outside_arena"] == 1
+    assert np.isfinite(m["variance"][~np.isnan(m["variance"])]).all()

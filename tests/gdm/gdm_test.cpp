@@ -2,10 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
 
 #include "../dataset/uniform_wind.hpp"
 #include "core/error.hpp"
 #include "core/map.hpp"
+#include "core/memory_limit.hpp"
+#include "core/thread_pool.hpp"
 #include "gdm/kernel_dmv.hpp"
 #include "gdm/map_score.hpp"
 
@@ -94,6 +98,90 @@ TEST(KernelDmv, ObstacleCellsAreNaNAndBadInputIsRefused) {
     EXPECT_EQ(e.field(), "gdm.kernel_width");
   }
   EXPECT_THROW(parse_background("median"), OptionError);
+}
+
+TEST(KernelDmv, TheLargestAcceptedReadingsGiveFiniteMaps) {
+  // A thousand readings of +-kMaxReading at one point under a narrow kernel: plain sums of their
+  // squared departures (4e300 each, times a peak weight of 1.6e5) would overflow to inf.
+  std::vector<Sample> s;
+  for (int k = 0; k < 1000; ++k)
+    s.push_back({{5.05, 2.05}, k % 2 ? kMaxReading : -kMaxReading, {}});
+  GdmOptions o;
+  o.kernel_width = 1e-3;
+  const GdmMaps m = kernel_dmv(open_arena(), s, o);
+  for (const Grid<double>* g : {&m.mean, &m.variance, &m.confidence})
+    for (double v : g->values)
+      ASSERT_TRUE(std::isfinite(v));
+  EXPECT_GT(m.variance(50, 20), 1e299);
+  EXPECT_TRUE(std::isfinite(m.background_variance));
+}
+
+TEST(KernelDmv, AbsurdSamplesAreRefusedAndOutsideOnesCounted) {
+  const auto message = [](const Sample& s) {
+    try {
+      kernel_dmv(open_arena(), {s}, GdmOptions{});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message({{5.0, 2.0}, 1e308, {}}).find("sample 1, reading: 1e+308 is beyond"),
+            std::string::npos);
+  EXPECT_NE(message({{1e300, 2.0}, 1.0, {}}).find("sample 1, x: 1e+300 m lies more than"),
+            std::string::npos);
+  EXPECT_NE(message({{5.0, -11.0}, 1.0, {}}).find("sample 1, y:"), std::string::npos);
+  EXPECT_NE(message({{5.0, 2.0}, 1.0, Vec2{0.0, 1e300}}).find("sample 1, v:"), std::string::npos);
+  EXPECT_EQ(message({{-9.0, 2.0}, 1.0, {}}), "");  // within a side of the arena: counted
+  const GdmMaps m = kernel_dmv(open_arena(), {{{-0.5, 2.0}, 1.0, {}}, {{5.0, 2.0}, 2.0, {}}}, {});
+  EXPECT_EQ(m.samples, 2);
+  EXPECT_EQ(m.outside_arena, 1);
+  EXPECT_GT(m.weight(0, 20), 0.01);  // its kernel reaches in
+}
+
+TEST(KernelDmv, TheSameBytesOnAnyNumberOfThreadsWithProgress) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> x(-1.0, 11.0), y(-1.0, 5.0), r(0.0, 1000.0), u(-2.0, 2.0);
+  std::vector<Sample> s;
+  for (int k = 0; k < 3000; ++k)
+    s.push_back({{x(rng), y(rng)}, r(rng), Vec2{u(rng), u(rng)}});
+  GdmOptions o;
+  o.wind_stretch = 0.4;
+  Map map = open_arena();
+  map.obstacles.push_back({{4.0, 1.0}, {6.0, 1.0}, {6.0, 3.0}, {4.0, 3.0}});
+  const GdmMaps serial = kernel_dmv(map, s, o);
+  for (int threads : {1, 2, 5}) {
+    ThreadPool pool(threads);
+    std::vector<double> seen;
+    const GdmMaps m = kernel_dmv(map, s, o, {&pool, [&](double f) { seen.push_back(f); }});
+    for (auto [a, b] : {std::pair{&serial.mean, &m.mean},
+                        {&serial.variance, &m.variance},
+                        {&serial.confidence, &m.confidence},
+                        {&serial.weight, &m.weight}})
+      EXPECT_EQ(std::memcmp(a->values.data(), b->values.data(), a->values.size() * sizeof(double)),
+                0)
+          << threads << " threads";
+    ASSERT_FALSE(seen.empty());
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    EXPECT_EQ(seen.back(), 1.0);
+  }
+}
+
+TEST(KernelDmv, AGridBeyondTheMemoryLimitIsRefusedNamingACellThatFits) {
+  set_memory_limit(64.0 * 1024 * 1024);
+  GdmOptions o;
+  o.cell = 0.0001;  // 4e9 cells on the 10 x 4 m arena
+  std::string message;
+  try {
+    kernel_dmv(open_arena(), {{{5.0, 2.0}, 1.0, {}}}, o);
+  } catch (const MemoryLimitError& e) {
+    message = e.what();
+  }
+  const auto at = message.find("use a larger gdm.cell (");
+  ASSERT_NE(at, std::string::npos) << message;
+  o.cell = std::stod(message.substr(at + 23));
+  EXPECT_GT(o.cell, 0.005);
+  EXPECT_EQ(kernel_dmv(open_arena(), {{{5.0, 2.0}, 1.0, {}}}, o).samples, 1);
+  set_memory_limit(default_memory_limit());
 }
 
 TEST(MapScore, KlDistanceIsZeroForTheSameMapAndSymmetric) {
