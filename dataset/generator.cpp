@@ -56,7 +56,8 @@ std::string map_stem(int index) {
 // Replacement draws for a random map whose steady flow does not converge.
 constexpr int kMaxRedraws = 8;
 
-// The map of index i and its sources (random, or given).
+// The map of index i (random, or given with its sources). A random map's sources are drawn once
+// its flow is solved (random_sources_in).
 std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redraw) {
   if (!o.given_maps.empty()) return {o.given_maps[i], o.map_files[i]};
   RandomMap r = random_map(o.map, o.seed, i, redraw);
@@ -65,8 +66,15 @@ std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redr
     for (Opening& op : r.map.openings)
       if (op.is_inlet()) op.speed = u;
   }
-  r.map.sources = random_sources(r.map, o.sources, o.source_clearance, o.seed, i);
   return {r.map, r.family};
+}
+
+// A random map's sources in the fluid cells of its solved flow: the cells the plume models work
+// on, so that no model finds a source in a cell it counts as solid (a pocket the flow seals off).
+std::vector<Vec2> random_sources_in(const DatasetOptions& o, int i, const Map& map,
+                                    const cfd::WindField& wind) {
+  const FlowCells cells{wind.shape(), wind.solid_cells()};
+  return random_sources(map, o.sources, o.source_clearance, o.seed, i, &cells);
 }
 
 // The run's own options, and the memory of its worker threads: each solves
@@ -210,6 +218,7 @@ MapAndWind map_and_wind(const DatasetOptions& o, int index, const MapFiles& file
     try {
       // The flow policy (cfd/flow_policy.hpp); wind.json records the scheme used.
       const cfd::FlowResult flow = cfd::solve_wind(map, fo).flow;
+      if (o.given_maps.empty()) map.sources = random_sources_in(o, index, map, flow.wind);
       write_wind_cache(files.wind, flow, fo);
       write_map(map, files.map);
       return {std::move(map), std::move(family), flow.wind, false};
