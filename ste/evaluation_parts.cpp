@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/atomic_file.hpp"
+#include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
 
@@ -73,11 +74,17 @@ CsvParts read_csv(const fs::path& dir, const std::string& name, const ordered_js
   if (sha256_hex(bytes) != sums.at(name).get<std::string>())
     throw InputError(file.string() + ": does not match its checksum in " +
                      (dir / kPartFile).string() + "; rerun that part");
-  const std::size_t eol = bytes.find('\n');
-  const long long count = std::count(bytes.begin(), bytes.end(), '\n');
-  if (eol == std::string::npos || count != static_cast<long long>(lines) + 1)
+  // Records, not lines: a quoted map name may hold a line break.
+  const std::vector<std::vector<std::string>> records = parse_csv(bytes, file.string());
+  const std::size_t eol = bytes.find('\n');  // the header names no field that needs quotes
+  if (eol == std::string::npos || bytes.back() != '\n' || records.size() != lines + 1)
     throw InputError(file.string() + ": should hold a header and " + std::to_string(lines) +
                      " runs");
+  for (std::size_t k = 1; k < records.size(); ++k)
+    if (records[k].size() != records.front().size())
+      throw InputError(file.string() + ": run " + std::to_string(k) + " has " +
+                       std::to_string(records[k].size()) + " fields, the header " +
+                       std::to_string(records.front().size()));
   return {bytes.substr(0, eol + 1), bytes.substr(eol + 1)};
 }
 

@@ -487,5 +487,39 @@ TEST_F(SteShards, MergeRefusesBadPartsAndWritesNothing) {
   EXPECT_EQ(run("evaluate merge " + p + "-0 " + p + "-2 " + p + "-1 --out " + out).code, 0);
 }
 
+// Issue 44: runs.csv and timings.csv quote a map name holding a comma, a quote or a line break
+// (RFC 4180), python's csv module reads them back, and `evaluate merge` joins such parts.
+TEST_F(SteShards, AMapNameWithACommaQuoteOrLineBreakIsQuotedAndReadBack) {
+  const std::string maps = write_maps();
+  std::string second = slurp(dir / "maps" / "small-b.json");
+  second.replace(second.find("\"small-b\""), 9, "\"small, \\\"b\\\"\\nhall\"");
+  std::ofstream(dir / "maps" / "small-b.json") << second;
+  const CliResult one =
+      run("evaluate --map-dir " + maps + kFast + " --out " + (dir / "one").string());
+  ASSERT_EQ(one.code, 0) << one.err;
+  const std::string csv = slurp(dir / "one" / "runs.csv");
+  EXPECT_NE(csv.find("\n\"small, \"\"b\"\"\nhall\",0,0,"), std::string::npos) << csv;
+  EXPECT_NE(slurp(dir / "one" / "timings.csv").find("\n\"small, \"\"b\"\"\nhall\",0,0,"),
+            std::string::npos);
+  // The project's python reader (scripts/evaluation_runs.py): every row whole, the name intact.
+  std::ofstream(dir / "check.py") << "import sys\n"
+                                     "sys.path.insert(0, sys.argv[1])\n"
+                                     "from evaluation_runs import read_runs\n"
+                                     "runs = read_runs(sys.argv[2])\n"
+                                     "assert len(runs) == 5, len(runs)\n"
+                                     "assert all(None not in r and r['stopped_by'] for r in runs)\n"
+                                     "names = sorted({r['map'] for r in runs})\n"
+                                     "assert names == ['small', 'small, \"b\"\\nhall'], names\n";
+  const int py = std::system(("/usr/bin/python3 " + (dir / "check.py").string() + " " +
+                              PLUMEKIT_TEST_DATA "/../../scripts " + (dir / "one").string())
+                                 .c_str());
+  EXPECT_EQ(py, 0);
+  const CliResult merged =
+      run("evaluate merge" + run_parts(maps, 3, "p") + " --out " + (dir / "merged").string());
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  for (const char* f : {"runs.csv", "summary.json"})
+    EXPECT_EQ(slurp(dir / "merged" / f), slurp(dir / "one" / f)) << f;
+}
+
 }  // namespace
 }  // namespace plumekit::test
