@@ -212,6 +212,7 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
     results[m].method = to_string(kinds[m]);
     results[m].seeds = o.seeds;
     results[m].pairs = pairs;
+    results[m].methods_together = static_cast<int>(kinds.size());
   }
   const int total = static_cast<int>(pairs.end - pairs.first) * o.runs * o.seeds;
   ThreadPool pool(o.threads);
@@ -250,8 +251,10 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
       r.wall_s = wall_s;
       results[m].maps.push_back(r);
       if (after_map) after_map(m, *scenarios[m], records[m]);
-      for (RunRecord& run : records[m])
+      for (RunRecord& run : records[m]) {
+        results[m].decisions_s += run.result.decisions_s;
         results[m].runs.push_back(std::move(run));
+      }
     }
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - t_all).count();
