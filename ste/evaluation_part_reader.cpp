@@ -57,19 +57,30 @@ CsvParts read_csv(const fs::path& dir, const std::string& name, const ordered_js
   return {bytes.substr(0, eol + 1), bytes.substr(eol + 1)};
 }
 
-// Throws a json exception unless part.json holds every key the merge reads, of its type.
+// Throws a json exception unless part.json holds every key the merge reads, of its type, and
+// InputError for a count outside what evaluate writes.
 void check_shape(const ordered_json& j) {
   const ordered_json& s = j.at("settings");
-  s.at("runs_per_source").get<long long>();
-  s.at("seeds").get<int>();
+  // The counts as evaluate's options bound them, so that the part's pair range and run count
+  // (check_part_coverage) are computed without overflow.
+  const auto count = [](const ordered_json& v, const std::string& where, const char* key,
+                        long long hi) {
+    const long long x = v.at(key).get<long long>();
+    if (x < 0 || x > hi)
+      throw InputError(where + key + " is " + std::to_string(x) + ", outside 0.." +
+                       std::to_string(hi));
+  };
+  count(s, "settings.", "runs_per_source", 1'000'000);  // evaluation.runs
+  count(s, "settings.", "seeds", 1000);                 // evaluation.seeds
   // The summary's label: STE's plume model, or the method.
   if (s.value("method", std::string("ste")) == "ste")
     s.at("plume_model").get<std::string>();
   else
     s.at("method").get<std::string>();
   j.at("options").items();
+  // (map, source) pairs: total * K stays within 63 bits for any K < N (an int).
   for (const char* key : {"first", "end", "total"})
-    j.at("pairs").at(key).get<long long>();
+    count(j.at("pairs"), "pairs.", key, 1LL << 31);
   j.at("threads").get<int>();
   j.at("wall_s").get<double>();
   const ordered_json& maps = j.at("maps");
