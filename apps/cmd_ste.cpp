@@ -3,7 +3,9 @@
 // Each flag is bound to a field of the library's options (ste::SteOptions,
 // ste::EvaluationOptions, ste::DemoOptions), whose defaults and checks are
 // the only ones; this file binds and prints.
+#include <chrono>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -394,6 +396,10 @@ void add_ste_options(CLI::App* cmd, ste::SteOptions& o,
   add_run_options(cmd, o);
 }
 
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
 // The JSON and text of a run, with the start's move when it was moved off an
 // obstacle (arena coordinates in, the map's frame out).
 void report_run(Report r, const Map& map, const std::optional<Vec2>& requested, Vec2 used) {
@@ -429,7 +435,8 @@ void add_localize(CLI::App& app) {
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
-    if (cmd->got_subcommand("tunnel")) return;  // `localize tunnel` did the work
+    if (cmd->got_subcommand("tunnel")) return;              // `localize tunnel` did the work
+    const auto t_start = std::chrono::steady_clock::now();  // the summary accounts for all of it
     if (a->source.empty()) throw CLI::RequiredError("--source");
     // Points are typed in the map's frame (its file's coordinates).
     const Vec2 source_typed = parse_point(a->source, "--source");
@@ -450,7 +457,10 @@ void add_localize(CLI::App& app) {
                            ? sc.check_start(*requested)
                            : sc.random_start(source, stream_seed(seed, ste::SteStream::Start));
     const ste::LocalizationResult r = sc.run(source, start, seed);
-    Report rep = ste::run_report(sc, source, r);
+    // The pictures first, so that the time they take is in the summary's total.
+    ste::RunPictures pictures;
+    if (out) pictures = ste::write_run_pictures(sc, source, r, out->open());
+    Report rep = ste::run_report(sc, source, r, seconds_since(t_start));
     ordered_json j{{"ok", true},
                    {"map", provenance_path(a->map)},
                    {"plume_model", ste::to_string(a->ste.model)},
@@ -459,7 +469,6 @@ void add_localize(CLI::App& app) {
     rep.json = j;
     if (out) {
       const fs::path& dir = out->open();
-      const ste::RunPictures pictures = ste::write_run_pictures(sc, source, r, dir);
       write_file_atomic(dir / "run.json", rep.json.dump(2) + "\n");
       out->commit();
       const fs::path o = a->out;
@@ -664,14 +673,27 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   }
   if (!several) return report(reports.front().json, reports.front().text);
   whole->commit();
+  // One total: the methods ran together, each run's plume simulated once for all of them.
+  double wind_s = 0;
+  for (const ste::MapReport& mr : results.front().maps)
+    wind_s += mr.wind_s;
   ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
   std::string text;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    j["methods"].push_back({{"method", ste::to_string(kinds[m])}, {"result", reports[m].json}});
+    j["methods"].push_back({{"method", ste::to_string(kinds[m])},
+                            {"model_build_s", results[m].model_build_s()},
+                            {"decisions_s", results[m].decisions_s},
+                            {"result", reports[m].json}});
     text +=
         std::string(m ? "\n\n" : "") + "== " + ste::to_string(kinds[m]) + " ==\n" + reports[m].text;
   }
-  report(j, text);
+  j["wall_s"] = results.front().wall_s;
+  j["wind_s"] = wind_s;
+  std::ostringstream total;
+  total << std::fixed << std::setprecision(1) << "\n\nall " << kinds.size() << " methods in "
+        << results.front().wall_s << " s (wall clock; wind " << wind_s
+        << " s, then every run's plume once for all the methods)";
+  report(j, text + total.str());
 }
 
 void add_demo(CLI::App& app) {
@@ -691,6 +713,7 @@ void add_demo(CLI::App& app) {
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
+    const auto t_start = std::chrono::steady_clock::now();  // the summary accounts for all of it
     ste::DemoOptions& d = a->demo;
     const std::string note =
         cmd->get_option("--plume-model")->count() == 0 ? ste::choose_demo_model(d.ste) : "";
@@ -708,7 +731,7 @@ void add_demo(CLI::App& app) {
     out.commit();
     const fs::path traj = fs::path(a->out) / "trajectory.png",
                    post = fs::path(a->out) / "posterior.png";
-    Report rep = ste::run_report(sc, source, r);
+    Report rep = ste::run_report(sc, source, r, seconds_since(t_start));
     ordered_json j{{"ok", true},
                    {"map", provenance_path(map_file)},
                    {"plume_model", ste::to_string(d.ste.model)}};

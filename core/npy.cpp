@@ -1,6 +1,8 @@
 #include "core/npy.hpp"
 
+#include <cctype>
 #include <cstring>
+#include <fstream>
 #include <numeric>
 
 #include "core/atomic_file.hpp"
@@ -65,38 +67,87 @@ NpyArray read_npy(const std::filesystem::path& path) {
   return parse_npy(read_file(path), path);
 }
 
-NpyArray parse_npy(std::string_view bytes, const std::filesystem::path& path) {
+namespace {
+
+// The header of an .npy file: the element type (none of the three: another type) and width, the
+// shape, and where the data starts.
+struct NpyHeader {
+  bool f4 = false, f8 = false, i4 = false;
+  std::vector<std::size_t> shape;
+  std::size_t data_offset = 0;
+  std::size_t width() const { return f8 ? 8 : 4; }
+  std::size_t count() const {
+    return std::accumulate(shape.begin(), shape.end(), std::size_t{1}, std::multiplies<>());
+  }
+};
+
+// `bytes` holds at least the header; `path` only names the file in messages.
+NpyHeader parse_header(std::string_view bytes, const std::filesystem::path& path) {
   auto bad = [&](const std::string& what) { throw InputError(path.string() + ": " + what); };
   if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) bad("not an .npy file");
   const std::size_t len =
       static_cast<unsigned char>(bytes[8]) | (static_cast<unsigned char>(bytes[9]) << 8);
   if (bytes[6] != 1 || bytes.size() < 10 + len) bad("unsupported .npy version or truncated header");
   const std::string dict(bytes.substr(10, len));
-  const bool f4 = dict.find("'descr': '<f4'") != std::string::npos;
-  const bool f8 = dict.find("'descr': '<f8'") != std::string::npos;
-  if (!f4 && !f8) bad("only little-endian float32/float64 arrays are read");
+  NpyHeader h;
+  h.f4 = dict.find("'descr': '<f4'") != std::string::npos;
+  h.f8 = dict.find("'descr': '<f8'") != std::string::npos;
+  h.i4 = dict.find("'descr': '<i4'") != std::string::npos;
   if (dict.find("'fortran_order': False") == std::string::npos)
     bad("Fortran order is not supported");
-  NpyArray a;
   const std::size_t open = dict.find("'shape': (");
   if (open == std::string::npos) bad("header has no shape");
   std::size_t p = open + 10;
   while (p < dict.size() && dict[p] != ')') {
     if (std::isdigit(static_cast<unsigned char>(dict[p]))) {
       std::size_t used = 0;
-      a.shape.push_back(std::stoull(dict.substr(p), &used));
+      h.shape.push_back(std::stoull(dict.substr(p), &used));
       p += used;
     } else {
       ++p;
     }
   }
-  const std::size_t count =
-      std::accumulate(a.shape.begin(), a.shape.end(), std::size_t{1}, std::multiplies<>());
-  const std::size_t width = f4 ? 4 : 8;
-  if (bytes.size() != 10 + len + count * width)
-    bad("data size does not match the shape (truncated?)");
+  h.data_offset = 10 + len;
+  return h;
+}
+
+}  // namespace
+
+std::vector<std::size_t> read_npy_shape(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot be read");
+  std::string head(10, '\0');
+  in.read(head.data(), 10);
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.size() == 10) {
+    const std::size_t len =
+        static_cast<unsigned char>(head[8]) | (static_cast<unsigned char>(head[9]) << 8);
+    std::string dict(len, '\0');
+    in.read(dict.data(), static_cast<std::streamsize>(len));
+    head.append(dict, 0, static_cast<std::size_t>(in.gcount()));
+  }
+  const NpyHeader h = parse_header(head, path);
+  if (!h.f4 && !h.f8 && !h.i4)
+    throw InputError(path.string() + ": only little-endian float32/float64/int32 arrays are read");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size != h.data_offset + h.count() * h.width())
+    throw InputError(path.string() + ": data size does not match the shape (truncated?)");
+  return h.shape;
+}
+
+NpyArray parse_npy(std::string_view bytes, const std::filesystem::path& path) {
+  const NpyHeader h = parse_header(bytes, path);
+  if (!h.f4 && !h.f8)
+    throw InputError(path.string() + ": only little-endian float32/float64 arrays are read");
+  const bool f4 = h.f4;
+  NpyArray a;
+  a.shape = h.shape;
+  const std::size_t count = h.count();
+  if (bytes.size() != h.data_offset + count * h.width())
+    throw InputError(path.string() + ": data size does not match the shape (truncated?)");
   a.values.resize(count);
-  const char* data = bytes.data() + 10 + len;
+  const char* data = bytes.data() + h.data_offset;
   for (std::size_t k = 0; k < count; ++k) {
     if (f4) {
       float v;

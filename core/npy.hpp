@@ -22,6 +22,10 @@ struct NpyArray {
   std::vector<double> values;  // converted from the file's float32/float64
 };
 
+// The shape of an .npy file (float32, float64 or int32) from its header, checked against the
+// file's size; the data is not read. InputError naming the file otherwise.
+std::vector<std::size_t> read_npy_shape(const std::filesystem::path& path);
+
 // Reads a float32 or float64 C-order array; InputError naming the file otherwise.
 NpyArray read_npy(const std::filesystem::path& path);
 // The same from a file's bytes already read (to check them and parse the very

@@ -264,6 +264,22 @@ void check_shard(const fs::path& dir, const Checksums& expected) {
   }
 }
 
+long long shard_samples(const fs::path& dir) {
+  long long rows = -1;
+  std::string first;
+  for (const char* file : kShardFiles) {
+    const std::vector<std::size_t> shape = read_npy_shape(dir / file);
+    const long long n = shape.empty() ? -1 : static_cast<long long>(shape.front());
+    if (n < 0) fail((dir / file).string(), "", "a scalar, not an array of samples", "");
+    if (rows >= 0 && n != rows)
+      fail((dir / file).string(), "",
+           "holds " + std::to_string(n) + " samples, " + first + " " + std::to_string(rows),
+           "; the shard is damaged: run the same `plumekit dataset generate` again to redo it");
+    if (rows < 0) rows = n, first = file;
+  }
+  return rows;
+}
+
 double feature_cell(const Manifest& m) {
   const auto it = m.generator.find("feature_cell");
   if (it == m.generator.end()) return 0.0;

@@ -58,6 +58,10 @@ Checksums parse_checksums(std::string_view bytes, const std::string& name);
 // against the manifest's checksums. InputError naming the first file that does not match.
 void check_shard(const std::filesystem::path& dir, const Checksums& expected);
 
+// The samples a shard's files hold: the first dimension of each array of kShardFiles, read from
+// their headers. InputError naming the file when one is not a whole array or the files disagree.
+long long shard_samples(const std::filesystem::path& dir);
+
 // The dataset's feature cell (generator.feature_cell; 0 for the thesis's 64 x 64 grid).
 double feature_cell(const Manifest& m);
 

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <mutex>
 #include <set>
 #include <tuple>
@@ -57,7 +58,8 @@ std::string map_stem(int index) {
 // Replacement draws for a random map whose steady flow does not converge.
 constexpr int kMaxRedraws = 8;
 
-// The map of index i and its sources (random, or given).
+// The map of index i (random, or given with its sources). A random map's sources are drawn once
+// its flow is solved (random_sources_in).
 std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redraw) {
   if (!o.given_maps.empty()) return {o.given_maps[i], o.map_files[i]};
   RandomMap r = random_map(o.map, o.seed, i, redraw);
@@ -66,8 +68,15 @@ std::pair<Map, std::string> dataset_map(const DatasetOptions& o, int i, int redr
     for (Opening& op : r.map.openings)
       if (op.is_inlet()) op.speed = u;
   }
-  r.map.sources = random_sources(r.map, o.sources, o.source_clearance, o.seed, i);
   return {r.map, r.family};
+}
+
+// A random map's sources in the fluid cells of its solved flow: the cells the plume models work
+// on, so that no model finds a source in a cell it counts as solid (a pocket the flow seals off).
+std::vector<Vec2> random_sources_in(const DatasetOptions& o, int i, const Map& map,
+                                    const cfd::WindField& wind) {
+  const FlowCells cells{wind.shape(), wind.solid_cells()};
+  return random_sources(map, o.sources, o.source_clearance, o.seed, i, &cells);
 }
 
 // The run's own options, and the memory of its worker threads: each solves
@@ -214,6 +223,7 @@ MapAndWind map_and_wind(const DatasetOptions& o, int index, const MapFiles& file
     try {
       // The flow policy (cfd/flow_policy.hpp); wind.json records the scheme used.
       const cfd::FlowResult flow = cfd::solve_wind(map, fo).flow;
+      if (o.given_maps.empty()) map.sources = random_sources_in(o, index, map, flow.wind);
       write_wind_cache(files.wind, flow, fo);
       write_map(map, files.map);
       return {std::move(map), std::move(family), flow.wind, false};
@@ -375,6 +385,18 @@ struct MergePlan {
   MergeSummary summary;
 };
 
+// The checksums cover a shard's files, not the manifest's sample count: a count that differs from
+// the shard's arrays would give a merged dataset that its readers refuse.
+void check_sample_count(const fs::path& dir, const std::string& part, const ManifestShard& s) {
+  const long long held = shard_samples(dir / "shards" / s.name);
+  if (held != s.samples)
+    throw InputError("dataset merge: " + part + " in " + dir.string() + ": its manifest gives " +
+                     s.name + " " + std::to_string(s.samples) + " samples, but " +
+                     (dir / "shards" / s.name).string() + " holds " + std::to_string(held) +
+                     "; run that part's `plumekit dataset generate --shard` again to rewrite "
+                     "its manifest");
+}
+
 // Checks that the parts share one set of parameters and one split and hold every map exactly
 // once, verifying each shard against its checksums.
 MergePlan plan_merge(const std::vector<std::pair<fs::path, Manifest>>& manifests) {
@@ -383,7 +405,7 @@ MergePlan plan_merge(const std::vector<std::pair<fs::path, Manifest>>& manifests
   plan.params = manifests.front().second.generator;
   const int n = manifests.front().second.part_n;
   const int maps = manifests.front().second.maps;
-  std::set<int> parts_seen;
+  std::map<int, fs::path> parts_seen;  // part k -> its folder
   plan.entries.resize(maps);
   plan.from.resize(maps);
   std::vector<bool> have(maps, false);
@@ -391,7 +413,10 @@ MergePlan plan_merge(const std::vector<std::pair<fs::path, Manifest>>& manifests
     if (m.generator != plan.params)
       throw InputError(dir.string() + ": its parts were made with other parameters");
     if (m.part_n != n) throw InputError(dir.string() + ": parts of different splits (N differs)");
-    parts_seen.insert(m.part_k);
+    const std::string part = "part " + std::to_string(m.part_k) + " of " + std::to_string(n);
+    if (const auto [at, added] = parts_seen.emplace(m.part_k, dir); !added)
+      throw InputError("dataset merge: " + part + " is given twice: in " + at->second.string() +
+                       " and in " + dir.string() + "; give each part once");
     for (const ManifestShard& s : m.shards) {
       const int i = s.map_index;  // in 0..maps-1: the generators are equal
       if (have[i]) throw InputError(dir.string() + ": map " + std::to_string(i) + " twice");
@@ -399,6 +424,7 @@ MergePlan plan_merge(const std::vector<std::pair<fs::path, Manifest>>& manifests
       plan.entries[i] = {i, s.family, s.samples, s.sha256};
       plan.from[i] = dir;
       check_shard(dir / "shards" / s.name, s.sha256);
+      check_sample_count(dir, part, s);
       ++plan.summary.shards;
       plan.summary.samples += s.samples;
     }
@@ -450,9 +476,15 @@ OutputLock copy_parts(const fs::path& out, const MergePlan& plan) {
 MergeSummary merge_datasets(const fs::path& out, const std::vector<fs::path>& parts) {
   if (parts.empty()) throw InputError("dataset merge: name at least one part directory");
   std::vector<std::pair<fs::path, Manifest>> manifests;
-  std::set<fs::path> seen_dirs;
-  for (const fs::path& dir : parts) {
-    if (!seen_dirs.insert(fs::weakly_canonical(dir)).second) continue;
+  std::map<fs::path, std::size_t> seen_dirs;  // folder -> its argument
+  for (std::size_t a = 0; a < parts.size(); ++a) {
+    const fs::path& dir = parts[a];
+    // A folder given twice is a slip for another part's folder: naming both arguments says which.
+    if (const auto [at, added] = seen_dirs.emplace(fs::weakly_canonical(dir), a); !added)
+      throw InputError("dataset merge: part folder " + dir.string() + " is given twice (argument " +
+                       std::to_string(at->second + 1) + ", " + parts[at->second].string() +
+                       ", and argument " + std::to_string(a + 1) + ", " + dir.string() +
+                       "); give each part folder once");
     for (Manifest& m : read_part_manifests(dir))
       manifests.emplace_back(dir, std::move(m));
   }

@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
+#include "cfd/options.hpp"
+#include "cfd/staggered_grid.hpp"
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/option_check.hpp"
@@ -249,8 +252,23 @@ RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_
                    " draws; use a smaller maps.min_gap or maps.robot_margin, or a larger arena");
 }
 
+bool FlowCells::fluid_at(Vec2 p) const {
+  const int i = std::clamp(static_cast<int>(std::floor(p.x / shape.dx())), 0, shape.nx - 1);
+  const int j = std::clamp(static_cast<int>(std::floor(p.y / shape.dy())), 0, shape.ny - 1);
+  return !solid[shape.index(i, j)];
+}
+
+FlowCells default_flow_cells(const Map& map) {
+  const cfd::FlowOptions flow;
+  const GridShape shape =
+      GridShape::with_cell(map.width, map.height, cfd::resolved_cell(map, flow));
+  return {shape, cfd::StaggeredGrid(map, shape, flow).solid_cells()};
+}
+
 std::vector<Vec2> random_sources(const Map& map, int count, double clearance, std::uint64_t seed,
-                                 std::uint64_t map_index) {
+                                 std::uint64_t map_index, const FlowCells* flow) {
+  std::optional<FlowCells> own;
+  if (!flow && count > 0) flow = &own.emplace(default_flow_cells(map));
   Draw d(derive_seed(seed, map_index, 0, Stream::Sources));
   std::vector<Vec2> out;
   int tries = 0;
@@ -258,10 +276,11 @@ std::vector<Vec2> random_sources(const Map& map, int count, double clearance, st
     if (++tries > 1000 * (count + 1))
       throw InputError("random sources: map " + map.name + " has too little free space at " +
                        compact(clearance) +
-                       " m clearance; use a smaller dataset.source_clearance or fewer sources");
+                       " m clearance that the flow reaches; use a smaller "
+                       "dataset.source_clearance or fewer sources");
     const Vec2 p{d.uniform(clearance, map.width - clearance),
                  d.uniform(clearance, map.height - clearance)};
-    if (signed_distance(map, p) >= clearance) out.push_back(p);
+    if (signed_distance(map, p) >= clearance && flow->fluid_at(p)) out.push_back(p);
   }
   return out;
 }

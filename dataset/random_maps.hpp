@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/grid.hpp"
 #include "core/map.hpp"
 
 namespace plumekit::dataset {
@@ -68,10 +69,26 @@ RandomMap random_map(const RandomMapOptions& options, std::uint64_t seed, std::u
 // The family a random map's name ends with, or "" when it is none of them.
 std::string family_of(const std::string& map_name);
 
+// The cells of a map's flow grid and which of them are solid: an obstacle's cells, a narrow gap's
+// and those of a pocket of free space that no path of air joins to an outlet (sealed, as the flow
+// solver seals them: cfd/staggered_grid.hpp).
+struct FlowCells {
+  GridShape shape;
+  std::vector<std::uint8_t> solid;
+  // Whether the cell that holds `p` is air the flow reaches.
+  bool fluid_at(Vec2 p) const;
+};
+// The cells of `map`'s flow grid with plumekit's default flow options, without solving the flow.
+FlowCells default_flow_cells(const Map& map);
+
 // `count` sources uniformly over the free space at least `clearance` metres
-// from every obstacle and wall, drawn from (seed, map index). Deterministic.
+// from every obstacle and wall, in fluid cells of the flow grid `flow` (nullptr: the map's default
+// grid, default_flow_cells), drawn from (seed, map index). Deterministic: a draw that is not in
+// such a cell is rejected and the next one taken, so every plume model can release at a source
+// (a point in a sealed pocket has no flow, and the advection-diffusion model no cell to release
+// in).
 std::vector<Vec2> random_sources(const Map& map, int count, double clearance, std::uint64_t seed,
-                                 std::uint64_t map_index);
+                                 std::uint64_t map_index, const FlowCells* flow = nullptr);
 
 // Robot check: cells (0.05 m) whose centre is at least `margin` from every
 // solid surface connect the inlet side to the outlet side.

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "methods/plume_tracking.hpp"
@@ -138,7 +139,7 @@ std::vector<const RunRecord*> pointers(const std::vector<RunRecord>& records) {
 
 // The columns that name a run, first in runs.csv and timings.csv.
 void run_id_columns(std::ostream& s, const RunRecord& r) {
-  s << r.map << ',' << r.source_index << ',' << r.run;
+  s << csv_field(r.map) << ',' << r.source_index << ',' << r.run;
 }
 
 }  // namespace
@@ -211,6 +212,7 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
     results[m].method = to_string(kinds[m]);
     results[m].seeds = o.seeds;
     results[m].pairs = pairs;
+    results[m].methods_together = static_cast<int>(kinds.size());
   }
   const int total = static_cast<int>(pairs.end - pairs.first) * o.runs * o.seeds;
   ThreadPool pool(o.threads);
@@ -249,8 +251,10 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
       r.wall_s = wall_s;
       results[m].maps.push_back(r);
       if (after_map) after_map(m, *scenarios[m], records[m]);
-      for (RunRecord& run : records[m])
+      for (RunRecord& run : records[m]) {
+        results[m].decisions_s += run.result.decisions_s;
         results[m].runs.push_back(std::move(run));
+      }
     }
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - t_all).count();
@@ -290,7 +294,7 @@ std::string runs_csv(const EvaluationResult& result) {
     s << ',' << std::setprecision(frame.is_identity() ? 6 : 12) << source.x << ',' << source.y
       << ',' << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
       << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
-      << r.mission_s << ',' << r.stopped_by;
+      << r.mission_s << ',' << csv_field(r.stopped_by);
     if (result.tracking()) {
       s << ',' << (r.reached ? 1 : 0) << ',';
       if (std::isfinite(r.distance_overhead)) s << r.distance_overhead;

@@ -96,6 +96,16 @@ struct EvaluationResult {
   int seeds = 1;    // EvaluationOptions::seeds: runs.csv has a seed column when more than one
   PairRange pairs;  // what this result holds: all pairs, or one part's
   int threads = 1;  // the count used
+  // How many methods ran together on the same runs (evaluate_methods): wall_s is then all of
+  // theirs, and a method's own time is its model builds and its runs' decisions.
+  int methods_together = 1;
+  double decisions_s = 0;         // wall time of the decisions, summed over the runs
+  double model_build_s() const {  // summed over the maps
+    double s = 0;
+    for (const MapReport& m : maps)
+      s += m.table_build_s;
+    return s;
+  }
 };
 
 // `progress(done, total)` is called from the calling thread's perspective

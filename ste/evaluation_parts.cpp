@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -26,188 +25,8 @@ ordered_json run_row(const RunRecord& r) {
                                                                  : ordered_json(nullptr)});
 }
 
-RunRecord parse_run_row(const ordered_json& row, const ordered_json& maps) {
-  RunRecord r;
-  r.map_index = row.at(0).get<int>();
-  r.map = maps.at(r.map_index).at("name").get<std::string>();
-  r.source_index = row.at(1).get<int>();
-  r.run = row.at(2).get<int>();
-  r.seed = row.at(3).get<std::uint64_t>();
-  r.error_m = row.at(4).get<double>();
-  r.samples = row.at(5).get<int>();
-  r.distance_m = row.at(6).get<double>();
-  r.mission_s = row.at(7).get<double>();
-  r.stopped_by = row.at(8).get<std::string>();
-  r.compute_s = row.at(9).get<double>();
-  r.median_step_s = row.at(10).get<double>();
-  if (row.size() > 12) {
-    r.reached = row.at(11).get<bool>();
-    if (!row.at(12).is_null()) r.distance_overhead = row.at(12).get<double>();
-  }
-  return r;
-}
-
-// The SHA-256 of part.json's content without its own "sha256" key.
-std::string body_sha256(ordered_json j) {
-  j.erase("sha256");
-  return sha256_hex(j.dump());
-}
-
-// A CSV file's header line and the lines after it.
-struct CsvParts {
-  std::string header, body;
-};
-
-struct Part {
-  fs::path dir;
-  ordered_json j;
-  int k = 0, n = 1;
-  std::vector<RunRecord> runs;
-  CsvParts runs_csv, timings_csv;
-};
-
-CsvParts read_csv(const fs::path& dir, const std::string& name, const ordered_json& sums,
-                  std::size_t lines) {
-  const fs::path file = dir / name;
-  const std::string bytes = read_file(file);
-  if (sha256_hex(bytes) != sums.at(name).get<std::string>())
-    throw InputError(file.string() + ": does not match its checksum in " +
-                     (dir / kPartFile).string() + "; rerun that part");
-  const std::size_t eol = bytes.find('\n');
-  const long long count = std::count(bytes.begin(), bytes.end(), '\n');
-  if (eol == std::string::npos || count != static_cast<long long>(lines) + 1)
-    throw InputError(file.string() + ": should hold a header and " + std::to_string(lines) +
-                     " runs");
-  return {bytes.substr(0, eol + 1), bytes.substr(eol + 1)};
-}
-
-// Throws a json exception unless part.json holds every key the merge reads, of its type.
-void check_shape(const ordered_json& j) {
-  const ordered_json& s = j.at("settings");
-  s.at("runs_per_source").get<long long>();
-  s.at("seeds").get<int>();
-  // The summary's label: STE's plume model, or the method.
-  if (s.value("method", std::string("ste")) == "ste")
-    s.at("plume_model").get<std::string>();
-  else
-    s.at("method").get<std::string>();
-  j.at("options").items();
-  for (const char* key : {"first", "end", "total"})
-    j.at("pairs").at(key).get<long long>();
-  j.at("threads").get<int>();
-  j.at("wall_s").get<double>();
-  const ordered_json& maps = j.at("maps");
-  if (!maps.is_array() || maps.empty() || j.at("map_times").size() != maps.size())
-    throw InputError("\"maps\" and \"map_times\" must list the same maps");
-  for (std::size_t i = 0; i < maps.size(); ++i) {
-    maps[i].at("name").get<std::string>();
-    const ordered_json& t = j.at("map_times")[i];
-    t.at("ran").get<bool>();
-    for (const char* key : {"wind_s", "table_build_s", "wall_s"})
-      t.at(key).get<double>();
-  }
-}
-
-// Reads and checks one part folder's part.json and files (its checksums, its own pair range).
-Part read_part(const fs::path& dir) {
-  const fs::path file = dir / kPartFile;
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError(dir.string() + ": holds no " + kPartFile +
-                     "; name the --out folders of `plumekit evaluate --shard K/N`");
-  Part p;
-  p.dir = dir;
-  try {
-    p.j = ordered_json::parse(read_file(file));
-    if (p.j.at("format").get<std::string>() != kPartFormat)
-      throw InputError(file.string() + ": \"format\" is not " + kPartFormat);
-    if (p.j.at("sha256").get<std::string>() != body_sha256(p.j))
-      throw InputError(file.string() +
-                       ": does not match its own checksum (damaged or edited); "
-                       "rerun that part");
-    check_shape(p.j);
-    p.k = p.j.at("part").get<int>();
-    p.n = p.j.at("parts").get<int>();
-    if (p.n < 1 || p.k < 0 || p.k >= p.n)
-      throw InputError(file.string() + ": part " + std::to_string(p.k) + " of " +
-                       std::to_string(p.n) + " is no part");
-    for (const auto& row : p.j.at("runs"))
-      p.runs.push_back(parse_run_row(row, p.j.at("maps")));
-    p.runs_csv = read_csv(dir, "runs.csv", p.j.at("files"), p.runs.size());
-    p.timings_csv = read_csv(dir, "timings.csv", p.j.at("files"), p.runs.size());
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(file.string() + ": not a well-formed evaluate part (" + e.what() + ")");
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    if (what.rfind(dir.string(), 0) == 0) throw;  // names its file already
-    throw InputError(file.string() + ": " + what);
-  }
-  return p;
-}
-
-// The first key of `a` or `b` whose values differ, or "".
-std::string first_difference(const ordered_json& a, const ordered_json& b) {
-  for (const auto& [key, value] : a.items())
-    if (!b.contains(key) || b.at(key) != value) return key;
-  for (const auto& [key, value] : b.items())
-    if (!a.contains(key)) return key;
-  return "";
-}
-
-std::string shown(const ordered_json& j, const std::string& key) {
-  return j.contains(key) ? j.at(key).dump() : std::string("absent");
-}
-
-// The parts must come from one evaluation: one split, one set of options and maps.
-void check_same(const Part& first, const Part& p) {
-  const auto differs = [&](const char* what, const std::string& key) {
-    throw InputError(p.dir.string() + ": its " + what + " " + key + " is " +
-                     shown(p.j.at(what), key) + ", " + first.dir.string() + "'s " +
-                     shown(first.j.at(what), key) +
-                     ": not parts of one evaluation; rerun the parts with one set of options");
-  };
-  if (p.n != first.n)
-    throw InputError(p.dir.string() + ": part of a split into " + std::to_string(p.n) + " parts, " +
-                     first.dir.string() + " of one into " + std::to_string(first.n));
-  for (const char* what : {"options", "settings"})
-    if (const std::string key = first_difference(first.j.at(what), p.j.at(what)); !key.empty())
-      differs(what, key);
-  if (first.j.at("maps") != p.j.at("maps"))
-    throw InputError(p.dir.string() + ": its maps (files or their SHA-256) differ from those of " +
-                     first.dir.string() + "; evaluate every part on the same map folder");
-}
-
-// Every part 0..N-1 exactly once, each with the pairs and runs its K/N gives.
-void check_coverage(const std::vector<Part>& parts) {
-  const int n = parts.front().n;
-  std::map<int, const Part*> by_k;
-  for (const Part& p : parts) {
-    if (const auto it = by_k.find(p.k); it != by_k.end())
-      throw InputError("evaluate merge: part " + std::to_string(p.k) + " of " + std::to_string(n) +
-                       " is given twice (" + it->second->dir.string() + " and " + p.dir.string() +
-                       ")");
-    by_k[p.k] = &p;
-  }
-  for (int k = 0; k < n; ++k)
-    if (!by_k.count(k))
-      throw InputError("evaluate merge: part " + std::to_string(k) + " of " + std::to_string(n) +
-                       " is missing (run `plumekit evaluate --shard " + std::to_string(k) + "/" +
-                       std::to_string(n) + "` with the same options)");
-  const ordered_json& s = parts.front().j.at("settings");
-  const long long per_pair = s.at("runs_per_source").get<long long>() * s.at("seeds").get<int>();
-  for (const Part& p : parts) {
-    const ordered_json& pairs = p.j.at("pairs");
-    const long long total = pairs.at("total").get<long long>();
-    const long long first = total * p.k / n, end = total * (p.k + 1) / n;
-    if (pairs.at("first").get<long long>() != first || pairs.at("end").get<long long>() != end ||
-        static_cast<long long>(p.runs.size()) != (end - first) * per_pair)
-      throw InputError((p.dir / kPartFile).string() + ": its runs are not those of part " +
-                       std::to_string(p.k) + " of " + std::to_string(n));
-  }
-}
-
 // The runs of all parts in run order, each map's statistics and times, and the files.
-MergedEvaluation join(const std::vector<Part>& parts) {
+MergedEvaluation join(const std::vector<EvaluationPart>& parts) {
   MergedEvaluation m;
   EvaluationResult& res = m.result;
   const ordered_json& first = parts.front().j;
@@ -221,7 +40,7 @@ MergedEvaluation join(const std::vector<Part>& parts) {
   ordered_json part_times = ordered_json::array();
   m.files.runs_csv = parts.front().runs_csv.header;
   m.files.timings_csv = parts.front().timings_csv.header;
-  for (const Part& p : parts) {
+  for (const EvaluationPart& p : parts) {
     res.runs.insert(res.runs.end(), p.runs.begin(), p.runs.end());
     m.files.runs_csv += p.runs_csv.body;
     m.files.timings_csv += p.timings_csv.body;
@@ -295,20 +114,21 @@ ordered_json part_json(const EvaluationResult& res, const EvaluationOptions& o,
       {"wall_s", res.wall_s},
       {"map_times", times},
       {"runs", runs}};
-  j["sha256"] = body_sha256(j);
+  j["sha256"] = part_body_sha256(j);
   return j;
 }
 
 MergedEvaluation merge_evaluation_parts(const std::vector<fs::path>& dirs) {
   if (dirs.empty()) throw InputError("evaluate merge: name the part folders");
-  std::vector<Part> parts;
+  std::vector<EvaluationPart> parts;
   for (const fs::path& dir : dirs)
-    parts.push_back(read_part(dir));
-  for (const Part& p : parts)
-    check_same(parts.front(), p);
-  check_coverage(parts);
-  std::sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.k < b.k; });
-  for (const Part& p : parts)
+    parts.push_back(read_evaluation_part(dir));
+  for (const EvaluationPart& p : parts)
+    check_same_evaluation(parts.front(), p);
+  check_part_coverage(parts);
+  std::sort(parts.begin(), parts.end(),
+            [](const EvaluationPart& a, const EvaluationPart& b) { return a.k < b.k; });
+  for (const EvaluationPart& p : parts)
     if (p.runs_csv.header != parts.front().runs_csv.header ||
         p.timings_csv.header != parts.front().timings_csv.header)
       throw InputError((p.dir / "runs.csv").string() + ": its header differs from " +

@@ -10,12 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "ste/evaluation.hpp"
+#include "ste/evaluation_part_reader.hpp"
 #include "ste/report.hpp"
 
 namespace plumekit::ste {
-
-inline constexpr const char* kPartFile = "part.json";
-inline constexpr const char* kPartFormat = "plumekit-evaluate-part/1";
 
 // The maps of a folder as every part must share them: file name, map name and SHA-256.
 nlohmann::ordered_json map_files_json(const MapFolder& maps);

@@ -73,8 +73,13 @@ struct LocalizationResult {
   Vec2 map;
   int samples = 0;
   double distance_m = 0.0;
-  double time_s = 0.0;         // simulated mission time
-  double compute_s = 0.0;      // total decision compute
+  double time_s = 0.0;     // simulated mission time
+  double compute_s = 0.0;  // total decision compute (thread CPU time)
+  // Wall-clock seconds: the decisions (estimation, navigation, planning), the simulated world (its
+  // plume's spin-up and steps and the sensors' readings, SimulatedWorld::busy_s; for a robot of a
+  // plume shared between threads, its waits for the others too) and the whole run, which holds
+  // both: what a run's report adds up with the scenario's wind and model build.
+  double decisions_s = 0.0, plume_s = 0.0, run_s = 0.0;
   double median_step_s = 0.0;  // median compute per decision step
   // "entropy" or "max_samples" (STE); "declared" (particle filter); "reached" (a stop in the
   // plume trackers' source box); ...

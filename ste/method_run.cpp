@@ -1,6 +1,7 @@
 #include "ste/method_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <ctime>
 
@@ -15,6 +16,10 @@ double thread_cpu_s() {
   timespec t{};
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double wall_clock_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 namespace {
@@ -166,7 +171,7 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
     s.recorded = reading.position;
     s.time_s = world.time() - t_start;
 
-    const double t0 = thread_cpu_s();
+    const double t0 = thread_cpu_s(), w0 = wall_clock_s();
     method.observe(
         {reading.position, reading.gas, reading.wind, reading.wind_variance, s.time_s, blocked});
     record_state(method, s, r);
@@ -179,6 +184,7 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
     if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options, blocked);
     if (r.stopped_by.empty() && options.disc) cut_at_entry(*options.disc, path);
     s.compute_s = thread_cpu_s() - t0;
+    r.decisions_s += wall_clock_s() - w0;
     step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;
     r.steps.push_back(std::move(s));

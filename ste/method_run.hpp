@@ -33,6 +33,8 @@ struct SourceDisc {
 // CPU time of the calling thread, s: a decision step runs on one thread, and this reads the same
 // on a loaded machine as on a quiet one.
 double thread_cpu_s();
+// Wall-clock seconds (a steady clock): the times a run's report adds up (LocalizationResult).
+double wall_clock_s();
 
 // `path` cut at its first point in `disc` (unchanged when it never enters it): a run ends where
 // its robot enters the disc.

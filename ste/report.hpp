@@ -15,8 +15,22 @@
 
 namespace plumekit::ste {
 
-// One run: run.json's content (the JSON) and its human summary (the text).
-Report run_report(const Scenario& scenario, Vec2 source, const LocalizationResult& result);
+// Where a run's wall-clock time went: the scenario's wind (flow solve or wind file) and model build
+// (table, cached readings), the run's plume simulation (the world's spin-up, steps and readings)
+// and decisions, and the rest (reading the map, the planner, pictures, ...). The parts add up to
+// total_s.
+struct RunTimes {
+  double total_s = 0, wind_s = 0, model_build_s = 0, plume_s = 0, decisions_s = 0, other_s = 0;
+};
+// `total_s`: the wall time to account for (a command's, from its start); 0: the scenario's wind
+// and model build plus the run's own wall time (LocalizationResult::run_s).
+RunTimes run_times(const Scenario& scenario, const LocalizationResult& result,
+                   double total_s = 0.0);
+
+// One run: run.json's content (the JSON) and its human summary (the text), with run_times(...,
+// total_s) under "time" and on the summary's last line.
+Report run_report(const Scenario& scenario, Vec2 source, const LocalizationResult& result,
+                  double total_s = 0.0);
 
 struct RunPictures {
   std::filesystem::path trajectory, posterior;

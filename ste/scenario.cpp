@@ -346,8 +346,10 @@ std::vector<Vec2> Scenario::team_starts(Vec2 first, Vec2 source) const {
 LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& starts,
                                       std::uint64_t seed) const {
   check_source(source);
+  const auto t0 = Clock::now();
   SharedPlume plume(map_, wind_, source, options_.world.filament, seed,
                     static_cast<int>(starts.size()));
+  const double spin_up = since(t0);
   std::vector<std::unique_ptr<Estimator>> estimators;
   std::vector<Estimator*> pointers;
   for (std::size_t k = 0; k < starts.size(); ++k) {
@@ -364,18 +366,40 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   setup.space = space_.get();
   setup.navigator = navigator_.get();
   setup.stop = &options_.stop;
-  return ste::run_team(plume, starts, pointers, seed, setup, options_.team, o);
+  LocalizationResult r = ste::run_team(plume, starts, pointers, seed, setup, options_.team, o);
+  r.plume_s += spin_up;
+  r.run_s = since(t0);
+  return r;
 }
 
 LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {
+  const auto t0 = Clock::now();
   check_source(source);
   start = check_start(start);
-  if (options_.team.robots > 1) return run_team(source, team_starts(start, source), seed);
-  SimulatedWorld world(map_, wind_, source, options_.world, seed);
-  return run(world, start, seed);
+  if (options_.team.robots > 1) {
+    LocalizationResult r = run_team(source, team_starts(start, source), seed);
+    r.run_s = since(t0);
+    return r;
+  }
+  const auto t1 = Clock::now();
+  SimulatedWorld world(map_, wind_, source, options_.world, seed);  // spins the plume up
+  const double spin_up = since(t1);
+  LocalizationResult r = run(world, start, seed);
+  r.plume_s += spin_up;
+  r.run_s = since(t0);
+  return r;
 }
 
 LocalizationResult Scenario::run(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const {
+  const auto t0 = Clock::now();
+  const double busy = world.busy_s();
+  LocalizationResult r = run_in(world, start, seed);
+  r.plume_s = world.busy_s() - busy;
+  r.run_s = since(t0);
+  return r;
+}
+
+LocalizationResult Scenario::run_in(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const {
   const Vec2 source = check_source(world.source());
   start = check_start(start);
   MethodRunOptions o;

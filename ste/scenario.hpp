@@ -209,6 +209,8 @@ class Scenario {
   // The piece of free space (at the planner's margin) that `p`, or the free point nearest it,
   // lies in: a start must be in its source's.
   int region_reaching(Vec2 p) const;
+  // run(world, ...) without its times.
+  LocalizationResult run_in(SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
 
   // The wind of `same_map`, or solved when it is null.
   Scenario(const Map& map, const SteOptions& options, const Scenario* same_map);

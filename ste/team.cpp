@@ -95,7 +95,7 @@ struct Robot {
   std::vector<Mission::Sample> inbox;  // teammates' samples not yet added
   TeamRobot out;
   std::vector<double> step_times;
-  double compute_s = 0.0;
+  double compute_s = 0.0, decisions_s = 0.0;
 };
 
 class TeamRun {
@@ -177,7 +177,7 @@ class TeamRun {
 
   // The stop's sample (and the teammates' since the last), the stop rules, the next goal.
   void decide(Robot& r) {
-    const double t0 = thread_cpu_s();
+    const double t0 = thread_cpu_s(), w0 = wall_clock_s();
     Step s;
     s.position = r.pos;
     s.recorded = r.reading.position;
@@ -215,6 +215,7 @@ class TeamRun {
       plan(r);
     }
     s.compute_s = thread_cpu_s() - t0;
+    r.decisions_s += wall_clock_s() - w0;
     r.step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;
     r.out.steps.push_back(std::move(s));
@@ -449,6 +450,8 @@ class TeamRun {
       res.samples += static_cast<int>(r.out.steps.size());
       res.distance_m += r.out.distance_m;
       res.compute_s += r.compute_s;
+      res.decisions_s += r.decisions_s;
+      res.plume_s += r.world->busy_s();
       step_times.insert(step_times.end(), r.step_times.begin(), r.step_times.end());
     }
     const Robot& c = robots_.at(static_cast<std::size_t>(chosen));

@@ -6,6 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/csv.hpp"
 #include "core/option_check.hpp"
 #include "core/statistics.hpp"
 #include "ste/render.hpp"
@@ -109,11 +110,11 @@ std::string tunnel_runs_csv(const std::vector<TunnelRun>& runs) {
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const TunnelRun& r = runs[k];
     const Vec3 e = r.error();
-    out << k << ',' << to_string(r.method) << ',' << r.source.x << ',' << r.source.y << ','
-        << r.source.z << ',' << r.start.x << ',' << r.start.y << ',' << r.start.z << ','
+    out << k << ',' << csv_field(to_string(r.method)) << ',' << r.source.x << ',' << r.source.y
+        << ',' << r.source.z << ',' << r.start.x << ',' << r.start.y << ',' << r.start.z << ','
         << r.estimate.x << ',' << r.estimate.y << ',' << r.estimate.z << ',' << e.x << ',' << e.y
         << ',' << e.z << ',' << r.error_m() << ',' << r.steps.size() << ',' << r.distance_m << ','
-        << r.mission_s << ',' << r.stopped_by << ',' << (succeeded(r) ? 1 : 0) << ','
+        << r.mission_s << ',' << csv_field(r.stopped_by) << ',' << (succeeded(r) ? 1 : 0) << ','
         << r.closest_m() << ',' << r.time_within(0.5) << ',' << r.median_step_s() << '\n';
   }
   return out.str();

@@ -1,6 +1,7 @@
 #include "ste/world.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -59,6 +60,23 @@ SimulatedWorld::~SimulatedWorld() {
   plume_.leave(robot_);
 }
 
+class SimulatedWorld::Busy {
+ public:
+  explicit Busy(SimulatedWorld& w) : w_(w) {
+    if (w_.busy_depth_++ == 0) t0_ = std::chrono::steady_clock::now();
+  }
+  ~Busy() {
+    if (--w_.busy_depth_ == 0)
+      w_.busy_s_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
+  Busy(const Busy&) = delete;
+  Busy& operator=(const Busy&) = delete;
+
+ private:
+  SimulatedWorld& w_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
 namespace {
 
 // The whole plume steps of `dt` in `debt` seconds, taken off it: what advance() steps.
@@ -89,6 +107,7 @@ void SimulatedWorld::advance(double seconds) {
 }
 
 void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
+  const Busy busy(*this);
   if (options_.odometry_drift > 0.0 && metres > 0.0) {
     NormalSampler draw;
     const double sd = options_.odometry_drift * std::sqrt(metres);
@@ -108,6 +127,7 @@ void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
 }
 
 void SimulatedWorld::pass(const std::vector<Vec2>& path, double along) {
+  const Busy busy(*this);
   advance(reading_interval());
   if (gas_.has_memory() && !path.empty()) gas_.read(exposure(plume(), point_along(path, along)));
 }
@@ -145,6 +165,7 @@ double SimulatedWorld::exposure(const dataset::FilamentSimulation& plume, Vec2 p
 }
 
 Reading SimulatedWorld::stop(Vec2 p) {
+  const Busy busy(*this);
   begin_stop(p);
   while (!stop_reading()) {
   }
@@ -159,6 +180,7 @@ void SimulatedWorld::begin_stop(Vec2 p) {
 }
 
 bool SimulatedWorld::stop_reading() {
+  const Busy busy(*this);
   if (stop_.taken >= stop_.readings)
     throw std::logic_error("SimulatedWorld: a reading after the stop's last (begin_stop first)");
   const Vec2 p = stop_.p;

@@ -132,6 +132,9 @@ class SimulatedWorld {
   double spinup_s() const { return plume_.spinup_s(); }  // before the robot started
   Vec2 source() const { return source_; }
   const Map& map() const { return map_; }
+  // Wall-clock seconds spent in travel(), pass(), stop() and stop_reading(): the plume's steps
+  // and the sensors' readings (with a shared plume, waits for the other robots too).
+  double busy_s() const { return busy_s_; }
 
  private:
   // One of `own` (a world of its own) and `shared`.
@@ -143,6 +146,10 @@ class SimulatedWorld {
   // The concentration the gas sensor is exposed to at p: at the point, or the rotor disc's mean
   // over its free points.
   double exposure(const dataset::FilamentSimulation& plume, Vec2 p) const;
+  // Adds the wall time of the outermost timed call to busy_s_ (stop() calls stop_reading()).
+  class Busy;
+  double busy_s_ = 0.0;
+  int busy_depth_ = 0;
   std::unique_ptr<SharedPlume> own_;  // a world of its own
   SharedPlume& plume_;
   int robot_ = 0;

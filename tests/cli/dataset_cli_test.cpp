@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -230,6 +231,42 @@ TEST_F(DatasetCli, ErrorsNameTheFlags) {
   EXPECT_EQ(source.code, 2);
   EXPECT_TRUE(has(source.err, "--source")) << source.err;
   EXPECT_FALSE(fs::exists(at("d")) || fs::exists(at("m")) || fs::exists(at("p")));
+}
+
+// Issue 44: merge checks what the checksums do not cover (a manifest's sample count against the
+// shard's arrays), and a part folder given twice is named as such, not as a missing part.
+TEST_F(DatasetCli, MergeRefusesAWrongSampleCountAndAPartGivenTwice) {
+  const std::string common =
+      "dataset generate --maps 2 --sources 1 --cell 0.1 --plume-model advection-diffusion ";
+  for (const char* k : {"0", "1"}) {
+    const Result r = run(common + "--shard " + k + "/2 --out " + at(std::string("p") + k));
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  const Result twice = run("dataset merge " + at("p0") + " " + at("p0") + " --out " + at("m"));
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_TRUE(has(twice.err, "is given twice")) << twice.err;
+  EXPECT_TRUE(has(twice.err, "argument 1") && has(twice.err, "argument 2")) << twice.err;
+  EXPECT_FALSE(has(twice.err, "missing")) << twice.err;
+  fs::copy(at("p0"), at("p0-copy"), fs::copy_options::recursive);
+  const Result copy =
+      run("dataset merge " + at("p0") + " " + at("p0-copy") + " " + at("p1") + " --out " + at("m"));
+  EXPECT_EQ(copy.code, 2);
+  EXPECT_TRUE(has(copy.err, "part 0 of 2 is given twice")) << copy.err;
+  EXPECT_TRUE(has(copy.err, at("p0-copy"))) << copy.err;
+
+  // Part 1's manifest claims 2 samples for its one-sample shard (the total agrees, so the
+  // manifest itself parses).
+  const std::string manifest = at("p1/manifest.part-1-of-2.json");
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(slurp(manifest));
+  j["shards"][0]["samples"] = 2;
+  j["samples"] = 2;
+  std::ofstream(manifest) << j.dump(2) << "\n";
+  const Result count = run("dataset merge " + at("p0") + " " + at("p1") + " --out " + at("m"));
+  EXPECT_EQ(count.code, 2);
+  EXPECT_TRUE(has(count.err, "part 1 of 2")) << count.err;
+  EXPECT_TRUE(has(count.err, "shard-00001")) << count.err;
+  EXPECT_TRUE(has(count.err, "2 samples") && has(count.err, "holds 1")) << count.err;
+  EXPECT_FALSE(fs::exists(at("m")));
 }
 
 TEST_F(DatasetCli, ShowReportsTheSampleAndRefusesAnIndexBeyondTheDataset) {

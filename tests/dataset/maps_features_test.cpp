@@ -10,9 +10,9 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/rasterize.hpp"
+#include "core/seed.hpp"
 #include "dataset/features.hpp"
 #include "dataset/random_maps.hpp"
-#include "core/seed.hpp"
 
 namespace plumekit::dataset {
 namespace {
@@ -110,6 +110,38 @@ TEST(RandomSources, StayClearOfObstaclesAndWalls) {
   for (Vec2 p : s) {
     EXPECT_TRUE(r.map.is_free(p));
     EXPECT_GE(signed_distance(r.map, p), 0.1);
+  }
+}
+
+// Issue 44: a U-shape whose arms reach the top wall seals off the free space inside it; no
+// source is drawn there (the flow does not reach it), on the map's default flow grid or another.
+TEST(RandomSources, NoneInAPocketTheFlowSealsOff) {
+  Map m = default_arena(10.0, 4.0);
+  m.obstacles = {{{6.9, 1.4},
+                  {8.9, 1.4},
+                  {8.9, 4.0},
+                  {8.7, 4.0},
+                  {8.7, 1.6},
+                  {7.1, 1.6},
+                  {7.1, 4.0},
+                  {6.9, 4.0}}};
+  const auto in_pocket = [](Vec2 p) { return p.x > 7.1 && p.x < 8.7 && p.y > 1.6; };
+  const FlowCells coarse{GridShape::with_cell(10.0, 4.0, 0.1), {}};
+  for (const FlowCells* flow : {static_cast<const FlowCells*>(nullptr), &coarse}) {
+    FlowCells cells = flow ? *flow : default_flow_cells(m);
+    if (flow) {  // the pocket's cells on a 0.1 m grid, sealed by hand
+      cells.solid.assign(cells.shape.size(), 0);
+      for (int j = 0; j < cells.shape.ny; ++j)
+        for (int i = 0; i < cells.shape.nx; ++i)
+          cells.solid[cells.shape.index(i, j)] =
+              in_pocket(cells.shape.centre(i, j)) || m.obstacle_at(cells.shape.centre(i, j)) >= 0;
+    }
+    const auto s = random_sources(m, 300, 0.1, 5, 0, flow ? &cells : nullptr);
+    ASSERT_EQ(s.size(), 300u);
+    for (Vec2 p : s) {
+      EXPECT_FALSE(in_pocket(p)) << to_string(p);
+      EXPECT_TRUE(cells.fluid_at(p)) << to_string(p);
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <fstream>
 #include <functional>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -73,6 +74,64 @@ TEST_F(SteCli, LocalizeAndEvaluateRunAnyMethod) {
   r = run("localize " + map + " --source 4.5,0.5 --method zigzag --zigzag-angle 95");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--zigzag-angle"), std::string::npos) << r.err;
+}
+
+// Issue 44: the time summary's parts (wind, model build, plume simulation, decisions, other) add
+// up to its total, in the JSON and as printed; several methods print their own parts and one total.
+TEST_F(SteCli, TheTimeSummaryAddsUpAndSeveralMethodsGetOneTotal) {
+  const std::string map = write_map();
+  const std::string common = " --source 4.5,0.5 --start 1,2.5 --plume-model gaussian --seed 3";
+  CliResult r = run("localize " + map + common + " --json --out " + (dir / "run").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json t = json::parse(r.out)["time"];
+  double parts = 0;
+  for (const char* key : {"wind_s", "model_build_s", "plume_simulation_s", "decisions_s"}) {
+    ASSERT_TRUE(t.contains(key)) << t;
+    EXPECT_GE(t[key].get<double>(), 0.0) << key;
+    parts += t[key].get<double>();
+  }
+  EXPECT_GE(t["other_s"].get<double>(), 0.0);
+  EXPECT_NEAR(parts + t["other_s"].get<double>(), t["total_s"].get<double>(), 1e-9) << t;
+  EXPECT_EQ(json::parse(slurp(dir / "run" / "run.json"))["time"].size(), 6u);
+
+  // As printed: "time T s (wall clock): wind a s + model build b s + ... + other e s", in tenths.
+  r = run("localize " + map + common);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::size_t at = r.out.find("time ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::istringstream line(r.out.substr(at, r.out.find(';', at) - at));
+  std::string word, label;
+  double total = -1, sum = 0;
+  std::vector<std::string> labels;
+  while (line >> word) {
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (end != word.c_str() && *end == '\0') {
+      if (total < 0)
+        total = v;
+      else
+        sum += v, labels.push_back(label);
+      label.clear();
+    } else if (word != "s" && word != "+" && word != "(wall" && word != "clock):" &&
+               word != "time") {
+      label += (label.empty() ? "" : " ") + word;
+    }
+  }
+  EXPECT_EQ(labels, (std::vector<std::string>{"wind", "model build", "plume simulation",
+                                              "decisions", "other"}))
+      << r.out;
+  EXPECT_NEAR(sum, total, 1e-9) << r.out;
+
+  // Several methods: each one's own model build and decisions, and one total after them.
+  r = run("evaluate --map-dir " + (dir / "maps").string() +
+          " --plume-model gaussian --max-samples 6 --max-steps 15 --runs 1 --method ste,zigzag "
+          "--out " +
+          (dir / "ev").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find(") in "), std::string::npos) << "no method claims the total:\n" << r.out;
+  EXPECT_NE(r.out.find("STE (gaussian)): model build "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("zigzag): model build "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n\nall 2 methods in "), std::string::npos) << r.out;
 }
 
 // Several methods in one world (ste/shared_plume.hpp): OUT/NAME/ is byte for byte what
@@ -178,7 +237,7 @@ TEST_F(SteCli, TeamsRunThroughLocalizeAndEvaluate) {
   const auto untimed = [](json v) {
     std::function<void(json&)> strip = [&strip](json& x) {
       if (x.is_object())
-        for (const char* key : {"compute_s", "median_step_s", "wind_s", "table_build_s"})
+        for (const char* key : {"compute_s", "median_step_s", "wind_s", "table_build_s", "time"})
           x.erase(key);
       if (x.is_structured())
         for (json& e : x)
@@ -485,6 +544,40 @@ TEST_F(SteShards, MergeRefusesBadPartsAndWritesNothing) {
   EXPECT_NE(bad.err.find("--shard: expected K/N with 0 <= K < N"), std::string::npos) << bad.err;
   // The good parts merge.
   EXPECT_EQ(run("evaluate merge " + p + "-0 " + p + "-2 " + p + "-1 --out " + out).code, 0);
+}
+
+// Issue 44: runs.csv and timings.csv quote a map name holding a comma, a quote or a line break
+// (RFC 4180), python's csv module reads them back, and `evaluate merge` joins such parts.
+TEST_F(SteShards, AMapNameWithACommaQuoteOrLineBreakIsQuotedAndReadBack) {
+  const std::string maps = write_maps();
+  std::string second = slurp(dir / "maps" / "small-b.json");
+  second.replace(second.find("\"small-b\""), 9, "\"small, \\\"b\\\"\\nhall\"");
+  std::ofstream(dir / "maps" / "small-b.json") << second;
+  const CliResult one =
+      run("evaluate --map-dir " + maps + kFast + " --out " + (dir / "one").string());
+  ASSERT_EQ(one.code, 0) << one.err;
+  const std::string csv = slurp(dir / "one" / "runs.csv");
+  EXPECT_NE(csv.find("\n\"small, \"\"b\"\"\nhall\",0,0,"), std::string::npos) << csv;
+  EXPECT_NE(slurp(dir / "one" / "timings.csv").find("\n\"small, \"\"b\"\"\nhall\",0,0,"),
+            std::string::npos);
+  // The project's python reader (scripts/evaluation_runs.py): every row whole, the name intact.
+  std::ofstream(dir / "check.py") << "import sys\n"
+                                     "sys.path.insert(0, sys.argv[1])\n"
+                                     "from evaluation_runs import read_runs\n"
+                                     "runs = read_runs(sys.argv[2])\n"
+                                     "assert len(runs) == 5, len(runs)\n"
+                                     "assert all(None not in r and r['stopped_by'] for r in runs)\n"
+                                     "names = sorted({r['map'] for r in runs})\n"
+                                     "assert names == ['small', 'small, \"b\"\\nhall'], names\n";
+  const int py = std::system(("/usr/bin/python3 " + (dir / "check.py").string() + " " +
+                              PLUMEKIT_TEST_DATA "/../../scripts " + (dir / "one").string())
+                                 .c_str());
+  EXPECT_EQ(py, 0);
+  const CliResult merged =
+      run("evaluate merge" + run_parts(maps, 3, "p") + " --out " + (dir / "merged").string());
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  for (const char* f : {"runs.csv", "summary.json"})
+    EXPECT_EQ(slurp(dir / "merged" / f), slurp(dir / "one" / f)) << f;
 }
 
 }  // namespace

@@ -1,0 +1,69 @@
+// The part folder reader of `evaluate merge` (ste/evaluation_part_reader): counts beyond what
+// evaluate writes are refused before check_part_coverage multiplies them (issue 44, found reading
+// the code while fuzzing: pairs.total * K overflowed a long long).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/sha256.hpp"
+#include "ste/evaluation_part_reader.hpp"
+
+namespace plumekit::ste {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A part folder of part K of N with no runs and `total` pairs in all, sealed as evaluate seals it.
+fs::path write_part(const std::string& name, int k, int n, long long total) {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("plumekit-parts-test-" + std::to_string(::getpid()) + "-" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string runs = "map,source_index,run\n", timings = "map,source_index,run\n";
+  nlohmann::ordered_json j{
+      {"format", kPartFormat},
+      {"part", k},
+      {"parts", n},
+      {"pairs", {{"first", 0}, {"end", 0}, {"total", total}}},
+      {"settings", {{"runs_per_source", 1}, {"seeds", 1}, {"plume_model", "gaussian"}}},
+      {"options", nlohmann::ordered_json::object()},
+      {"maps", {{{"name", "m"}}}},
+      {"files", {{"runs.csv", sha256_hex(runs)}, {"timings.csv", sha256_hex(timings)}}},
+      {"threads", 1},
+      {"wall_s", 1.0},
+      {"map_times", {{{"ran", false}, {"wind_s", 0.0}, {"table_build_s", 0.0}, {"wall_s", 0.0}}}},
+      {"runs", nlohmann::ordered_json::array()}};
+  j["sha256"] = part_body_sha256(j);
+  std::ofstream(dir / kPartFile) << j.dump(2);
+  std::ofstream(dir / "runs.csv") << runs;
+  std::ofstream(dir / "timings.csv") << timings;
+  return dir;
+}
+
+TEST(EvaluationParts, APartThatEvaluateCouldHaveWrittenIsRead) {
+  const fs::path dir = write_part("ok", 0, 1, 0);
+  const EvaluationPart p = read_evaluation_part(dir);
+  EXPECT_EQ(p.n, 1);
+  EXPECT_NO_THROW(check_part_coverage({p}));
+  fs::remove_all(dir);
+}
+
+TEST(EvaluationParts, CountsBeyondWhatEvaluateWritesAreRefusedNamingTheKey) {
+  const fs::path dir = write_part("huge", 1, 3, 1LL << 40);
+  try {
+    read_evaluation_part(dir);
+    FAIL() << "a part of 2^40 pairs was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pairs.total is 1099511627776, outside 0.."),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace plumekit::ste
