@@ -570,7 +570,7 @@ TEST_F(SteShards, AMapNameWithACommaQuoteOrLineBreakIsQuotedAndReadBack) {
                                      "names = sorted({r['map'] for r in runs})\n"
                                      "assert names == ['small', 'small, \"b\"\\nhall'], names\n";
   const int py = std::system(("/usr/bin/python3 " + (dir / "check.py").string() + " " +
-                              PLUMEKIT_TEST_DATA "/../../scripts " + (dir / "one").string())
+                              std::string(PLUMEKIT_SOURCE_DIR) + "/scripts " + (dir / "one").string())
                                  .c_str());
   EXPECT_EQ(py, 0);
   const CliResult merged =
