@@ -166,18 +166,25 @@ TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {
   const Result r =
       run("map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("warning: no free path from any inlet to any outlet"), std::string::npos)
-      << r.out;
-  EXPECT_NE(r.out.find("largest sealed free region (48.8 m²"), std::string::npos) << r.out;
+  // Warnings go to stderr (issue 44): stdout holds the result alone.
+  EXPECT_NE(r.err.find("plumekit: warning: no free path from any inlet to any outlet"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("largest sealed free region (48.8 m²"), std::string::npos) << r.err;
   // The advice names the command's flags, not the library's fields.
-  EXPECT_NE(r.out.find("import with --unknown free"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("--inlet / --outlet"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("ros."), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("import with --unknown free"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--inlet / --outlet"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("ros."), std::string::npos) << r.err;
   const Result v = run("map validate " + out.string());
   EXPECT_EQ(v.code, 0);
   EXPECT_NE(v.out.find("valid plumekit-map/2"), std::string::npos) << v.out;
-  EXPECT_NE(v.out.find("warning: no free path"), std::string::npos) << v.out;
-  EXPECT_NE(v.out.find("largest sealed free region (48.8 m²"), std::string::npos) << v.out;
+  EXPECT_EQ(v.out.find("warning"), std::string::npos) << v.out;
+  EXPECT_NE(v.err.find("plumekit: warning: no free path"), std::string::npos) << v.err;
+  EXPECT_NE(v.err.find("largest sealed free region (48.8 m²"), std::string::npos) << v.err;
+  // With --json, stdout is the JSON alone, the warnings in it.
+  const Result j = run("map validate " + out.string() + " --json");
+  EXPECT_FALSE(nlohmann::json::parse(j.out)["warnings"].empty()) << j.out;
 }
 
 TEST_F(Cli, ImportRosTakesSeveralOpeningsInTheMapFrameAndSnapsThem) {
