@@ -23,6 +23,16 @@ std::filesystem::path default_map() {
   return data_dir() / "maps" / "cluttered-1.json";
 }
 
+std::filesystem::path any_map_cnn() {
+  return data_dir() / "models" / "plume-unet-v2.pkcnn";
+}
+
+std::string with_map_size_advice(const std::string& message, bool physics) {
+  return message + ". For a map of any size, use the shipped physical-grid model: --cnn " +
+         any_map_cnn().string() +
+         (physics ? ", or the physics plume model: --plume-model physics" : "");
+}
+
 Output& output() {
   static Output out;
   return out;
@@ -62,6 +72,10 @@ CLI::Option* bind_field(CLI::App* command, CLI::Option* option, const std::strin
   return option;
 }
 
+void bind_field_label(CLI::App* command, const std::string& field, const std::string& label) {
+  bound_fields()[command][field] = label;
+}
+
 std::string with_flag_names(const CLI::App& command, std::string message) {
   std::map<std::string, std::string> fields;  // the nearest binding wins
   for (const CLI::App* app = &command; app; app = app->get_parent())
@@ -97,6 +111,10 @@ CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string
 void warn_deprecated(const std::string& old_flag, const std::string& new_flag) {
   std::cerr << "plumekit: warning: " << old_flag
             << " is deprecated and goes in the next release; use " << new_flag << '\n';
+}
+
+void warn(const std::string& message) {
+  std::cerr << "plumekit: warning: " << message << '\n';
 }
 
 void add_moved_start(nlohmann::ordered_json& summary, Vec2 requested, Vec2 used) {

@@ -19,6 +19,11 @@ namespace plumekit::cli {
 std::filesystem::path data_dir();
 // The map commands use when none is given.
 std::filesystem::path default_map();
+// The shipped physical-grid surrogate (plume-unet-v2), which fits a map of any size.
+std::filesystem::path any_map_cnn();
+// A fixed-grid surrogate's refusal of a map's size (surrogate::MapSizeError's message) with what
+// to type instead: --cnn naming any_map_cnn(), and with `physics` also --plume-model physics.
+std::string with_map_size_advice(const std::string& message, bool physics);
 
 // Set by each command's --json flag; read when printing results and errors.
 struct Output {
@@ -37,6 +42,9 @@ int usage_error(const std::string& message);
 // Binds an options field (the name an OptionError carries, "flow.cell") to the
 // flag `option` of `command`, so that errors name the flag. Returns `option`.
 CLI::Option* bind_field(CLI::App* command, CLI::Option* option, const std::string& field);
+// Binds `field` to the words `label` in messages, where one flag sets several fields ("--tunnel's
+// height" for tunnel.height): a message then says which part of the flag is wrong.
+void bind_field_label(CLI::App* command, const std::string& field, const std::string& label);
 // `message` with every options field bound in `command` (or a parent of it)
 // replaced by its flag: library messages name fields ("flow.cell"), a
 // command's user knows flags ("--cell").
@@ -70,6 +78,9 @@ void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
 // `new_flag` (already added), is hidden from --help, warns on stderr when
 // used, and may not be given together with `new_flag`.
 void warn_deprecated(const std::string& old_flag, const std::string& new_flag);
+// "plumekit: warning: MESSAGE" on stderr, so that stdout holds only the result (and with --json
+// only the JSON, where the command also lists its warnings).
+void warn(const std::string& message);
 template <typename T>
 CLI::Option* add_deprecated_alias(CLI::App* command, const std::string& old_flag,
                                   const std::string& new_flag, T& target) {

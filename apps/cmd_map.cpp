@@ -83,7 +83,7 @@ void add_validate(CLI::App& map_cmd) {
           << map.obstacles.size() << " obstacles (" << vertex_count(map) << " vertices), "
           << map.sources.size() << (map.sources.size() == 1 ? " source" : " sources");
     for (const auto& w : summary["warnings"])
-      human << "\nwarning: " << w.get<std::string>();
+      warn(w.get<std::string>());
     report(summary, human.str());
   });
 }
@@ -204,8 +204,10 @@ void add_import_ros(CLI::App& map_cmd) {
     in.map.generated_by = "plumekit map import-ros";
     write_output_file(a->out, map_file_text(in.map, a->out));
     ordered_json j = ros_import_json(in, a->yaml, a->out);
-    for (auto& w : j["warnings"])
+    for (auto& w : j["warnings"]) {
       w = with_flag_names(*cmd, w.get<std::string>());
+      warn(w.get<std::string>());
+    }
     report(j, with_flag_names(*cmd, ros_import_text(in, a->out)));
   });
 }

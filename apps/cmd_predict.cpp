@@ -75,6 +75,9 @@ void add_predict_commands(CLI::App& app) {
     }
     const Map map = read_map(a->map);
     const Vec2 source = map.from_frame(source_typed);
+    // Before the model and the wind: the same wording as localize's --source, in the map's frame.
+    if (const std::string fault = point_fault(map, source); !fault.empty())
+      throw InputError("--source: " + fault);
     OutputDirectory out(a->out, "predict", {a->map, a->cnn});
     auto network =
         std::make_shared<const surrogate::Network>(surrogate::Network::load(a->cnn, a->engine));
@@ -91,6 +94,8 @@ void add_predict_commands(CLI::App& app) {
     std::unique_ptr<surrogate::PlumeNetwork> model;
     try {
       model = std::make_unique<surrogate::PlumeNetwork>(network, map, wind ? &*wind : nullptr);
+    } catch (const surrogate::MapSizeError& e) {
+      throw InputError(a->cnn + ": " + with_map_size_advice(e.what(), false));
     } catch (const InputError& e) {
       throw InputError(a->cnn + ": " + e.what());
     }
@@ -120,7 +125,7 @@ void add_predict_commands(CLI::App& app) {
     if (!model->warnings().empty()) {
       r.json["warnings"] = model->warnings();
       for (const std::string& w : model->warnings())
-        r.text = "warning: " + w + "\n" + r.text;
+        warn(w);
     }
     report(r.json, r.text);
   });

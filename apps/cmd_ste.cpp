@@ -28,6 +28,7 @@
 #include "ste/report.hpp"
 #include "ste/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
+#include "surrogate/plume_network.hpp"
 
 namespace plumekit::cli {
 
@@ -410,6 +411,15 @@ void report_run(Report r, const Map& map, const std::optional<Vec2>& requested, 
   report(r.json, r.text);
 }
 
+// The scenario of `localize`, saying what to type when the surrogate does not fit the map.
+ste::Scenario scenario(const Map& map, const ste::SteOptions& options) {
+  try {
+    return ste::Scenario(map, options);
+  } catch (const surrogate::MapSizeError& e) {
+    throw InputError(with_map_size_advice(e.what(), true));
+  }
+}
+
 void add_localize(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "localize",
@@ -421,8 +431,13 @@ void add_localize(CLI::App& app) {
   };
   auto a = std::make_shared<Args>();
   add_map_argument(cmd, a->map);
-  // Required unless `localize tunnel` (apps/cmd_tunnel.cpp) is the command: checked below.
-  bind_field(cmd, cmd->add_option("--source", a->source, "True source X,Y in metres (simulated)"),
+  // Required unless `localize tunnel` (apps/cmd_tunnel.cpp) is the command: checked below, as
+  // CLI11's required() would refuse the subcommand. --help marks it as CLI11 marks required().
+  bind_field(cmd,
+             cmd->add_option("--source", a->source,
+                             "True source X,Y in metres (simulated); required, except with "
+                             "`localize tunnel`")
+                 ->option_text("X,Y REQUIRED"),
              "ste.source");
   bind_field(cmd,
              cmd->add_option("--start", a->start, "Robot start X,Y (default: a random free point)"),
@@ -450,7 +465,7 @@ void add_localize(CLI::App& app) {
     if (!a->out.empty())
       out.emplace(a->out, "localize",
                   std::vector<fs::path>{a->map, a->ste.table_cache, a->ste.wind_dir});
-    const ste::Scenario sc(map, a->ste);
+    const ste::Scenario sc = scenario(map, a->ste);
     sc.check_source(source);
     const std::uint64_t seed = ste::run_seed(a->seed, 0, 0, 0);
     const Vec2 start = requested
@@ -606,7 +621,11 @@ void add_evaluate(CLI::App& app) {
   cmd->callback([a, cmd] {
     // `evaluate merge` or `evaluate tunnel` did the work
     if (cmd->got_subcommand("merge") || cmd->got_subcommand("tunnel")) return;
-    run_evaluate(*a, cmd);
+    try {
+      run_evaluate(*a, cmd);
+    } catch (const surrogate::MapSizeError& e) {
+      throw InputError(with_map_size_advice(e.what(), true));
+    }
   });
 }
 

@@ -52,8 +52,11 @@ void add_tunnel_options(CLI::App* cmd, ste::TunnelOptions& o) {
              "--tunnel", [&o](const std::string& s) { set_tunnel_size(o.tunnel, s); },
              "Tunnel length, width, height L,W,H in metres (x downwind, z up)")
           ->default_str("10,4,2");
-  for (const char* field : {"tunnel.length", "tunnel.width", "tunnel.height"})
-    bind_field(cmd, size, field);
+  // One flag, three fields: a message names the part that is wrong.
+  for (const auto& [part, letter] :
+       {std::pair{"length", "L"}, std::pair{"width", "W"}, std::pair{"height", "H"}})
+    bind_field_label(cmd, std::string("tunnel.") + part,
+                     size->get_name() + "'s " + part + " (" + letter + " of L,W,H)");
   bind_field(cmd,
              cmd->add_option("--wind-speed", o.tunnel.speed,
                              "The tunnel's uniform wind along +x, m/s (thesis: 0.2 or 0.9)"),

@@ -7,6 +7,7 @@
 
 #include <Eigen/IterativeLinearSolvers>
 
+#include "core/interrupt.hpp"
 #include "core/option_check.hpp"
 
 namespace plumekit::cfd {
@@ -118,6 +119,7 @@ void Newton::run(Eigen::VectorXd& x, bool from_coarse) {
   evaluate_residual();
   if (from_coarse && n_ >= kProjectFrom) project_start();
   for (int it = 0;; ++it) {
+    check_interrupt();  // a caller's Ctrl-C (core/interrupt.hpp)
     if (options_.turbulence == Turbulence::MixingLength && it > 0) lag_viscosity();
     record(it);
     if (!std::isfinite(current_merit_)) fail("the residual became NaN");

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+
+#include "core/option_check.hpp"
 
 namespace plumekit {
 
@@ -65,6 +68,18 @@ int Map::obstacle_at(Vec2 p) const {
     if (covers(obstacles[i], p)) return static_cast<int>(i);
   }
   return -1;
+}
+
+std::string point_fault(const Map& map, Vec2 p) {
+  const Vec2 lo = map.to_frame({0.0, 0.0}), hi = map.to_frame({map.width, map.height});
+  if (!is_finite(p) || !map.in_arena(p))
+    return to_string(map.to_frame(p)) + " is outside the arena (" + compact(lo.x) + "..." +
+           compact(hi.x) + " x " + compact(lo.y) + "..." + compact(hi.y) + ")";
+  const int o = map.obstacle_at(p);
+  if (o >= 0)
+    return to_string(map.to_frame(p)) + " is inside obstacles[" + std::to_string(o) + "] of map " +
+           map.name;
+  return "";
 }
 
 std::optional<Side> Map::wall_of(const Opening& o) const {

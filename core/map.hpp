@@ -116,6 +116,11 @@ struct Map {
   int opening_on_line(bool vertical, double line, double half_cell, double s) const;
 };
 
+// Why the arena point `p` cannot hold a source or a robot, in the map's frame ("(4.5, 0.5) is
+// outside the arena (100...106 x -50...-47)", "... is inside obstacles[0] of map room"); "" if
+// it can. The one wording of every such refusal (CLI, Python, predict).
+std::string point_fault(const Map& map, Vec2 p);
+
 // The number of obstacle vertices, for summaries.
 std::size_t vertex_count(const Map& map);
 

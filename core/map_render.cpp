@@ -528,6 +528,70 @@ void MapCanvas::draw_axes() {
   text_.put_vertical(image_, "y [m]", {gap_, y_label_y});
 }
 
+namespace {
+
+// The metre axes' layout: one tick step for both axes (a metre looks the same either way).
+struct MetreAxes {
+  int text_h, gap, tick;
+  double step;
+  int widest_y;  // the widest y tick label
+};
+
+MetreAxes metre_axes(const TextPainter& text, const cv::Rect& box, double px_per_m, Vec2 origin) {
+  MetreAxes a;
+  a.text_h = text.size("Ag").height;
+  a.gap = std::max(4, a.text_h / 2);
+  a.tick = std::max(4, a.text_h / 3);
+  const double width = box.width / px_per_m, height = box.height / px_per_m;
+  const auto widest = [&](double o, double length, double step) {
+    int w = 0;
+    for (double t : ticks(o, length, step))
+      w = std::max(w, text.size(compact(t)).width);
+    return w;
+  };
+  const double sx =
+      tick_step(px_per_m, [&](double s) { return widest(origin.x, width, s) + 3 * a.gap; });
+  const double sy = tick_step(px_per_m, [&](double) { return 3 * a.text_h; });
+  a.step = std::max(sx, sy);
+  a.widest_y = widest(origin.y, height, a.step);
+  return a;
+}
+
+}  // namespace
+
+AxesMargins metre_axes_margins(const TextPainter& text, const cv::Rect& box, double px_per_m,
+                               Vec2 origin) {
+  const MetreAxes a = metre_axes(text, box, px_per_m, origin);
+  return {a.tick + a.gap / 2 + a.widest_y + a.gap + a.text_h + a.gap,
+          a.tick + a.gap / 2 + a.text_h + a.gap + a.text_h + a.gap / 2};
+}
+
+void draw_metre_axes(cv::Mat& image, TextPainter& text, const cv::Rect& box, double px_per_m,
+                     Vec2 origin, const std::string& x_label, const std::string& y_label) {
+  const MetreAxes a = metre_axes(text, box, px_per_m, origin);
+  const int bottom = box.y + box.height;
+  for (double x : ticks(origin.x, box.width / px_per_m, a.step)) {
+    const cv::Point p(box.x + static_cast<int>(std::lround((x - origin.x) * px_per_m)), bottom);
+    cv::line(image, p, p + cv::Point(0, a.tick), kText, text.thickness(), cv::LINE_AA);
+    const std::string s = compact(x);
+    text.put(image, s, p + cv::Point(-text.size(s).width / 2, a.tick + a.gap / 2));
+  }
+  for (double y : ticks(origin.y, box.height / px_per_m, a.step)) {
+    const cv::Point p(box.x, bottom - static_cast<int>(std::lround((y - origin.y) * px_per_m)));
+    cv::line(image, p, p - cv::Point(a.tick, 0), kText, text.thickness(), cv::LINE_AA);
+    const std::string s = compact(y);
+    text.put(image, s, p + cv::Point(-a.tick - a.gap / 2 - text.size(s).width, -a.text_h / 2));
+  }
+  if (!x_label.empty())
+    text.put(image, x_label,
+             {box.x + box.width / 2 - text.size(x_label).width / 2,
+              bottom + a.tick + a.gap / 2 + a.text_h + a.gap});
+  if (!y_label.empty())
+    text.put_vertical(image, y_label,
+                      {box.x - a.tick - a.gap / 2 - a.widest_y - a.gap - a.text_h,
+                       box.y + box.height / 2 - text.size(y_label).width / 2});
+}
+
 void MapCanvas::draw_colour_bar(const ColourBar& bar) {
   const int width = std::max(12, text_h_);
   const cv::Point top(bar_x_, top_);

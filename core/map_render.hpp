@@ -63,6 +63,20 @@ class TextPainter {
 std::vector<std::string> wrap_words(const TextPainter& painter, const std::string& text, int width,
                                     double scale);
 
+// Axes in metres for a plot area `box` drawn at `px_per_m` whose lower-left corner is the point
+// `origin` (m): ticks on the 1-2-5 step that leaves room for their labels, labelled below and
+// left of the box, and `x_label` centred under the tick labels and `y_label` upright left of them
+// (either may be empty). MapCanvas's axes for pictures of their own layout (the tunnel's panels).
+// The room they take outside the box is metre_axes_margins().
+void draw_metre_axes(cv::Mat& image, TextPainter& text, const cv::Rect& box, double px_per_m,
+                     Vec2 origin, const std::string& x_label, const std::string& y_label);
+struct AxesMargins {
+  int left = 0;    // tick marks, tick labels and the y label
+  int bottom = 0;  // tick marks, tick labels and the x label
+};
+AxesMargins metre_axes_margins(const TextPainter& text, const cv::Rect& box, double px_per_m,
+                               Vec2 origin);
+
 // Pictures one above the other, narrower ones padded white on the right.
 Picture stack_pictures(const std::vector<Picture>& pictures);
 

@@ -60,6 +60,9 @@ std::vector<std::pair<int, double>> free_bilinear_weights(const GridShape& g,
 GridResampler::GridResampler(const GridShape& s, const std::vector<std::uint8_t>& solid,
                              const GridShape& target)
     : source_(s), target_(target), begin_(target.size() + 1, 0) {
+  // At most four weights per cell: reserved once, so that a fine target grid (ste's physics
+  // model, millions of cells) never holds the old and the doubled array at once.
+  weights_.reserve(4 * target.size());
   for (int j = 0; j < target.ny; ++j)
     for (int i = 0; i < target.nx; ++i) {
       const std::size_t c = target.index(i, j);

@@ -116,9 +116,7 @@ std::string ros_import_text(const RosImport& in, const std::string& out) {
     s << "\nclosing gaps: " << in.gaps.gaps_closed << " gaps closed, " << in.gaps.pixels_filled
       << " pixels filled, " << in.gaps.regions_joined << " occupied regions joined";
   opening_lines(in, s);
-  for (const std::string& w : in.warnings)
-    s << "\nwarning: " << w;
-  return s.str();
+  return s.str();  // the warnings go apart, on stderr (RosImport::warnings)
 }
 
 }  // namespace plumekit

@@ -11,6 +11,7 @@ namespace plumekit {
 
 nlohmann::ordered_json ros_import_json(const RosImport& in, const std::string& yaml,
                                        const std::string& out);
+// The human summary, without in.warnings: the caller prints those on stderr.
 std::string ros_import_text(const RosImport& in, const std::string& out);
 
 }  // namespace plumekit

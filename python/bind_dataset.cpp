@@ -27,7 +27,7 @@ py::dict read_dataset(const std::filesystem::path& dir) {
         "surrogate/train/shards.py");
   std::vector<dataset::ShardArrays> shards;
   {
-    py::gil_scoped_release release;
+    ReleasedGil release;
     for (const dataset::ManifestShard& entry : manifest.shards)
       shards.push_back(dataset::read_shard(dir, entry, 3));
   }

@@ -139,7 +139,7 @@ void bind_flow(py::module_& m) {
         auto wind = std::make_shared<Wind>();
         wind->map = std::make_shared<const Map>(map);
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           cfd::WindResult r = cfd::solve_wind(map, o);
           wind->summary = cfd::flow_report_json(r, o);
           wind->file_summary = cfd::summary_json(r.flow.summary, r.flow.wind, o);
@@ -157,7 +157,7 @@ void bind_flow(py::module_& m) {
       "_library_flow_seconds",
       [](const Map& map, const py::kwargs& kw) {
         const auto o = options_from<cfd::FlowOptions>(py::none(), kw, "flow");
-        py::gil_scoped_release release;
+        ReleasedGil release;
         const auto t0 = std::chrono::steady_clock::now();
         const cfd::WindResult r = cfd::solve_wind(map, o);
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

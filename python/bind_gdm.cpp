@@ -97,7 +97,7 @@ void bind_gdm(py::module_& m) {
         gdm::GdmMaps maps;
         std::optional<gdm::MapScore> score;
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           maps = gdm::kernel_dmv(map, samples, o);
           if (s)
             score = gdm::score_mean(maps.mean,

@@ -120,7 +120,7 @@ void bind_ros_import(py::module_& m) {
         const auto o = options_from<RosImportOptions>(options, kw, "import_ros");
         RosImport r;
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           r = import_ros_map(yaml, o);
         }
         warn_all(r.warnings);

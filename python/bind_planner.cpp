@@ -39,7 +39,7 @@ py::dict plan_on(const MapPlanner& p, const py::handle& start, const py::handle&
   const Vec2 b = p.map.from_frame(to_point(goal, "goal"));
   planner::PlanResult r;
   {
-    py::gil_scoped_release release;
+    ReleasedGil release;
     r = p.planner->plan(a, b);
   }
   return plan_dict(p.map, r);
@@ -48,7 +48,7 @@ py::dict plan_on(const MapPlanner& p, const py::handle& start, const py::handle&
 std::shared_ptr<MapPlanner> make(const Map& map, const std::string& kind, const PlannerOptions& o) {
   auto p = std::make_shared<MapPlanner>();
   p->map = map;
-  py::gil_scoped_release release;
+  ReleasedGil release;
   p->planner = planner::make_planner(p->map, o, planner::parse_planner_kind(kind));
   return p;
 }

@@ -124,7 +124,7 @@ void bind_plume(py::module_& m) {
                                         : dataset::feature_grid(map);
         dataset::PlumeTargets t;
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           dataset::check_source(map, s);
           const dataset::MapPlumes plumes(map, wind.field, grid, o);
           t = plumes.run(s, seed);

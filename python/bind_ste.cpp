@@ -34,7 +34,7 @@ SteOptions ste_options(const py::object& base, const py::kwargs& kw, const std::
 }
 
 std::shared_ptr<Scenario> make_scenario(const Map& map, const SteOptions& o) {
-  py::gil_scoped_release release;
+  ReleasedGil release;
   return std::make_shared<Scenario>(map, o);
 }
 
@@ -63,13 +63,22 @@ py::object run_once(const Scenario& sc, const py::handle& source, const py::obje
   ste::LocalizationResult r;
   nlohmann::ordered_json j;
   {
-    py::gil_scoped_release release;
+    ReleasedGil release;
     const Vec2 a = requested ? sc.check_start(*requested)
                              : sc.random_start(s, stream_seed(run, ste::SteStream::Start));
     r = sc.run(s, a, run);
     j = ste::run_report(sc, s, r).json;
   }
   return from_json(j);
+}
+
+// A sample's point (map frame) in arena coordinates. A point outside the arena or inside an
+// obstacle is refused as the CLI refuses such a source or start (point_fault's wording).
+Vec2 sample_point(const Map& map, const py::handle& p, const std::string& field) {
+  const Vec2 a = map.from_frame(to_point(p, field.c_str()));
+  if (const std::string fault = point_fault(map, a); !fault.empty())
+    throw OptionError(field, fault);
+  return a;
 }
 
 // A mission on a scenario, kept alive together.
@@ -89,17 +98,16 @@ void bind_mission(py::module_& m) {
           "add",
           [](PyMission& pm, const py::handle& p, double reading, const py::list& shared) {
             const Map& map = pm.scenario->map();
-            const Vec2 a = map.from_frame(to_point(p, "p"));
+            const Vec2 a = sample_point(map, p, "p");
             std::vector<ste::Mission::Sample> others;
             for (const py::handle& s : shared) {
               const py::tuple t = s.cast<py::tuple>();
               if (t.size() != 2) throw InputError("shared: each sample is (point, reading)");
-              others.push_back(
-                  {map.from_frame(to_point(t[0], "shared point")), t[1].cast<double>()});
+              others.push_back({sample_point(map, t[0], "shared point"), t[1].cast<double>()});
             }
             const ste::Posterior* post = nullptr;
             {
-              py::gil_scoped_release release;
+              ReleasedGil release;
               post = &pm.mission->add(a, reading, others);
             }
             return posterior_dict(map, *post);
@@ -108,7 +116,10 @@ void bind_mission(py::module_& m) {
           "A sample; returns the posterior: 'estimate' (the expected source), 'map', "
           "'entropy', 'max_entropy', 'seen_mass', 'expected' (every parameter) and 'marginal' "
           "[ny, nx] over the arena. `shared`: teammates' samples since the last, [(point, "
-          "reading), ...], added first; they do not count against this robot's max_samples")
+          "reading), ...], added first; they do not count against this robot's max_samples. A "
+          "point "
+          "outside the arena or inside an obstacle raises OptionError (a ValueError), as the "
+          "command line refuses such a source")
       .def(
           "next",
           [](const PyMission& pm, const py::handle& robot, const py::list& teammates) {
@@ -119,7 +130,7 @@ void bind_mission(py::module_& m) {
               goals.push_back(map.from_frame(to_point(g, "teammate goal")));
             planner::PlanResult r;
             {
-              py::gil_scoped_release release;
+              ReleasedGil release;
               r = pm.mission->next(a, goals);
             }
             py::dict out;
@@ -230,7 +241,7 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   if (!several) kinds = {eo.ste.method.kind};
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   {
-    py::gil_scoped_release release;
+    ReleasedGil release;
     const std::vector<ste::EvaluationResult> results =
         ste::evaluate_methods(list, eo, kinds, report);
     for (std::size_t m = 0; m < kinds.size(); ++m) {

@@ -66,7 +66,7 @@ void bind_surrogate(py::module_& m) {
                      : std::filesystem::path(py::str(py::module_::import("os").attr("fspath")(wind))
                                                  .cast<std::string>());
              const std::filesystem::path model = cnn_path(cnn);
-             py::gil_scoped_release release;  // the flow of a large map takes seconds
+             ReleasedGil release;  // the flow of a large map takes seconds
              return load_surrogate(map, model, threads, w);
            }),
            py::arg("map"), py::arg("cnn") = py::none(), py::arg("threads") = 1,
@@ -81,7 +81,7 @@ void bind_surrogate(py::module_& m) {
             const Vec2 s = net.map().from_frame(to_point(source, "source"));
             surrogate::PlumePrediction p;
             {
-              py::gil_scoped_release release;
+              ReleasedGil release;
               p = net.predict(s);
             }
             return prediction_dict(p, net.network());
@@ -118,7 +118,7 @@ void bind_surrogate(py::module_& m) {
         const Vec2 s = map.from_frame(to_point(source, "source"));
         surrogate::PlumePrediction p;
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           p = net->predict(s);
         }
         return prediction_dict(p, net->network());

@@ -58,7 +58,7 @@ void bind_tunnel(py::module_& m) {
         if (start) from = to_point3(*start, "start");
         nlohmann::ordered_json j;
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           j = ste::tunnel_run_json(ste::localize_tunnel(o, src, from, seed), true);
         }
         return from_json(j);
@@ -80,7 +80,7 @@ void bind_tunnel(py::module_& m) {
                                                     threshold, time_limit, noise, sigma_rel);
         nlohmann::ordered_json j;
         {
-          py::gil_scoped_release release;
+          ReleasedGil release;
           j = ste::tunnel_summary(ste::evaluate_tunnel(o, runs, seed, threads));
         }
         return from_json(j);

@@ -4,9 +4,25 @@
 
 #include <pybind11/pybind11.h>
 
+#include "core/interrupt.hpp"
+
 namespace plumekit::python {
 
 namespace py = pybind11;
+
+// The GIL released around a long call that Ctrl-C can stop. Releasing the GIL alone lets other
+// Python threads run, but Python handles a signal only when the call returns. While this lives,
+// the library's long loops (core/interrupt.hpp) ask Python, holding the GIL for a moment, to run
+// its signal handlers; when a handler raises (KeyboardInterrupt), the call stops with
+// plumekit::Interrupted, and module.cpp's translator leaves the handler's exception raised.
+class ReleasedGil {
+ public:
+  ReleasedGil();
+
+ private:
+  InterruptCheck check_;            // installed first, removed last
+  py::gil_scoped_release release_;  // taken back before the check goes
+};
 
 void bind_map(py::module_& m);
 void bind_flow(py::module_& m);

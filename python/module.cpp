@@ -27,6 +27,9 @@ void bind_errors(py::module_& m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const Interrupted&) {
+      // A signal handler's exception (KeyboardInterrupt) is already set: ReleasedGil.
+      if (!PyErr_Occurred()) PyErr_SetNone(PyExc_KeyboardInterrupt);
     } catch (const OptionError& e) {
       py::object instance = py::handle(option_error_type)(e.what());
       instance.attr("field") = e.field();
@@ -38,6 +41,12 @@ void bind_errors(py::module_& m) {
 }
 
 }  // namespace
+
+ReleasedGil::ReleasedGil()
+    : check_([] {
+        py::gil_scoped_acquire gil;
+        return PyErr_CheckSignals() != 0;  // its exception stays set until the call returns
+      }) {}
 
 }  // namespace plumekit::python
 

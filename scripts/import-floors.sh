@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The real floors of issue 17's evaluation, data/floors/*.json, from the ROS maps in REAL_MAPS
-# (default ../shared/real-maps; their README has the attribution): each map_server map imported in
+# (default data/real-maps; their README has the attribution): each map_server map imported in
 # its own ROS map frame with the openings of docs/real-maps.md, and ground-truth sources and robot
 # starts placed by hand in free space (ste/README.md, "Floors"). Every coordinate is in the map
 # frame. Run it to rebuild the committed files; it writes only data/floors/ (files plumekit wrote).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-real=${REAL_MAPS:-../shared/real-maps}
+real=${REAL_MAPS:-data/real-maps}
 [ -x build/plumekit ] || bash scripts/build.sh
 mkdir -p data/floors
 

@@ -6,6 +6,7 @@
 #include <ctime>
 
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "core/statistics.hpp"
 #include "methods/pf_method.hpp"
 #include "ste/ste_method.hpp"
@@ -161,6 +162,7 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
   bool blocked = false;  // the last move stopped short at an obstacle
   std::vector<double> step_times;
   for (int stop = 1;; ++stop) {
+    check_interrupt();  // a caller's Ctrl-C (core/interrupt.hpp)
     Step s;
     s.position = pos;
     s.distance_m = r.distance_m;

@@ -15,6 +15,8 @@
 #include "ste/grid_estimator.hpp"
 #include "ste/seeds.hpp"
 #include "ste/surrogate_plume.hpp"
+#include "surrogate/model_file.hpp"
+#include "surrogate/plume_network.hpp"
 
 namespace plumekit::ste {
 
@@ -31,6 +33,10 @@ double since(Clock::time_point t0) {
 // per table cell, is checked where it is built (SurrogatePlume).
 constexpr double kBytesPerSourceCell = 128.0;
 constexpr double kSurrogateBytesPerSourceCell = kBytesPerSourceCell + 4 * 32;
+// The physics model adds its resampling weights (four per cell) and the readings and gains it
+// makes per decision: peak RSS grows by 216-221 bytes per cell (10 x 4 m, 1.6 and 3.3 million
+// cells, issue 44), where 128 let 4e7 cells of 1 mm pass a 5.5 GB limit and then run out of memory.
+constexpr double kPhysicsBytesPerSourceCell = 256.0;
 
 void check_source_grid(const Map& map, double cell, const std::string& field,
                        double bytes_per_cell) {
@@ -174,10 +180,14 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
   const bool model = uses_plume_model(options.method.kind);
   if (model && options.model == PlumeModelKind::Physics)
-    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell", kBytesPerSourceCell);
+    check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
+                      kPhysicsBytesPerSourceCell);
   if (model && options.model == PlumeModelKind::Surrogate)
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
+  // A fixed-grid model on a map of another size is refused before the wind is solved.
+  if (model && options.model == PlumeModelKind::Surrogate)
+    surrogate::check_map_size(surrogate::read_model_file(options.model_path).features, map_);
   auto t0 = Clock::now();
   if (same_map) {
     wind_ = same_map->wind_;
@@ -225,23 +235,6 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
 }
 
 Scenario::~Scenario() = default;
-
-namespace {
-
-// Why `p` (arena coordinates) cannot be a source or start, in the map's frame; "" if it can.
-std::string point_fault(const Map& map, Vec2 p) {
-  const Vec2 lo = map.to_frame({0.0, 0.0}), hi = map.to_frame({map.width, map.height});
-  if (!map.in_arena(p))
-    return to_string(map.to_frame(p)) + " is outside the arena (" + compact(lo.x) + "..." +
-           compact(hi.x) + " x " + compact(lo.y) + "..." + compact(hi.y) + ")";
-  const int o = map.obstacle_at(p);
-  if (o >= 0)
-    return to_string(map.to_frame(p)) + " is inside obstacles[" + std::to_string(o) + "] of map " +
-           map.name;
-  return "";
-}
-
-}  // namespace
 
 Vec2 Scenario::check_source(Vec2 source) const {
   if (const std::string fault = point_fault(map_, source); !fault.empty())

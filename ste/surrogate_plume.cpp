@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "core/map_json.hpp"
 #include "core/memory_limit.hpp"
 #include "core/sha256.hpp"
@@ -274,6 +275,7 @@ void SurrogatePlume::build_table(const surrogate::PlumeNetwork& plume,
   table_.resize(cells.size() * per);
   table_std_.resize(cells.size() * per);
   for (std::size_t first = 0; first < cells.size(); first += 256) {
+    check_interrupt();  // a caller's Ctrl-C (core/interrupt.hpp)
     const std::vector<Vec2> chunk(cells.begin() + first,
                                   cells.begin() + std::min(cells.size(), first + 256));
     const std::vector<surrogate::PlumePrediction> p = plume.predict_batch(chunk, batch);

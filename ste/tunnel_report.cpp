@@ -172,14 +172,18 @@ std::string tunnel_run_line(const TunnelRun& r) {
 }
 
 Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std::string& title) {
-  // 60 px per metre, two panels: (x, y) above, (x, z) below, y and z upwards.
+  // 60 px per metre, two panels: (x, y) above, (x, z) below, y and z upwards, each with axes in
+  // metres (the maps' axes, core/map_render.hpp).
   const double ppm = std::min(60.0, 1200.0 / t.length);
-  const int left = 50, gap = 40;
   const int w = static_cast<int>(std::lround(t.length * ppm));
   const int h1 = static_cast<int>(std::lround(t.width * ppm));
   const int h2 = static_cast<int>(std::lround(t.height * ppm));
-  const int width = std::max(left + w + 30, 640);
   TextPainter text(0.5, 1);
+  const AxesMargins m1 = metre_axes_margins(text, {0, 0, w, h1}, ppm, {0.0, 0.0});
+  const AxesMargins m2 = metre_axes_margins(text, {0, 0, w, h2}, ppm, {0.0, 0.0});
+  const int left = std::max(50, std::max(m1.left, m2.left) + 6);
+  const int gap = m1.bottom + 30;  // the upper panel's axes, then the lower one's name
+  const int width = std::max(left + w + 30, 640);
   // The title wrapped to the picture's width, above the panels.
   const std::vector<std::string> lines = wrap_words(text, title, width - 20, text.scale());
   const int line_h = text.size("Ag").height + 6;
@@ -192,7 +196,7 @@ Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std:
                 : "estimate; dots: samples";
   const std::vector<std::string> legend_lines =
       wrap_words(text, legend, width - left - 10, text.scale());
-  const int legend_y = top + h1 + gap + h2 + 15;
+  const int legend_y = top + h1 + gap + h2 + m2.bottom + 10;
   cv::Mat img(legend_y + static_cast<int>(legend_lines.size()) * line_h + 10, width, CV_8UC3,
               cv::Scalar(255, 255, 255));
   for (std::size_t k = 0; k < lines.size(); ++k)
@@ -221,6 +225,7 @@ Picture draw_tunnel_run(const TunnelRun& r, const dataset::Tunnel& t, const std:
     cv::circle(img, at(k, r.source), 6, colours::kSource, cv::FILLED, cv::LINE_AA);
     const cv::Point e = at(k, r.estimate);
     cv::drawMarker(img, e, colours::kEstimate, cv::MARKER_CROSS, 14, 2, cv::LINE_AA);
+    draw_metre_axes(img, text, panels[k], ppm, {0.0, 0.0}, "x [m]", k == 0 ? "y [m]" : "z [m]");
   }
   for (std::size_t k = 0; k < legend_lines.size(); ++k)
     text.put(img, legend_lines[k], {left, legend_y + static_cast<int>(k) * line_h});

@@ -52,7 +52,7 @@ std::vector<std::string> training_warnings(const TrainingRanges& t, const Map& m
                   range(*t.openings));
   for (const Opening& o : map.openings) {
     if (!o.is_inlet()) continue;
-    const std::string at = "the inlet at (" + fmt(o.from.x) + ", " + fmt(o.from.y) + ")";
+    const std::string at = "the inlet at " + to_string(map.to_frame(o.from));  // the map's frame
     if (t.inlet_speed && !t.inlet_speed->contains(o.speed))
       out.push_back(at + " blows at " + fmt(o.speed) + " m/s; the model was trained on " +
                     range(*t.inlet_speed) + " m/s");
@@ -69,6 +69,15 @@ std::vector<std::string> training_warnings(const TrainingRanges& t, const Map& m
     }
   }
   return out;
+}
+
+void check_map_size(const FeatureContract& c, const Map& map) {
+  if (c.physical() || (same_length(c.width, map.width) && same_length(c.height, map.height)))
+    return;
+  throw MapSizeError("the surrogate model works only on maps of " + fmt(c.width) + " x " +
+                     fmt(c.height) +
+                     " m (a fixed-grid model, trained on that arena alone); map \"" + map.name +
+                     "\" is " + fmt(map.width) + " x " + fmt(map.height) + " m");
 }
 
 cfd::WindField model_wind(const Map& map, double flow_cell, const std::filesystem::path& wind_dir) {
@@ -91,17 +100,14 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   if (!network_) throw std::invalid_argument("PlumeNetwork: null network");
   const ModelFile& f = network_->file();
   const FeatureContract& c = f.features;
-  const std::string who = "surrogate model feature contract vs map \"" + map.name + "\": ";
+  const std::string who = "the surrogate model does not fit map \"" + map.name + "\": ";
   if (!c.physical() && (c.rows != dataset::kFeatureGrid || c.cols != dataset::kFeatureGrid)) {
     throw InputError(who + "the model's grid is " + std::to_string(c.rows) + "x" +
                      std::to_string(c.cols) + ", the dataset's features are " +
                      std::to_string(dataset::kFeatureGrid) + "x" +
                      std::to_string(dataset::kFeatureGrid));
   }
-  if (!c.physical() && (!same_length(c.width, map.width) || !same_length(c.height, map.height))) {
-    throw InputError(who + "the model was trained on a " + fmt(c.width) + " x " + fmt(c.height) +
-                     " m arena, the map is " + fmt(map.width) + " x " + fmt(map.height) + " m");
-  }
+  check_map_size(c, map);
   const std::vector<std::string> names = feature_channel_names(c.physical());
   const int n_in = static_cast<int>(names.size());
   if (f.architecture.in_channels != n_in || static_cast<int>(c.channels.size()) != n_in) {
@@ -172,15 +178,9 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
 }
 
 void PlumeNetwork::check_source(Vec2 source) const {
-  if (!is_finite(source) || !map_->in_arena(source)) {
-    throw InputError("source (" + fmt(source.x) + ", " + fmt(source.y) + ") is outside the arena " +
-                     "of map \"" + map_->name + "\" (" + fmt(map_->width) + " x " +
-                     fmt(map_->height) + " m)");
-  }
-  if (const int k = map_->obstacle_at(source); k >= 0) {
-    throw InputError("source (" + fmt(source.x) + ", " + fmt(source.y) + ") is inside obstacle " +
-                     std::to_string(k) + " of map \"" + map_->name + "\"");
-  }
+  // In the map's frame, as every other message (point_fault).
+  if (const std::string fault = point_fault(*map_, source); !fault.empty())
+    throw InputError("source " + fault);
 }
 
 std::vector<float> PlumeNetwork::features(Vec2 source) const {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cfd/wind_field.hpp"
+#include "core/error.hpp"
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
 #include "core/map.hpp"
@@ -44,6 +45,18 @@ std::vector<std::string> training_warnings(const TrainingRanges& trained_on, con
 inline constexpr double kModelWindCell = 0.1;
 cfd::WindField model_wind(const Map& map, double flow_cell = kModelWindCell,
                           const std::filesystem::path& wind_dir = {});
+
+// A fixed-grid model (a thesis model: 64 x 64 cells over the one arena size it was trained on)
+// given a map of another size. Its own type, so that a caller that knows the alternatives (a
+// physical-grid model, which fits any map, or another plume model) can name them.
+class MapSizeError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// MapSizeError when `contract` is a fixed-grid model's and its arena is not `map`'s size. Cheap:
+// callers check it before a long build (the wind) as well as PlumeNetwork does.
+void check_map_size(const FeatureContract& contract, const Map& map);
 
 class PlumeNetwork {
  public:

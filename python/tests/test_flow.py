@@ -71,3 +71,50 @@ def test_save_and_read_back(tmp_path, cluttered, wind, cli):
 
 def cluttered_path(m):
     return plumekit.data_dir() + "/maps/cluttered-1.json"
+
+
+# Ctrl-C during a long call (issue 44): the solve stops at its next Newton iteration with
+# KeyboardInterrupt, long before it would have ended. The child process times the whole solve
+# first, then is interrupted a quarter of the way into the same solve.
+_CHILD = r"""
+import os, signal, sys, time
+import plumekit
+signal.signal(signal.SIGINT, signal.default_int_handler)  # even where the parent ignores it
+m = plumekit.read_map(sys.argv[1])
+t0 = time.monotonic()
+plumekit.flow(m, cell=float(sys.argv[2]), sequencing=False)
+print("full", time.monotonic() - t0, flush=True)
+sys.stdin.readline()  # the parent is ready to interrupt
+print("start", flush=True)
+t0 = time.monotonic()
+try:
+    plumekit.flow(m, cell=float(sys.argv[2]), sequencing=False)
+    print("finished", time.monotonic() - t0, flush=True)
+except KeyboardInterrupt:
+    print("interrupted", time.monotonic() - t0, flush=True)
+"""
+
+
+def test_ctrl_c_stops_a_long_flow_with_keyboard_interrupt(data):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+    child = subprocess.Popen(
+        [sys.executable, "-c", _CHILD, str(data / "floors" / "depot.json"), "0.1"],
+        stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+        env=os.environ)
+    try:
+        full = float(child.stdout.readline().split()[1])
+        child.stdin.write("go\n")
+        child.stdin.flush()
+        assert child.stdout.readline().strip() == "start"
+        time.sleep(full / 4)
+        child.send_signal(signal.SIGINT)
+        word, seconds = child.stdout.readline().split()
+        child.wait(timeout=60)
+    finally:
+        child.kill()
+    assert word == "interrupted", child.stderr.read()
+    assert float(seconds) < 0.75 * full  # it stopped; it did not run to the end

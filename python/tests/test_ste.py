@@ -70,6 +70,22 @@ def test_source_in_obstacle(block):
         plumekit.localize(block, inside, plume_model="physics")
 
 
+def test_a_mission_refuses_points_the_cli_refuses(block):
+    import numpy as np
+    sc = plumekit.Scenario(block, plume_model="physics")
+    mission = sc.mission(seed=1)
+    inside = tuple(float(v) for v in np.mean(block.obstacles[0], axis=0))
+    # The CLI's words for such a --source: "(x, y) is inside obstacles[0] of map NAME".
+    with pytest.raises(plumekit.OptionError,
+                       match=r"^p: \(.*\) is inside obstacles\[0\] of map " + block.name):
+        mission.add(inside, 0.0)
+    with pytest.raises(ValueError, match=r"^p: \(12, 1\) is outside the arena \(0\.\.\.10 x 0\.\.\.4\)"):
+        mission.add((12.0, 1.0), 0.0)
+    with pytest.raises(ValueError, match=r"^shared point: \(5, -1\) is outside the arena"):
+        mission.add((8.0, 2.0), 0.0, shared=[((5.0, -1.0), 0.0)])
+    assert mission.samples == 0  # nothing was taken
+
+
 def test_evaluate_matches_cli(tmp_path, data, cli):
     folder = tmp_path / "maps"
     folder.mkdir()

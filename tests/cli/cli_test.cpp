@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -164,18 +166,25 @@ TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {
   const Result r =
       run("map import-ros " + (kData / "ros" / "office.yaml").string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("warning: no free path from any inlet to any outlet"), std::string::npos)
-      << r.out;
-  EXPECT_NE(r.out.find("largest sealed free region (48.8 m²"), std::string::npos) << r.out;
+  // Warnings go to stderr (issue 44): stdout holds the result alone.
+  EXPECT_NE(r.err.find("plumekit: warning: no free path from any inlet to any outlet"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out.find("warning"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("largest sealed free region (48.8 m²"), std::string::npos) << r.err;
   // The advice names the command's flags, not the library's fields.
-  EXPECT_NE(r.out.find("import with --unknown free"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("--inlet / --outlet"), std::string::npos) << r.out;
-  EXPECT_EQ(r.out.find("ros."), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("import with --unknown free"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--inlet / --outlet"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("ros."), std::string::npos) << r.err;
   const Result v = run("map validate " + out.string());
   EXPECT_EQ(v.code, 0);
   EXPECT_NE(v.out.find("valid plumekit-map/2"), std::string::npos) << v.out;
-  EXPECT_NE(v.out.find("warning: no free path"), std::string::npos) << v.out;
-  EXPECT_NE(v.out.find("largest sealed free region (48.8 m²"), std::string::npos) << v.out;
+  EXPECT_EQ(v.out.find("warning"), std::string::npos) << v.out;
+  EXPECT_NE(v.err.find("plumekit: warning: no free path"), std::string::npos) << v.err;
+  EXPECT_NE(v.err.find("largest sealed free region (48.8 m²"), std::string::npos) << v.err;
+  // With --json, stdout is the JSON alone, the warnings in it.
+  const Result j = run("map validate " + out.string() + " --json");
+  EXPECT_FALSE(nlohmann::json::parse(j.out)["warnings"].empty()) << j.out;
 }
 
 TEST_F(Cli, ImportRosTakesSeveralOpeningsInTheMapFrameAndSnapsThem) {
@@ -229,6 +238,35 @@ TEST_F(Cli, ImportRosRefusesAnOpeningFarFromAnyBoundary) {
   EXPECT_EQ(half.code, 2);
   EXPECT_NE(half.err.find("--outlet"), std::string::npos) << half.err;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The docs' commands name files a user has: the real maps ship in data/real-maps/ (with their
+// licence), and no page points outside the repository (issue 44).
+TEST_F(Cli, DocsNameOnlyShippedFiles) {
+  const fs::path root = kData.parent_path();
+  std::vector<fs::path> pages{root / "README.md"};
+  const auto add_pages = [&pages](const fs::path& folder, bool readme_in_subfolders) {
+    for (const auto& e : fs::directory_iterator(folder)) {
+      const fs::path p = readme_in_subfolders ? e.path() / "README.md" : e.path();
+      if (p.extension() == ".md" && fs::is_regular_file(p)) pages.push_back(p);
+    }
+  };
+  add_pages(root, true);
+  add_pages(root / "docs", false);
+  add_pages(root / "data", true);
+  add_pages(root / "bench", true);
+  for (const fs::path& page : pages)
+    EXPECT_EQ(plumekit::test::slurp(page).find("../shared/"), std::string::npos) << page;
+  const fs::path real = kData / "real-maps";
+  EXPECT_TRUE(fs::exists(real / "LICENSE-Apache-2.0.txt"));
+  for (const char* file : {"tb3_world/map.pgm", "depot/depot.yaml", "depot/depot.pgm",
+                           "warehouse/warehouse.yaml", "warehouse/warehouse.pgm"})
+    EXPECT_TRUE(fs::exists(real / file)) << file;
+  // docs/real-maps.md's first command, on the shipped file.
+  const Result r = run("map import-ros " + (real / "tb3_world" / "map.yaml").string() +
+                       " --name tb3_world --out " + (dir / "tb3.json").string() +
+                       " --inlet=-1,-2.5,1,-2.5 --outlet=-1,2.5,1,2.5 --json");
+  EXPECT_EQ(r.code, 0) << r.err;
 }
 
 }  // namespace

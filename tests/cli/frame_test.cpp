@@ -73,6 +73,32 @@ TEST_F(Frame, APointOutsideTheFramedArenaIsRefusedInTheMapsTerms) {
       << r.err;
 }
 
+// predict's refusals and the surrogate's training-range notes name map-frame points too.
+TEST_F(Frame, PredictSpeaksInTheMapFrame) {
+  const std::string framed = write("framed", 100, -50);
+  {  // an inlet faster than the v2 model's training range (0.33-1.99 m/s)
+    std::string text = slurp(framed);
+    text.replace(text.find(R"("speed": 1)"), 10, R"("speed": 3)");
+    std::ofstream(framed) << text;
+  }
+  const std::string v2 = std::string(PLUMEKIT_DATA_DIR) + "/models/plume-unet-v2.pkcnn";
+  const std::string out = (dir / "out").string();
+  CliResult r = run("predict " + framed + " --cnn " + v2 + " --source 102.75,-48.5 --out " + out);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--source: (102.75, -48.5) is inside obstacles[0] of map room"),
+            std::string::npos)
+      << r.err;
+  r = run("predict " + framed + " --cnn " + v2 + " --source 4.5,0.5 --out " + out);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("(4.5, 0.5) is outside the arena (100...106 x -50...-47)"),
+            std::string::npos)
+      << r.err;
+  r = run("predict " + framed + " --cnn " + v2 + " --source 104.5,-49.5 --out " + out + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string warnings = json::parse(r.out)["warnings"].dump();
+  EXPECT_NE(warnings.find("the inlet at (100, -50) blows at 3 m/s"), std::string::npos) << warnings;
+}
+
 TEST_F(Frame, PlanPathsAreInTheMapFrame) {
   const std::string plain = write("plain", 0, 0), framed = write("framed", 100, -50);
   const CliResult a = run("plan " + plain + " --from 1,1.5 --to 5,1.5 --json");

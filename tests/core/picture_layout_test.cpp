@@ -16,6 +16,7 @@
 #include "core/map_render.hpp"
 #include "planner/plan_render.hpp"
 #include "ste/render.hpp"
+#include "ste/tunnel_report.hpp"
 
 namespace plumekit {
 namespace {
@@ -173,6 +174,37 @@ TEST(PictureLayout, TrajectoryAndPosteriorReadAtEveryShapeAndScale) {
 TEST(PictureLayout, BoxPlotsReadWithFewAndManyGroups) {
   for (int groups : {1, 3, 40})
     look(ste::draw_box_plot(test_box_plot(groups)), "boxplot-" + std::to_string(groups));
+}
+
+// The tunnel's run picture (issue 44): both panels carry axes in metres, tick labels under and
+// left of each panel, at the thesis's tunnel, a long one and the smallest accepted.
+TEST(PictureLayout, TunnelRunHasAxesInMetres) {
+  for (const Vec3 size : {Vec3{10.0, 4.0, 2.0}, Vec3{200.0, 50.0, 20.0}, Vec3{1.0, 1.0, 1.0}}) {
+    dataset::Tunnel t;
+    t.length = size.x, t.width = size.y, t.height = size.z;
+    ste::TunnelRun r;
+    r.source = {0.2 * size.x, 0.5 * size.y, 0.5 * size.z};
+    r.start = {0.8 * size.x, 0.3 * size.y, 0.4 * size.z};
+    r.estimate = {0.25 * size.x, 0.55 * size.y, 0.5 * size.z};
+    for (const Vec3& p : {r.start, r.estimate}) {
+      ste::TunnelStep step;
+      step.position = p;
+      step.phase = "sample";
+      r.steps.push_back(step);
+    }
+    const std::string tag = "tunnel-" + std::to_string(static_cast<int>(size.x));
+    const Picture p = ste::draw_tunnel_run(r, t, "ste-3d: error 0.3 m, " + tag);
+    look(p, tag);
+    // The upper panel is p.arena; the lower one lies below it, as wide.
+    int below = 0, left = 0;
+    for (const cv::Rect& b : p.text_boxes) {
+      below += b.y >= p.arena.br().y && b.y < p.arena.br().y + 20 && b.x >= p.arena.x - 20 &&
+               b.br().x <= p.arena.br().x + 20;
+      left += b.br().x <= p.arena.x && b.y >= p.arena.y - 10 && b.br().y <= p.arena.br().y + 10;
+    }
+    EXPECT_GE(below, 2) << tag << ": x tick labels under the panel";
+    EXPECT_GE(left, 2) << tag << ": y tick labels left of the panel";
+  }
 }
 
 TEST(PictureLayout, TheCheckCatchesOverlapsAndBoxesOutsideTheImage) {

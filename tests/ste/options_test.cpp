@@ -165,7 +165,7 @@ TEST(Scenario, OversizedSourceGridIsRefused) {
   expect_option_error([&] { Scenario s(default_arena(), o); }, "ste.source_cell",
                       "more than 1e+08");
   set_memory_limit(parse_memory_size("64M"));
-  o.source_cell = 0.005;  // 1.6 million cells, 205 MB
+  o.source_cell = 0.005;  // 1.6 million cells, 410 MB
   try {
     Scenario s(default_arena(), o);
     ADD_FAILURE() << "no MemoryLimitError";

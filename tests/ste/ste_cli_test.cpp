@@ -578,6 +578,61 @@ TEST_F(SteShards, AMapNameWithACommaQuoteOrLineBreakIsQuotedAndReadBack) {
   ASSERT_EQ(merged.code, 0) << merged.err;
   for (const char* f : {"runs.csv", "summary.json"})
     EXPECT_EQ(slurp(dir / "merged" / f), slurp(dir / "one" / f)) << f;
+
+// Issue 44: the physics model's candidate grid is refused before any work when its memory would
+// pass the limit (1.6 million cells take about 390 MB at their peak), naming the flags that fit.
+TEST_F(SteCli, APhysicsSourceGridOverTheMemoryLimitIsRefusedNamingTheFlag) {
+  const CliResult r = run("localize " + std::string(PLUMEKIT_DATA_DIR) +
+                          "/maps/cluttered-1.json --source 1.5,1 --plume-model physics "
+                          "--source-cell 0.005 --max-memory 300M --out " +
+                          (dir / "out").string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("the source grid of 1.6e+06 cells of 0.005 m needs about"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("use a larger --source-cell ("), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("m fits), or raise the limit with --max-memory "), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "out"));
+}
+
+// Issue 44: the default (fixed-grid) surrogate on a map of another size says what to type.
+TEST_F(SteCli, TheDefaultSurrogateOnAnotherMapSizeSaysWhatToType) {
+  const std::string map = write_map();  // 6 x 3 m
+  const std::string v2 = std::string(PLUMEKIT_DATA_DIR) + "/models/plume-unet-v2.pkcnn";
+  CliResult r = run("localize " + map + " --source 4.2,1.3");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("works only on maps of 10 x 4 m"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("map \"small\" is 6 x 3 m"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--cnn " + v2), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--plume-model physics"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("feature contract"), std::string::npos) << r.err;
+  r = run("predict " + map + " --source 4.2,1.3 --out " + (dir / "p").string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("--cnn " + v2), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("--plume-model"), std::string::npos) << "predict has no such flag";
+  EXPECT_FALSE(std::filesystem::exists(dir / "p"));
+}
+
+// Issue 44: --help marks --source as required; --tunnel names the part that is wrong.
+TEST_F(SteCli, HelpAndTunnelMessagesSayWhatIsWrong) {
+  CliResult r = run("localize --help");
+  ASSERT_EQ(r.code, 0);
+  const std::size_t at = r.out.find("  --source ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(at, r.out.find('\n', at) - at).find("REQUIRED"), std::string::npos)
+      << r.out;
+  r = run("localize " + write_map() + " --plume-model physics");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--source is required"), std::string::npos) << r.err;
+  const std::pair<const char*, const char*> parts[] = {{"0.5,4,2", "--tunnel's length (L of"},
+                                                       {"10,0.5,2", "--tunnel's width (W of"},
+                                                       {"10,4,50", "--tunnel's height (H of"}};
+  for (const auto& [size, part] : parts) {
+    r = run(std::string("localize tunnel --tunnel ") + size);
+    EXPECT_EQ(r.code, 2) << size;
+    EXPECT_NE(r.err.find(part), std::string::npos) << r.err;
+  }
 }
 
 }  // namespace

@@ -270,6 +270,12 @@ TEST(PlumeNetwork, WarnsOfMapsOutsideWhatTheModelWasTrainedOn) {
   EXPECT_NE(w[1].find("on the top wall; the model was trained with inlets on the left wall"),
             std::string::npos)
       << w[1];
+  // Positions are in the map's frame, as in every other message.
+  Map framed = top;
+  framed.frame.origin = {100.0, -50.0};
+  const std::vector<std::string> fw = training_warnings(t, framed);
+  ASSERT_EQ(fw.size(), 2u);
+  EXPECT_EQ(fw[0].rfind("the inlet at (100, -46) blows at 3 m/s", 0), 0u) << fw[0];
   const std::vector<std::string> wide = training_warnings(t, default_arena(12.0, 4.0));
   ASSERT_EQ(wide.size(), 1u);
   EXPECT_NE(wide[0].find("the map is 12 x 4 m; the model was trained on maps 10-10 m wide"),

@@ -74,8 +74,8 @@ TEST_F(Predict, BadInputExitsTwoAndWritesNothing) {
   fs::copy_file(kModel, dir / "truncated.pkcnn");
   fs::resize_file(dir / "truncated.pkcnn", fs::file_size(kModel) - 100);
   const std::pair<std::string, std::string> cases[] = {
-      {predict_args(dir / "out", "4.5,1.6"), "inside obstacle 0"},
-      {predict_args(dir / "out", "10.5,1"), "outside the arena"},
+      {predict_args(dir / "out", "4.5,1.6"), "--source: (4.5, 1.6) is inside obstacles[0]"},
+      {predict_args(dir / "out", "10.5,1"), "--source: (10.5, 1) is outside the arena (0...10"},
       {predict_args(dir / "out", "1.5:1"), "--source: expected a point X,Y"},
       {predict_args(dir / "out", "1.5,1", dir / "truncated.pkcnn"), "truncated"},
       {predict_args(dir / "out", "1.5,1", dir / "missing.pkcnn"), "no such model file"},
