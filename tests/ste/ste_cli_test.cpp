@@ -569,15 +569,17 @@ TEST_F(SteShards, AMapNameWithACommaQuoteOrLineBreakIsQuotedAndReadBack) {
                                      "assert all(None not in r and r['stopped_by'] for r in runs)\n"
                                      "names = sorted({r['map'] for r in runs})\n"
                                      "assert names == ['small', 'small, \"b\"\\nhall'], names\n";
-  const int py = std::system(("/usr/bin/python3 " + (dir / "check.py").string() + " " +
-                              std::string(PLUMEKIT_SOURCE_DIR) + "/scripts " + (dir / "one").string())
-                                 .c_str());
+  const int py =
+      std::system(("/usr/bin/python3 " + (dir / "check.py").string() + " " +
+                   std::string(PLUMEKIT_SOURCE_DIR) + "/scripts " + (dir / "one").string())
+                      .c_str());
   EXPECT_EQ(py, 0);
   const CliResult merged =
       run("evaluate merge" + run_parts(maps, 3, "p") + " --out " + (dir / "merged").string());
   ASSERT_EQ(merged.code, 0) << merged.err;
   for (const char* f : {"runs.csv", "summary.json"})
     EXPECT_EQ(slurp(dir / "merged" / f), slurp(dir / "one" / f)) << f;
+}
 
 // Issue 44: the physics model's candidate grid is refused before any work when its memory would
 // pass the limit (1.6 million cells take about 390 MB at their peak), naming the flags that fit.
