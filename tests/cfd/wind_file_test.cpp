@@ -94,6 +94,24 @@ TEST_F(WindFile, RefusesADamagedArray) {
   expect_refused(map, "face_v.npy", "does not match its SHA-256");
 }
 
+// u.npy and v.npy are not what read_wind reads, but wind.json lists their
+// SHA-256 too: a folder whose listed files do not match is refused, naming the file.
+TEST_F(WindFile, RefusesADamagedCellVelocityArray) {
+  for (const char* name : {"u.npy", "v.npy"}) {
+    const std::string good = read_file(dir / name);
+    std::string bytes = good;
+    bytes[bytes.size() - 2] ^= 0x01;
+    write_file_atomic(dir / name, bytes);
+    expect_refused(
+        map, name,
+        "does not match its SHA-256 in wind.json (arrays_sha256." + std::string(name) + ")");
+    fs::remove(dir / name);
+    expect_refused(map, name, "missing");
+    write_file_atomic(dir / name, good);
+  }
+  EXPECT_NO_THROW(read_wind(dir, map));
+}
+
 TEST_F(WindFile, RefusesAMissingArray) {
   fs::remove(dir / "solid.npy");
   expect_refused(map, "solid.npy", "missing");
