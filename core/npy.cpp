@@ -1,7 +1,8 @@
 #include "core/npy.hpp"
 
 #include <cstring>
-#include <numeric>
+#include <limits>
+#include <stdexcept>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -84,16 +85,27 @@ NpyArray parse_npy(std::string_view bytes, const std::filesystem::path& path) {
   while (p < dict.size() && dict[p] != ')') {
     if (std::isdigit(static_cast<unsigned char>(dict[p]))) {
       std::size_t used = 0;
-      a.shape.push_back(std::stoull(dict.substr(p), &used));
+      try {
+        a.shape.push_back(std::stoull(dict.substr(p), &used));
+      } catch (const std::out_of_range&) {
+        bad("a dimension of the shape is too large");
+      }
       p += used;
     } else {
       ++p;
     }
   }
-  const std::size_t count =
-      std::accumulate(a.shape.begin(), a.shape.end(), std::size_t{1}, std::multiplies<>());
+  // The product and the byte count in bounds: a huge shape must not wrap round
+  // to the size of the data that follows.
+  std::size_t count = 1;
+  for (const std::size_t d : a.shape) {
+    if (d != 0 && count > std::numeric_limits<std::size_t>::max() / d)
+      bad("the shape holds more values than memory can");
+    count *= d;
+  }
   const std::size_t width = f4 ? 4 : 8;
-  if (bytes.size() != 10 + len + count * width)
+  const std::size_t data_bytes = bytes.size() - 10 - len;
+  if (count > data_bytes / width || data_bytes != count * width)
     bad("data size does not match the shape (truncated?)");
   a.values.resize(count);
   const char* data = bytes.data() + 10 + len;

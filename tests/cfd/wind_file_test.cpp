@@ -143,6 +143,29 @@ TEST_F(WindFile, RefusesANonFiniteVelocityEvenWithAMatchingChecksum) {
   expect_refused(map, "face_u.npy", "not finite");
 }
 
+// An .npy header whose shape is huge (found by fuzz_wind_file): refused as
+// damaged input, not std::out_of_range or a wrapped size (exit 1).
+TEST_F(WindFile, RefusesAnArrayWithAHugeShapeEvenWithAMatchingChecksum) {
+  for (const std::string shape :
+       {"(99999999999999999999999, 7)", "(4294967296, 4294967297)", "(2305843009213693952, 1)"}) {
+    std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " + shape + ", }";
+    dict.append(64 - (10 + dict.size() + 1) % 64, ' ');
+    dict += '\n';
+    std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
+    bytes += static_cast<char>(dict.size() & 0xff);
+    bytes += static_cast<char>(dict.size() >> 8);
+    bytes += dict;
+    write_file_atomic(dir / "face_u.npy", bytes);
+    nlohmann::ordered_json j = wind_json();
+    j["arrays_sha256"]["face_u.npy"] = sha256_hex(bytes);
+    write_wind_json(j);
+    expect_refused(map, "face_u.npy",
+                   shape == "(99999999999999999999999, 7)" ? "a dimension of the shape is too large"
+                   : shape == "(4294967296, 4294967297)"   ? "more values than memory can"
+                                                           : "data size does not match the shape");
+  }
+}
+
 TEST_F(WindFile, RefusesAFolderWithoutAWind) {
   fs::remove(dir / "wind.json");
   expect_refused(map, "wind.json", "plumekit flow");
