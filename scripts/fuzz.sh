@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 [[ $# -gt 0 ]] && shift
 all_targets=(fuzz_map_json fuzz_ros_import fuzz_model_file fuzz_manifest fuzz_table_cache
-  fuzz_gdm_samples)
+  fuzz_gdm_samples fuzz_wind_file)
 targets=("$@")
 [[ ${#targets[@]} -gt 0 ]] || targets=("${all_targets[@]}")
 build="build-fuzz"
@@ -24,7 +24,8 @@ jobs=${FUZZ_JOBS:-$(nproc)}
 # Largest input each target tries: above its biggest seed (the office map, the 49 kB model).
 declare -A max_len=(
   [fuzz_map_json]=16384 [fuzz_ros_import]=65536 [fuzz_model_file]=65536
-  [fuzz_manifest]=16384 [fuzz_table_cache]=65536 [fuzz_gdm_samples]=16384)
+  [fuzz_manifest]=16384 [fuzz_table_cache]=65536 [fuzz_gdm_samples]=16384
+  [fuzz_wind_file]=16384)
 
 cxx=${FUZZ_CXX:-}
 if [[ -z "$cxx" ]]; then
