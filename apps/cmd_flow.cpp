@@ -1,5 +1,6 @@
 // plumekit flow: the steady wind field of a map.
 #include <cmath>
+#include <iostream>
 #include <sstream>
 
 #include "apps/cli.hpp"
@@ -137,8 +138,16 @@ void show_progress(cfd::FlowOptions& o, ProgressBar& bar, double& first) {
 
 const char* const kWrote = "/{u,v,p,face_u,face_v,solid}.npy, wind.json, wind.vti, wind.png: ";
 
+// Obstacles the grid lets air through are warned of on stderr, whatever the
+// output mode (wind.json and the --json report list them as "thin_walls").
+void warn_thin_walls(const cfd::FlowSummary& s) {
+  if (!s.thin_walls.walls.empty())
+    std::cerr << "plumekit: warning: " << cfd::thin_walls_text(s.thin_walls, s.cell) << '\n';
+}
+
 void run_openfoam(const FlowArgs& a, const Map& map, OutputDirectory& out) {
   const cfd::OpenFoamResult r = cfd::solve_openfoam(map, a.options, a.foam, out.open());
+  warn_thin_walls(r.flow.summary);
   cfd::write_flow(out.open(), map, r.flow.wind, cfd::openfoam_summary_json(r, a.options));
   out.commit();
   nlohmann::ordered_json j{{"ok", true}, {"map", a.map}, {"out", a.out}};
@@ -175,6 +184,7 @@ void add_flow_commands(CLI::App& app) {
     show_progress(o, bar, first);
     const cfd::WindResult wind = cfd::solve_wind(map, o);
     bar.finish();
+    warn_thin_walls(wind.flow.summary);
     cfd::write_flow(out.open(), map, wind.flow, o);
     out.commit();
     nlohmann::ordered_json j{{"ok", true}, {"map", a->map}, {"out", a->out}};

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/map_json.hpp"
 #include "core/map_render.hpp"
+#include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/rasterize.hpp"
 #include "core/ros_import.hpp"
@@ -50,7 +51,21 @@ ordered_json map_summary(const Map& map, const std::string& file) {
   if (check.coarsened)
     out["warnings"].push_back("the arena is too large to check at 5 cm cells; checked at " +
                               cell.str() + ", where passages narrower than that may look closed");
-  if (!check.inlet_reaches_outlet) {
+  const std::vector<MissedOpening> missed = check.inlet_reaches_outlet
+                                                ? std::vector<MissedOpening>{}
+                                                : openings_missed_by_grid(map, check.shape);
+  if (!missed.empty()) {
+    // The grid is at fault, not the map: it cannot tell whether air crosses.
+    const MissedOpening& m = missed.front();
+    std::ostringstream s;
+    s << "no free path from the inlet to the outlet at " << cell.str() << " cells, which are too "
+      << "coarse for this map: " << opening_name(map, m.index) << " is " << compact(m.length)
+      << " m long, shorter than a cell, so no cell opens onto it; a check that sees it needs "
+      << "cells of at most " << compact(m.length) << " m ("
+      << compact(std::ceil(map.width / m.length) * std::ceil(map.height / m.length))
+      << " cells; it takes at most " << compact(kMaxCheckCells) << ")";
+    out["warnings"].push_back(s.str());
+  } else if (!check.inlet_reaches_outlet) {
     out["warnings"].push_back("no free path from the inlet to the outlet at " + cell.str() +
                               " cells: the map cannot carry a flow");
     // Which region is sealed and how to open it, as import-ros says (its
@@ -59,6 +74,18 @@ ordered_json map_summary(const Map& map, const std::string& file) {
         sealed_map_advice(map, free_regions(rasterize_labels(map, check.shape)), false, false);
     for (std::size_t k = 1; k < advice.size(); ++k)
       out["warnings"].push_back(advice[k]);
+  }
+  // A source that gas cannot leave is a valid point no run can find. Not on a
+  // coarsened grid, where narrow passages may look closed.
+  if (!check.coarsened && !map.sources.empty()) {
+    const std::vector<bool> sealed =
+        in_sealed_pocket(rasterize_labels(map, check.shape), map.sources);
+    for (std::size_t k = 0; k < sealed.size(); ++k)
+      if (sealed[k])
+        out["warnings"].push_back("sources[" + std::to_string(k) + "] " +
+                                  to_string(map.to_frame(map.sources[k])) + " " + kSealedPocket +
+                                  " (checked at " + cell.str() +
+                                  " cells); move it, or add an opening on the pocket's boundary");
   }
   return out;
 }
@@ -124,6 +151,24 @@ void add_render(CLI::App& map_cmd) {
           << " px)";
     report(j, human.str());
   });
+}
+
+// A --source or --start of import-ros (map frame), in the arena frame; refused
+// naming the flag and the value, not the output file's key, when it lies off
+// the imported map or in an obstacle.
+Vec2 imported_point(const Map& map, const std::string& text, const std::string& flag) {
+  const Vec2 p = map.from_frame(parse_point(text, flag));
+  if (!map.in_arena(p)) {
+    const Vec2 lo = map.to_frame({0.0, 0.0}), hi = map.to_frame({map.width, map.height});
+    std::ostringstream s;
+    s << flag << " " << text << ": lies outside the imported map, which spans x from " << lo.x
+      << " to " << hi.x << " m and y from " << lo.y << " to " << hi.y << " m in the map frame";
+    throw InputError(s.str());
+  }
+  if (const int o = map.obstacle_at(p); o >= 0)
+    throw InputError(flag + " " + text + ": lies inside obstacles[" + std::to_string(o) +
+                     "] of the imported map (occupied pixels); give a point in free space");
+  return p;
 }
 
 void add_import_ros(CLI::App& map_cmd) {
@@ -198,9 +243,9 @@ void add_import_ros(CLI::App& map_cmd) {
     check_output_file(a->out, {a->yaml});
     RosImport in = import_ros_map(a->yaml, a->options);
     for (const std::string& text : a->sources)
-      in.map.sources.push_back(in.map.from_frame(parse_point(text, "--source")));
+      in.map.sources.push_back(imported_point(in.map, text, "--source"));
     for (const std::string& text : a->starts)
-      in.map.starts.push_back(in.map.from_frame(parse_point(text, "--start")));
+      in.map.starts.push_back(imported_point(in.map, text, "--start"));
     in.map.generated_by = "plumekit map import-ros";
     write_output_file(a->out, map_file_text(in.map, a->out));
     ordered_json j = ros_import_json(in, a->yaml, a->out);

@@ -36,6 +36,18 @@ nlohmann::ordered_json summary_json(const FlowSummary& s, const WindField& wind,
                         {"narrowest", narrowest},
                         {"cell_keeping_them_open", s.closed_gaps.open_cell}};
   }
+  if (!s.thin_walls.walls.empty()) {  // likewise only when some leak
+    nlohmann::ordered_json walls = nlohmann::ordered_json::array();
+    for (const ThinWall& w : s.thin_walls.walls)
+      walls.push_back({{"obstacle", w.obstacle},
+                       {"at", {w.at.x, w.at.y}},
+                       {"thickness", w.thickness},
+                       {"leaking_faces", w.leaks}});
+    j["thin_walls"] = {{"count", walls.size()},
+                       {"frame", "map"},
+                       {"walls", walls},
+                       {"cell_resolving_them", s.thin_walls.resolving_cell}};
+  }
   j["viscosity"] = s.nu;
   j["turbulence"] = to_string(s.turbulence);
   j["convection"] = to_string(s.convection);

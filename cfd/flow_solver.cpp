@@ -179,6 +179,7 @@ FlowResult solve(const Map& map, const FlowOptions& options) {
   const StaggeredGrid grid(map, shape, options);
   FlowSummary summary = initial_summary(shape, options, cell);
   summary.closed_gaps = summarize_gaps(map, gaps);
+  summary.thin_walls = summarize_thin_walls(map, find_thin_walls(map, shape, grid.solid_cells()));
 
   const auto t_coarse = std::chrono::steady_clock::now();
   const std::optional<WindField> coarse = coarse_start(map, options, shape);

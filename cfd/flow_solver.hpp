@@ -13,6 +13,7 @@
 
 #include "cfd/gap_closing.hpp"
 #include "cfd/options.hpp"
+#include "cfd/thin_walls.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/error.hpp"
 #include "core/map.hpp"
@@ -35,6 +36,9 @@ struct FlowSummary {
   // The gaps open in the map but narrower than a cell, which the grid closed
   // (gap_closing.hpp); positions in the map frame.
   ClosedGaps closed_gaps;
+  // The obstacles the grid lets air through (thin_walls.hpp), positions in
+  // the map frame.
+  ThinWalls thin_walls;
   double nu = 0.0;
   Turbulence turbulence = Turbulence::None;
   Convection convection = Convection::Central;

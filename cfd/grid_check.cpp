@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/connectivity.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
@@ -108,6 +109,31 @@ double passing_cell(const Map& map, const std::vector<GapReport>& gaps, double c
   throw OptionError("flow.cell", m.str());
 }
 
+// No free path on the grid. When an opening is shorter than a cell the grid,
+// not the map, is at fault (a huge arena's default cell is coarse): say so,
+// with the cell that fits.
+[[noreturn]] void no_path(const Map& map, const GridShape& shape, const FlowOptions& options) {
+  const std::vector<MissedOpening> missed = openings_missed_by_grid(map, shape);
+  if (missed.empty())
+    throw InputError(
+        "map: no free path from the inlet to the outlet on this grid, so no flow can pass; "
+        "open a passage or move the openings");
+  const MissedOpening& m = missed.front();
+  const double fit = cell_keeping_gaps_open(map, m.length);
+  const double cells = std::round(map.width / fit) * std::round(map.height / fit);
+  std::ostringstream s;
+  s << compact(resolved_cell(map, options)) << " m cells";
+  if (options.cell == 0.0)
+    s << " (the default on a " << compact(map.width) << " x " << compact(map.height) << " m arena)";
+  s << " are too coarse for this map: " << opening_name(map, m.index) << " is " << compact(m.length)
+    << " m long, shorter than a cell, so no cell opens onto it and no flow "
+    << "can pass; a cell of " << compact(fit) << " m or finer opens onto every opening";
+  if (cells > kMaxFlowCells || !fits_in_memory(flow_memory_estimate(cells)))
+    s << ", but gives " << compact(cells) << " cells, more than a solve here can take: split the "
+      << "map into smaller ones, or make the openings longer";
+  throw OptionError("flow.cell", s.str());
+}
+
 }  // namespace
 
 double flow_memory_estimate(double cells) {
@@ -180,9 +206,7 @@ std::vector<GapReport> check_grid(const Map& map, const GridShape& shape,
   if (!options.closed && !inlet_reaches_outlet(rasterize_labels(map, solid))) {
     if (!gaps.empty() && inlet_reaches_outlet(rasterize_labels(map, shape)))
       sealed_by_gaps(map, solid, closed_by, gaps, cell);
-    throw InputError(
-        "map: no free path from the inlet to the outlet on this grid, so no flow can pass; "
-        "open a passage or move the openings");
+    no_path(map, shape, options);
   }
   return gaps;
 }

@@ -158,6 +158,7 @@ OpenFoamResult solve_openfoam(const Map& map, const FlowOptions& flow, const Ope
   FlowSummary& s = r.flow.summary;
   s.cell = cell;
   s.closed_gaps = summarize_gaps(map, gaps);
+  s.thin_walls = summarize_thin_walls(map, find_thin_walls(map, shape, grid.solid_cells()));
   s.tolerance = foam.tolerance;
   s.converged = true;
   s.iterations = log.iterations;

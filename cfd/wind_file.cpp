@@ -24,19 +24,27 @@ namespace {
   throw InputError(file.string() + ": " + why);
 }
 
-// One array whose checksum wind.json lists, with the shape it must have.
-std::vector<double> read_array(const fs::path& dir, const nlohmann::json& sums,
-                               const std::string& name, std::size_t rows, std::size_t cols) {
+// The bytes of an array whose checksum wind.json lists, checked against it.
+std::string checked_bytes(const fs::path& dir, const nlohmann::json& sums,
+                          const std::string& name) {
   const fs::path file = dir / name;
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) refuse(file, "missing (every plumekit flow output has it)");
   if (!sums.contains(name) || !sums.at(name).is_string())
     refuse(dir / "wind.json", "arrays_sha256." + name + " is missing");
   // One read: the bytes checked are the bytes parsed.
-  const std::string bytes = read_file(file);
+  std::string bytes = read_file(file);
   if (sha256_hex(bytes) != sums.at(name).get<std::string>())
     refuse(file, "does not match its SHA-256 in wind.json (arrays_sha256." + name +
                      "): the file is damaged or was changed; solve the wind again");
+  return bytes;
+}
+
+// One array whose checksum wind.json lists, with the shape it must have.
+std::vector<double> read_array(const fs::path& dir, const nlohmann::json& sums,
+                               const std::string& name, std::size_t rows, std::size_t cols) {
+  const fs::path file = dir / name;
+  const std::string bytes = checked_bytes(dir, sums, name);
   NpyArray a = parse_npy(bytes, file);
   if (a.shape != std::vector<std::size_t>{rows, cols})
     refuse(file, "shape does not match the grid in wind.json (expected (" + std::to_string(rows) +
@@ -92,6 +100,10 @@ WindField read_wind(const fs::path& dir, const Map& map) {
   std::vector<double> face_v = read_array(dir, sums, "face_v.npy", nys + 1, nxs);
   std::vector<double> pressure = read_array(dir, sums, "p.npy", nys, nxs);
   const std::vector<double> solid_values = read_array(dir, sums, "solid.npy", nys, nxs);
+  // The cell-centred velocities are for users (the faces above are what is
+  // read), but wind.json vouches for them too: a folder is whole or refused.
+  for (const char* name : {"u.npy", "v.npy"})
+    checked_bytes(dir, sums, name);
   std::vector<std::uint8_t> solid(solid_values.size());
   for (std::size_t k = 0; k < solid.size(); ++k)
     solid[k] = solid_values[k] != 0.0;

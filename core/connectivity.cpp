@@ -103,6 +103,61 @@ FreeSpace free_regions(const Grid<std::uint8_t>& labels) {
   return space;
 }
 
+std::vector<MissedOpening> openings_missed_by_grid(const Map& map, const GridShape& shape) {
+  std::vector<MissedOpening> out;
+  for (std::size_t k = 0; k < map.openings.size(); ++k) {
+    const Opening& o = map.openings[k];
+    const double h = o.vertical() ? shape.dy() : shape.dx();
+    const int n = o.vertical() ? shape.ny : shape.nx;
+    // The face middles nearest the span's start, computed as the grid does.
+    const int first = std::max(0, static_cast<int>(std::floor(o.lo() / h - 0.5)));
+    bool seen = false;
+    for (int b = first; b < n && b <= first + 2 && !seen; ++b) {
+      const double s = (b + 0.5) * h;
+      seen = s >= o.lo() && s <= o.hi();
+    }
+    if (!seen) out.push_back({k, o.length(), h});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const MissedOpening& a, const MissedOpening& b) {
+    return a.length < b.length;
+  });
+  return out;
+}
+
+std::string opening_name(const Map& map, std::size_t k) {
+  const Opening& o = map.openings[k];
+  if (map.format_version == 1) return o.is_inlet() ? "the inlet" : "the outlet";
+  return "openings[" + std::to_string(k) + "] (an " + to_string(o.kind) + ")";
+}
+
+std::vector<bool> in_sealed_pocket(const Grid<std::uint8_t>& labels,
+                                   const std::vector<Vec2>& points) {
+  const GridShape& s = labels.shape;
+  // Every free cell that some opening's cell reaches.
+  std::vector<int> owner(s.size(), -1);
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i)
+      if ((labels(i, j) == kInlet || labels(i, j) == kOutlet) && owner[s.index(i, j)] < 0)
+        flood(labels, owner, i, j, 0);
+  std::vector<bool> sealed;
+  for (const Vec2 p : points) {
+    const int i = std::clamp(static_cast<int>(std::floor(p.x / s.dx())), 0, s.nx - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(p.y / s.dy())), 0, s.ny - 1);
+    // The point's own cell, or the free cells around it when that one is solid
+    // (a point less than half a cell off an obstacle).
+    const int reach = labels(i, j) == kObstacle ? 1 : 0;
+    bool free = false, reached = false;
+    for (int b = j - reach; b <= j + reach; ++b)
+      for (int a = i - reach; a <= i + reach; ++a) {
+        if (!s.contains(a, b) || labels(a, b) == kObstacle) continue;
+        free = true;
+        reached = reached || owner[s.index(a, b)] >= 0;
+      }
+    sealed.push_back(free && !reached);
+  }
+  return sealed;
+}
+
 std::vector<std::string> sealed_map_advice(const Map& map, const FreeSpace& space,
                                            bool unknown_hint, bool opening_fields) {
   if (space.inlet_reaches_outlet()) return {};

@@ -21,6 +21,14 @@ enum class Side { Left, Right, Bottom, Top };
 enum class Profile { Uniform, Parabolic };
 enum class OpeningKind { Inlet, Outlet };
 
+// The fastest inlet a map may have, m/s. plumekit's flow is incompressible,
+// which holds only well below Mach 0.3: about 100 m/s in air (sound: 343 m/s).
+inline constexpr double kMaxInletSpeed = 100.0;
+// Why, for messages that refuse a faster inlet.
+inline constexpr const char* kInletSpeedBound =
+    "at most 100 m/s: plumekit's flow is incompressible, which holds only well below Mach 0.3 "
+    "(about 100 m/s in air)";
+
 const char* to_string(Side side);
 const char* to_string(Profile profile);
 const char* to_string(OpeningKind kind);

@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/option_check.hpp"
 
 namespace plumekit {
 
@@ -250,7 +251,11 @@ void parse_frame(const Reader& r, const json& doc, Map& map) {
   if (!doc.contains("frame")) return;
   const json& frame = r.object(doc["frame"], "frame");
   r.only_keys(frame, "frame", {"origin"});
-  map.frame.origin = r.point(r.required(frame, "frame", "origin"), "frame.origin");
+  // Rounded like every other coordinate, so that the arena's edges, written as
+  // micrometres, read back on the arena's edges (and files that an earlier
+  // plumekit wrote with an unrounded origin read too).
+  const Vec2 origin = r.point(r.required(frame, "frame", "origin"), "frame.origin");
+  map.frame.origin = file_origin(origin);
 }
 
 void parse_shapes(const Reader& r, const json& doc, Map& map) {
@@ -365,6 +370,9 @@ void validate_opening(const Reader& r, const Map& map, std::size_t k) {
     if (!map.in_arena(p)) r.fail(key, "end " + framed(map, p) + " lies outside the arena");
   if (o.is_inlet() && !(std::isfinite(o.speed) && o.speed > 0.0))
     r.fail(Reader::join(key, "speed"), "must be a positive, finite speed in m/s");
+  if (o.is_inlet() && o.speed > kMaxInletSpeed)
+    r.fail(Reader::join(key, "speed"),
+           compact(o.speed) + " m/s is too fast; an inlet blows " + kInletSpeedBound);
   if (const std::string fault = boundary_fault(map, o); !fault.empty())
     r.fail(key, "not on the boundary of the free space: " + fault);
 }
@@ -481,6 +489,12 @@ json parse_json(std::string_view text, const Reader& r) {
 
 }  // namespace
 
+Vec2 file_origin(Vec2 origin) {
+  // One too far out to be framed stays as given, for validate_frame to refuse.
+  auto round = [](double v) { return std::abs(v) <= kMaxFramedExtent ? micrometres(v) : v; };
+  return {round(origin.x), round(origin.y)};
+}
+
 Map parse_map(std::string_view text, const std::string& origin) {
   const Reader r(origin);
   const json doc = parse_json(text, r);
@@ -537,8 +551,10 @@ void add_v1_openings(const Map& map, ordered_json& j) {
 }
 
 void add_v2_openings(const Map& map, ordered_json& j) {
-  if (map.has_frame())
-    j["frame"] = {{"origin", ordered_json::array({map.frame.origin.x, map.frame.origin.y})}};
+  if (map.has_frame()) {
+    const Vec2 origin = file_origin(map.frame.origin);
+    j["frame"] = {{"origin", ordered_json::array({origin.x, origin.y})}};
+  }
   j["size"] = {map.width, map.height};
   j["openings"] = ordered_json::array();
   for (const Opening& o : map.openings) {

@@ -19,6 +19,12 @@ inline constexpr const char* kMapFormatV1 = "plumekit-map/1";
 Map parse_map(std::string_view text, const std::string& origin);
 Map read_map(const std::filesystem::path& path);
 
+// A framed map's file holds whole micrometres, its frame's origin too: `origin`
+// rounded so. import-ros rounds a YAML's origin with it, so that a map in
+// memory is the map its file reads back as (an origin of -9.53674e-07 would
+// otherwise put the arena's edge at -1e-06 in the file, outside the arena).
+Vec2 file_origin(Vec2 origin);
+
 // Checks the geometry of a map already in memory (the same checks read_map
 // makes after parsing): frame, polygons, openings, sources.
 void validate_map(const Map& map, const std::string& origin);

@@ -3,7 +3,9 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -101,13 +103,26 @@ NpyHeader parse_header(std::string_view bytes, const std::filesystem::path& path
   while (p < dict.size() && dict[p] != ')') {
     if (std::isdigit(static_cast<unsigned char>(dict[p]))) {
       std::size_t used = 0;
-      h.shape.push_back(std::stoull(dict.substr(p), &used));
+      try {
+        h.shape.push_back(std::stoull(dict.substr(p), &used));
+      } catch (const std::out_of_range&) {
+        bad("a dimension of the shape is too large");
+      }
       p += used;
     } else {
       ++p;
     }
   }
   h.data_offset = 10 + len;
+  // The byte count in bounds: a huge shape must not wrap round to the size of the data that follows.
+  std::size_t count = 1;
+  for (const std::size_t d : h.shape) {
+    if (d != 0 && count > std::numeric_limits<std::size_t>::max() / d)
+      bad("the shape holds more values than memory can");
+    count *= d;
+  }
+  if (count > (std::numeric_limits<std::size_t>::max() - h.data_offset) / 8)
+    bad("the shape holds more values than memory can");
   return h;
 }
 

@@ -119,6 +119,8 @@ OpeningRequest parse_opening(const std::string& text, OpeningKind kind, const st
   r.to = {v[2], v[3]};
   r.speed = v[4];
   if (!(r.speed > 0)) refuse(r, "the speed must be a positive number of m/s");
+  if (r.speed > kMaxInletSpeed)
+    refuse(r, "the speed " + parts[4] + " m/s is too fast; an inlet blows " + kInletSpeedBound);
   if (parts.size() == 6) {
     if (parts[5] == "uniform")
       r.profile = Profile::Uniform;

@@ -493,7 +493,7 @@ RosImport import_ros_map(const std::filesystem::path& yaml_path, const RosImport
   Map& map = result.map;
   map = default_arena(image.cols * yaml.resolution, image.rows * yaml.resolution);
   map.name = options.name.empty() ? yaml_path.stem().string() : options.name;
-  map.frame.origin = yaml.origin;
+  map.frame.origin = file_origin(yaml.origin);  // what its file holds (map_json.hpp)
   add_typed_openings(result, options);
   RosImportOptions tracing = options;
   tracing.min_area_px = 0;  // dropped above, on the pixels

@@ -136,8 +136,8 @@ Grid<double> AdvectionDiffusion::solve(Vec2 source) const {
   const auto w = point_weights(source);
   if (w.empty())
     throw InputError("advection-diffusion: source " + to_string(source) +
-                     " lies in no fluid cell of the flow grid: inside an obstacle, or in a pocket "
-                     "of free space that the flow does not reach (sealed off from the outlet)");
+                     " has no free cell of the flow grid near it: it is inside an obstacle, or in "
+                     "a pocket of free space sealed off from the openings (no air reaches it)");
   std::vector<double> b(cell_of_.size(), 0.0);
   for (const auto& [k, weight] : w)
     b[unknown_[k]] += options_.release_rate * weight;

@@ -20,10 +20,14 @@ void DatasetOptions::validate() const {
     check_range("dataset.feature_cell", feature_cell, 0.02, 2.0, "m",
                 "0 (the thesis's 64 x 64 grid) or a cell size; the v2 model uses 0.2 m");
   if (inlet_speed_hi != 0.0 || inlet_speed_lo != 0.0) {
-    check_range("dataset.inlet_speeds", inlet_speed_lo, 0.01, 100.0, "m/s",
-                "LO,HI with 0 < LO <= HI; unset, maps.inlet_speed");
-    check_range("dataset.inlet_speeds", inlet_speed_hi, inlet_speed_lo, 100.0, "m/s",
-                "LO,HI with 0 < LO <= HI; unset, maps.inlet_speed");
+    const std::string advice = "LO,HI with 0 < LO <= HI, each " + std::string(kInletSpeedBound) +
+                               "; unset, maps.inlet_speed";
+    for (const double speed : {inlet_speed_lo, inlet_speed_hi})
+      check_range("dataset.inlet_speeds", speed, 0.01, kMaxInletSpeed, "m/s", advice);
+    if (inlet_speed_hi < inlet_speed_lo)
+      throw OptionError("dataset.inlet_speeds", "LO must not exceed HI, got LO " +
+                                                    compact(inlet_speed_lo) + " and HI " +
+                                                    compact(inlet_speed_hi) + " m/s; " + advice);
     if (!given_maps.empty())
       throw OptionError("dataset.inlet_speeds",
                         "draws the speed of random maps; given maps keep their own");

@@ -180,7 +180,8 @@ void RandomMapOptions::validate() const {
   // At most 100 m: the robot check rasterizes the arena at 5 cm.
   check_positive("maps.width", width, 100.0, "m", "the default is 10 m");
   check_positive("maps.height", height, 100.0, "m", "the default is 4 m");
-  check_positive("maps.inlet_speed", inlet_speed, 100.0, "m/s", "the default is 1 m/s");
+  check_positive("maps.inlet_speed", inlet_speed, kMaxInletSpeed, "m/s",
+                 std::string("the default is 1 m/s; ") + kInletSpeedBound);
   check_non_negative("maps.end_clearance", end_clearance, 100.0, "m", "the default is 1 m");
   check_non_negative("maps.robot_margin", robot_margin, 10.0, "m", "the default is 0.15 m");
   check_positive("maps.min_gap", min_gap, 100.0, "m", "the default is 0.4 m");

@@ -15,7 +15,8 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 [[ $# -gt 0 ]] && shift
 all_targets=(fuzz_map_json fuzz_ros_import fuzz_model_file fuzz_manifest fuzz_table_cache
-  fuzz_gdm_samples fuzz_gdm_run fuzz_evaluate_part)
+  fuzz_gdm_samples fuzz_gdm_run fuzz_evaluate_part
+  fuzz_wind_file)
 targets=("$@")
 [[ ${#targets[@]} -gt 0 ]] || targets=("${all_targets[@]}")
 build="build-fuzz"
@@ -25,7 +26,8 @@ jobs=${FUZZ_JOBS:-$(nproc)}
 declare -A max_len=(
   [fuzz_map_json]=16384 [fuzz_ros_import]=65536 [fuzz_model_file]=65536
   [fuzz_manifest]=16384 [fuzz_table_cache]=65536 [fuzz_gdm_samples]=16384
-  [fuzz_gdm_run]=16384 [fuzz_evaluate_part]=16384)
+  [fuzz_gdm_run]=16384 [fuzz_evaluate_part]=16384
+  [fuzz_wind_file]=16384)
 
 cxx=${FUZZ_CXX:-}
 if [[ -z "$cxx" ]]; then

@@ -6,11 +6,15 @@
 #include <string>
 
 #include "cfd/flow_policy.hpp"
+#include "cfd/gap_closing.hpp"
 #include "cfd/wind_file.hpp"
+#include "core/connectivity.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/random.hpp"
+#include "core/rasterize.hpp"
+#include "core/resample.hpp"
 #include "ste/cached_readings.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/seeds.hpp"
@@ -236,8 +240,29 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
 
 Scenario::~Scenario() = default;
 
+namespace {
+
+// Why the wind leaves a source `p` (free in the map) no free cell near it, or
+// "": its gas would have nowhere to go, and the mean plume (advection-diffusion)
+// no cell to release it in. The flow grid makes solid what no outlet drains.
+std::string flow_grid_fault(const Map& map, const cfd::WindField& wind, Vec2 p) {
+  if (!free_bilinear_weights(wind.shape(), wind.solid_cells(), p).empty()) return "";
+  Grid<std::uint8_t> solid = rasterize_occupancy(map, wind.shape());
+  cfd::close_narrow_gaps(map, wind.shape(), solid.values);  // as the flow grid does
+  const std::string at = to_string(map.to_frame(p));
+  if (in_sealed_pocket(rasterize_labels(map, solid), {p}).front())
+    return at + " " + kSealedPocket + " (on the flow grid's " + compact(wind.shape().dx()) +
+           " m cells); move the source, or add an opening on the pocket's boundary";
+  return at + " lies in no free cell of the flow grid (" + compact(wind.shape().dx()) +
+         " m): its free space is closed off by gaps narrower than a cell, or no outlet drains it";
+}
+
+}  // namespace
+
 Vec2 Scenario::check_source(Vec2 source) const {
   if (const std::string fault = point_fault(map_, source); !fault.empty())
+    throw OptionError("ste.source", fault);
+  if (const std::string fault = flow_grid_fault(map_, wind_, source); !fault.empty())
     throw OptionError("ste.source", fault);
   return source;
 }

@@ -146,6 +146,80 @@ TEST_F(FlowCli, PlumeAndLocalizeUseAFlowOutputAsTheirWind) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find((wind / "wind.json").string() + ": map_sha256"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "other"));
+
+  // A changed u.npy (listed in wind.json, not read for the wind): exit 2 naming it, no output.
+  std::string u = file_bytes(wind / "u.npy");
+  u[u.size() - 1] ^= 0x01;
+  std::ofstream(wind / "u.npy", std::ios::binary) << u;
+  r = run("plume " + map + " --source 1,2 --wind " + wind.string() + " --out " +
+          (dir / "damaged").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find((wind / "u.npy").string() + ": does not match its SHA-256"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "damaged"));
+}
+
+}  // namespace
+
+namespace {
+
+// A 10 x 4 m arena with a 4 cm wall x in [5.06, 5.10] up to y = 3: 10 cm cells
+// have no centre in it (the flow runs through it), 5 cm cells do.
+const char* const kThinWallMap = R"({"format": "plumekit-map/1", "name": "thin", "size": [10, 4],
+  "inlet": {"side": "left", "speed": 1}, "outlet": {"side": "right"},
+  "obstacles": [[[5.06, 0], [5.1, 0], [5.1, 3], [5.06, 3]]]})";
+
+TEST_F(FlowCli, WarnsOfAWallTheGridLetsAirThrough) {
+  const fs::path map = dir / "thin.json";
+  std::ofstream(map) << kThinWallMap;
+  const fs::path out = dir / "wind";
+  auto r = run("flow " + map.string() + " --cell 0.1 --json --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("plumekit: warning: the 0.1 m cells do not resolve 1 obstacle, so air "
+                       "flows through it where the planner sees a wall: obstacles[0] at (5.1, "),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("0.04 m thick (30 cell faces through it); a cell of 0.04 m or finer "
+                       "resolves it"),
+            std::string::npos)
+      << r.err;
+  for (const auto& j : {nlohmann::json::parse(r.out),
+                        nlohmann::json::parse(plumekit::test::slurp(out / "wind.json"))}) {
+    ASSERT_TRUE(j.contains("thin_walls")) << j.dump();
+    EXPECT_EQ(j["thin_walls"]["count"], 1);
+    EXPECT_EQ(j["thin_walls"]["walls"][0]["obstacle"], 0);
+    EXPECT_NEAR(j["thin_walls"]["walls"][0]["thickness"].get<double>(), 0.04, 1e-12);
+    EXPECT_NEAR(j["thin_walls"]["cell_resolving_them"].get<double>(), 0.04, 1e-12);
+  }
+  // Resolved at 5 cm: no warning, no field.
+  r = run("flow " + map.string() + " --cell 0.05 --json --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_FALSE(nlohmann::json::parse(r.out).contains("thin_walls"));
+}
+
+// A huge arena's default cell is coarse: an opening shorter than a cell gets
+// no cell, which is the grid's fault, not the map's.
+TEST_F(FlowCli, SaysTheCellIsTooCoarseWhenAnOpeningIsShorterThanACell) {
+  const fs::path map = dir / "huge.json";
+  std::ofstream(map) << R"({"format": "plumekit-map/1", "name": "huge", "size": [1e6, 1e6],
+    "inlet": {"side": "left", "from": 0, "to": 2, "speed": 1},
+    "outlet": {"side": "right", "from": 0, "to": 2}})";
+  const fs::path out = dir / "wind";
+  const auto r = run("flow " + map.string() + " --out " + out.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--cell: 1500 m cells (the default on a 1e+06 x 1e+06 m arena) are too "
+                       "coarse for this map: the inlet is 2 m long, shorter than a cell, so no "
+                       "cell opens onto it"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("a cell of 2 m or finer opens onto every opening, but gives 2.5e+11 "
+                       "cells, more than a solve here can take"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("no free path"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

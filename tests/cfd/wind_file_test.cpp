@@ -94,6 +94,24 @@ TEST_F(WindFile, RefusesADamagedArray) {
   expect_refused(map, "face_v.npy", "does not match its SHA-256");
 }
 
+// u.npy and v.npy are not what read_wind reads, but wind.json lists their
+// SHA-256 too: a folder whose listed files do not match is refused, naming the file.
+TEST_F(WindFile, RefusesADamagedCellVelocityArray) {
+  for (const char* name : {"u.npy", "v.npy"}) {
+    const std::string good = read_file(dir / name);
+    std::string bytes = good;
+    bytes[bytes.size() - 2] ^= 0x01;
+    write_file_atomic(dir / name, bytes);
+    expect_refused(
+        map, name,
+        "does not match its SHA-256 in wind.json (arrays_sha256." + std::string(name) + ")");
+    fs::remove(dir / name);
+    expect_refused(map, name, "missing");
+    write_file_atomic(dir / name, good);
+  }
+  EXPECT_NO_THROW(read_wind(dir, map));
+}
+
 TEST_F(WindFile, RefusesAMissingArray) {
   fs::remove(dir / "solid.npy");
   expect_refused(map, "solid.npy", "missing");
@@ -123,6 +141,29 @@ TEST_F(WindFile, RefusesANonFiniteVelocityEvenWithAMatchingChecksum) {
   j["arrays_sha256"]["face_u.npy"] = sha256_hex(bytes);
   write_wind_json(j);
   expect_refused(map, "face_u.npy", "not finite");
+}
+
+// An .npy header whose shape is huge (found by fuzz_wind_file): refused as
+// damaged input, not std::out_of_range or a wrapped size (exit 1).
+TEST_F(WindFile, RefusesAnArrayWithAHugeShapeEvenWithAMatchingChecksum) {
+  for (const std::string shape :
+       {"(99999999999999999999999, 7)", "(4294967296, 4294967297)", "(2305843009213693952, 1)"}) {
+    std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': " + shape + ", }";
+    dict.append(64 - (10 + dict.size() + 1) % 64, ' ');
+    dict += '\n';
+    std::string bytes = std::string("\x93NUMPY\x01\x00", 8);
+    bytes += static_cast<char>(dict.size() & 0xff);
+    bytes += static_cast<char>(dict.size() >> 8);
+    bytes += dict;
+    write_file_atomic(dir / "face_u.npy", bytes);
+    nlohmann::ordered_json j = wind_json();
+    j["arrays_sha256"]["face_u.npy"] = sha256_hex(bytes);
+    write_wind_json(j);
+    expect_refused(map, "face_u.npy",
+                   shape == "(99999999999999999999999, 7)" ? "a dimension of the shape is too large"
+                   : shape == "(4294967296, 4294967297)"   ? "more values than memory can"
+                                                           : "data size does not match the shape");
+  }
 }
 
 TEST_F(WindFile, RefusesAFolderWithoutAWind) {

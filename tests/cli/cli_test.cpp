@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -150,15 +151,68 @@ TEST_F(Cli, ImportRosPlacesSourcesAndStartsInTheMapFrame) {
   EXPECT_EQ(j["starts"], nlohmann::json::parse("[[6.0, 3.0], [1.5, 4.0]]"));
   EXPECT_EQ(run("map validate " + out.string()).code, 0);
   const fs::path bad = dir / "bad.json";
+  // The flag and the value are named (not the output file's sources[0]), and the map's extent.
   const Result inside = run(cmd + " --out " + bad.string() + " --source 2,2.5");
   EXPECT_EQ(inside.code, 2);
-  EXPECT_NE(inside.err.find("sources[0]: source (2, 2.5) lies inside obstacles"), std::string::npos)
+  EXPECT_NE(inside.err.find("--source 2,2.5: lies inside obstacles["), std::string::npos)
       << inside.err;
   const Result off = run(cmd + " --out " + bad.string() + " --start 6,3 --start -3,1");
   EXPECT_EQ(off.code, 2);
-  EXPECT_NE(off.err.find("starts[1]: start (-3, 1) lies outside the arena"), std::string::npos)
-      << off.err;
+  const std::string extent =
+      "lies outside the imported map, which spans x from -0.4 to 11.6 m and y from -0.4 to 5.6 m "
+      "in the map frame";
+  EXPECT_NE(off.err.find("--start -3,1: " + extent), std::string::npos) << off.err;
+  const Result far = run(cmd + " --out " + bad.string() + " --source 1000,0");
+  EXPECT_EQ(far.code, 2);
+  EXPECT_NE(far.err.find("--source 1000,0: " + extent), std::string::npos) << far.err;
+  EXPECT_EQ(far.err.find("sources[0]"), std::string::npos) << far.err;
   EXPECT_FALSE(fs::exists(bad));
+}
+
+// A source in free space boxed in by obstacles: a valid point, but its gas never
+// leaves the box. validate says so; localize refuses it, saying the same (not
+// "inside an obstacle"), before any run.
+TEST_F(Cli, ASourceInASealedPocketIsNamedByValidateAndLocalize) {
+  const fs::path map = dir / "pocket.json";
+  std::ofstream(map) << R"({"format": "plumekit-map/1", "name": "pocket", "size": [10, 4],
+    "inlet": {"side": "left", "speed": 1}, "outlet": {"side": "right"},
+    "obstacles": [[[3, 1], [4, 1], [4, 1.1], [3, 1.1]], [[3, 1.9], [4, 1.9], [4, 2], [3, 2]],
+                  [[3, 1.1], [3.1, 1.1], [3.1, 1.9], [3, 1.9]],
+                  [[3.9, 1.1], [4, 1.1], [4, 1.9], [3.9, 1.9]]],
+    "sources": [[3.5, 1.5], [6, 1]]})";
+  const std::string pocket =
+      "lies in a pocket of free space sealed off from every opening: no air reaches it";
+  const Result v = run("map validate " + map.string());
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("warning: sources[0] (3.5, 1.5) " + std::string(pocket)), std::string::npos)
+      << v.out;
+  EXPECT_EQ(v.out.find("sources[1]"), std::string::npos) << v.out;
+  const fs::path out = dir / "run";
+  const Result l =
+      run("localize " + map.string() +
+          " --source 3.5,1.5 --start 1,1 --plume-model gaussian --out " + out.string());
+  EXPECT_EQ(l.code, 2);
+  EXPECT_NE(l.err.find("--source: (3.5, 1.5) " + std::string(pocket)), std::string::npos) << l.err;
+  EXPECT_EQ(l.err.find("inside an obstacle"), std::string::npos) << l.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A huge arena is checked on coarse cells; an opening shorter than one is the
+// grid's fault, and validate says so instead of "the map cannot carry a flow".
+TEST_F(Cli, ValidateSaysItsGridIsTooCoarseForAShortOpeningOnAHugeArena) {
+  const fs::path map = dir / "huge.json";
+  std::ofstream(map) << R"({"format": "plumekit-map/1", "name": "huge", "size": [1e6, 1e6],
+    "inlet": {"side": "left", "from": 0, "to": 2, "speed": 1},
+    "outlet": {"side": "right", "from": 0, "to": 2}})";
+  const Result v = run("map validate " + map.string());
+  EXPECT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.out.find("warning: no free path from the inlet to the outlet at 5e+02 m cells, "
+                       "which are too coarse for this map: the inlet is 2 m long, shorter than a "
+                       "cell, so no cell opens onto it; a check that sees it needs cells of at "
+                       "most 2 m (2.5e+11 cells; it takes at most 4e+06)"),
+            std::string::npos)
+      << v.out;
+  EXPECT_EQ(v.out.find("the map cannot carry a flow"), std::string::npos) << v.out;
 }
 
 TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {

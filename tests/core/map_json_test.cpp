@@ -130,6 +130,9 @@ TEST(MapJson, RejectsImpossibleOrOverlappingSpans) {
   expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "speed": -1},
                               "outlet": {"side": "right"})"),
                       "inlet.speed", "positive");
+  expect_map_rejected(map_text(R"("size": [10, 4], "inlet": {"side": "left", "speed": 1e6},
+                                  "outlet": {"side": "right"})"),
+                      "inlet.speed", "1e+06 m/s is too fast; an inlet blows at most 100 m/s");
   // Inlet and outlet may share a wall when their spans only touch.
   EXPECT_EQ(
       map_error_of(map_text(R"("size": [10, 4], "inlet": {"side": "left", "to": 2, "speed": 1},

@@ -112,6 +112,15 @@ TEST(MapV2, RefusesBadOpenings) {
   expect_map_rejected(
       v2_text(R"({"kind": "inlet", "from": [10, 21], "to": [10, 22], "speed": 0}, )" + kOutletJson),
       "openings[0].speed", "positive");
+  // Faster than an incompressible flow holds (well below Mach 0.3).
+  for (const char* fast : {"1e6", "100.5"})
+    expect_map_rejected(v2_text(R"({"kind": "inlet", "from": [10, 21], "to": [10, 22], "speed": )" +
+                                std::string(fast) + "}, " + kOutletJson),
+                        "openings[0].speed", "too fast; an inlet blows at most 100 m/s");
+  EXPECT_EQ(map_error_of(v2_text(R"({"kind": "inlet", "from": [10, 21], "to": [10, 22],
+                                     "speed": 100}, )" +
+                                 kOutletJson)),
+            "");
   expect_map_rejected(
       v2_text(kInletJson + R"(, {"kind": "outlet", "from": [12, 23.6], "to": [13, 23.6],
                                         "speed": 1})"),

@@ -216,6 +216,32 @@ TEST(RosImport, FrameComesFromTheYamlOriginAndRoundTrips) {
             0);
 }
 
+// A real floor's origin is often a float32 off a whole micrometre (-9.53674e-07):
+// what import-ros writes, plumekit reads back, as the same map.
+TEST(RosImport, AnOriginOffTheMicrometreReadsBackAsTheSameMap) {
+  TempDir tmp;
+  cv::imwrite((tmp.path / "floor.pgm").string(), building());
+  std::ofstream(tmp.path / "floor.yaml")
+      << "image: floor.pgm\nresolution: 0.05\norigin: [-9.53674e-07, -9.53674e-07, 0.0]\n"
+         "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  const RosImport in = import_ros_map(tmp.path / "floor.yaml", {});
+  EXPECT_EQ(in.ros_origin, (Vec2{-9.53674e-07, -9.53674e-07}));  // reported as the YAML says
+  EXPECT_EQ(in.map.frame.origin, (Vec2{-1e-06, -1e-06}));
+  const fs::path file = tmp.path / "floor.json";
+  write_map(in.map, file);
+  const Map back = read_map(file);  // validates: every wall vertex inside the arena
+  EXPECT_EQ(map_to_json(back), map_to_json(in.map));
+  EXPECT_EQ(map_file_text(back, "x"), map_file_text(in.map, "x"));
+  // A file written before the origin was rounded reads too, on the same arena.
+  const std::string old_text = R"({"format": "plumekit-map/2", "name": "t",
+      "frame": {"origin": [-9.53674e-07, 0]}, "size": [5, 3],
+      "openings": [{"kind": "inlet", "from": [-1e-06, 0], "to": [-1e-06, 3], "speed": 1},
+                   {"kind": "outlet", "from": [4.999999, 0], "to": [4.999999, 3]}],
+      "obstacles": [[[-1e-06, 0], [0.999999, 0], [0.999999, 1], [-1e-06, 1]]]})";
+  const Map old = parse_map(old_text, "old.json");
+  EXPECT_EQ(old.obstacles[0][0], (Vec2{0, 0}));
+}
+
 TEST(RosImport, TypedOpeningsSnapOntoDoorsInTheMapFrame) {
   TempDir tmp;
   const fs::path yaml = write_ros_map(tmp.path, building());
@@ -278,6 +304,16 @@ TEST(RosImport, OpeningsFarFromAnyBoundaryAreRefused) {
   options.outlets = {"2.5,-0.25,2.5,0.25"};
   options.inlets = {"-1.5,0,-1.5,0.5,1,turbulent"};
   EXPECT_NE(option_error(yaml, options).find("profile 'turbulent'"), std::string::npos);
+  // Faster than the incompressible flow holds: refused by the option, not at the flow.
+  options.inlets = {"-1.5,0,-1.5,0.5,1e9"};
+  message = option_error(yaml, options, &field);
+  EXPECT_EQ(field, "ros.inlets");
+  EXPECT_NE(message.find("'-1.5,0,-1.5,0.5,1e9': the speed 1e9 m/s is too fast"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("at most 100 m/s"), std::string::npos) << message;
+  EXPECT_NE(message.find("Mach 0.3"), std::string::npos) << message;
+  options.inlets = {"-1.5,0,-1.5,0.5,100"};
+  EXPECT_EQ(option_error(yaml, options), "");
   options.inlets = {"-1.5,0,-1.5,0.5", "-1.5,0.1,-1.5,0.4,2"};  // the same door twice
   message = option_error(yaml, options, &field);
   EXPECT_EQ(field, "ros.inlets");

@@ -322,6 +322,10 @@ TEST(PhysicalGridOptions, BadFeatureCellsAndInletSpeedsAreRefused) {
   o.inlet_speed_lo = 2.0;
   o.inlet_speed_hi = 0.3;
   expect_refused(o, "dataset.inlet_speeds", "LO,HI with 0 < LO <= HI");
+  expect_refused(o, "dataset.inlet_speeds", "LO must not exceed HI, got LO 2 and HI 0.3 m/s");
+  o.inlet_speed_lo = 0.3;
+  o.inlet_speed_hi = 1e6;
+  expect_refused(o, "dataset.inlet_speeds", "at most 100 m/s: plumekit's flow is incompressible");
   o.inlet_speed_lo = 0.0;
   o.inlet_speed_hi = 1.0;
   expect_refused(o, "dataset.inlet_speeds", "got 0");
