@@ -114,15 +114,17 @@ NpyHeader parse_header(std::string_view bytes, const std::filesystem::path& path
     }
   }
   h.data_offset = 10 + len;
-  // The byte count in bounds: a huge shape must not wrap round to the size of the data that follows.
+  // The byte count in bounds: a huge shape must not wrap round to the size of the data that
+  // follows.
   std::size_t count = 1;
   for (const std::size_t d : h.shape) {
     if (d != 0 && count > std::numeric_limits<std::size_t>::max() / d)
       bad("the shape holds more values than memory can");
     count *= d;
   }
+  // No file holds that many bytes (and data_offset + count * width must not wrap).
   if (count > (std::numeric_limits<std::size_t>::max() - h.data_offset) / 8)
-    bad("the shape holds more values than memory can");
+    bad("data size does not match the shape (truncated?)");
   return h;
 }
 

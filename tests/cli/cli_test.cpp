@@ -184,9 +184,9 @@ TEST_F(Cli, ASourceInASealedPocketIsNamedByValidateAndLocalize) {
       "lies in a pocket of free space sealed off from every opening: no air reaches it";
   const Result v = run("map validate " + map.string());
   EXPECT_EQ(v.code, 0) << v.err;
-  EXPECT_NE(v.out.find("warning: sources[0] (3.5, 1.5) " + std::string(pocket)), std::string::npos)
-      << v.out;
-  EXPECT_EQ(v.out.find("sources[1]"), std::string::npos) << v.out;
+  EXPECT_NE(v.err.find("warning: sources[0] (3.5, 1.5) " + std::string(pocket)), std::string::npos)
+      << v.err;
+  EXPECT_EQ(v.err.find("sources[1]"), std::string::npos) << v.out;
   const fs::path out = dir / "run";
   const Result l =
       run("localize " + map.string() +
@@ -206,13 +206,13 @@ TEST_F(Cli, ValidateSaysItsGridIsTooCoarseForAShortOpeningOnAHugeArena) {
     "outlet": {"side": "right", "from": 0, "to": 2}})";
   const Result v = run("map validate " + map.string());
   EXPECT_EQ(v.code, 0) << v.err;
-  EXPECT_NE(v.out.find("warning: no free path from the inlet to the outlet at 5e+02 m cells, "
+  EXPECT_NE(v.err.find("warning: no free path from the inlet to the outlet at 5e+02 m cells, "
                        "which are too coarse for this map: the inlet is 2 m long, shorter than a "
                        "cell, so no cell opens onto it; a check that sees it needs cells of at "
                        "most 2 m (2.5e+11 cells; it takes at most 4e+06)"),
             std::string::npos)
-      << v.out;
-  EXPECT_EQ(v.out.find("the map cannot carry a flow"), std::string::npos) << v.out;
+      << v.err;
+  EXPECT_EQ(v.err.find("the map cannot carry a flow"), std::string::npos) << v.err;
 }
 
 TEST_F(Cli, ImportRosOfTheOfficeSaysWhyNoAirCrossesItAndValidateWarns) {

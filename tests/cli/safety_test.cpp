@@ -85,8 +85,9 @@ class Safety : public plumekit::test::CliTest {
     return rc == 0 ? pid : -1;
   }
   // Waits (up to 30 s) until an entry whose name holds `part` appears under `folder`.
+  // Waits up to 2 minutes: a loaded CI machine can take a while to start a run.
   static bool appears(const fs::path& folder, const std::string& part) {
-    for (int i = 0; i < 600; ++i) {
+    for (int i = 0; i < 2400; ++i) {
       std::error_code ec;
       for (fs::recursive_directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
         if (it->path().filename().string().find(part) != std::string::npos) return true;
