@@ -150,7 +150,7 @@ void report(const nlohmann::ordered_json& summary, const std::string& human) {
   }
 }
 
-void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
+void add_gas_sensor_options(CLI::App* command, world::GasSensorModel& sensor,
                             const std::string& whose) {
   bind_field(command,
              command
@@ -158,7 +158,7 @@ void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
                      "--gas-sensor",
                      [&sensor](const std::string& name) {
                        const double baseline = sensor.baseline;
-                       sensor = dataset::gas_sensor_preset(name);
+                       sensor = world::gas_sensor_preset(name);
                        sensor.baseline = baseline;
                      },
                      whose + " gas sensor: ideal (reads the concentration), catalytic, "
@@ -210,15 +210,14 @@ void add_wind_model_option(CLI::App* command, bool& unsteady) {
 
 // CLI11 runs the callbacks in the order the options were added, so the preset
 // comes first and --occlusion or --wind-model, when given, override it.
-void add_world_options(CLI::App* command, dataset::FilamentOptions& filament) {
+void add_world_options(CLI::App* command, world::FilamentOptions& filament) {
   const bool faithful = filament.occlusion && filament.unsteady_wind,
              thesis = !filament.occlusion && !filament.unsteady_wind;
   bind_field(
       command,
       command
           ->add_option_function<std::string>(
-              "--world",
-              [&filament](const std::string& name) { dataset::set_world(filament, name); },
+              "--world", [&filament](const std::string& name) { world::set_world(filament, name); },
               "Filament world preset: faithful (--occlusion on --wind-model unsteady), "
               "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
               "thesis's figures), or neumann (seed 000's filaments in a laminar wind, from a "

@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/geometry.hpp"
-#include "dataset/filament_model.hpp"
+#include "world/filament_model.hpp"
 
 namespace plumekit::cli {
 
@@ -67,11 +67,11 @@ CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string
 // steady|unsteady (plume.world, plume.occlusion, plume.wind_model;
 // dataset/README.md, "Worlds"): the preset is applied first, so either flag
 // overrides its half of it. For the dataset's plumes and the robot's world alike.
-void add_world_options(CLI::App* command, dataset::FilamentOptions& filament);
+void add_world_options(CLI::App* command, world::FilamentOptions& filament);
 // --gas-sensor NAME and --baseline B (sensor.gas, sensor.baseline): a gas
 // sensor preset (dataset/README.md, "Gas sensors"); `whose` starts the help
 // ("The robot's", "The static sensors'").
-void add_gas_sensor_options(CLI::App* command, dataset::GasSensorModel& sensor,
+void add_gas_sensor_options(CLI::App* command, world::GasSensorModel& sensor,
                             const std::string& whose);
 
 // A spelling kept for one release: `old_flag` sets the same value as

@@ -14,8 +14,6 @@
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/atomic_file.hpp"
-#include "core/map_json.hpp"
-#include "core/map_render.hpp"
 #include "core/npy.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
@@ -26,6 +24,8 @@
 #include "dataset/plume.hpp"
 #include "dataset/random_maps.hpp"
 #include "dataset/reports.hpp"
+#include "map/map_json.hpp"
+#include "map/map_render.hpp"
 
 namespace plumekit::cli {
 

@@ -8,9 +8,9 @@
 #include "cfd/flow_output.hpp"
 #include "cfd/flow_policy.hpp"
 #include "cfd/openfoam_report.hpp"
-#include "core/map_json.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cli {
 

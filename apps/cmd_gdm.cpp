@@ -6,17 +6,17 @@
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/atomic_file.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "core/thread_pool.hpp"
-#include "gdm/kernel_dmv.hpp"
-#include "gdm/map_score.hpp"
-#include "gdm/render.hpp"
-#include "gdm/report.hpp"
-#include "gdm/samples.hpp"
+#include "map/map_json.hpp"
+#include "methods/kernel_dmv.hpp"
+#include "run/gdm_render.hpp"
+#include "run/gdm_report.hpp"
+#include "run/gdm_samples.hpp"
+#include "run/gdm_score.hpp"
 
 namespace plumekit::cli {
 
@@ -28,12 +28,12 @@ struct GdmArgs {
   std::string map, samples, run, out, source, wind, background = "mean";
   bool map_given = false;  // MAP typed: it replaces the map a --run recorded
   int threads = kDefaultThreads;
-  gdm::GdmOptions options;
+  methods::GdmOptions options;
   cfd::FlowOptions flow;
 };
 
 void bind_gdm_options(CLI::App* cmd, GdmArgs& a) {
-  gdm::GdmOptions& o = a.options;
+  methods::GdmOptions& o = a.options;
   bind_field(cmd, cmd->add_option("--map-cell", o.cell, "The gas map's cell, m"), "gdm.cell")
       ->capture_default_str();
   bind_field(cmd,
@@ -64,7 +64,7 @@ void bind_gdm_options(CLI::App* cmd, GdmArgs& a) {
 struct Inputs {
   std::string map_file;
   Map map;
-  std::vector<gdm::Sample> samples;
+  std::vector<methods::Sample> samples;
 };
 
 Inputs read_inputs(const GdmArgs& a) {
@@ -72,33 +72,33 @@ Inputs read_inputs(const GdmArgs& a) {
   if (!a.samples.empty()) {
     in.map_file = a.map;
     in.map = read_map(a.map);
-    in.samples = gdm::read_samples_csv(a.samples, in.map);
+    in.samples = run::read_samples_csv(a.samples, in.map);
     return in;
   }
   const fs::path run = fs::is_directory(a.run) ? fs::path(a.run) / "run.json" : fs::path(a.run);
-  const nlohmann::json j = gdm::parse_run_json(read_file(run), run.string());
+  const nlohmann::json j = run::parse_run_json(read_file(run), run.string());
   in.map_file =
       a.map_given
           ? a.map
-          : gdm::find_run_map(
+          : run::find_run_map(
                 j, run, {data_dir() / "maps", data_dir() / "test-maps", data_dir() / "floors"})
                 .string();
   in.map = read_map(in.map_file);
-  in.samples = gdm::run_samples(j, run.string(), in.map);
+  in.samples = run::run_samples(j, run.string(), in.map);
   return in;
 }
 
 // The maps, on --threads, with a progress bar (on a terminal) for long work.
-gdm::GdmMaps make_maps(const Inputs& in, const GdmArgs& a) {
+methods::GdmMaps make_maps(const Inputs& in, const GdmArgs& a) {
   ThreadPool pool(a.threads);
   ProgressBar bar("gdm");
-  gdm::GdmWork work{&pool, [&](double done) { bar.update(done); }};
-  gdm::GdmMaps maps = gdm::kernel_dmv(in.map, in.samples, a.options, work);
+  methods::GdmWork work{&pool, [&](double done) { bar.update(done); }};
+  methods::GdmMaps maps = methods::kernel_dmv(in.map, in.samples, a.options, work);
   bar.finish();
   return maps;
 }
 
-void write_maps(const fs::path& dir, const gdm::GdmMaps& maps) {
+void write_maps(const fs::path& dir, const methods::GdmMaps& maps) {
   const GridShape& g = maps.mean.shape;
   const std::vector<std::size_t> shape{static_cast<std::size_t>(g.ny),
                                        static_cast<std::size_t>(g.nx)};
@@ -138,30 +138,31 @@ void add_gdm_commands(CLI::App& app) {
   cmd->callback([a, cmd] {
     if (a->samples.empty() && a->run.empty())
       throw OptionError("gdm.samples", "give --samples CSV or --run DIR");
-    a->options.background = gdm::parse_background(a->background);
+    a->options.background = methods::parse_background(a->background);
     a->options.validate();
     check_count("gdm.threads", a->threads, 0, 1024, "0 means one per core");
     a->map_given = cmd->get_option("MAP")->count() > 0;
     const Inputs in = read_inputs(*a);
-    gdm::GdmRun r{in.map_file, a->samples.empty() ? a->run : a->samples, a->out, a->options, {},
+    run::GdmRun r{in.map_file, a->samples.empty() ? a->run : a->samples, a->out, a->options, {},
                   {}};
     if (!a->source.empty()) r.source = in.map.from_frame(parse_point(a->source, "--source"));
-    gdm::check_grid_memory(in.map, a->options.cell,
-                           gdm::kGdmBytesPerCell + (r.source ? gdm::kScoreBytesPerCell : 0.0));
+    methods::check_grid_memory(
+        in.map, a->options.cell,
+        methods::kGdmBytesPerCell + (r.source ? run::kScoreBytesPerCell : 0.0));
     OutputDirectory out(a->out, "gdm", {in.map_file, a->samples, a->run, a->wind});
-    const gdm::GdmMaps maps = make_maps(in, *a);
+    const methods::GdmMaps maps = make_maps(in, *a);
     if (r.source) {
       const cfd::WindField wind = a->wind.empty() ? cfd::solve_wind(in.map, a->flow).flow.wind
                                                   : cfd::read_wind(a->wind, in.map);
-      r.score = gdm::score_mean(maps.mean,
-                                gdm::true_mean_plume(in.map, wind, *r.source, maps.mean.shape));
+      r.score = run::score_mean(maps.mean,
+                                run::true_mean_plume(in.map, wind, *r.source, maps.mean.shape));
     }
     const fs::path& dir = out.open();
     write_maps(dir, maps);
-    write_png(gdm::draw_gdm(in.map, maps, in.samples, r.source,
-                            gdm::method_name(a->options, in.samples), ""),
+    write_png(run::draw_gdm(in.map, maps, in.samples, r.source,
+                            run::method_name(a->options, in.samples), ""),
               dir / "gdm.png");
-    const Report rep = gdm::gdm_report(in.map, maps, r);
+    const Report rep = run::gdm_report(in.map, maps, r);
     write_file_atomic(dir / "gdm.json", rep.json.dump(2) + "\n");
     out.commit();
     report(rep.json, rep.text + "\nwrote " + a->out +

@@ -7,15 +7,15 @@
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
-#include "core/connectivity.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/map_render.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
-#include "core/rasterize.hpp"
-#include "core/ros_import.hpp"
-#include "core/ros_import_report.hpp"
+#include "map/connectivity.hpp"
+#include "map/map_json.hpp"
+#include "map/map_render.hpp"
+#include "map/rasterize.hpp"
+#include "map/ros_import.hpp"
+#include "map/ros_import_report.hpp"
 
 namespace plumekit::cli {
 

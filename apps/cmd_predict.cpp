@@ -11,11 +11,11 @@
 #include "apps/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/map_render.hpp"
 #include "core/npy.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
+#include "map/map_json.hpp"
+#include "map/map_render.hpp"
 #include "surrogate/plume_network.hpp"
 #include "surrogate/prediction_report.hpp"
 

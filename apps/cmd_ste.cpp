@@ -1,7 +1,7 @@
 // plumekit localize / evaluate / demo: source term estimation with a
 // simulated robot (ste/), one run, a whole evaluation, or the README's demo.
-// Each flag is bound to a field of the library's options (ste::SteOptions,
-// ste::EvaluationOptions, ste::DemoOptions), whose defaults and checks are
+// Each flag is bound to a field of the library's options (run::SteOptions,
+// run::EvaluationOptions, run::DemoOptions), whose defaults and checks are
 // the only ones; this file binds and prints.
 #include <chrono>
 #include <filesystem>
@@ -17,16 +17,16 @@
 #include "apps/commands.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/atomic_file.hpp"
-#include "core/map_json.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "core/sha256.hpp"
-#include "ste/demo.hpp"
-#include "ste/evaluation.hpp"
-#include "ste/evaluation_parts.hpp"
-#include "ste/report.hpp"
-#include "ste/scenario.hpp"
+#include "map/map_json.hpp"
+#include "run/demo.hpp"
+#include "run/evaluation.hpp"
+#include "run/evaluation_parts.hpp"
+#include "run/report.hpp"
+#include "run/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/plume_network.hpp"
 
@@ -58,21 +58,21 @@ void bind_optional(CLI::App* cmd, const std::string& flag, std::optional<double>
 }
 
 // The plume model, the CNN file, the likelihood: what depends on the model.
-void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
+void add_model_options(CLI::App* cmd, run::SteOptions& o) {
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--plume-model",
-                    [&o](const std::string& s) { o.model = ste::parse_plume_model_kind(s); },
+                    [&o](const std::string& s) { o.model = run::parse_plume_model_kind(s); },
                     "surrogate (the CNN), gaussian or physics")
-                 ->default_str(ste::to_string(o.model)),
+                 ->default_str(to_string(o.model)),
              "ste.model");
   o.model_path = shipped_cnn().string();  // the library leaves where the shipped CNN is to us
   bind_to(cmd, "--cnn", o.model_path, "CNN model file of the surrogate plume model",
           "ste.model_path");
   add_deprecated_alias(cmd, "--model", "--cnn", o.model_path);
-  const ste::LikelihoodOptions s = ste::default_likelihood(ste::PlumeModelKind::Surrogate),
-                               p = ste::default_likelihood(ste::PlumeModelKind::Physics),
-                               g = ste::default_likelihood(ste::PlumeModelKind::Gaussian);
+  const ste::LikelihoodOptions s = run::default_likelihood(run::PlumeModelKind::Surrogate),
+                               p = run::default_likelihood(run::PlumeModelKind::Physics),
+                               g = run::default_likelihood(run::PlumeModelKind::Gaussian);
   bind_optional(cmd, "--sigma-m", o.likelihood.sigma_m,
                 "Model error sigma_M, concentration units (default: " + compact(s.sigma_m) +
                     " for the surrogate, about the shipped model's RMSE on the test maps; " +
@@ -102,7 +102,7 @@ void add_model_options(CLI::App* cmd, ste::SteOptions& o) {
                 "The surrogate's table grid, m: one network run per free cell, each candidate "
                 "source reads the cells around it (default: the source cell, coarser on maps of "
                 "over 100 m^2 free: about " +
-                    compact(ste::kSurrogateTableCells) + " cells)",
+                    compact(run::kSurrogateTableCells) + " cells)",
                 "ste.table_cell");
   bind_to(cmd, "--diffusivity", o.physics.advection_diffusion.diffusivity,
           "Eddy diffusivity of the physics model, m^2/s", "plume.diffusivity");
@@ -142,7 +142,7 @@ double number_or_preset(const std::string& text, const std::string& field,
 }
 
 // The simulated world and the robot's sensors in it.
-void add_robot_world_options(CLI::App* cmd, ste::SteOptions& o) {
+void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
   bind_to(cmd, "--release-rate", o.world.filament.release_rate,
           "The true source's release rate in the world, concentration units * m^2/s (the plume "
           "models' nominal is 1000; --release-scale lets STE estimate another)",
@@ -188,7 +188,7 @@ void add_robot_world_options(CLI::App* cmd, ste::SteOptions& o) {
                       const bool gps = text == "gps";
                       o.world.position_noise_per_fix = gps;
                       o.world.position_noise =
-                          gps ? ste::kGpsPositionNoise
+                          gps ? world::kGpsPositionNoise
                               : number_or_preset(text, "ste.world.position_noise", "metres or gps");
                     },
                     "Std per axis of the position recorded with each sample (stop): metres, or "
@@ -208,8 +208,8 @@ void add_robot_world_options(CLI::App* cmd, ste::SteOptions& o) {
           "ste.world.rotor_disc");
 }
 
-// A team of robots (seed 004 ch. 13; ste/team.hpp).
-void add_team_options(CLI::App* cmd, ste::TeamOptions& t) {
+// A team of robots (seed 004 ch. 13; run/team.hpp).
+void add_team_options(CLI::App* cmd, run::TeamOptions& t) {
   bind_to(cmd, "--robots", t.robots,
           "Robots running STE together in one world (1-64; the thesis's teams: 1-3), started "
           "side by side --separation apart",
@@ -217,18 +217,18 @@ void add_team_options(CLI::App* cmd, ste::TeamOptions& t) {
   bind_field(
       cmd,
       cmd->add_option_function<std::string>(
-             "--team", [&t](const std::string& s) { t.strategy = ste::parse_team_strategy(s); },
+             "--team", [&t](const std::string& s) { t.strategy = run::parse_team_strategy(s); },
              "The team's strategy: individualist (each alone; the first declaration ends "
              "the mission), cooperative (every sample shared), collaborative (shared "
              "samples, virtual samples at teammates' goals, task swaps)")
-          ->default_str(ste::to_string(t.strategy)),
+          ->default_str(to_string(t.strategy)),
       "ste.team.strategy");
   bind_to(cmd, "--separation", t.separation,
           "No robot of a team moves closer than this to a teammate, m", "ste.team.separation");
 }
 
 // The simulated world, the navigation, the stopping rule and the wind.
-void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
+void add_run_options(CLI::App* cmd, run::SteOptions& o) {
   add_robot_world_options(cmd, o);
   bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
           "ste.navigation.alpha");
@@ -244,7 +244,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              "--reward", [&o](const std::string& s) { o.navigation.reward = ste::parse_reward(s); },
              "Candidate score: kl (the thesis's, at the expected source) or expected (the "
              "expected information gain over the posterior's sources)")
-          ->default_str(ste::to_string(o.navigation.reward)),
+          ->default_str(to_string(o.navigation.reward)),
       "ste.navigation.reward");
   bind_field(
       cmd,
@@ -255,7 +255,7 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
              "floor (also goals over the whole reachable floor, taken when one offers more "
              "than twice the moves' expected gain per second of travel and sampling), or auto "
              "(floor on arenas larger than the thesis's 10 x 4 m, lattice on the others)")
-          ->default_str(ste::to_string(o.navigation.candidates)),
+          ->default_str(to_string(o.navigation.candidates)),
       "ste.navigation.candidates");
   bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,
           "Spacing of the floor's goals, m (--candidates floor)", "ste.navigation.floor_spacing");
@@ -276,21 +276,21 @@ void add_run_options(CLI::App* cmd, ste::SteOptions& o) {
   add_team_options(cmd, o.team);
 }
 
-void add_walk_options(CLI::App* cmd, ste::MethodOptions& m);
+void add_walk_options(CLI::App* cmd, run::MethodOptions& m);
 
 // The localization method and the options of the seeds' methods (methods/README.md).
 // With `several` (evaluate), --method also takes a list or "all", which goes there.
-void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
-                        std::vector<ste::MethodKind>* several = nullptr) {
+void add_method_options(CLI::App* cmd, run::MethodOptions& m,
+                        std::vector<run::MethodKind>* several = nullptr) {
   std::string names;
-  for (const std::string& n : ste::method_names())
+  for (const std::string& n : run::method_names())
     names += (names.empty() ? "" : ", ") + n;
   const std::string what =
       " (ste: plumekit's source term estimation; the others are the seeds' plume trackers and "
       "particle filters, methods/README.md)";
-  auto one = [&m](const std::string& s) { m.kind = ste::parse_method_kind(s); };
+  auto one = [&m](const std::string& s) { m.kind = run::parse_method_kind(s); };
   auto list = [&m, several](const std::string& s) {
-    *several = ste::parse_method_list(s);
+    *several = run::parse_method_list(s);
     m.kind = several->front();
   };
   const std::string help =
@@ -300,7 +300,7 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
               : "Localization method: " + names + what;
   CLI::Option* option = several ? cmd->add_option_function<std::string>("--method", list, help)
                                 : cmd->add_option_function<std::string>("--method", one, help);
-  bind_field(cmd, option->default_str(ste::to_string(m.kind)), "ste.method");
+  bind_field(cmd, option->default_str(to_string(m.kind)), "ste.method");
   methods::TrackingOptions& t = m.tracking;
   bind_to(cmd, "--track-step", t.step,
           "Step of the trackers and the particle filter's exploration, m (the seeds': 1)",
@@ -354,7 +354,7 @@ void add_method_options(CLI::App* cmd, ste::MethodOptions& m,
 }
 
 // The options of the APF, Lévy taxis and the local framework.
-void add_walk_options(CLI::App* cmd, ste::MethodOptions& m) {
+void add_walk_options(CLI::App* cmd, run::MethodOptions& m) {
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--apf-weights",
@@ -373,10 +373,10 @@ void add_walk_options(CLI::App* cmd, ste::MethodOptions& m) {
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--apf-locality",
-                    [&m](const std::string& s) { m.apf.locality = gdm::parse_locality(s); },
+                    [&m](const std::string& s) { m.apf.locality = methods::parse_locality(s); },
                     "APF: which of the suggestions to take: none (the best), closest (A) or "
                     "most-suggested (B)")
-                 ->default_str(gdm::to_string(m.apf.locality)),
+                 ->default_str(to_string(m.apf.locality)),
              "apf.locality");
   bind_to(cmd, "--levy-threshold", m.levy.gradient_threshold,
           "Lévy taxis: a change of the reading between stops from which the walk is all "
@@ -390,8 +390,8 @@ void add_walk_options(CLI::App* cmd, ste::MethodOptions& m) {
           "local.map_size");
 }
 
-void add_ste_options(CLI::App* cmd, ste::SteOptions& o,
-                     std::vector<ste::MethodKind>* several_methods = nullptr) {
+void add_ste_options(CLI::App* cmd, run::SteOptions& o,
+                     std::vector<run::MethodKind>* several_methods = nullptr) {
   add_method_options(cmd, o.method, several_methods);
   add_model_options(cmd, o);
   add_run_options(cmd, o);
@@ -412,9 +412,9 @@ void report_run(Report r, const Map& map, const std::optional<Vec2>& requested, 
 }
 
 // The scenario of `localize`, saying what to type when the surrogate does not fit the map.
-ste::Scenario scenario(const Map& map, const ste::SteOptions& options) {
+run::Scenario scenario(const Map& map, const run::SteOptions& options) {
   try {
-    return ste::Scenario(map, options);
+    return run::Scenario(map, options);
   } catch (const surrogate::MapSizeError& e) {
     throw InputError(with_map_size_advice(e.what(), true));
   }
@@ -427,7 +427,7 @@ void add_localize(CLI::App& app) {
   struct Args {
     std::string map, source, start, out;
     std::uint64_t seed = kDefaultSeed;
-    ste::SteOptions ste;
+    run::SteOptions ste;
   };
   auto a = std::make_shared<Args>();
   add_map_argument(cmd, a->map);
@@ -465,20 +465,20 @@ void add_localize(CLI::App& app) {
     if (!a->out.empty())
       out.emplace(a->out, "localize",
                   std::vector<fs::path>{a->map, a->ste.table_cache, a->ste.wind_dir});
-    const ste::Scenario sc = scenario(map, a->ste);
+    const run::Scenario sc = scenario(map, a->ste);
     sc.check_source(source);
-    const std::uint64_t seed = ste::run_seed(a->seed, 0, 0, 0);
-    const Vec2 start = requested
-                           ? sc.check_start(*requested)
-                           : sc.random_start(source, stream_seed(seed, ste::SteStream::Start));
-    const ste::LocalizationResult r = sc.run(source, start, seed);
+    const std::uint64_t seed = world::run_seed(a->seed, 0, 0, 0);
+    const Vec2 start =
+        requested ? sc.check_start(*requested)
+                  : sc.random_start(source, world::stream_seed(seed, world::SteStream::Start));
+    const run::LocalizationResult r = sc.run(source, start, seed);
     // The pictures first, so that the time they take is in the summary's total.
-    ste::RunPictures pictures;
-    if (out) pictures = ste::write_run_pictures(sc, source, r, out->open());
-    Report rep = ste::run_report(sc, source, r, seconds_since(t_start));
+    run::RunPictures pictures;
+    if (out) pictures = run::write_run_pictures(sc, source, r, out->open());
+    Report rep = run::run_report(sc, source, r, seconds_since(t_start));
     ordered_json j{{"ok", true},
                    {"map", provenance_path(a->map)},
-                   {"plume_model", ste::to_string(a->ste.model)},
+                   {"plume_model", to_string(a->ste.model)},
                    {"seed", a->seed}};
     j.update(rep.json);
     rep.json = j;
@@ -504,7 +504,7 @@ void add_localize(CLI::App& app) {
 // of a --shard split must share. Where the output goes, the threads, the table cache and the
 // memory limit change no result; the map folder and the CNN are compared by their files'
 // SHA-256 (map_files_json, cnn_sha256) so that paths may differ between machines.
-ordered_json result_options(const CLI::App* cmd, const ste::EvaluationOptions& eo) {
+ordered_json result_options(const CLI::App* cmd, const run::EvaluationOptions& eo) {
   static const std::set<std::string> not_results{"--out",  "--shard",      "--threads",
                                                  "--json", "--max-memory", "--table-cache",
                                                  "--help", "--map-dir",    "--cnn"};
@@ -514,22 +514,22 @@ ordered_json result_options(const CLI::App* cmd, const ste::EvaluationOptions& e
     if (not_results.count(name) || opt->get_group().empty()) continue;  // "": a hidden alias
     j[name] = opt->count() > 0 ? CLI::detail::join(opt->results(), " ") : opt->get_default_str();
   }
-  if (eo.ste.model == ste::PlumeModelKind::Surrogate)
+  if (eo.ste.model == run::PlumeModelKind::Surrogate)
     j["cnn_sha256"] = sha256_file(eo.ste.model_path);
   return j;
 }
 
 // The part folder of `evaluate --shard K/N`: part.json, runs.csv, timings.csv, and the
 // trajectory pictures of this part's median runs.
-Report write_part(OutputDirectory& dir, const ste::EvaluationResult& res,
-                  const ste::EvaluationOptions& eo, const ste::PartIdentity& id,
+Report write_part(OutputDirectory& dir, const run::EvaluationResult& res,
+                  const run::EvaluationOptions& eo, const run::PartIdentity& id,
                   const fs::path& out) {
-  ste::EvaluationFiles files;
-  files.runs_csv = ste::runs_csv(res);
-  files.timings_csv = ste::timings_csv(res);
+  run::EvaluationFiles files;
+  files.runs_csv = run::runs_csv(res);
+  files.timings_csv = run::timings_csv(res);
   write_file_atomic(dir.open() / "runs.csv", files.runs_csv);
   write_file_atomic(dir.open() / "timings.csv", files.timings_csv);
-  write_file_atomic(dir.open() / ste::kPartFile, ste::part_json(res, eo, id, files).dump(2) + "\n");
+  write_file_atomic(dir.open() / run::kPartFile, run::part_json(res, eo, id, files).dump(2) + "\n");
   dir.commit();
   const std::string part = std::to_string(eo.part_k) + "/" + std::to_string(eo.part_n);
   const ordered_json j{{"ok", true},           {"part", eo.part_k},
@@ -560,11 +560,11 @@ void add_evaluate_merge(CLI::App* evaluate) {
   cmd->callback([a] {
     // Every part is verified before the output folder is touched.
     const std::vector<fs::path> parts(a->parts.begin(), a->parts.end());
-    const ste::MergedEvaluation m = ste::merge_evaluation_parts(parts);
+    const run::MergedEvaluation m = run::merge_evaluation_parts(parts);
     OutputDirectory dir(a->out, "evaluate", parts);
-    ste::write_evaluation_files(dir.open(), m.result, m.files);
+    run::write_evaluation_files(dir.open(), m.result, m.files);
     dir.commit();
-    Report rep = ste::evaluation_report(m.result, m.settings, a->out, false);
+    Report rep = run::evaluation_report(m.result, m.settings, a->out, false);
     rep.json["parts"] = m.parts;
     rep.json["timings"] = m.files.timings;
     report(rep.json, "joined " + std::to_string(m.parts) + " parts\n" + rep.text);
@@ -574,8 +574,8 @@ void add_evaluate_merge(CLI::App* evaluate) {
 struct EvaluateArgs {
   std::string map_dir, out = "out/evaluate";
   bool part = false;
-  ste::EvaluationOptions eval;
-  std::vector<ste::MethodKind> methods;  // --method with several: one world per run
+  run::EvaluationOptions eval;
+  std::vector<run::MethodKind> methods;  // --method with several: one world per run
 };
 
 void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd);
@@ -632,13 +632,13 @@ void add_evaluate(CLI::App& app) {
 // Evaluates the method or methods of `args` and writes each one's folder.
 void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   args.eval.validate();
-  const ste::MapFolder maps = ste::read_map_folder(args.map_dir);
-  const ste::EvaluationOptions& eo = args.eval;
+  const run::MapFolder maps = run::read_map_folder(args.map_dir);
+  const run::EvaluationOptions& eo = args.eval;
   // Several methods: each into OUT/NAME/, exactly what `--method NAME --out OUT/NAME` writes.
-  const std::vector<ste::MethodKind> kinds =
-      args.methods.size() > 1 ? args.methods : std::vector<ste::MethodKind>{eo.ste.method.kind};
+  const std::vector<run::MethodKind> kinds =
+      args.methods.size() > 1 ? args.methods : std::vector<run::MethodKind>{eo.ste.method.kind};
   const bool several = kinds.size() > 1;
-  std::vector<ste::EvaluationOptions> each(kinds.size(), eo);
+  std::vector<run::EvaluationOptions> each(kinds.size(), eo);
   const std::vector<fs::path> inputs{args.map_dir, eo.ste.table_cache, eo.ste.model_path};
   // Several: OUT is one output, checked and locked like any before the work,
   // and written whole, so that no earlier method's results mix with these and
@@ -649,62 +649,61 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   std::vector<std::unique_ptr<OutputDirectory>> dirs;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
     each[m].ste.method.kind = kinds[m];
-    const std::string name = ste::to_string(kinds[m]);
+    const std::string name = to_string(kinds[m]);
     outs.push_back(several ? fs::path(args.out) / name : fs::path(args.out));
     dirs.push_back(std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m],
                                                      "evaluate", inputs));
   }
-  std::vector<ste::AfterMap> pictures;
+  std::vector<run::AfterMap> pictures;
   for (std::size_t m = 0; m < kinds.size(); ++m)
-    pictures.push_back(ste::trajectory_pictures(dirs[m]->open(), maps.picture_names));
+    pictures.push_back(run::trajectory_pictures(dirs[m]->open(), maps.picture_names));
   ProgressBar bar("evaluate");
   const std::string per_run =
       several ? " runs of " + std::to_string(kinds.size()) + " methods" : " runs";
-  const std::vector<ste::EvaluationResult> results = ste::evaluate_methods(
+  const std::vector<run::EvaluationResult> results = run::evaluate_methods(
       maps.maps, eo, kinds,
       [&](int done, int total) {
         bar.update(static_cast<double>(done) / total,
                    std::to_string(done) + "/" + std::to_string(total) + per_run);
       },
-      [&](std::size_t m, const ste::Scenario& sc, const std::vector<ste::RunRecord>& records) {
+      [&](std::size_t m, const run::Scenario& sc, const std::vector<run::RunRecord>& records) {
         pictures[m](sc, records);
       });
   bar.finish();
   std::vector<Report> reports;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    const ste::EvaluationResult& res = results[m];
-    const ordered_json settings = ste::evaluation_settings(each[m], args.map_dir);
+    const run::EvaluationResult& res = results[m];
+    const ordered_json settings = run::evaluation_settings(each[m], args.map_dir);
     if (args.part) {
       ordered_json options = result_options(cmd, each[m]);
-      options["--method"] = ste::to_string(kinds[m]);  // as the part of a single method
-      const ste::PartIdentity id{settings, options, ste::map_files_json(maps)};
+      options["--method"] = to_string(kinds[m]);  // as the part of a single method
+      const run::PartIdentity id{settings, options, run::map_files_json(maps)};
       reports.push_back(write_part(*dirs[m], res, each[m], id, outs[m]));
       continue;
     }
-    Report rep = ste::evaluation_report(res, settings, outs[m]);
-    ste::write_evaluation_files(
+    Report rep = run::evaluation_report(res, settings, outs[m]);
+    run::write_evaluation_files(
         dirs[m]->open(), res,
-        {ste::runs_csv(res), ste::timings_csv(res), rep.json, ste::evaluation_timings(res)});
+        {run::runs_csv(res), run::timings_csv(res), rep.json, run::evaluation_timings(res)});
     dirs[m]->commit();
     // On stdout the times go with the summary (they are apart only in the files).
-    rep.json["timings"] = ste::evaluation_timings(res);
+    rep.json["timings"] = run::evaluation_timings(res);
     reports.push_back(rep);
   }
   if (!several) return report(reports.front().json, reports.front().text);
   whole->commit();
   // One total: the methods ran together, each run's plume simulated once for all of them.
   double wind_s = 0;
-  for (const ste::MapReport& mr : results.front().maps)
+  for (const run::MapReport& mr : results.front().maps)
     wind_s += mr.wind_s;
   ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
   std::string text;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    j["methods"].push_back({{"method", ste::to_string(kinds[m])},
+    j["methods"].push_back({{"method", to_string(kinds[m])},
                             {"model_build_s", results[m].model_build_s()},
                             {"decisions_s", results[m].decisions_s},
                             {"result", reports[m].json}});
-    text +=
-        std::string(m ? "\n\n" : "") + "== " + ste::to_string(kinds[m]) + " ==\n" + reports[m].text;
+    text += std::string(m ? "\n\n" : "") + "== " + to_string(kinds[m]) + " ==\n" + reports[m].text;
   }
   j["wall_s"] = results.front().wall_s;
   j["wind_s"] = wind_s;
@@ -720,7 +719,7 @@ void add_demo(CLI::App& app) {
       "demo", "Localize a gas source on a shipped test map and draw the run (under a minute)");
   struct Args {
     std::string out = "out/demo";
-    ste::DemoOptions demo;
+    run::DemoOptions demo;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--out,-o", a->out,
@@ -733,27 +732,26 @@ void add_demo(CLI::App& app) {
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
     const auto t_start = std::chrono::steady_clock::now();  // the summary accounts for all of it
-    ste::DemoOptions& d = a->demo;
+    run::DemoOptions& d = a->demo;
     const std::string note =
-        cmd->get_option("--plume-model")->count() == 0 ? ste::choose_demo_model(d.ste) : "";
+        cmd->get_option("--plume-model")->count() == 0 ? run::choose_demo_model(d.ste) : "";
     if (!note.empty() && !output().json) std::cerr << note << "\n";
     d.ste.validate();
     const fs::path map_file = data_dir() / "test-maps" / d.map_file;
     const Map map = read_map(map_file);
     OutputDirectory out(a->out, "demo", {map_file});
-    const ste::Scenario sc(map, d.ste);
+    const run::Scenario sc(map, d.ste);
     const Vec2 source = map.sources.at(d.source_index);
     const Vec2 requested = map.from_frame(d.start);
     const Vec2 start = sc.check_start(requested);
-    const ste::LocalizationResult r = sc.run(source, start, ste::run_seed(d.seed, 0, 0, 0));
-    const bool posterior = !ste::write_run_pictures(sc, source, r, out.open()).posterior.empty();
+    const run::LocalizationResult r = sc.run(source, start, world::run_seed(d.seed, 0, 0, 0));
+    const bool posterior = !run::write_run_pictures(sc, source, r, out.open()).posterior.empty();
     out.commit();
     const fs::path traj = fs::path(a->out) / "trajectory.png",
                    post = fs::path(a->out) / "posterior.png";
-    Report rep = ste::run_report(sc, source, r, seconds_since(t_start));
-    ordered_json j{{"ok", true},
-                   {"map", provenance_path(map_file)},
-                   {"plume_model", ste::to_string(d.ste.model)}};
+    Report rep = run::run_report(sc, source, r, seconds_since(t_start));
+    ordered_json j{
+        {"ok", true}, {"map", provenance_path(map_file)}, {"plume_model", to_string(d.ste.model)}};
     if (!note.empty()) j["note"] = note;
     j.update(rep.json);
     j["out"] = {{"trajectory", traj.string()}};

@@ -1,5 +1,5 @@
 // `plumekit localize tunnel` and `plumekit evaluate tunnel`: seed 004's 3-D systems in its wind
-// tunnel (ste/tunnel_run.hpp): the 3-D STE, the 3-D surge-spiral and the 2-D surge-cast baseline.
+// tunnel (run/tunnel_run.hpp): the 3-D STE, the 3-D surge-spiral and the 2-D surge-cast baseline.
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -9,15 +9,15 @@
 #include "apps/commands.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_render.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "core/seed.hpp"
 #include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
-#include "ste/tunnel_report.hpp"
-#include "ste/tunnel_run.hpp"
+#include "map/map_render.hpp"
+#include "run/tunnel_report.hpp"
+#include "run/tunnel_run.hpp"
 
 namespace plumekit::cli {
 
@@ -39,14 +39,14 @@ Vec3 parse_point3(const std::string& text, const std::string& flag) {
 }
 
 // --tunnel L,W,H
-void set_tunnel_size(dataset::Tunnel& t, const std::string& text) {
+void set_tunnel_size(world::Tunnel& t, const std::string& text) {
   const Vec3 s = parse_point3(text, "--tunnel");
   t.length = s.x, t.width = s.y, t.height = s.z;
 }
 
 // The flags both commands share: the tunnel, its wind and plume, the sensor, the methods' main
 // settings (ste/README.md, "The 3-D tunnel").
-void add_tunnel_options(CLI::App* cmd, ste::TunnelOptions& o) {
+void add_tunnel_options(CLI::App* cmd, run::TunnelOptions& o) {
   CLI::Option* size =
       cmd->add_option_function<std::string>(
              "--tunnel", [&o](const std::string& s) { set_tunnel_size(o.tunnel, s); },
@@ -120,7 +120,7 @@ void add_localize_tunnel(CLI::App* localize) {
   struct Args {
     std::string method = "ste-3d", source, start, out;
     std::uint64_t seed = kDefaultSeed;
-    ste::TunnelOptions options;
+    run::TunnelOptions options;
   };
   auto a = std::make_shared<Args>();
   bind_field(cmd, cmd->add_option("--method", a->method, method_help()), "tunnel.method")
@@ -138,25 +138,25 @@ void add_localize_tunnel(CLI::App* localize) {
   add_tunnel_options(cmd, a->options);
   add_common_flags(cmd);
   cmd->callback([a] {
-    ste::TunnelOptions& o = a->options;
-    o.method = ste::parse_tunnel_method(a->method);
+    run::TunnelOptions& o = a->options;
+    o.method = run::parse_tunnel_method(a->method);
     o.validate();
     std::optional<Vec3> source, start;
     if (!a->source.empty()) source = parse_point3(a->source, "--source");
     if (!a->start.empty()) start = parse_point3(a->start, "--start");
     std::optional<OutputDirectory> out;
     if (!a->out.empty()) out.emplace(a->out, "localize");
-    const ste::TunnelRun run = ste::localize_tunnel(o, source, start, a->seed);
+    const run::TunnelRun run = run::localize_tunnel(o, source, start, a->seed);
     ordered_json j{{"ok", true}, {"seed", a->seed}};
-    j["settings"] = ste::tunnel_settings(o);
-    j.update(ste::tunnel_run_json(run, false));
-    std::string text = ste::tunnel_run_line(run);
+    j["settings"] = run::tunnel_settings(o);
+    j.update(run::tunnel_run_json(run, false));
+    std::string text = run::tunnel_run_line(run);
     if (out) {
       const fs::path& dir = out->open();
       ordered_json file = j;
-      file.update(ste::tunnel_run_json(run, true));
+      file.update(run::tunnel_run_json(run, true));
       write_file_atomic(dir / "run.json", file.dump(2) + "\n");
-      write_png(ste::draw_tunnel_run(run, o.tunnel, text), dir / "trajectory.png");
+      write_png(run::draw_tunnel_run(run, o.tunnel, text), dir / "trajectory.png");
       out->commit();
       const fs::path d = a->out;
       j["out"] = {{"run", (d / "run.json").string()},
@@ -168,10 +168,10 @@ void add_localize_tunnel(CLI::App* localize) {
 }
 
 // The run a picture of an evaluation shows: STE's of median error, a tracker's of median time.
-std::size_t median_run(const std::vector<ste::TunnelRun>& runs) {
+std::size_t median_run(const std::vector<run::TunnelRun>& runs) {
   std::vector<double> key;
-  for (const ste::TunnelRun& r : runs)
-    key.push_back(ste::is_tracker(r.method) ? r.mission_s : r.error_m());
+  for (const run::TunnelRun& r : runs)
+    key.push_back(run::is_tracker(r.method) ? r.mission_s : r.error_m());
   const double m = median(key);
   std::size_t best = 0;
   for (std::size_t k = 1; k < key.size(); ++k)
@@ -186,7 +186,7 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
     std::string methods = "ste-3d", out = "out/evaluate-tunnel";
     int runs = 10, threads = kDefaultThreads;
     std::uint64_t seed = kDefaultSeed;
-    ste::TunnelOptions options;
+    run::TunnelOptions options;
   };
   auto a = std::make_shared<Args>();
   bind_field(
@@ -207,9 +207,9 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
   add_tunnel_options(cmd, a->options);
   add_common_flags(cmd);
   cmd->callback([a] {
-    const std::vector<ste::TunnelMethod> methods = ste::parse_tunnel_methods(a->methods);
+    const std::vector<run::TunnelMethod> methods = run::parse_tunnel_methods(a->methods);
     const bool several = methods.size() > 1;
-    std::vector<ste::TunnelOptions> each(methods.size(), a->options);
+    std::vector<run::TunnelOptions> each(methods.size(), a->options);
     for (std::size_t m = 0; m < methods.size(); ++m) {
       each[m].method = methods[m];
       each[m].validate();
@@ -220,7 +220,7 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
     std::vector<fs::path> outs;
     std::vector<std::unique_ptr<OutputDirectory>> dirs;
     for (std::size_t m = 0; m < methods.size(); ++m) {
-      const std::string name = ste::to_string(methods[m]);
+      const std::string name = to_string(methods[m]);
       outs.push_back(several ? fs::path(a->out) / name : fs::path(a->out));
       dirs.push_back(
           std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m], "evaluate"));
@@ -231,26 +231,26 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
     const int total = a->runs * static_cast<int>(methods.size());
     for (std::size_t m = 0; m < methods.size(); ++m) {
       const int before = a->runs * static_cast<int>(m);
-      const std::vector<ste::TunnelRun> runs =
-          ste::evaluate_tunnel(each[m], a->runs, a->seed, a->threads, [&](int done, int) {
+      const std::vector<run::TunnelRun> runs =
+          run::evaluate_tunnel(each[m], a->runs, a->seed, a->threads, [&](int done, int) {
             bar.update(static_cast<double>(before + done) / total,
                        std::to_string(before + done) + "/" + std::to_string(total) + " runs");
           });
-      ordered_json summary{{"method", ste::to_string(methods[m])}, {"seed", a->seed}};
-      summary["settings"] = ste::tunnel_settings(each[m]);
-      summary.update(ste::tunnel_summary(runs));
+      ordered_json summary{{"method", to_string(methods[m])}, {"seed", a->seed}};
+      summary["settings"] = run::tunnel_settings(each[m]);
+      summary.update(run::tunnel_summary(runs));
       const fs::path& dir = dirs[m]->open();
-      write_file_atomic(dir / "runs.csv", ste::tunnel_runs_csv(runs));
+      write_file_atomic(dir / "runs.csv", run::tunnel_runs_csv(runs));
       write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
-      const std::string name = ste::to_string(methods[m]);
-      write_png(ste::draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) +
+      const std::string name = to_string(methods[m]);
+      write_png(run::draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) +
                                                     " runs, wind " + compact(each[m].tunnel.speed) +
                                                     " m/s"),
                 dir / "boxplot.png");
       const std::size_t k = median_run(runs);
-      write_png(ste::draw_tunnel_run(
+      write_png(run::draw_tunnel_run(
                     runs[k], each[m].tunnel,
-                    "run " + std::to_string(k) + " (median): " + ste::tunnel_run_line(runs[k])),
+                    "run " + std::to_string(k) + " (median): " + run::tunnel_run_line(runs[k])),
                 dir / "trajectory-median.png");
       dirs[m]->commit();
       j["methods"].push_back(summary);

@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "cfd/flow_policy.hpp"
-#include "core/map_json.hpp"
 #include "core/statistics.hpp"
+#include "map/map_json.hpp"
 
 namespace {
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "cfd/gap_closing.hpp"
-#include "core/map_json.hpp"
-#include "core/rasterize.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
 
 namespace {
 

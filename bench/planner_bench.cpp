@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/random.hpp"
 #include "core/statistics.hpp"
+#include "map/map_json.hpp"
 #include "planner/ompl_planner.hpp"
 #include "planner/vg_planner.hpp"
 

@@ -14,9 +14,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/map_json.hpp"
 #include "core/statistics.hpp"
-#include "ste/scenario.hpp"
+#include "map/map_json.hpp"
+#include "run/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/network.hpp"
 #include "surrogate/plume_network.hpp"
@@ -39,13 +39,13 @@ double process_cpu() {
 }
 
 // Median compute per decision step over runs from a few sources.
-double step_median(const ste::Scenario& sc, int runs) {
+double step_median(const run::Scenario& sc, int runs) {
   std::vector<double> steps;
   for (int r = 0; r < runs; ++r) {
     const Vec2 source = sc.map().sources[r % sc.map().sources.size()];
-    const std::uint64_t seed = ste::run_seed(1, 0, r, 0);
-    const ste::LocalizationResult res = sc.run(source, sc.random_start(source, seed), seed);
-    for (const ste::Step& s : res.steps)
+    const std::uint64_t seed = world::run_seed(1, 0, r, 0);
+    const run::LocalizationResult res = sc.run(source, sc.random_start(source, seed), seed);
+    for (const run::Step& s : res.steps)
       steps.push_back(s.compute_s);
   }
   return median(steps);
@@ -84,15 +84,15 @@ int main(int argc, char** argv) {
 
   // Decision steps, one thread each.
   const int runs = 5;
-  for (ste::PlumeModelKind kind : {ste::PlumeModelKind::Surrogate, ste::PlumeModelKind::Physics,
-                                   ste::PlumeModelKind::Gaussian}) {
-    ste::SteOptions o;
+  for (run::PlumeModelKind kind : {run::PlumeModelKind::Surrogate, run::PlumeModelKind::Physics,
+                                   run::PlumeModelKind::Gaussian}) {
+    run::SteOptions o;
     o.model = kind;
-    o.model_path = model.string();  // the likelihood follows the model (ste::default_likelihood)
+    o.model_path = model.string();  // the likelihood follows the model (run::default_likelihood)
     o.threads = 2;
-    const ste::Scenario sc(map, o);
+    const run::Scenario sc(map, o);
     std::printf("%-9s median compute per decision step %.2f ms CPU (%d runs; model build %.2f s)\n",
-                ste::to_string(kind), 1000 * step_median(sc, runs), runs, sc.model_build_s());
+                to_string(kind), 1000 * step_median(sc, runs), runs, sc.model_build_s());
   }
 
   // The baseline: no table, the CNN run for every candidate source at each step
@@ -105,10 +105,10 @@ int main(int argc, char** argv) {
   const double c0 = process_cpu();
   plume.predict_batch(batch);
   const double per_pass = (process_cpu() - c0) / batch.size();  // CPU: load-independent
-  ste::SteOptions o;
-  o.model = ste::PlumeModelKind::Surrogate;
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Surrogate;
   o.model_path = model.string();
-  const ste::Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   const double with_table = step_median(sc, runs);
   // Each step updates with one sample and scores up to 8 candidates: each
   // needs every cell's reading there, which one forward pass per cell gives

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/map_json.hpp"
 #include "core/statistics.hpp"
-#include "ste/scenario.hpp"
+#include "map/map_json.hpp"
+#include "run/scenario.hpp"
 
 using namespace plumekit;
 namespace fs = std::filesystem;
@@ -22,18 +22,18 @@ namespace fs = std::filesystem;
 namespace {
 
 // Every robot's decision steps over `runs` runs from the map's sources in turn.
-double step_median(const Map& map, const ste::SteOptions& o, int runs, std::size_t& steps_out) {
-  const ste::Scenario sc(map, o);
+double step_median(const Map& map, const run::SteOptions& o, int runs, std::size_t& steps_out) {
+  const run::Scenario sc(map, o);
   std::vector<double> steps;
   for (int r = 0; r < runs; ++r) {
     const Vec2 source = map.sources[r % map.sources.size()];
-    const std::uint64_t seed = ste::run_seed(1, 0, r, 0);
-    const ste::LocalizationResult res = sc.run(source, sc.random_start(source, seed), seed);
+    const std::uint64_t seed = world::run_seed(1, 0, r, 0);
+    const run::LocalizationResult res = sc.run(source, sc.random_start(source, seed), seed);
     if (res.team.empty())
-      for (const ste::Step& s : res.steps)
+      for (const run::Step& s : res.steps)
         steps.push_back(s.compute_s);
-    for (const ste::TeamRobot& t : res.team)
-      for (const ste::Step& s : t.steps)
+    for (const run::TeamRobot& t : res.team)
+      for (const run::Step& s : t.steps)
         steps.push_back(s.compute_s);
   }
   steps_out = steps.size();
@@ -49,23 +49,23 @@ int main(int argc, char** argv) {
   const Map map = read_map(map_file);
   std::printf("map %s, %d runs per team, median CPU per robot decision step\n", map.name.c_str(),
               runs);
-  for (ste::PlumeModelKind model : {ste::PlumeModelKind::Physics, ste::PlumeModelKind::Gaussian}) {
-    ste::SteOptions base;
+  for (run::PlumeModelKind model : {run::PlumeModelKind::Physics, run::PlumeModelKind::Gaussian}) {
+    run::SteOptions base;
     base.model = model;
-    dataset::set_world(base.world.filament, "thesis");
+    world::set_world(base.world.filament, "thesis");
     std::size_t steps = 0;
     const double alone = step_median(map, base, runs, steps);
-    std::printf("%-8s 1 robot          %8.2f ms  (baseline, %zu steps)\n", ste::to_string(model),
+    std::printf("%-8s 1 robot          %8.2f ms  (baseline, %zu steps)\n", to_string(model),
                 1000 * alone, steps);
-    for (ste::TeamStrategy s : {ste::TeamStrategy::Individualist, ste::TeamStrategy::Cooperative,
-                                ste::TeamStrategy::Collaborative})
+    for (run::TeamStrategy s : {run::TeamStrategy::Individualist, run::TeamStrategy::Cooperative,
+                                run::TeamStrategy::Collaborative})
       for (int robots : {2, 3}) {
-        ste::SteOptions o = base;
+        run::SteOptions o = base;
         o.team.robots = robots;
         o.team.strategy = s;
         const double t = step_median(map, o, runs, steps);
-        std::printf("%-8s %-13s %d %8.2f ms  %5.2fx the baseline (%zu steps)\n",
-                    ste::to_string(model), ste::to_string(s), robots, 1000 * t, t / alone, steps);
+        std::printf("%-8s %-13s %d %8.2f ms  %5.2fx the baseline (%zu steps)\n", to_string(model),
+                    to_string(s), robots, 1000 * t, t / alone, steps);
       }
   }
 }

@@ -8,7 +8,7 @@
 
 #include "cfd/flow_policy.hpp"
 #include "cfd/flow_solver.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

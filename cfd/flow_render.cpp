@@ -8,7 +8,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "core/map_render.hpp"
+#include "map/map_render.hpp"
 
 namespace plumekit::cfd {
 

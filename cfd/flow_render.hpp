@@ -3,8 +3,8 @@
 #include <opencv2/core.hpp>
 
 #include "cfd/wind_field.hpp"
-#include "core/map.hpp"
-#include "core/map_render.hpp"
+#include "map/map.hpp"
+#include "map/map_render.hpp"
 
 namespace plumekit::cfd {
 

@@ -16,7 +16,7 @@
 #include "cfd/thin_walls.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/error.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

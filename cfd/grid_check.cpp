@@ -4,11 +4,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/connectivity.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
-#include "core/rasterize.hpp"
+#include "map/connectivity.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::cfd {
 

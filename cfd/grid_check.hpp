@@ -10,7 +10,7 @@
 #include "cfd/gap_closing.hpp"
 #include "cfd/options.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "cfd/flow_solver.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

@@ -5,8 +5,8 @@
 
 #include "cfd/grid_check.hpp"
 #include "core/error.hpp"
-#include "core/map.hpp"
 #include "core/option_check.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

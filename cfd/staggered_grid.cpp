@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "cfd/gap_closing.hpp"
-#include "core/rasterize.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::cfd {
 

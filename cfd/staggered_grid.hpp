@@ -15,7 +15,7 @@
 
 #include "cfd/options.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

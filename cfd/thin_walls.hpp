@@ -1,6 +1,6 @@
 #pragma once
 // Thin walls: obstacles that the flow grid lets air through. A cell is solid
-// when its centre lies in an obstacle (core/rasterize.hpp), so a wall thinner
+// when its centre lies in an obstacle (map/rasterize.hpp), so a wall thinner
 // than a cell may hold no centre where it crosses a row or column of cells:
 // the two free cells on either side of it then share a face and the flow runs
 // through the wall, while the planner and the plume models still see it. It is
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

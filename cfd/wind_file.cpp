@@ -6,9 +6,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 

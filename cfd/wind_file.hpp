@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cfd/wind_field.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::cfd {
 

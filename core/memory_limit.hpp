@@ -17,7 +17,7 @@
 // - Options: every options struct has validate(), which checks each field
 //   (core/option_check.hpp) and throws OptionError naming the field's dotted
 //   name ("flow.cell"); library messages never name a CLI flag.
-// - map validation of huge arenas: map_grid_check() (core/rasterize.hpp)
+// - map validation of huge arenas: map_grid_check() (map/rasterize.hpp)
 //   coarsens its grid so that it never holds more than a bounded number of
 //   cells, and says which cell size it used.
 #include <string>

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/random.hpp"
-#include "core/rasterize.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::dataset {
 

@@ -11,8 +11,8 @@
 #include <random>
 #include <string>
 
-#include "core/map.hpp"
 #include "dataset/random_maps.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::dataset {
 

@@ -5,11 +5,11 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
 #include "dataset/features.hpp"
 #include "dataset/manifest.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::dataset {
 

@@ -13,8 +13,8 @@
 
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
 #include "dataset/shard.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::dataset {
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/rasterize.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::dataset {
 

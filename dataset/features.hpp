@@ -13,7 +13,7 @@
 
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::dataset {
 

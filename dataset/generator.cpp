@@ -13,7 +13,6 @@
 #include "cfd/grid_check.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
@@ -24,6 +23,7 @@
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
 #include "dataset/wind_cache.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::dataset {
 

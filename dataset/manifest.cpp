@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <random>
 
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::dataset {
 
@@ -43,8 +43,8 @@ double drawn_inlet_speed(const DatasetOptions& o, int index, int redraw) {
 }
 
 nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
-  const FilamentOptions& f = o.plume.filament;
-  const AdvectionDiffusionOptions& a = o.plume.advection_diffusion;
+  const world::FilamentOptions& f = o.plume.filament;
+  const cfd::AdvectionDiffusionOptions& a = o.plume.advection_diffusion;
   nlohmann::ordered_json j;
   j["seed"] = o.seed;
   j["seeding"] =
@@ -108,7 +108,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                                 {"scheme", "finite volumes on the flow grid, Patankar hybrid"}};
   }
   // Only when not the ideal sensor at 0, so that manifests written before the option still match.
-  const GasSensorModel& g = o.plume.sensor;
+  const world::GasSensorModel& g = o.plume.sensor;
   if (!g.ideal() || g.baseline != 0.0)
     j["sensor"] = {{"gas", g.name},
                    {"baseline", g.baseline},
@@ -118,7 +118,7 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                    {"decay_s", g.decay_s},
                    {"dead_rise_s", g.dead_rise_s},
                    {"dead_decay_s", g.dead_decay_s},
-                   {"warmup_s", sensor_warmup_s(g)}};
+                   {"warmup_s", world::sensor_warmup_s(g)}};
   return j;
 }
 

@@ -4,8 +4,8 @@
 #include <map>
 #include <sstream>
 
-#include "core/map_json.hpp"
 #include "core/option_check.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::dataset {
 

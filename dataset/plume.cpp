@@ -47,7 +47,7 @@ MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape
     : map_(map), wind_(wind), sensors_(sensors), options_(options) {
   options.validate();
   if (options.model == PlumeSimulator::AdvectionDiffusion) {
-    ad_ = std::make_unique<AdvectionDiffusion>(wind, options.advection_diffusion);
+    ad_ = std::make_unique<cfd::AdvectionDiffusion>(wind, options.advection_diffusion);
     resampler_ = std::make_unique<GridResampler>(ad_->shape(), ad_->solid_mask(), sensors_);
     in_obstacle_.resize(sensors_.size());
     for (std::size_t k = 0; k < sensors_.size(); ++k)
@@ -68,17 +68,17 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
       t.mean.values[k] = in_obstacle_[k] ? 0.0 : t.mean.values[k] + options_.sensor.baseline;
     return t;
   }
-  SensorRecord r =
-      simulate_filaments(map_, wind_, source, sensors_, options_.filament, seed, options_.sensor);
+  world::SensorRecord r = world::simulate_filaments(map_, wind_, source, sensors_,
+                                                    options_.filament, seed, options_.sensor);
   t.mean = std::move(r.mean);
   t.std = std::move(r.std);
   t.filament = r.summary;
   return t;
 }
 
-AdvectionDiffusionOptions filament_world_mean() {
-  AdvectionDiffusionOptions o;
-  o.decay_rate = 1.0 / FilamentOptions{}.lifetime_s();
+cfd::AdvectionDiffusionOptions filament_world_mean() {
+  cfd::AdvectionDiffusionOptions o;
+  o.decay_rate = 1.0 / world::FilamentOptions{}.lifetime_s();
   return o;
 }
 

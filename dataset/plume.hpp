@@ -9,14 +9,14 @@
 #include <utility>
 #include <vector>
 
+#include "cfd/advection_diffusion.hpp"
 #include "cfd/options.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
 #include "core/resample.hpp"
-#include "dataset/advection_diffusion.hpp"
-#include "dataset/filament_model.hpp"
-#include "dataset/gas_sensor.hpp"
+#include "map/map.hpp"
+#include "world/filament_model.hpp"
+#include "world/gas_sensor.hpp"
 
 namespace plumekit::dataset {
 
@@ -30,12 +30,12 @@ std::vector<std::pair<std::string, PlumeSimulator>> plume_simulator_names();
 
 struct PlumeOptions {
   PlumeSimulator model = PlumeSimulator::Filament;  // plume.model
-  FilamentOptions filament;
-  AdvectionDiffusionOptions advection_diffusion;
+  world::FilamentOptions filament;
+  cfd::AdvectionDiffusionOptions advection_diffusion;
   // The static sensors' gas sensor (sensor.gas, sensor.baseline; issue 18):
   // the targets are then what that sensor reads (filament model; the
   // advection-diffusion plume is steady, so it only takes a baseline).
-  GasSensorModel sensor;
+  world::GasSensorModel sensor;
   // Validates both models' options (the unused model's too: a dataset's
   // parameters.json records them all). OptionError naming the field.
   void validate() const;
@@ -50,7 +50,7 @@ struct PlumeOptions {
 // to its meander): the dataset's diffusivity and release rate, and the world's decay, 1 over a
 // filament's lifetime (FilamentOptions::lifetime_s, 28 s): what ste's physics model predicts and
 // what gas maps are scored against.
-AdvectionDiffusionOptions filament_world_mean();
+cfd::AdvectionDiffusionOptions filament_world_mean();
 
 // A source must lie in the map's free space: OptionError naming plume.source otherwise.
 void check_source(const Map& map, Vec2 source);
@@ -58,7 +58,7 @@ void check_source(const Map& map, Vec2 source);
 struct PlumeTargets {
   Grid<double> mean;
   Grid<double> std;  // all zero for advection-diffusion: its plume is the exact mean
-  FilamentSummary filament;
+  world::FilamentSummary filament;
 };
 
 class MapPlumes {
@@ -76,7 +76,7 @@ class MapPlumes {
   const cfd::WindField& wind_;
   GridShape sensors_;
   PlumeOptions options_;
-  std::unique_ptr<AdvectionDiffusion> ad_;
+  std::unique_ptr<cfd::AdvectionDiffusion> ad_;
   // Advection-diffusion only, per map: the sensor weights, and which
   // sensors lie inside obstacles.
   std::unique_ptr<GridResampler> resampler_;

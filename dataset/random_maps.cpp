@@ -9,12 +9,12 @@
 #include "cfd/options.hpp"
 #include "cfd/staggered_grid.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/option_check.hpp"
-#include "core/rasterize.hpp"
 #include "core/seed.hpp"
 #include "dataset/building_maps.hpp"
 #include "dataset/features.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::dataset {
 

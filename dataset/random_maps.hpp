@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::dataset {
 

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "cfd/flow_solver.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::dataset {
 

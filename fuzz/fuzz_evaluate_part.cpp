@@ -22,7 +22,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
-#include "ste/evaluation_part_reader.hpp"
+#include "run/evaluation_part_reader.hpp"
 
 namespace fs = std::filesystem;
 namespace ste = plumekit::ste;
@@ -68,19 +68,19 @@ std::size_t records(const std::string& csv) {
 
 void read_folder(std::string_view part, std::string_view runs, std::string_view timings) {
   const fs::path& dir = scratch_dir();
-  write_file(dir / ste::kPartFile, part);
+  write_file(dir / run::kPartFile, part);
   write_file(dir / "runs.csv", runs);
   write_file(dir / "timings.csv", timings);
   try {
-    const ste::EvaluationPart p = ste::read_evaluation_part(dir);
+    const run::EvaluationPart p = run::read_evaluation_part(dir);
     if (p.n < 1 || p.k < 0 || p.k >= p.n) std::abort();
     const std::size_t maps = p.j.at("maps").size();
-    for (const ste::RunRecord& r : p.runs)
+    for (const run::RunRecord& r : p.runs)
       if (r.map_index < 0 || static_cast<std::size_t>(r.map_index) >= maps) std::abort();
     if (records(p.runs_csv.header + p.runs_csv.body) != p.runs.size() + 1 ||
         records(p.timings_csv.header + p.timings_csv.body) != p.runs.size() + 1)
       std::abort();
-    ste::check_part_coverage({p});
+    run::check_part_coverage({p});
   } catch (const plumekit::InputError&) {
   }
 }
@@ -98,7 +98,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!j.is_object()) return 0;
   j["files"] = {{"runs.csv", plumekit::sha256_hex(runs)},
                 {"timings.csv", plumekit::sha256_hex(timings)}};
-  j["sha256"] = ste::part_body_sha256(j);
+  j["sha256"] = run::part_body_sha256(j);
   read_folder(j.dump(2), runs, timings);
   return 0;
 }

@@ -10,17 +10,17 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "gdm/kernel_dmv.hpp"
-#include "gdm/samples.hpp"
+#include "map/map.hpp"
+#include "methods/kernel_dmv.hpp"
+#include "run/gdm_samples.hpp"
 
 namespace {
 
-void check_maps(const plumekit::Map& map, const std::vector<plumekit::gdm::Sample>& samples) {
-  plumekit::gdm::GdmOptions o;
+void check_maps(const plumekit::Map& map, const std::vector<plumekit::methods::Sample>& samples) {
+  plumekit::methods::GdmOptions o;
   o.cell = 0.5;  // 20 x 8 cells: quick
   o.wind_stretch = 0.6;
-  const plumekit::gdm::GdmMaps m = plumekit::gdm::kernel_dmv(map, samples, o);
+  const plumekit::methods::GdmMaps m = plumekit::methods::kernel_dmv(map, samples, o);
   for (const auto* g : {&m.mean, &m.variance, &m.confidence, &m.weight})
     for (double v : g->values)
       if (!std::isfinite(v)) std::abort();
@@ -35,26 +35,26 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   map.frame.origin = {-1.0, 2.0};
   nlohmann::json run;
   try {
-    run = gdm::parse_run_json(text, "run.json");
+    run = run::parse_run_json(text, "run.json");
   } catch (const plumekit::InputError&) {
     return 0;
   }
   try {
     // A folder that does not exist: only a recorded absolute path can be found.
     const std::filesystem::path found =
-        gdm::find_run_map(run, "/nonexistent-plumekit-fuzz/run/run.json", {});
+        run::find_run_map(run, "/nonexistent-plumekit-fuzz/run/run.json", {});
     if (!std::filesystem::is_regular_file(found)) std::abort();
   } catch (const plumekit::InputError&) {
   }
-  std::vector<gdm::Sample> samples;
+  std::vector<methods::Sample> samples;
   try {
-    samples = gdm::run_samples(run, "run.json", map);
+    samples = run::run_samples(run, "run.json", map);
   } catch (const plumekit::InputError&) {
     return 0;
   }
   if (samples.empty()) std::abort();
   for (const auto& s : samples)
-    if (!gdm::sample_fault(map, s).column.empty() || !s.wind) std::abort();
+    if (!methods::sample_fault(map, s).column.empty() || !s.wind) std::abort();
   check_maps(map, samples);
   return 0;
 }

@@ -8,17 +8,17 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "gdm/kernel_dmv.hpp"
-#include "gdm/samples.hpp"
+#include "map/map.hpp"
+#include "methods/kernel_dmv.hpp"
+#include "run/gdm_samples.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   plumekit::Map map = plumekit::default_arena(10.0, 4.0);
   map.frame.origin = {-1.0, 2.0};
-  std::vector<plumekit::gdm::Sample> samples;
+  std::vector<plumekit::methods::Sample> samples;
   try {
-    samples = plumekit::gdm::parse_samples_csv(text, "fuzz.csv", map);
+    samples = plumekit::run::parse_samples_csv(text, "fuzz.csv", map);
   } catch (const plumekit::InputError&) {
     return 0;
   }
@@ -28,12 +28,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       std::abort();
     if (s.wind.has_value() != samples[0].wind.has_value()) std::abort();
     if (s.wind && (!std::isfinite(s.wind->x) || !std::isfinite(s.wind->y))) std::abort();
-    if (!plumekit::gdm::sample_fault(map, s).column.empty()) std::abort();
+    if (!plumekit::methods::sample_fault(map, s).column.empty()) std::abort();
   }
-  plumekit::gdm::GdmOptions o;
+  plumekit::methods::GdmOptions o;
   o.cell = 0.5;  // 20 x 8 cells: quick
   o.wind_stretch = 0.6;
-  const plumekit::gdm::GdmMaps m = plumekit::gdm::kernel_dmv(map, samples, o);
+  const plumekit::methods::GdmMaps m = plumekit::methods::kernel_dmv(map, samples, o);
   for (const auto* g : {&m.mean, &m.variance, &m.confidence, &m.weight})
     for (double v : g->values)
       if (!std::isfinite(v)) std::abort();

@@ -16,8 +16,8 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/ros_import.hpp"
+#include "map/map_json.hpp"
+#include "map/ros_import.hpp"
 
 namespace fs = std::filesystem;
 

@@ -2,7 +2,7 @@
 // One interface for every gas source localization method, in the spirit of OMPL's planners: a
 // method reads what the robot's sensors report at a stop (gas, wind, pose, time) and says where
 // to sample next and, when it has one, where it believes the source is. The runner
-// (ste/method_run.hpp) drives it against the simulated world, plans the paths between stops
+// (run/method_run.hpp) drives it against the simulated world, plans the paths between stops
 // around obstacles, and scores it; a robot driven by a user's own code can drive it the same way.
 //
 // Conventions: arena frame (metres, x right, y up); a wind vector points where the air moves to
@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::methods {
 

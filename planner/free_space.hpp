@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 #include "planner/inflation.hpp"
 
 namespace plumekit::planner {

@@ -3,8 +3,8 @@
 // keep out of (tinted), the inflated boundary, the path and its ends.
 #include <string>
 
-#include "core/map.hpp"
-#include "core/map_render.hpp"
+#include "map/map.hpp"
+#include "map/map_render.hpp"
 #include "planner/free_space.hpp"
 #include "planner/planner.hpp"
 

@@ -3,8 +3,8 @@
 // planned path. A moved start is added by the caller, in the form every
 // command that moves a start shares; a moved goal is reported here alike
 // ("goal_moved": {"requested", "used"}, absent when not moved).
-#include "core/map.hpp"
 #include "core/report.hpp"
+#include "map/map.hpp"
 #include "planner/planner.hpp"
 
 namespace plumekit::planner {

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::planner {
 

@@ -4,12 +4,13 @@
 
 #include "core/error.hpp"
 
-#include "gdm/kernel_dmv.hpp"
-#include "gdm/map_score.hpp"
+#include "methods/gdm_estimates.hpp"
+#include "methods/kernel_dmv.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/options.hpp"
 #include "python/wind.hpp"
+#include "run/gdm_score.hpp"
 
 namespace plumekit::python {
 
@@ -35,8 +36,8 @@ std::vector<double> row_values(const py::handle& row, std::size_t n) {
 }
 
 // Rows (x, y, reading) or (x, y, reading, u, v), map frame, as a sequence or an [n, 3|5] array;
-// each sample keeps gdm::sample_fault's rules.
-std::vector<gdm::Sample> samples_from(const Map& map, const py::handle& rows) {
+// each sample keeps methods::sample_fault's rules.
+std::vector<methods::Sample> samples_from(const Map& map, const py::handle& rows) {
   if (py::isinstance<py::array>(rows)) {
     const auto a = py::reinterpret_borrow<py::array>(rows);
     if (a.ndim() != 2 || (a.shape(1) != 3 && a.shape(1) != 5)) {
@@ -52,15 +53,15 @@ std::vector<gdm::Sample> samples_from(const Map& map, const py::handle& rows) {
     throw InputError(std::string(kRowsExpected) + "; got " +
                      std::string(py::str(py::type::of(rows).attr("__name__"))));
   }
-  std::vector<gdm::Sample> out;
+  std::vector<methods::Sample> out;
   std::size_t n = 0;
   for (const py::handle row : rows) {
     const std::vector<double> v = row_values(row, n);
-    gdm::Sample s;
+    methods::Sample s;
     s.position = map.from_frame({v[0], v[1]});
     s.reading = v[2];
     if (v.size() == 5) s.wind = Vec2{v[3], v[4]};
-    if (const gdm::SampleFault f = gdm::sample_fault(map, s); !f.column.empty())
+    if (const methods::SampleFault f = methods::sample_fault(map, s); !f.column.empty())
       throw InputError("samples: row " + std::to_string(n) + ", " + f.column + ": " + f.reason);
     out.push_back(s);
     ++n;
@@ -71,44 +72,48 @@ std::vector<gdm::Sample> samples_from(const Map& map, const py::handle& rows) {
 }  // namespace
 
 void bind_gdm(py::module_& m) {
-  py::class_<gdm::GdmOptions> c(m, "GdmOptions", "Options of gas_map() (gdm/README.md)");
+  py::class_<methods::GdmOptions> c(m, "GdmOptions", "Options of gas_map() (gdm/README.md)");
   c.def(py::init<>());
-  PK_FIELD(c, gdm::GdmOptions, cell, "The map's cell, m");
-  PK_FIELD(c, gdm::GdmOptions, kernel_width, "The kernel's sigma, m");
-  PK_FIELD(c, gdm::GdmOptions, sigma_omega, "Confidence scale");
-  PK_FIELD(c, gdm::GdmOptions, wind_stretch, "gamma, s: 0 gives DM+V, more gives DM+V/W");
-  PK_FIELD(c, gdm::GdmOptions, cutoff, "Kernels reach this many widths");
+  PK_FIELD(c, methods::GdmOptions, cell, "The map's cell, m");
+  PK_FIELD(c, methods::GdmOptions, kernel_width, "The kernel's sigma, m");
+  PK_FIELD(c, methods::GdmOptions, sigma_omega, "Confidence scale");
+  PK_FIELD(c, methods::GdmOptions, wind_stretch, "gamma, s: 0 gives DM+V, more gives DM+V/W");
+  PK_FIELD(c, methods::GdmOptions, cutoff, "Kernels reach this many widths");
   c.def_property(
       "background",
-      [](const gdm::GdmOptions& o) { return std::string(gdm::to_string(o.background)); },
-      [](gdm::GdmOptions& o, const std::string& v) { o.background = gdm::parse_background(v); },
+      [](const methods::GdmOptions& o) { return std::string(to_string(o.background)); },
+      [](methods::GdmOptions& o, const std::string& v) {
+        o.background = methods::parse_background(v);
+      },
       "'mean' or 'min' of the readings, where no reading reaches");
   m.def(
       "gas_map",
       [](const Map& map, const py::handle& rows, const py::object& source, const py::object& wind,
          const py::object& options, const py::kwargs& kw) {
-        const auto o = options_from<gdm::GdmOptions>(options, kw, "gas_map");
-        const std::vector<gdm::Sample> samples = samples_from(map, rows);
+        const auto o = options_from<methods::GdmOptions>(options, kw, "gas_map");
+        const std::vector<methods::Sample> samples = samples_from(map, rows);
         std::optional<Vec2> s;
         if (!source.is_none()) s = map.from_frame(to_point(source, "source"));
         const Wind* w = wind.is_none() ? nullptr : &wind.cast<const Wind&>();
         if (s && !w) throw py::type_error("gas_map: scoring against a source needs wind=");
-        if (s) gdm::check_grid_memory(map, o.cell, gdm::kGdmBytesPerCell + gdm::kScoreBytesPerCell);
-        gdm::GdmMaps maps;
-        std::optional<gdm::MapScore> score;
+        if (s)
+          methods::check_grid_memory(map, o.cell,
+                                     methods::kGdmBytesPerCell + run::kScoreBytesPerCell);
+        methods::GdmMaps maps;
+        std::optional<run::MapScore> score;
         {
           ReleasedGil release;
-          maps = gdm::kernel_dmv(map, samples, o);
+          maps = methods::kernel_dmv(map, samples, o);
           if (s)
-            score = gdm::score_mean(maps.mean,
-                                    gdm::true_mean_plume(map, w->field, *s, maps.mean.shape));
+            score = run::score_mean(maps.mean,
+                                    run::true_mean_plume(map, w->field, *s, maps.mean.shape));
         }
         py::dict out;
         out["mean"] = grid_array(maps.mean.values, maps.mean.shape);
         out["variance"] = grid_array(maps.variance.values, maps.variance.shape);
         out["confidence"] = grid_array(maps.confidence.values, maps.confidence.shape);
         py::list estimates;
-        for (const gdm::SourceEstimate& e : gdm::source_estimates(maps))
+        for (const methods::SourceEstimate& e : methods::source_estimates(maps))
           estimates.append(py::make_tuple(e.name, from_point(map.to_frame(e.position))));
         out["source_estimates"] = estimates;
         out["samples_outside_arena"] = maps.outside_arena;

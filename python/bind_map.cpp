@@ -2,11 +2,11 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "core/map_json.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
-#include "core/rasterize.hpp"
-#include "core/ros_import.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
+#include "map/ros_import.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 

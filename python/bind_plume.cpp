@@ -13,77 +13,77 @@ namespace plumekit::python {
 
 namespace {
 
-using dataset::AdvectionDiffusionOptions;
-using dataset::FilamentOptions;
-using dataset::GasSensorModel;
+using cfd::AdvectionDiffusionOptions;
 using dataset::PlumeOptions;
+using world::FilamentOptions;
+using world::GasSensorModel;
 
 // The preset the two world fields match: "faithful", "thesis", or "custom".
-std::string world_name(const FilamentOptions& o) {
+std::string world_name(const world::FilamentOptions& o) {
   if (o.occlusion && o.unsteady_wind) return "faithful";
   return !o.occlusion && !o.unsteady_wind ? "thesis" : "custom";
 }
 
 void bind_filament_options(py::module_& m) {
-  py::class_<FilamentOptions> c(m, "FilamentOptions",
-                                "The filament plume (dataset/README.md, \"Options\")");
+  py::class_<world::FilamentOptions> c(m, "FilamentOptions",
+                                       "The filament plume (dataset/README.md, \"Options\")");
   c.def(py::init<>());
-  PK_FIELD(c, FilamentOptions, release_per_second, "Filaments released per second");
-  PK_FIELD(c, FilamentOptions, release_rate, "Release rate per metre of depth");
-  PK_FIELD(c, FilamentOptions, initial_radius, "Filament radius at release, m");
-  PK_FIELD(c, FilamentOptions, source_radius,
+  PK_FIELD(c, world::FilamentOptions, release_per_second, "Filaments released per second");
+  PK_FIELD(c, world::FilamentOptions, release_rate, "Release rate per metre of depth");
+  PK_FIELD(c, world::FilamentOptions, initial_radius, "Filament radius at release, m");
+  PK_FIELD(c, world::FilamentOptions, source_radius,
            "Radius of the source disc the filaments leave from, m (0: its point)");
-  PK_FIELD(c, FilamentOptions, growth, "dR^2/dt, m^2/s");
-  PK_FIELD(c, FilamentOptions, sigma_walk, "Random walk, m/sqrt(s)");
-  PK_FIELD(c, FilamentOptions, meander_speed, "Meander std per axis, m/s");
-  PK_FIELD(c, FilamentOptions, meander_time, "Meander correlation time, s");
-  PK_FIELD(c, FilamentOptions, dt, "Integration step, s");
-  PK_FIELD(c, FilamentOptions, max_radius, "Filaments wider than this are dropped, m");
-  PK_FIELD(c, FilamentOptions, steady_window, "Spin-up steadiness window, s");
-  PK_FIELD(c, FilamentOptions, steady_tolerance, "Spin-up steadiness tolerance");
-  PK_FIELD(c, FilamentOptions, min_spinup, "Shortest spin-up, s");
-  PK_FIELD(c, FilamentOptions, max_spinup, "Longest spin-up, s");
-  PK_FIELD(c, FilamentOptions, record_s, "Recording length, s");
-  PK_FIELD(c, FilamentOptions, sample_rate, "Sensor reads per second");
-  PK_FIELD(c, FilamentOptions, cutoff, "Kernel cutoff, in radii");
-  PK_FIELD(c, FilamentOptions, occlusion, "Gas stops at walls (line of sight)");
-  PK_FIELD(c, FilamentOptions, unsteady_wind, "Meander as a field fading at walls");
-  PK_FIELD(c, FilamentOptions, meander_length, "Meander wavelength, m");
-  PK_FIELD(c, FilamentOptions, meander_wall_layer, "Meander fade distance at walls, m");
+  PK_FIELD(c, world::FilamentOptions, growth, "dR^2/dt, m^2/s");
+  PK_FIELD(c, world::FilamentOptions, sigma_walk, "Random walk, m/sqrt(s)");
+  PK_FIELD(c, world::FilamentOptions, meander_speed, "Meander std per axis, m/s");
+  PK_FIELD(c, world::FilamentOptions, meander_time, "Meander correlation time, s");
+  PK_FIELD(c, world::FilamentOptions, dt, "Integration step, s");
+  PK_FIELD(c, world::FilamentOptions, max_radius, "Filaments wider than this are dropped, m");
+  PK_FIELD(c, world::FilamentOptions, steady_window, "Spin-up steadiness window, s");
+  PK_FIELD(c, world::FilamentOptions, steady_tolerance, "Spin-up steadiness tolerance");
+  PK_FIELD(c, world::FilamentOptions, min_spinup, "Shortest spin-up, s");
+  PK_FIELD(c, world::FilamentOptions, max_spinup, "Longest spin-up, s");
+  PK_FIELD(c, world::FilamentOptions, record_s, "Recording length, s");
+  PK_FIELD(c, world::FilamentOptions, sample_rate, "Sensor reads per second");
+  PK_FIELD(c, world::FilamentOptions, cutoff, "Kernel cutoff, in radii");
+  PK_FIELD(c, world::FilamentOptions, occlusion, "Gas stops at walls (line of sight)");
+  PK_FIELD(c, world::FilamentOptions, unsteady_wind, "Meander as a field fading at walls");
+  PK_FIELD(c, world::FilamentOptions, meander_length, "Meander wavelength, m");
+  PK_FIELD(c, world::FilamentOptions, meander_wall_layer, "Meander fade distance at walls, m");
   c.def_property(
       "world", &world_name,
-      [](FilamentOptions& o, const std::string& name) { dataset::set_world(o, name); },
+      [](world::FilamentOptions& o, const std::string& name) { world::set_world(o, name); },
       "World preset: 'faithful' (occlusion, unsteady wind) or 'thesis' (neither)");
 }
 
 void bind_sensor(py::module_& m) {
-  py::class_<GasSensorModel> c(m, "GasSensorModel",
-                               "A gas sensor's response (dataset/README.md, \"Gas sensors\")");
+  py::class_<world::GasSensorModel> c(
+      m, "GasSensorModel", "A gas sensor's response (dataset/README.md, \"Gas sensors\")");
   c.def(py::init<>());
-  PK_FIELD(c, GasSensorModel, rise_s, "Rise time constant, s");
-  PK_FIELD(c, GasSensorModel, rise_slow_s, "Slow rise time constant (infrared), s");
-  PK_FIELD(c, GasSensorModel, fast_share, "Share of the rise with rise_s");
-  PK_FIELD(c, GasSensorModel, decay_s, "Decay time constant, s");
-  PK_FIELD(c, GasSensorModel, dead_rise_s, "Dead time before a rise, s");
-  PK_FIELD(c, GasSensorModel, dead_decay_s, "Dead time before a decay, s");
-  PK_FIELD(c, GasSensorModel, baseline, "Added to every reading");
-  PK_FIELD(c, GasSensorModel, name, "The preset it came from");
+  PK_FIELD(c, world::GasSensorModel, rise_s, "Rise time constant, s");
+  PK_FIELD(c, world::GasSensorModel, rise_slow_s, "Slow rise time constant (infrared), s");
+  PK_FIELD(c, world::GasSensorModel, fast_share, "Share of the rise with rise_s");
+  PK_FIELD(c, world::GasSensorModel, decay_s, "Decay time constant, s");
+  PK_FIELD(c, world::GasSensorModel, dead_rise_s, "Dead time before a rise, s");
+  PK_FIELD(c, world::GasSensorModel, dead_decay_s, "Dead time before a decay, s");
+  PK_FIELD(c, world::GasSensorModel, baseline, "Added to every reading");
+  PK_FIELD(c, world::GasSensorModel, name, "The preset it came from");
   static const std::string doc = [] {
     std::string names;
-    for (const auto& n : dataset::gas_sensor_preset_names())
+    for (const auto& n : world::gas_sensor_preset_names())
       names += (names.empty() ? "" : ", ") + n;
     return "A gas sensor preset: " + names;
   }();
-  m.def("gas_sensor", &dataset::gas_sensor_preset, py::arg("name"), doc.c_str());
+  m.def("gas_sensor", &world::gas_sensor_preset, py::arg("name"), doc.c_str());
 }
 
 void bind_plume_options(py::module_& m) {
-  py::class_<AdvectionDiffusionOptions> ad(m, "AdvectionDiffusionOptions",
-                                           "The steady advection-diffusion plume");
+  py::class_<cfd::AdvectionDiffusionOptions> ad(m, "AdvectionDiffusionOptions",
+                                                "The steady advection-diffusion plume");
   ad.def(py::init<>());
-  PK_FIELD(ad, AdvectionDiffusionOptions, diffusivity, "Eddy diffusivity, m^2/s");
-  PK_FIELD(ad, AdvectionDiffusionOptions, release_rate, "Release rate per metre of depth");
-  PK_FIELD(ad, AdvectionDiffusionOptions, decay_rate, "First-order decay rate, 1/s");
+  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, diffusivity, "Eddy diffusivity, m^2/s");
+  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, release_rate, "Release rate per metre of depth");
+  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, decay_rate, "First-order decay rate, 1/s");
 
   py::class_<PlumeOptions> c(m, "PlumeOptions", "Options of plume() (`plumekit plume`)");
   c.def(py::init<>());
@@ -99,7 +99,7 @@ void bind_plume_options(py::module_& m) {
       &PlumeOptions::set_release_rate, "Both models' release rate");
   c.def_property(
       "world", [](const PlumeOptions& o) { return world_name(o.filament); },
-      [](PlumeOptions& o, const std::string& name) { dataset::set_world(o.filament, name); },
+      [](PlumeOptions& o, const std::string& name) { world::set_world(o.filament, name); },
       "World preset of the filament plume: 'faithful' or 'thesis'");
   c.def_property(
       "gas_sensor", [](const PlumeOptions& o) { return o.sensor.name; },

@@ -13,29 +13,29 @@
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/wind.hpp"
-#include "ste/evaluation.hpp"
+#include "run/evaluation.hpp"
+#include "run/report.hpp"
+#include "run/scenario.hpp"
 #include "ste/mission.hpp"
-#include "ste/report.hpp"
-#include "ste/scenario.hpp"
 
 namespace plumekit::python {
 
 namespace {
 
-using ste::Scenario;
-using ste::SteOptions;
+using run::Scenario;
+using run::SteOptions;
 
 // The CLI's defaults the library leaves to its caller: the shipped CNN.
-SteOptions ste_options(const py::object& base, const py::kwargs& kw, const std::string& what) {
-  SteOptions o = options_from<SteOptions>(base, kw, what);
-  if (o.model == ste::PlumeModelKind::Surrogate && o.model_path.empty())
+run::SteOptions ste_options(const py::object& base, const py::kwargs& kw, const std::string& what) {
+  run::SteOptions o = options_from<run::SteOptions>(base, kw, what);
+  if (o.model == run::PlumeModelKind::Surrogate && o.model_path.empty())
     o.model_path = (std::filesystem::path(data_dir()) / "models" / "plume-unet.pkcnn").string();
   return o;
 }
 
-std::shared_ptr<Scenario> make_scenario(const Map& map, const SteOptions& o) {
+std::shared_ptr<run::Scenario> make_scenario(const Map& map, const run::SteOptions& o) {
   ReleasedGil release;
-  return std::make_shared<Scenario>(map, o);
+  return std::make_shared<run::Scenario>(map, o);
 }
 
 py::dict posterior_dict(const Map& map, const ste::Posterior& p) {
@@ -51,23 +51,23 @@ py::dict posterior_dict(const Map& map, const ste::Posterior& p) {
 }
 
 // The run `localize` makes: the CLI's seeds, so that the same seed gives the same run.
-py::object run_once(const Scenario& sc, const py::handle& source, const py::object& start,
+py::object run_once(const run::Scenario& sc, const py::handle& source, const py::object& start,
                     std::uint64_t seed) {
   const Map& map = sc.map();
   const Vec2 s = sc.check_source(map.from_frame(to_point(source, "source")));
-  const std::uint64_t run = ste::run_seed(seed, 0, 0, 0);
+  const std::uint64_t run = world::run_seed(seed, 0, 0, 0);
   // Python objects are read before the GIL is released.
   const std::optional<Vec2> requested =
       start.is_none() ? std::nullopt
                       : std::optional<Vec2>(map.from_frame(to_point(start, "start")));
-  ste::LocalizationResult r;
+  run::LocalizationResult r;
   nlohmann::ordered_json j;
   {
     ReleasedGil release;
     const Vec2 a = requested ? sc.check_start(*requested)
-                             : sc.random_start(s, stream_seed(run, ste::SteStream::Start));
+                             : sc.random_start(s, world::stream_seed(run, world::SteStream::Start));
     r = sc.run(s, a, run);
-    j = ste::run_report(sc, s, r).json;
+    j = run::run_report(sc, s, r).json;
   }
   return from_json(j);
 }
@@ -83,7 +83,7 @@ Vec2 sample_point(const Map& map, const py::handle& p, const std::string& field)
 
 // A mission on a scenario, kept alive together.
 struct PyMission {
-  std::shared_ptr<const Scenario> scenario;
+  std::shared_ptr<const run::Scenario> scenario;
   std::unique_ptr<ste::Estimator> estimator;
   std::unique_ptr<ste::Mission> mission;
 };
@@ -163,7 +163,7 @@ void bind_mission(py::module_& m) {
 }
 
 void bind_scenario(py::module_& m) {
-  py::class_<Scenario, std::shared_ptr<Scenario>>(
+  py::class_<run::Scenario, std::shared_ptr<run::Scenario>>(
       m, "Scenario",
       "What STE needs for one map, built once: the wind, the plume model, the planner. Keyword "
       "arguments set SteOptions fields.")
@@ -171,10 +171,10 @@ void bind_scenario(py::module_& m) {
              return make_scenario(map, ste_options(options, kw, "Scenario"));
            }),
            py::arg("map"), py::arg("options") = py::none())
-      .def_property_readonly("map", [](const Scenario& sc) { return sc.map(); })
+      .def_property_readonly("map", [](const run::Scenario& sc) { return sc.map(); })
       .def_property_readonly(
           "wind",
-          [](const Scenario& sc) {
+          [](const run::Scenario& sc) {
             auto w = std::make_shared<Wind>();
             w->map = std::make_shared<const Map>(sc.map());
             w->field = sc.wind();
@@ -186,10 +186,10 @@ void bind_scenario(py::module_& m) {
            "One simulated localization (`plumekit localize --json`'s summary as a dict)")
       .def(
           "mission",
-          [](std::shared_ptr<Scenario> sc, std::uint64_t seed) {
+          [](std::shared_ptr<run::Scenario> sc, std::uint64_t seed) {
             auto pm = std::make_unique<PyMission>();
             pm->scenario = sc;
-            pm->estimator = sc->make_estimator(ste::run_seed(seed, 0, 0, 0));
+            pm->estimator = sc->make_estimator(world::run_seed(seed, 0, 0, 0));
             pm->mission = std::make_unique<ste::Mission>(*pm->estimator, sc->planner(),
                                                          sc->navigator(), sc->options().stop);
             return pm;
@@ -205,13 +205,13 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   std::filesystem::path dir;
   if (py::isinstance<py::str>(maps) || py::hasattr(maps, "__fspath__")) {
     dir = py::str(maps).cast<std::string>();
-    list = ste::read_map_folder(dir).maps;
+    list = run::read_map_folder(dir).maps;
   } else {
     list = maps.cast<std::vector<Map>>();
   }
   // method=[...] (a list): several methods in one plume per run (ste/README.md, "Several methods
   // in one world"), a summary each.
-  std::vector<ste::MethodKind> kinds;
+  std::vector<run::MethodKind> kinds;
   py::dict rest;
   for (const auto& item : kw) {
     const std::string key = py::str(item.first);
@@ -219,12 +219,12 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
       std::string names;
       for (const py::handle& name : item.second)
         names += (names.empty() ? "" : ",") + py::str(name).cast<std::string>();
-      kinds = ste::parse_method_list(names);
+      kinds = run::parse_method_list(names);
     } else {
       rest[item.first] = item.second;
     }
   }
-  ste::EvaluationOptions eo;
+  run::EvaluationOptions eo;
   eo.ste = ste_options(options, py::reinterpret_borrow<py::kwargs>(rest), "evaluate");
   eo.runs = runs;
   eo.seed = seed;
@@ -242,17 +242,17 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   {
     ReleasedGil release;
-    const std::vector<ste::EvaluationResult> results =
-        ste::evaluate_methods(list, eo, kinds, report);
+    const std::vector<run::EvaluationResult> results =
+        run::evaluate_methods(list, eo, kinds, report);
     for (std::size_t m = 0; m < kinds.size(); ++m) {
-      ste::EvaluationOptions each = eo;
+      run::EvaluationOptions each = eo;
       each.ste.method.kind = kinds[m];
-      nlohmann::ordered_json one = ste::evaluation_report(results[m], each, dir, "").json;
-      one["timings"] = ste::evaluation_timings(results[m]);
+      nlohmann::ordered_json one = run::evaluation_report(results[m], each, dir, "").json;
+      one["timings"] = run::evaluation_timings(results[m]);
       if (!several)
         j = one;
       else
-        j[ste::to_string(kinds[m])] = one;
+        j[to_string(kinds[m])] = one;
     }
   }
   return from_json(j);

@@ -1,4 +1,4 @@
-// The 3-D wind tunnel (`plumekit localize tunnel`, `evaluate tunnel`; ste/tunnel_run.hpp): seed
+// The 3-D wind tunnel (`plumekit localize tunnel`, `evaluate tunnel`; run/tunnel_run.hpp): seed
 // 004's 3-D STE, surge-spiral and 2-D surge-cast, with the command's options as keywords.
 #include <pybind11/stl.h>
 
@@ -10,8 +10,8 @@
 #include "core/seed.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
-#include "ste/tunnel_report.hpp"
-#include "ste/tunnel_run.hpp"
+#include "run/tunnel_report.hpp"
+#include "run/tunnel_run.hpp"
 
 namespace plumekit::python {
 
@@ -25,11 +25,11 @@ Vec3 to_point3(const std::vector<double>& v, const char* what) {
 }
 
 // The command's flags, in the library's fields.
-ste::TunnelOptions tunnel_options(const std::string& method, const std::vector<double>& tunnel,
+run::TunnelOptions tunnel_options(const std::string& method, const std::vector<double>& tunnel,
                                   double wind_speed, double release_rate, double threshold,
                                   double time_limit, double noise, double sigma_rel) {
-  ste::TunnelOptions o;
-  o.method = ste::parse_tunnel_method(method);
+  run::TunnelOptions o;
+  o.method = run::parse_tunnel_method(method);
   const Vec3 size = to_point3(tunnel, "tunnel");
   o.tunnel.length = size.x, o.tunnel.width = size.y, o.tunnel.height = size.z;
   o.tunnel.speed = wind_speed;
@@ -51,7 +51,7 @@ void bind_tunnel(py::module_& m) {
          const std::optional<std::vector<double>>& start, std::uint64_t seed,
          const std::vector<double>& tunnel, double wind_speed, double release_rate,
          double threshold, double time_limit, double noise, double sigma_rel) {
-        const ste::TunnelOptions o = tunnel_options(method, tunnel, wind_speed, release_rate,
+        const run::TunnelOptions o = tunnel_options(method, tunnel, wind_speed, release_rate,
                                                     threshold, time_limit, noise, sigma_rel);
         std::optional<Vec3> src, from;
         if (source) src = to_point3(*source, "source");
@@ -59,7 +59,7 @@ void bind_tunnel(py::module_& m) {
         nlohmann::ordered_json j;
         {
           ReleasedGil release;
-          j = ste::tunnel_run_json(ste::localize_tunnel(o, src, from, seed), true);
+          j = run::tunnel_run_json(run::localize_tunnel(o, src, from, seed), true);
         }
         return from_json(j);
       },
@@ -76,12 +76,12 @@ void bind_tunnel(py::module_& m) {
       [](const std::string& method, int runs, std::uint64_t seed, int threads,
          const std::vector<double>& tunnel, double wind_speed, double release_rate,
          double threshold, double time_limit, double noise, double sigma_rel) {
-        const ste::TunnelOptions o = tunnel_options(method, tunnel, wind_speed, release_rate,
+        const run::TunnelOptions o = tunnel_options(method, tunnel, wind_speed, release_rate,
                                                     threshold, time_limit, noise, sigma_rel);
         nlohmann::ordered_json j;
         {
           ReleasedGil release;
-          j = ste::tunnel_summary(ste::evaluate_tunnel(o, runs, seed, threads));
+          j = run::tunnel_summary(run::evaluate_tunnel(o, runs, seed, threads));
         }
         return from_json(j);
       },

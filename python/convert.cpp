@@ -27,9 +27,9 @@ nlohmann::json to_json(const py::handle& value) {
   return nlohmann::json::parse(text);
 }
 
-void set_gas_sensor(dataset::GasSensorModel& sensor, const std::string& name) {
+void set_gas_sensor(world::GasSensorModel& sensor, const std::string& name) {
   const double baseline = sensor.baseline;
-  sensor = dataset::gas_sensor_preset(name);
+  sensor = world::gas_sensor_preset(name);
   sensor.baseline = baseline;
 }
 

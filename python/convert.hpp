@@ -10,7 +10,7 @@
 
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
-#include "dataset/gas_sensor.hpp"
+#include "world/gas_sensor.hpp"
 
 namespace plumekit::python {
 
@@ -40,9 +40,9 @@ py::array_t<T> grid_view(const std::vector<T>& values, int rows, int cols, py::h
   return a;
 }
 
-// Replaces `sensor` by the named preset (dataset::gas_sensor_preset), keeping its baseline, as the
+// Replaces `sensor` by the named preset (world::gas_sensor_preset), keeping its baseline, as the
 // command line's --gas-sensor does.
-void set_gas_sensor(dataset::GasSensorModel& sensor, const std::string& name);
+void set_gas_sensor(world::GasSensorModel& sensor, const std::string& name);
 
 // Sets each keyword argument as an attribute of `options` (a bound options object): a dict value
 // sets the nested options object's attributes in turn. TypeError for a name the options do not

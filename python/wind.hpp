@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cfd/wind_field.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::python {
 

@@ -13,7 +13,7 @@
 
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::ste {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "ste/localizer.hpp"
+#include "ste/stop_rule.hpp"
 
 namespace plumekit::ste {
 

@@ -22,7 +22,7 @@ class Mission {
   // A sample: the mean reading `value` recorded at `p` (arena frame). Updates the posterior and
   // the stop rule; returns the posterior. InputError for a point or value that is not finite.
   const Posterior& add(Vec2 p, double value);
-  // The same after teammates' samples `shared` (ste/team.hpp: cooperative teams share every
+  // The same after teammates' samples `shared` (run/team.hpp: cooperative teams share every
   // sample), which are added first, in order, with one posterior update for all. The sample
   // budget (max_samples) counts this robot's own samples only: the thesis's per-robot timeout.
   struct Sample {

@@ -173,4 +173,44 @@ Decision Navigator::decide_on_lattice(Vec2 robot, const Estimator& estimator,
   return d;
 }
 
+const char* to_string(NavigationOptions::Reward reward) {
+  return reward == NavigationOptions::Reward::Kl ? "kl" : "expected";
+}
+
+NavigationOptions::Reward parse_reward(const std::string& name) {
+  if (name == "kl") return NavigationOptions::Reward::Kl;
+  if (name == "expected") return NavigationOptions::Reward::ExpectedGain;
+  throw OptionError("ste.navigation.reward", "unknown reward '" + name + "' (kl or expected)");
+}
+
+const char* to_string(NavigationOptions::Candidates candidates) {
+  switch (candidates) {
+    case NavigationOptions::Candidates::Lattice:
+      return "lattice";
+    case NavigationOptions::Candidates::Floor:
+      return "floor";
+    case NavigationOptions::Candidates::Auto:
+      return "auto";
+  }
+  return "?";
+}
+
+NavigationOptions::Candidates parse_candidates(const std::string& name) {
+  if (name == "lattice") return NavigationOptions::Candidates::Lattice;
+  if (name == "floor") return NavigationOptions::Candidates::Floor;
+  if (name == "auto") return NavigationOptions::Candidates::Auto;
+  throw OptionError("ste.navigation.candidates",
+                    "unknown candidates '" + name + "' (lattice, floor or auto)");
+}
+
+NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates candidates,
+                                                 const Map& map) {
+  if (candidates != NavigationOptions::Candidates::Auto) return candidates;
+  const double long_side = std::max(map.width, map.height);
+  const double short_side = std::min(map.width, map.height);
+  const double eps = map.round_off();
+  return long_side > 10.0 + eps || short_side > 4.0 + eps ? NavigationOptions::Candidates::Floor
+                                                          : NavigationOptions::Candidates::Lattice;
+}
+
 }  // namespace plumekit::ste

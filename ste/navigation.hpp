@@ -109,4 +109,17 @@ class Navigator {
   std::vector<int> floor_goal_node_;  // per floor goal: its roadmap node
 };
 
+const char* to_string(NavigationOptions::Reward reward);
+// "kl", "expected"; OptionError on ste.navigation.reward otherwise.
+NavigationOptions::Reward parse_reward(const std::string& name);
+const char* to_string(NavigationOptions::Candidates candidates);
+// "lattice", "floor", "auto"; OptionError on ste.navigation.candidates otherwise.
+NavigationOptions::Candidates parse_candidates(const std::string& name);
+// `candidates` with Auto resolved for `map`: Floor when either side of the arena exceeds the
+// thesis's 10 x 4 m (in either orientation), Lattice otherwise. On the thesis's arenas the
+// lattice's 0.5 m moves and the pull to the posterior's peak do best; on a larger floor, goals
+// over the whole floor (ste/README.md, "Floors").
+NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates candidates,
+                                                 const Map& map);
+
 }  // namespace plumekit::ste

@@ -11,7 +11,7 @@ PhysicsPlume::PhysicsPlume(const Map& map, const cfd::WindField& wind, const Phy
       // Validated before the source grid is sized by o.source_cell.
       candidates_((o.validate(), GridShape::with_cell(map.width, map.height, o.source_cell))),
       allowed_(free_cells(map, candidates_, 0.0)),
-      ad_(std::make_unique<dataset::AdvectionDiffusion>(wind, o.advection_diffusion)) {
+      ad_(std::make_unique<cfd::AdvectionDiffusion>(wind, o.advection_diffusion)) {
   // A cell whose centre is free but falls in a solid flow cell cannot hold a source.
   for (int j = 0; j < candidates_.ny; ++j)
     for (int i = 0; i < candidates_.nx; ++i) {

@@ -1,16 +1,14 @@
 #pragma once
 // The physics plume model: steady advection-diffusion in the map's solved
-// wind (dataset/advection_diffusion.hpp), the exact mean of the generator's
+// wind (cfd/advection_diffusion.hpp), the exact mean of the generator's
 // own physics. One transposed (adjoint) solve per sensor position gives that
 // position's reading for every candidate source at once, so readings_at costs
 // one sparse triangular solve pair on the flow grid plus a resampling.
 #include <memory>
 
+#include "cfd/advection_diffusion.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/resample.hpp"
-#include "dataset/advection_diffusion.hpp"
-#include "dataset/filament_model.hpp"
-#include "dataset/plume.hpp"
 #include "ste/forward_model.hpp"
 
 namespace plumekit::ste {
@@ -24,13 +22,18 @@ struct PhysicsPlumeOptions {
   // filament world's: 1 / lifetime_s() = 1/28 s, the rate at which the world
   // loses its gas (ste/README.md, "Floors"); without it the model fills
   // dead-end rooms the world never fills.
-  dataset::AdvectionDiffusionOptions advection_diffusion = world_matched();
+  cfd::AdvectionDiffusionOptions advection_diffusion = world_matched();
   // Prior bounds of the release scale (1 = the dataset's release rate).
   double scale_lo = 1.0, scale_hi = 1.0;
   // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
   void validate() const;
-  static dataset::AdvectionDiffusionOptions world_matched() {
-    return dataset::filament_world_mean();
+  // The world's decay as a number, not an include: the estimator never reads the world. A test
+  // ties it to the world's filament lifetime (dataset::filament_world_mean()).
+  static constexpr double kWorldLifetimeS = 28.0;
+  static cfd::AdvectionDiffusionOptions world_matched() {
+    cfd::AdvectionDiffusionOptions o;
+    o.decay_rate = 1.0 / kWorldLifetimeS;
+    return o;
   }
 };
 
@@ -42,13 +45,13 @@ class PhysicsPlume final : public SourceTableModel {
   const GridShape& candidates() const override { return candidates_; }
   const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
   std::vector<double> readings_at(Vec2 p) const override;
-  const dataset::AdvectionDiffusion& operator_() const { return *ad_; }
+  const cfd::AdvectionDiffusion& operator_() const { return *ad_; }
 
  private:
   std::vector<Parameter> parameters_;
   GridShape candidates_;
   std::vector<std::uint8_t> allowed_;
-  std::unique_ptr<dataset::AdvectionDiffusion> ad_;
+  std::unique_ptr<cfd::AdvectionDiffusion> ad_;
   std::unique_ptr<GridResampler> resampler_;  // flow grid -> source cells, built once
 };
 

@@ -15,7 +15,7 @@
 
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 
 namespace plumekit::ste {
 
@@ -88,7 +88,7 @@ class Estimator {
   // The posterior given all samples so far.
   virtual Posterior posterior() = 0;
   // A copy holding the same samples (and, for MH, the same chain and random state): a team robot
-  // adds virtual samples to one to plan with (ste/team.hpp) and keeps its own unchanged.
+  // adds virtual samples to one to plan with (run/team.hpp) and keeps its own unchanged.
   virtual std::unique_ptr<Estimator> clone() const = 0;
   // The mean reading at p that the current belief predicts: the model's at the expected
   // parameters (what the thesis's KL reward predicts; its ch. 13 virtual samples).

@@ -18,9 +18,9 @@
 
 #include "core/geometry.hpp"
 #include "ste/gaussian_plume.hpp"
-#include "ste/localizer.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/posterior.hpp"
+#include "ste/stop_rule.hpp"
 
 namespace plumekit::ste {
 

@@ -14,10 +14,10 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
-#include "core/map_json.hpp"
 #include "core/memory_limit.hpp"
 #include "core/sha256.hpp"
 #include "core/thread_pool.hpp"
+#include "map/map_json.hpp"
 #include "surrogate/network.hpp"
 #include "surrogate/plume_network.hpp"
 

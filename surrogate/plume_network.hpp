@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "core/geometry.hpp"
 #include "core/grid.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 #include "surrogate/network.hpp"
 
 namespace plumekit::surrogate {

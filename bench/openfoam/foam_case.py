@@ -34,7 +34,7 @@ import numpy as np
 WM_PROJECT_DIR = "/usr/share/openfoam"
 
 # ----------------------------------------------------------------------------------------------
-# Map and rasterization (mirrors core/map.cpp and core/rasterize.cpp of plumekit)
+# Map and rasterization (mirrors map/map.cpp and map/rasterize.cpp of plumekit)
 # ----------------------------------------------------------------------------------------------
 
 SIDES = ("left", "right", "bottom", "top")

@@ -10,7 +10,7 @@
 #include "cfd/diagonal_pairing.hpp"
 #include "cfd/navier_stokes.hpp"
 #include "cfd/staggered_grid.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 namespace {

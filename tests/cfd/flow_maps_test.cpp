@@ -8,8 +8,8 @@
 #include "cfd/flow_output.hpp"
 #include "cfd/flow_solver.hpp"
 #include "core/atomic_file.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 namespace {

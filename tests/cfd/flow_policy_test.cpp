@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "cfd/flow_policy.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 namespace {

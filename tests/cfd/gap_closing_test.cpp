@@ -11,7 +11,7 @@
 #include "cfd/grid_check.hpp"
 #include "cfd/options.hpp"
 #include "core/error.hpp"
-#include "core/rasterize.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::cfd {
 namespace {

@@ -43,7 +43,7 @@ TEST_F(LimitsCli, FlowOnAHundredMetreMapIsRefusedAtOnceWithTheCellThatFits) {
 
 TEST_F(LimitsCli, MapValidateOfAHugeArenaIsQuickAndBounded) {
   const std::string map = square_map(1e6);
-  // Checked on a coarsened grid (core/rasterize.hpp, map_grid_check), which
+  // Checked on a coarsened grid (map/rasterize.hpp, map_grid_check), which
   // says so; a 5 cm rasterization would need 4e14 cells.
   const CliResult r = run("map validate " + map + " --json");
   EXPECT_EQ(r.code, 0) << r.err;

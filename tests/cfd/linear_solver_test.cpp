@@ -11,7 +11,7 @@
 #include "cfd/linear_solver.hpp"
 #include "cfd/navier_stokes.hpp"
 #include "cfd/nullspace_solver.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 extern "C" void sgemm_(const char*, const char*, const int*, const int*, const int*, const float*,
                        const float*, const int*, const float*, const int*, const float*, float*,

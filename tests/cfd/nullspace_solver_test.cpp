@@ -11,7 +11,7 @@
 #include "cfd/navier_stokes.hpp"
 #include "cfd/nullspace_solver.hpp"
 #include "cfd/staggered_grid.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 namespace {

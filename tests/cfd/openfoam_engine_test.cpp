@@ -12,7 +12,7 @@
 #include "cfd/flow_solver.hpp"
 #include "cfd/openfoam_engine.hpp"
 #include "cfd/openfoam_run.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 #include "support/cli_runner.hpp"
 
 namespace {

@@ -9,7 +9,7 @@
 #include "cfd/flow_output.hpp"
 #include "cfd/flow_solver.hpp"
 #include "cfd/staggered_grid.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "cfd/flow_solver.hpp"
 #include "cfd/gap_closing.hpp"
-#include "core/rasterize.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::cfd {
 namespace {

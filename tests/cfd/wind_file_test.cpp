@@ -12,9 +12,9 @@
 #include "cfd/flow_output.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::cfd {
 namespace {

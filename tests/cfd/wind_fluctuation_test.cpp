@@ -8,8 +8,8 @@
 #include <string>
 
 #include "cfd/flow_solver.hpp"
-#include "cfd/wind_fluctuation.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
+#include "world/wind_fluctuation.hpp"
 
 namespace plumekit::cfd {
 namespace {
@@ -26,7 +26,7 @@ WindField coarse_flow(const std::string& name) {
 
 TEST(WindFluctuation, ModesAreDivergenceFreeAndMoveNoAirThroughAnySurface) {
   const WindField steady = coarse_flow("test-3-two-blocks");
-  const FluctuatingWind wind(steady, FluctuationOptions{}, 7);
+  const world::FluctuatingWind wind(steady, world::FluctuationOptions{}, 7);
   const GridShape& s = steady.shape();
   const int nx = s.nx, ny = s.ny;
   ASSERT_EQ(wind.modes(), 8);
@@ -69,10 +69,10 @@ TEST(WindFluctuation, ModesAreDivergenceFreeAndMoveNoAirThroughAnySurface) {
 
 TEST(WindFluctuation, StdAwayFromWallsCorrelationTimeAndFadingAtWalls) {
   const WindField steady = coarse_flow("test-0-empty");
-  FluctuationOptions o;
+  world::FluctuationOptions o;
   o.intensity = 0.2;
   o.time_scale = 2.0;
-  FluctuatingWind wind(steady, o, 11);
+  world::FluctuatingWind wind(steady, o, 11);
   const double dt = 0.1;
   const int steps = 40000;  // 4000 s, 2000 correlation times
   const int lag = static_cast<int>(std::lround(o.time_scale / dt));
@@ -129,7 +129,7 @@ TEST(WindFluctuation, StdAwayFromWallsCorrelationTimeAndFadingAtWalls) {
 
 TEST(WindFluctuation, TheSeedFixesTheWindAndAnotherSeedChangesIt) {
   const WindField steady = coarse_flow("test-1-block");
-  FluctuatingWind a(steady, {}, 3), b(steady, {}, 3), c(steady, {}, 4);
+  world::FluctuatingWind a(steady, {}, 3), b(steady, {}, 3), c(steady, {}, 4);
   for (int t = 0; t < 50; ++t) {
     a.advance(0.05);
     b.advance(0.05);

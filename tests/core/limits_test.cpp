@@ -11,11 +11,11 @@
 #include <fstream>
 
 #include "core/error.hpp"
-#include "core/map_render.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
-#include "core/rasterize.hpp"
-#include "core/ros_import.hpp"
+#include "map/map_render.hpp"
+#include "map/rasterize.hpp"
+#include "map/ros_import.hpp"
 
 namespace plumekit {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 #include "support/map_errors.hpp"
 
 #include <gtest/gtest.h>

@@ -6,8 +6,8 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/rasterize.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
 #include "support/map_errors.hpp"
 
 namespace plumekit {

@@ -13,10 +13,10 @@
 
 #include "cfd/flow_render.hpp"
 #include "core/error.hpp"
-#include "core/map_render.hpp"
+#include "map/map_render.hpp"
 #include "planner/plan_render.hpp"
-#include "ste/render.hpp"
-#include "ste/tunnel_report.hpp"
+#include "run/render.hpp"
+#include "run/tunnel_report.hpp"
 
 namespace plumekit {
 namespace {
@@ -79,13 +79,13 @@ Grid<double> test_plume(const Map& map, Vec2 source) {
   return f;
 }
 
-ste::LocalizationResult test_run(const Map& map) {
-  ste::LocalizationResult r;
+run::LocalizationResult test_run(const Map& map) {
+  run::LocalizationResult r;
   r.start = {0.1 * map.width, 0.9 * map.height};
   r.estimate = {0.25 * map.width, 0.25 * map.height};
   Vec2 at = r.start;
   for (int k = 0; k < 5; ++k) {
-    ste::Step s;
+    run::Step s;
     const Vec2 next{at.x + 0.03 * map.width, at.y - 0.12 * map.height};
     s.path_in = {at, next};
     s.position = next;
@@ -100,8 +100,8 @@ ste::LocalizationResult test_run(const Map& map) {
   return r;
 }
 
-ste::BoxPlot test_box_plot(int groups) {
-  ste::BoxPlot p;
+run::BoxPlot test_box_plot(int groups) {
+  run::BoxPlot p;
   p.title = "STE (surrogate) localization error per test map";
   p.y_label = "error [m]";
   p.reference = 0.5;
@@ -158,42 +158,42 @@ TEST(PictureLayout, TrajectoryAndPosteriorReadAtEveryShapeAndScale) {
       const Map map = test_map(s);
       const RenderOptions o{px};
       const std::string tag = std::string(s.name) + "-" + std::to_string(int(px));
-      const ste::LocalizationResult r = test_run(map);
-      ste::RunRecord record;
+      const run::LocalizationResult r = test_run(map);
+      run::RunRecord record;
       record.result = r;
       record.source = map.sources[1];
       record.source_index = 1;
       record.run = 2;
-      const ste::RunToDraw run = ste::run_to_draw(record, "surrogate", "median run of 10");
-      const Picture t = ste::draw_trajectory(map, test_plume(map, record.source), run, o);
+      const run::RunToDraw run = run::run_to_draw(record, "surrogate", "median run of 10");
+      const Picture t = run::draw_trajectory(map, test_plume(map, record.source), run, o);
       look(t, "trajectory-" + tag);
-      look(ste::draw_posterior(map, run, o), "posterior-" + tag);
+      look(run::draw_posterior(map, run, o), "posterior-" + tag);
     }
 }
 
 TEST(PictureLayout, BoxPlotsReadWithFewAndManyGroups) {
   for (int groups : {1, 3, 40})
-    look(ste::draw_box_plot(test_box_plot(groups)), "boxplot-" + std::to_string(groups));
+    look(run::draw_box_plot(test_box_plot(groups)), "boxplot-" + std::to_string(groups));
 }
 
 // The tunnel's run picture (issue 44): both panels carry axes in metres, tick labels under and
 // left of each panel, at the thesis's tunnel, a long one and the smallest accepted.
 TEST(PictureLayout, TunnelRunHasAxesInMetres) {
   for (const Vec3 size : {Vec3{10.0, 4.0, 2.0}, Vec3{200.0, 50.0, 20.0}, Vec3{1.0, 1.0, 1.0}}) {
-    dataset::Tunnel t;
+    world::Tunnel t;
     t.length = size.x, t.width = size.y, t.height = size.z;
-    ste::TunnelRun r;
+    run::TunnelRun r;
     r.source = {0.2 * size.x, 0.5 * size.y, 0.5 * size.z};
     r.start = {0.8 * size.x, 0.3 * size.y, 0.4 * size.z};
     r.estimate = {0.25 * size.x, 0.55 * size.y, 0.5 * size.z};
     for (const Vec3& p : {r.start, r.estimate}) {
-      ste::TunnelStep step;
+      run::TunnelStep step;
       step.position = p;
       step.phase = "sample";
       r.steps.push_back(step);
     }
     const std::string tag = "tunnel-" + std::to_string(static_cast<int>(size.x));
-    const Picture p = ste::draw_tunnel_run(r, t, "ste-3d: error 0.3 m, " + tag);
+    const Picture p = run::draw_tunnel_run(r, t, "ste-3d: error 0.3 m, " + tag);
     look(p, tag);
     // The upper panel is p.arena; the lower one lies below it, as wide.
     int below = 0, left = 0;
@@ -221,29 +221,29 @@ TEST(PictureLayout, TheCheckCatchesOverlapsAndBoxesOutsideTheImage) {
 TEST(PictureLayout, TitlesNameTheRunTheyDraw) {
   // The run's own numbers: source S1, run 2, its error (estimate to source).
   const Map map = test_map(kShapes[2]);
-  ste::RunRecord record;
+  run::RunRecord record;
   record.result = test_run(map);
   record.source = map.sources[1];
   record.source_index = 1;
   record.run = 2;
-  const ste::RunToDraw run = ste::run_to_draw(record, "surrogate");
+  const run::RunToDraw run = run::run_to_draw(record, "surrogate");
   EXPECT_EQ(run.result, &record.result);
   EXPECT_EQ(run.source_index, 1);
   EXPECT_EQ(run.run, 2);
   // The title states the drawn run's own source, number and error (estimate to true source).
-  const std::string title = ste::trajectory_title(map, run);
+  const std::string title = run::trajectory_title(map, run);
   const double error = norm(record.result.estimate - record.source);
   std::ostringstream expected;
   expected << "source S1 run 2: error " << std::fixed << std::setprecision(2) << error
            << " m, 5 samples";
   EXPECT_NE(title.find(expected.str()), std::string::npos) << title;
   EXPECT_EQ(title.find("median run"), std::string::npos) << title;
-  EXPECT_NE(ste::trajectory_title(map, ste::run_to_draw(record, "surrogate", "median run of 9"))
+  EXPECT_NE(run::trajectory_title(map, run::run_to_draw(record, "surrogate", "median run of 9"))
                 .find("(median run of 9)"),
             std::string::npos);
   // A single run's source index is looked up among the map's sources.
-  EXPECT_EQ(ste::run_to_draw(map, record.result, map.sources[1], "gaussian").source_index, 1);
-  EXPECT_EQ(ste::run_to_draw(map, record.result, {0.3, 0.3}, "gaussian").source_index, -1);
+  EXPECT_EQ(run::run_to_draw(map, record.result, map.sources[1], "gaussian").source_index, 1);
+  EXPECT_EQ(run::run_to_draw(map, record.result, {0.3, 0.3}, "gaussian").source_index, -1);
 }
 
 TEST(PictureLayout, PixelsPerMetreOutOfRangeIsRefused) {

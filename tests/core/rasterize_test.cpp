@@ -1,4 +1,4 @@
-#include "core/rasterize.hpp"
+#include "map/rasterize.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "core/ros_import.hpp"
+#include "map/ros_import.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,12 +10,12 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/connectivity.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/occupancy_cleanup.hpp"
-#include "core/opening_snap.hpp"
-#include "core/rasterize.hpp"
+#include "map/connectivity.hpp"
+#include "map/map_json.hpp"
+#include "map/occupancy_cleanup.hpp"
+#include "map/opening_snap.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit {
 namespace {

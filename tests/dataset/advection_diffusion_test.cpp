@@ -6,16 +6,16 @@
 #include <cstdio>
 
 #include "../cfd/reference_csv.hpp"
+#include "cfd/advection_diffusion.hpp"
 #include "cfd/flow_solver.hpp"
-#include "core/map_json.hpp"
-#include "dataset/advection_diffusion.hpp"
+#include "map/map_json.hpp"
 #include "uniform_wind.hpp"
 
 namespace plumekit::dataset {
 namespace {
 
 // Value of a flow-grid field at a point, as sensors read it.
-double at(const AdvectionDiffusion& ad, const Grid<double>& c, Vec2 p) {
+double at(const cfd::AdvectionDiffusion& ad, const Grid<double>& c, Vec2 p) {
   double v = 0.0;
   for (const auto& [k, w] : ad.point_weights(p))
     v += w * c.values[k];
@@ -28,7 +28,7 @@ class PointSource : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     wind_ = new cfd::WindField(test::uniform_wind(50.0, 10.0, 0.1, 1.0));
-    ad_ = new AdvectionDiffusion(*wind_, {0.1, 1.0});
+    ad_ = new cfd::AdvectionDiffusion(*wind_, {0.1, 1.0});
     c_ = new Grid<double>(ad_->solve({2.0, 5.0}));
   }
   static void TearDownTestSuite() {
@@ -37,11 +37,11 @@ class PointSource : public ::testing::Test {
     delete wind_;
   }
   static cfd::WindField* wind_;
-  static AdvectionDiffusion* ad_;
+  static cfd::AdvectionDiffusion* ad_;
   static Grid<double>* c_;
 };
 cfd::WindField* PointSource::wind_ = nullptr;
-AdvectionDiffusion* PointSource::ad_ = nullptr;
+cfd::AdvectionDiffusion* PointSource::ad_ = nullptr;
 Grid<double>* PointSource::c_ = nullptr;
 
 TEST_F(PointSource, MatchesAnalyticSolutionInTheFarField) {
@@ -90,7 +90,7 @@ TEST(AdvectionDiffusion, AdjointEqualsForwardInClutteredFlow) {
   cfd::FlowOptions fo;
   fo.cell = 0.1;
   const cfd::FlowResult flow = cfd::solve(map, fo);
-  const AdvectionDiffusion ad(flow.wind);
+  const cfd::AdvectionDiffusion ad(flow.wind);
   const GridShape& g = ad.shape();
   for (const Vec2 sensor : {Vec2{5.3, 1.0}, Vec2{8.0, 3.1}, Vec2{4.0, 3.5}}) {
     const Grid<double> adj = ad.adjoint(sensor);
@@ -122,7 +122,7 @@ TEST(AdvectionDiffusion, GasLeavesThroughAVentOnAnObstacleEdge) {
   flow.cell = 0.1;
   flow.nu = 0.05;
   const cfd::WindField wind = cfd::solve(map, flow).wind;
-  const AdvectionDiffusion ad(wind, {0.05, 1000.0});
+  const cfd::AdvectionDiffusion ad(wind, {0.05, 1000.0});
   const Vec2 source{4.5, 3.0};  // just below the vent (x 4..5 m at y = 3.6 m)
   const Grid<double> c = ad.solve(source);
   // The gas in the room is at most the release rate times the time air takes
@@ -146,11 +146,11 @@ TEST(AdvectionDiffusion, GasLeavesThroughAVentOnAnObstacleEdge) {
 TEST(AdvectionDiffusion, DecayTakesGasAtItsRateAndThinsThePlumeDownstream) {
   const cfd::WindField wind = test::uniform_wind(50.0, 10.0, 0.1, 1.0);
   const double u = 1.0, D = 0.1, lambda = 0.1;
-  AdvectionDiffusionOptions o;
+  cfd::AdvectionDiffusionOptions o;
   o.diffusivity = D;
   o.release_rate = 1.0;
   o.decay_rate = lambda;
-  const AdvectionDiffusion ad(wind, o);
+  const cfd::AdvectionDiffusion ad(wind, o);
   const Grid<double> c = ad.solve({2.0, 5.0});
   const GridShape& g = ad.shape();
   const double k = (u - std::sqrt(u * u + 4.0 * D * lambda)) / (2.0 * D);
@@ -166,16 +166,16 @@ TEST(AdvectionDiffusion, DecayTakesGasAtItsRateAndThinsThePlumeDownstream) {
   EXPECT_LT(ad.flux_through_column(c, i30), 0.2);
   // Without decay the same section carries the whole release.
   o.decay_rate = 0.0;
-  const AdvectionDiffusion steady(wind, o);
+  const cfd::AdvectionDiffusion steady(wind, o);
   EXPECT_NEAR(steady.flux_through_column(steady.solve({2.0, 5.0}), i30), 1.0, 1e-6);
 }
 
 TEST(AdvectionDiffusion, RejectsNonPositiveDiffusivity) {
   const cfd::WindField w = test::uniform_wind(2.0, 1.0, 0.1, 1.0);
-  EXPECT_THROW(AdvectionDiffusion(w, {0.0, 1.0}), InputError);
-  AdvectionDiffusionOptions o;
+  EXPECT_THROW(cfd::AdvectionDiffusion(w, {0.0, 1.0}), InputError);
+  cfd::AdvectionDiffusionOptions o;
   o.decay_rate = -0.1;
-  EXPECT_THROW(AdvectionDiffusion(w, o), OptionError);
+  EXPECT_THROW(cfd::AdvectionDiffusion(w, o), OptionError);
 }
 
 }  // namespace

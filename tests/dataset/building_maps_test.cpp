@@ -15,11 +15,11 @@
 
 #include "cfd/flow_solver.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/rasterize.hpp"
 #include "dataset/building_maps.hpp"
 #include "dataset/features.hpp"
 #include "dataset/random_maps.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::dataset {
 namespace {

@@ -8,39 +8,40 @@
 #include <cstdio>
 
 #include "core/error.hpp"
-#include "dataset/filament_model.hpp"
 #include "dataset/plume.hpp"
 #include "uniform_wind.hpp"
+#include "world/filament_model.hpp"
 
 namespace plumekit::dataset {
 namespace {
 
 TEST(GasSensor, ASettledSensorKeepsReadingWhatItIsIn) {
   for (const std::string name : {"catalytic", "electrochemical", "infrared", "mox-fast"}) {
-    GasSensor s(gas_sensor_preset(name), 0.1);
+    world::GasSensor s(world::gas_sensor_preset(name), 0.1);
     s.settle(250.0);
     for (int k = 0; k < 100; ++k)
       ASSERT_NEAR(s.read(250.0), 250.0, 1e-9) << name;
   }
-  EXPECT_EQ(gas_sensor_preset("ideal").settling_s(), 0.0);
-  EXPECT_NEAR(gas_sensor_preset("catalytic").settling_s(), 5.0 + 5 * 7.0126, 1e-9);
+  EXPECT_EQ(world::gas_sensor_preset("ideal").settling_s(), 0.0);
+  EXPECT_NEAR(world::gas_sensor_preset("catalytic").settling_s(), 5.0 + 5 * 7.0126, 1e-9);
 }
 
 TEST(DatasetSensor, TheRecordIsWhatTheSensorReads) {
   const Map map = default_arena(10.0, 4.0);
   const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  FilamentOptions o;
+  world::FilamentOptions o;
   // The steady wind's uniform 1 s meander, on which the bounds below were set (in the unsteady
   // field the catalytic sensor keeps 34 % of the ideal std on this centreline).
   o.unsteady_wind = false;
   o.max_spinup = 20.0;
   const GridShape sensors{64, 64, 10.0, 4.0};
   const Vec2 source{1.0, 2.0};
-  const SensorRecord ideal = simulate_filaments(map, wind, source, sensors, o, 9);
+  const world::SensorRecord ideal = world::simulate_filaments(map, wind, source, sensors, o, 9);
   EXPECT_EQ(ideal.summary.sensor_warmup_s, 0.0);
-  GasSensorModel offset;
+  world::GasSensorModel offset;
   offset.baseline = 40.0;
-  const SensorRecord shifted = simulate_filaments(map, wind, source, sensors, o, 9, offset);
+  const world::SensorRecord shifted =
+      world::simulate_filaments(map, wind, source, sensors, o, 9, offset);
   for (std::size_t k = 0; k < ideal.mean.values.size(); ++k) {
     ASSERT_NEAR(shifted.mean.values[k], ideal.mean.values[k] + 40.0, 1e-9);
     ASSERT_NEAR(shifted.std.values[k], ideal.std.values[k], 1e-6);
@@ -55,10 +56,10 @@ TEST(DatasetSensor, TheRecordIsWhatTheSensorReads) {
     return total;
   };
   const double ideal_mean = centreline(ideal.mean), ideal_std = centreline(ideal.std);
-  const SensorRecord mox =
-      simulate_filaments(map, wind, source, sensors, o, 9, gas_sensor_preset("mox-fast"));
-  const SensorRecord cat =
-      simulate_filaments(map, wind, source, sensors, o, 9, gas_sensor_preset("catalytic"));
+  const world::SensorRecord mox = world::simulate_filaments(map, wind, source, sensors, o, 9,
+                                                            world::gas_sensor_preset("mox-fast"));
+  const world::SensorRecord cat = world::simulate_filaments(map, wind, source, sensors, o, 9,
+                                                            world::gas_sensor_preset("catalytic"));
   std::printf(
       "centreline mean / std: ideal %.0f / %.0f, mox-fast %.0f / %.0f, catalytic %.0f / "
       "%.0f (warm-ups %.1f s, %.1f s)\n",
@@ -82,7 +83,7 @@ TEST(DatasetSensor, AdvectionDiffusionTakesABaselineButNoResponse) {
   o.model = PlumeSimulator::AdvectionDiffusion;
   o.sensor.baseline = 5.0;
   EXPECT_NO_THROW(o.validate());
-  o.sensor = gas_sensor_preset("infrared");
+  o.sensor = world::gas_sensor_preset("infrared");
   try {
     o.validate();
     FAIL() << "the infrared sensor was accepted with advection-diffusion";

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cfd/advection_diffusion.hpp"
 #include "cfd/flow_solver.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/resample.hpp"
-#include "dataset/advection_diffusion.hpp"
-#include "dataset/filament_model.hpp"
+#include "map/map_json.hpp"
 #include "uniform_wind.hpp"
+#include "world/filament_model.hpp"
 
 namespace plumekit::dataset {
 namespace {
@@ -19,17 +19,17 @@ namespace {
 TEST(FilamentModel, LongTimeMeanMatchesAdvectionDiffusionAlongTheCentreline) {
   const Map map = default_arena(10.0, 4.0);
   const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.meander_speed = 0.0;  // the equivalence holds for the per-filament walk and growth
   o.record_s = 40.0;
   o.sample_rate = 2.0;
   const Vec2 source{1.0, 2.0};
   const GridShape sensors{64, 64, 10.0, 4.0};
-  const SensorRecord rec = simulate_filaments(map, wind, source, sensors, o, 42);
+  const world::SensorRecord rec = world::simulate_filaments(map, wind, source, sensors, o, 42);
   EXPECT_TRUE(rec.summary.steady);
   EXPECT_GT(rec.summary.left_through_outlet, 0);
 
-  const AdvectionDiffusion ad(wind, {o.equivalent_diffusivity(), o.release_rate});
+  const cfd::AdvectionDiffusion ad(wind, {o.equivalent_diffusivity(), o.release_rate});
   const Grid<double> exact =
       GridResampler(ad.shape(), ad.solid_mask(), sensors).apply(ad.solve(source));
   // Centreline: the two sensor rows either side of y = 2, averaged.
@@ -53,13 +53,13 @@ TEST(FilamentModel, NoFilamentIsEverInsideAnObstacle) {
   cfd::FlowOptions fo;
   fo.cell = 0.1;
   const cfd::FlowResult flow = cfd::solve(map, fo);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.sigma_walk = 0.5;  // a wide walk, to push filaments at the obstacles often
-  FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, o, 7);
+  world::FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, o, 7);
   long long checked = 0;
   for (int s = 0; s < 300; ++s) {
     sim.step();
-    for (const Filament& f : sim.filaments()) {
+    for (const world::Filament& f : sim.filaments()) {
       ASSERT_LT(map.obstacle_at(f.position), 0) << "step " << s << " at " << to_string(f.position);
       ASSERT_TRUE(map.in_arena(f.position));
       ++checked;
@@ -74,18 +74,18 @@ TEST(FilamentModel, NoFilamentIsEverInsideAnObstacle) {
 TEST(FilamentModel, ASourceDiscReleasesUniformlyOverItsFreePart) {
   const Map map = default_arena(10.0, 4.0);
   const cfd::WindField still = test::uniform_wind(10.0, 4.0, 0.05, 0.0);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.unsteady_wind = false;
   o.meander_speed = 0.0;
   o.sigma_walk = 0.0;  // the filaments stay where they were released
   o.release_per_second = 4000.0;
   o.source_radius = 0.2;
-  FilamentSimulation sim(map, still, {5.0, 2.0}, o, 3);
+  world::FilamentSimulation sim(map, still, {5.0, 2.0}, o, 3);
   sim.step();
   ASSERT_EQ(sim.filaments().size(), 200u);
   Vec2 mean;
   double square = 0.0;
-  for (const Filament& f : sim.filaments()) {
+  for (const world::Filament& f : sim.filaments()) {
     const Vec2 d = f.position - Vec2{5.0, 2.0};
     EXPECT_LE(norm(d), 0.2);
     mean = mean + (1.0 / 200.0) * d;
@@ -94,12 +94,12 @@ TEST(FilamentModel, ASourceDiscReleasesUniformlyOverItsFreePart) {
   EXPECT_NEAR(mean.x, 0.0, 0.03);  // std of the mean: 0.1 / sqrt(200) = 0.007
   EXPECT_NEAR(mean.y, 0.0, 0.03);
   EXPECT_NEAR(square, 0.5 * 0.04, 0.005);  // a uniform disc's mean r^2 is R^2 / 2; std 0.0008
-  FilamentSimulation at_wall(map, still, {0.05, 2.0}, o, 3);
+  world::FilamentSimulation at_wall(map, still, {0.05, 2.0}, o, 3);
   at_wall.step();
-  for (const Filament& f : at_wall.filaments())
+  for (const world::Filament& f : at_wall.filaments())
     EXPECT_GE(f.position.x, 0.0);
   o.source_radius = -0.1;
-  EXPECT_THROW(FilamentSimulation(map, still, {5.0, 2.0}, o, 3), OptionError);
+  EXPECT_THROW(world::FilamentSimulation(map, still, {5.0, 2.0}, o, 3), OptionError);
 }
 
 TEST(FilamentModel, SameSeedSameRecordAndSensorsInObstaclesReadZero) {
@@ -107,13 +107,16 @@ TEST(FilamentModel, SameSeedSameRecordAndSensorsInObstaclesReadZero) {
   cfd::FlowOptions fo;
   fo.cell = 0.1;
   const cfd::FlowResult flow = cfd::solve(map, fo);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.max_spinup = 6.0;
   o.record_s = 1.0;
   const GridShape sensors{64, 64, 10.0, 4.0};
-  const SensorRecord a = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
-  const SensorRecord b = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
-  const SensorRecord c = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 4);
+  const world::SensorRecord a =
+      world::simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const world::SensorRecord b =
+      world::simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const world::SensorRecord c =
+      world::simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 4);
   EXPECT_EQ(a.mean.values, b.mean.values);
   EXPECT_EQ(a.std.values, b.std.values);
   EXPECT_NE(a.mean.values, c.mean.values);

@@ -5,13 +5,13 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "dataset/gas_sensor.hpp"
+#include "world/gas_sensor.hpp"
 
 namespace plumekit::dataset {
 namespace {
 
 // Seconds until the reading first crosses `level`, feeding `input` every dt.
-double time_to(GasSensor& sensor, double input, double level, bool rising, double dt,
+double time_to(world::GasSensor& sensor, double input, double level, bool rising, double dt,
                double limit = 300.0) {
   for (double t = dt; t < limit; t += dt) {
     const double r = sensor.read(input);
@@ -21,7 +21,7 @@ double time_to(GasSensor& sensor, double input, double level, bool rising, doubl
 }
 
 TEST(GasSensor, TheIdealSensorReadsTheConcentration) {
-  GasSensor ideal(gas_sensor_preset("ideal"), 0.1);
+  world::GasSensor ideal(world::gas_sensor_preset("ideal"), 0.1);
   EXPECT_FALSE(ideal.has_memory());
   for (const double c : {0.0, 12.5, 3000.0, 0.0})
     EXPECT_EQ(ideal.read(c), c);
@@ -30,27 +30,27 @@ TEST(GasSensor, TheIdealSensorReadsTheConcentration) {
 TEST(GasSensor, CatalyticAndElectrochemicalStepsMatchTable41) {
   const double dt = 0.01, ln10 = std::log(10.0);
   for (const char* name : {"catalytic", "electrochemical"}) {
-    const GasSensorModel m = gas_sensor_preset(name);
-    GasSensor up(m, dt);
+    const world::GasSensorModel m = world::gas_sensor_preset(name);
+    world::GasSensor up(m, dt);
     // Nothing for the rise's dead time, then 90 % after tau_r ln 10 more.
     EXPECT_NEAR(time_to(up, 1.0, 1e-9, true, dt), m.dead_rise_s + dt, 1e-6) << name;
-    GasSensor rise(m, dt);
+    world::GasSensor rise(m, dt);
     EXPECT_NEAR(time_to(rise, 1.0, 0.9, true, dt), m.dead_rise_s + m.rise_s * ln10, 2 * dt) << name;
     // Saturated, then clean air: the decay's dead time, then 10 % after tau_d ln 10.
-    GasSensor fall(m, dt);
+    world::GasSensor fall(m, dt);
     for (int k = 0; k < 50000; ++k)
       fall.read(1.0);
     EXPECT_NEAR(time_to(fall, 0.0, 0.1, false, dt), m.dead_decay_s + m.decay_s * ln10, 2 * dt)
         << name;
   }
-  EXPECT_EQ(gas_sensor_preset("catalytic").rise_s, 7.0126);
-  EXPECT_EQ(gas_sensor_preset("electrochemical").dead_rise_s, 10.0);
+  EXPECT_EQ(world::gas_sensor_preset("catalytic").rise_s, 7.0126);
+  EXPECT_EQ(world::gas_sensor_preset("electrochemical").dead_rise_s, 10.0);
 }
 
 TEST(GasSensor, InfraredRiseHasAFastAndASlowPart) {
   const double dt = 0.05;
-  const GasSensorModel m = gas_sensor_preset("infrared");
-  GasSensor ir(m, dt);
+  const world::GasSensorModel m = world::gas_sensor_preset("infrared");
+  world::GasSensor ir(m, dt);
   double t = 0.0;
   for (int k = 1; k <= 1200; ++k) {
     const double r = ir.read(1.0);
@@ -67,9 +67,9 @@ TEST(GasSensor, InfraredRiseHasAFastAndASlowPart) {
 
 TEST(GasSensor, FastMoxMatchesTheMics5521) {
   const double dt = 0.001;
-  GasSensor rise(gas_sensor_preset("mox-fast"), dt);
+  world::GasSensor rise(world::gas_sensor_preset("mox-fast"), dt);
   EXPECT_NEAR(time_to(rise, 1.0, 0.9, true, dt), 0.13, 2 * dt);
-  GasSensor fall(gas_sensor_preset("mox-fast"), dt);
+  world::GasSensor fall(world::gas_sensor_preset("mox-fast"), dt);
   for (int k = 0; k < 5000; ++k)
     fall.read(1.0);
   EXPECT_NEAR(time_to(fall, 0.0, 0.1, false, dt), 0.41, 2 * dt);
@@ -78,7 +78,7 @@ TEST(GasSensor, FastMoxMatchesTheMics5521) {
 // The point: a 5 s stop at 10 Hz, arriving from clean air, with a slow sensor.
 TEST(GasSensor, AFiveSecondStopWithASlowSensorReadsFarLessThanTheTruth) {
   for (const char* name : {"catalytic", "electrochemical", "infrared", "mox-fast"}) {
-    GasSensor s(gas_sensor_preset(name), 0.1);
+    world::GasSensor s(world::gas_sensor_preset(name), 0.1);
     double sum = 0.0;
     for (int k = 0; k < 50; ++k)
       sum += s.read(100.0);
@@ -91,21 +91,21 @@ TEST(GasSensor, AFiveSecondStopWithASlowSensorReadsFarLessThanTheTruth) {
 }
 
 TEST(GasSensor, BaselineIsAddedAndBadSettingsNameTheirField) {
-  GasSensorModel m;
+  world::GasSensorModel m;
   m.baseline = 2.5;
-  GasSensor s(m, 0.1);
+  world::GasSensor s(m, 0.1);
   EXPECT_EQ(s.read(10.0), 12.5);
   try {
-    gas_sensor_preset("tgs9999");
+    world::gas_sensor_preset("tgs9999");
     FAIL() << "an unknown preset was accepted";
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "sensor.gas");
     EXPECT_NE(e.message().find("mox-fast"), std::string::npos) << e.message();
   }
   m.decay_s = -1.0;
-  EXPECT_THROW(GasSensor(m, 0.1), OptionError);
+  EXPECT_THROW(world::GasSensor(m, 0.1), OptionError);
   m.decay_s = std::nan("");
-  EXPECT_THROW(GasSensor(m, 0.1), OptionError);
+  EXPECT_THROW(world::GasSensor(m, 0.1), OptionError);
 }
 
 }  // namespace

@@ -14,9 +14,9 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/shard.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::dataset {
 namespace {

@@ -8,11 +8,11 @@
 #include <set>
 
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "core/rasterize.hpp"
 #include "core/seed.hpp"
 #include "dataset/features.hpp"
 #include "dataset/random_maps.hpp"
+#include "map/map_json.hpp"
+#include "map/rasterize.hpp"
 
 namespace plumekit::dataset {
 namespace {

@@ -7,10 +7,10 @@
 #include <random>
 
 #include "cfd/flow_solver.hpp"
-#include "core/map_json.hpp"
-#include "dataset/filament_model.hpp"
-#include "dataset/line_of_sight.hpp"
+#include "map/map_json.hpp"
 #include "uniform_wind.hpp"
+#include "world/filament_model.hpp"
+#include "world/line_of_sight.hpp"
 
 namespace plumekit::dataset {
 namespace {
@@ -37,23 +37,24 @@ Vec2 random_free_point(const Map& map, std::mt19937_64& rng) {
 
 TEST(LineOfSight, RowShadowsAgreeWithASegmentTestAgainstEveryEdge) {
   const Map map = read_map(std::string(PLUMEKIT_DATA_DIR) + "/maps/cluttered-1.json");
-  const LineOfSight sight(map, 0.7);  // buckets smaller than the obstacles: edges span several
+  const world::LineOfSight sight(map,
+                                 0.7);  // buckets smaller than the obstacles: edges span several
   std::mt19937_64 rng(5);
   int hidden = 0, seen = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     const Vec2 f = random_free_point(map, rng), p = random_free_point(map, rng);
-    std::vector<Edge> edges;
+    std::vector<world::Edge> edges;
     sight.facing_edges(
         f, {{std::min(f.x, p.x), std::min(f.y, p.y)}, {std::max(f.x, p.x), std::max(f.y, p.y)}},
         edges);
     bool by_rows = false;
-    for (const Edge& e : edges) {
+    for (const world::Edge& e : edges) {
       double lo, hi;
-      if (EdgeShadow(f, e).on_row(p.y, lo, hi) && p.x >= lo && p.x <= hi) by_rows = true;
+      if (world::EdgeShadow(f, e).on_row(p.y, lo, hi) && p.x >= lo && p.x <= hi) by_rows = true;
     }
     bool by_segments = false;
-    for (const Edge& e : edges)
-      by_segments = by_segments || hides(f, e, p);
+    for (const world::Edge& e : edges)
+      by_segments = by_segments || world::hides(f, e, p);
     const bool truth = cut_by_an_edge(map, f, p);
     ASSERT_EQ(by_rows, truth) << to_string(f) << " -> " << to_string(p);
     ASSERT_EQ(by_segments, truth) << to_string(f) << " -> " << to_string(p);
@@ -66,8 +67,8 @@ TEST(LineOfSight, RowShadowsAgreeWithASegmentTestAgainstEveryEdge) {
 TEST(LineOfSight, EachEdgeIsReportedOnceWhateverTheBuckets) {
   Map map = default_arena(10.0, 4.0);
   map.obstacles = {rectangle(1.0, 1.0, 8.0, 1.2)};  // a long wall across many buckets
-  const LineOfSight sight(map, 0.5);
-  std::vector<Edge> edges;
+  const world::LineOfSight sight(map, 0.5);
+  std::vector<world::Edge> edges;
   sight.facing_edges({5.0, 3.0}, {{0.0, 0.0}, {10.0, 4.0}}, edges);
   ASSERT_EQ(edges.size(), 1u);  // only the top face looks at a point above
   EXPECT_DOUBLE_EQ(edges[0].a.y, 1.2);
@@ -85,7 +86,7 @@ Map map_with_a_sealed_room() {
 TEST(FilamentOcclusion, ASensorBehindASealedWallReadsExactlyZero) {
   const Map map = map_with_a_sealed_room();
   const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.max_spinup = 12.0;
   o.record_s = 4.0;
   const GridShape sensors{64, 64, 10.0, 4.0};
@@ -93,7 +94,8 @@ TEST(FilamentOcclusion, ASensorBehindASealedWallReadsExactlyZero) {
   double open_max = 0.0;
   for (const bool occlusion : {false, true}) {
     o.occlusion = occlusion;
-    const SensorRecord rec = simulate_filaments(map, wind, {3.0, 2.0}, sensors, o, 11);
+    const world::SensorRecord rec =
+        world::simulate_filaments(map, wind, {3.0, 2.0}, sensors, o, 11);
     double room_max = 0.0;
     int room_sensors = 0;
     for (int j = 0; j < sensors.ny; ++j)
@@ -120,14 +122,14 @@ TEST(FilamentOcclusion, GasBehindABlockIsNotReadUpwindOfIt) {
   cfd::FlowOptions fo;
   fo.cell = 0.05;
   const cfd::FlowResult flow = cfd::solve(map, fo);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.unsteady_wind = false;  // the thesis-style wind, in which the wake's pile-up was seen
   o.record_s = 20.0;
   double mean[2] = {0.0, 0.0};
   for (const bool occlusion : {false, true}) {
     o.occlusion = occlusion;
-    FilamentSimulation sim(map, flow.wind, {6.0, 2.0}, o, 3);
-    spin_up(sim, o);
+    world::FilamentSimulation sim(map, flow.wind, {6.0, 2.0}, o, 3);
+    world::spin_up(sim, o);
     double sum = 0.0;
     int n = 0;
     for (double t = 0.0; t < o.record_s; t += 0.5, ++n) {
@@ -145,13 +147,15 @@ TEST(FilamentOcclusion, GasBehindABlockIsNotReadUpwindOfIt) {
 TEST(FilamentOcclusion, ChangesNothingWithoutObstaclesAndMatchesThePointReadings) {
   const Map open = default_arena(10.0, 4.0);
   const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.max_spinup = 6.0;
   o.record_s = 1.0;
   const GridShape sensors{64, 64, 10.0, 4.0};
-  const SensorRecord plain = simulate_filaments(open, wind, {1.0, 2.0}, sensors, o, 9);
+  const world::SensorRecord plain =
+      world::simulate_filaments(open, wind, {1.0, 2.0}, sensors, o, 9);
   o.occlusion = true;
-  const SensorRecord occluded = simulate_filaments(open, wind, {1.0, 2.0}, sensors, o, 9);
+  const world::SensorRecord occluded =
+      world::simulate_filaments(open, wind, {1.0, 2.0}, sensors, o, 9);
   EXPECT_EQ(plain.mean.values, occluded.mean.values);
   EXPECT_EQ(plain.std.values, occluded.std.values);
 
@@ -160,7 +164,7 @@ TEST(FilamentOcclusion, ChangesNothingWithoutObstaclesAndMatchesThePointReadings
   cfd::FlowOptions fo;
   fo.cell = 0.1;
   const cfd::FlowResult flow = cfd::solve(map, fo);
-  FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, o, 7);
+  world::FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, o, 7);
   for (int s = 0; s < 200; ++s)
     sim.step();
   std::vector<double> grid(sensors.size(), 0.0);

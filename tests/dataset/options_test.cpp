@@ -99,14 +99,14 @@ TEST(DatasetOptions, ThreadsThatWouldExhaustMemoryAreRefused) {
 
 TEST(FilamentModel, FilamentCountOverTheLimitIsRefusedWithTheRateThatFits) {
   const MemoryLimitScope scope(parse_memory_size("64M"));
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.release_per_second = 1e5;  // 6.5 million filaments: 312 MB
   const Map map = default_arena();
   cfd::FlowOptions fo;
   fo.cell = 0.2;
   const cfd::WindField wind = cfd::solve(map, fo).wind;
   try {
-    FilamentSimulation sim(map, wind, {1.0, 2.0}, o, 1);
+    world::FilamentSimulation sim(map, wind, {1.0, 2.0}, o, 1);
     ADD_FAILURE() << "no MemoryLimitError";
   } catch (const MemoryLimitError& e) {
     expect_has(e.what(), "1e+05 filaments per second");
@@ -114,7 +114,7 @@ TEST(FilamentModel, FilamentCountOverTheLimitIsRefusedWithTheRateThatFits) {
   }
   o.release_per_second = 1e9;  // the 12 GB run: out of range whatever the limit
   try {
-    FilamentSimulation sim(map, wind, {1.0, 2.0}, o, 1);
+    world::FilamentSimulation sim(map, wind, {1.0, 2.0}, o, 1);
     ADD_FAILURE() << "no OptionError";
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "plume.filaments_per_second");

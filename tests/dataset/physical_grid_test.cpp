@@ -17,13 +17,13 @@
 #include "cfd/flow_policy.hpp"
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/features.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/random_maps.hpp"
 #include "dataset/wind_cache.hpp"
+#include "map/map_json.hpp"
 #include "support/small_map.hpp"
 
 namespace plumekit::dataset {

@@ -1,4 +1,4 @@
-// The 3-D tunnel plume (dataset/tunnel_plume.hpp): its long-run mean is Arya's Gaussian of seed 004
+// The 3-D tunnel plume (world/tunnel_plume.hpp): its long-run mean is Arya's Gaussian of seed 004
 // Eq. 7.1 with the filaments' spread, mass leaves only through the outlet, and bad input is
 // refused.
 #include <gtest/gtest.h>
@@ -6,20 +6,20 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "dataset/tunnel_plume.hpp"
+#include "world/tunnel_plume.hpp"
 
 namespace plumekit::dataset {
 namespace {
 
-FilamentOptions steady_options() {
-  FilamentOptions o = tunnel_filament_options();
+world::FilamentOptions steady_options() {
+  world::FilamentOptions o = world::tunnel_filament_options();
   o.meander_speed = 0.0;  // the mean is then exactly the Gaussian's
   o.release_per_second = 400.0;
   return o;
 }
 
 // Eq. 7.1 with sigma^2 = R0^2 / 2 + 2 D_eq d / u (a filament's own size and its walk and growth).
-double gaussian_mean(const FilamentOptions& o, double u, Vec3 source, Vec3 p) {
+double gaussian_mean(const world::FilamentOptions& o, double u, Vec3 source, Vec3 p) {
   const double d = p.x - source.x;
   const double s2 =
       0.5 * o.initial_radius * o.initial_radius + 2.0 * o.equivalent_diffusivity() * d / u;
@@ -28,11 +28,11 @@ double gaussian_mean(const FilamentOptions& o, double u, Vec3 source, Vec3 p) {
 }
 
 TEST(TunnelPlume, LongRunMeanIsTheGaussianOfEq71) {
-  const Tunnel tunnel;  // 10 x 4 x 2 m, 0.9 m/s
-  const FilamentOptions o = steady_options();
+  const world::Tunnel tunnel;  // 10 x 4 x 2 m, 0.9 m/s
+  const world::FilamentOptions o = steady_options();
   const Vec3 source{1.0, 2.0, 1.0};
-  TunnelPlume plume(tunnel, source, o, 7);
-  ASSERT_TRUE(spin_up(plume, o));
+  world::TunnelPlume plume(tunnel, source, o, 7);
+  ASSERT_TRUE(world::spin_up(plume, o));
   const Vec3 points[] = {{3.0, 2.0, 1.0}, {3.0, 2.25, 1.0}, {5.0, 2.0, 1.2}, {5.0, 1.7, 0.9}};
   double sum[4] = {0, 0, 0, 0};
   const int steps = 3000;  // 300 s
@@ -51,34 +51,34 @@ TEST(TunnelPlume, LongRunMeanIsTheGaussianOfEq71) {
 }
 
 TEST(TunnelPlume, FilamentsStayInsideAndLeaveThroughTheOutlet) {
-  Tunnel tunnel;
+  world::Tunnel tunnel;
   tunnel.length = 4.0;
-  const FilamentOptions o = steady_options();
-  TunnelPlume plume(tunnel, {0.5, 0.3, 1.7}, o, 3);  // near a side wall and the ceiling
+  const world::FilamentOptions o = steady_options();
+  world::TunnelPlume plume(tunnel, {0.5, 0.3, 1.7}, o, 3);  // near a side wall and the ceiling
   for (int s = 0; s < 200; ++s)
     plume.step();
   // 20 s at 0.9 m/s cross the 4 m tunnel: a steady count, far below the 8000 released.
   EXPECT_LT(plume.filaments().size(), 2500u);
   EXPECT_GT(plume.filaments().size(), 1000u);
-  for (const Filament3& f : plume.filaments())
+  for (const world::Filament3& f : plume.filaments())
     ASSERT_TRUE(tunnel.box().contains(f.position));
 }
 
 TEST(TunnelPlume, RefusesBadInput) {
-  const Tunnel tunnel;
-  EXPECT_THROW(TunnelPlume(tunnel, {1.0, 2.0, 2.5}, steady_options(), 1), InputError);
-  EXPECT_THROW(TunnelPlume(tunnel, {1.0, NAN, 1.0}, steady_options(), 1), InputError);
-  FilamentOptions map_world;  // the 2-D defaults: occlusion on
+  const world::Tunnel tunnel;
+  EXPECT_THROW(world::TunnelPlume(tunnel, {1.0, 2.0, 2.5}, steady_options(), 1), InputError);
+  EXPECT_THROW(world::TunnelPlume(tunnel, {1.0, NAN, 1.0}, steady_options(), 1), InputError);
+  world::FilamentOptions map_world;  // the 2-D defaults: occlusion on
   try {
-    TunnelPlume(tunnel, {1.0, 2.0, 1.0}, map_world, 1);
+    world::TunnelPlume(tunnel, {1.0, 2.0, 1.0}, map_world, 1);
     FAIL() << "occlusion in a tunnel without a map";
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "plume.world");
   }
-  Tunnel flat = tunnel;
+  world::Tunnel flat = tunnel;
   flat.height = 0.1;
   try {
-    TunnelPlume(flat, {1.0, 2.0, 0.05}, steady_options(), 1);
+    world::TunnelPlume(flat, {1.0, 2.0, 0.05}, steady_options(), 1);
     FAIL() << "a tunnel 10 cm high";
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "tunnel.height");
@@ -86,10 +86,10 @@ TEST(TunnelPlume, RefusesBadInput) {
 }
 
 TEST(TunnelPlume, SameSeedSameConcentrations) {
-  const Tunnel tunnel;
-  TunnelPlume a(tunnel, {1.0, 2.0, 1.0}, tunnel_filament_options(), 5);
-  TunnelPlume b(tunnel, {1.0, 2.0, 1.0}, tunnel_filament_options(), 5);
-  TunnelPlume c(tunnel, {1.0, 2.0, 1.0}, tunnel_filament_options(), 6);
+  const world::Tunnel tunnel;
+  world::TunnelPlume a(tunnel, {1.0, 2.0, 1.0}, world::tunnel_filament_options(), 5);
+  world::TunnelPlume b(tunnel, {1.0, 2.0, 1.0}, world::tunnel_filament_options(), 5);
+  world::TunnelPlume c(tunnel, {1.0, 2.0, 1.0}, world::tunnel_filament_options(), 6);
   for (int s = 0; s < 100; ++s)
     a.step(), b.step(), c.step();
   EXPECT_EQ(a.concentration_at({4.0, 2.0, 1.0}), b.concentration_at({4.0, 2.0, 1.0}));

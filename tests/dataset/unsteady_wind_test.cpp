@@ -7,15 +7,15 @@
 #include <cstdio>
 
 #include "cfd/flow_solver.hpp"
-#include "core/map_json.hpp"
-#include "dataset/filament_model.hpp"
+#include "map/map_json.hpp"
 #include "uniform_wind.hpp"
+#include "world/filament_model.hpp"
 
 namespace plumekit::dataset {
 namespace {
 
-FilamentOptions unsteady() {
-  FilamentOptions o;
+world::FilamentOptions unsteady() {
+  world::FilamentOptions o;
   o.unsteady_wind = true;
   return o;
 }
@@ -25,12 +25,12 @@ TEST(UnsteadyWind, NoFilamentEntersAnObstacleAndTheSeedFixesTheRecord) {
   cfd::FlowOptions fo;
   fo.cell = 0.1;
   const cfd::FlowResult flow = cfd::solve(map, fo);
-  FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, unsteady(), 7);
+  world::FilamentSimulation sim(map, flow.wind, {2.8, 1.0}, unsteady(), 7);
   ASSERT_TRUE(sim.unsteady());
   long long checked = 0;
   for (int s = 0; s < 300; ++s) {
     sim.step();
-    for (const Filament& f : sim.filaments()) {
+    for (const world::Filament& f : sim.filaments()) {
       ASSERT_LT(map.obstacle_at(f.position), 0) << "step " << s << " at " << to_string(f.position);
       ++checked;
     }
@@ -39,14 +39,17 @@ TEST(UnsteadyWind, NoFilamentEntersAnObstacleAndTheSeedFixesTheRecord) {
   EXPECT_EQ(sim.meander().x, 0.0);  // the swing is in the field, not uniform
   EXPECT_EQ(sim.wind_at({6.8, 3.0}).x, 0.0) << "inside an obstacle";
 
-  FilamentOptions o = unsteady();
+  world::FilamentOptions o = unsteady();
   o.max_spinup = 6.0;
   o.record_s = 1.0;
   const GridShape sensors{64, 64, 10.0, 4.0};
-  const SensorRecord a = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
-  const SensorRecord b = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const world::SensorRecord a =
+      world::simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const world::SensorRecord b =
+      world::simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
   o.unsteady_wind = false;
-  const SensorRecord steady = simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
+  const world::SensorRecord steady =
+      world::simulate_filaments(map, flow.wind, {1.5, 1.0}, sensors, o, 3);
   EXPECT_EQ(a.mean.values, b.mean.values);
   EXPECT_NE(a.mean.values, steady.mean.values);
 }
@@ -56,12 +59,12 @@ TEST(UnsteadyWind, InTheOpenThePlumeIsLikeTheUniformMeanders) {
   const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
   const Vec2 source{1.0, 2.0};
   const GridShape sensors{64, 64, 10.0, 4.0};
-  FilamentOptions o;
+  world::FilamentOptions o;
   o.record_s = 60.0;
   o.sample_rate = 2.0;
-  const SensorRecord steady = simulate_filaments(map, wind, source, sensors, o, 42);
+  const world::SensorRecord steady = world::simulate_filaments(map, wind, source, sensors, o, 42);
   o.unsteady_wind = true;
-  const SensorRecord moving = simulate_filaments(map, wind, source, sensors, o, 42);
+  const world::SensorRecord moving = world::simulate_filaments(map, wind, source, sensors, o, 42);
   // Along the centreline, 2 to 8 m downwind: the mean within a third of the
   // uniform meander's, and a fluctuating signal (std over mean) like it.
   double worst = 0.0, steady_ratio = 0.0, moving_ratio = 0.0;

@@ -8,18 +8,19 @@
 #include <cstdio>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "gdm/apf_planner.hpp"
-#include "gdm/map_score.hpp"
+#include "map/map.hpp"
+#include "methods/apf_planner.hpp"
+#include "methods/gdm_estimates.hpp"
+#include "run/gdm_score.hpp"
 
-namespace plumekit::gdm {
+namespace plumekit::methods {
 namespace {
 
 // Hand-made maps over a 10 x 4 m arena at 0.1 m: no confidence, no variance, and a mean bump of
 // height 1 and width 0.5 m centred on the cell (50, 20).
-GdmMaps bump_maps() {
+methods::GdmMaps bump_maps() {
   const GridShape g = GridShape::with_cell(10.0, 4.0, 0.1);
-  GdmMaps m;
+  methods::GdmMaps m;
   m.mean = m.variance = m.confidence = m.weight = Grid<double>(g, 0.0);
   const Vec2 c = g.centre(50, 20);
   for (int j = 0; j < g.ny; ++j)
@@ -30,8 +31,8 @@ GdmMaps bump_maps() {
   return m;
 }
 
-ApfOptions mean_only(double beta_m, double beta_c) {
-  ApfOptions o;
+methods::ApfOptions mean_only(double beta_m, double beta_c) {
+  methods::ApfOptions o;
   o.beta_m = beta_m;
   o.beta_v = 0.0;
   o.beta_c = beta_c;
@@ -43,9 +44,9 @@ TEST(ApfField, FollowsTheClosedForm) {
   const Map arena = default_arena(10.0, 4.0);
   const std::vector<Sample> s{
       {{2.05, 2.05}, 0.0, {}}, {{2.35, 2.05}, 800.0, {}}, {{7.05, 1.05}, 50.0, {}}};
-  ApfOptions o;
-  const GdmMaps m = kernel_dmv(arena, s, o.gdm);
-  const Grid<double> apf = apf_field(m, o);
+  methods::ApfOptions o;
+  const methods::GdmMaps m = methods::kernel_dmv(arena, s, o.gdm);
+  const Grid<double> apf = methods::apf_field(m, o);
   double rmax = 0.0, vmax = 0.0;
   for (std::size_t c = 0; c < m.mean.values.size(); ++c)
     rmax = std::max(rmax, m.mean.values[c]), vmax = std::max(vmax, m.variance.values[c]);
@@ -56,22 +57,22 @@ TEST(ApfField, FollowsTheClosedForm) {
   }
   // Unnormalised: the raw maps weighted (eq. 8.4 as printed).
   o.normalise = false;
-  const Grid<double> raw = apf_field(m, o);
+  const Grid<double> raw = methods::apf_field(m, o);
   EXPECT_NEAR(raw(21, 20),
               0.1 * m.mean(21, 20) + 0.1 * m.variance(21, 20) - 0.8 * m.confidence(21, 20), 1e-9);
   // Obstacle cells have no potential.
   Map walled = arena;
   walled.obstacles.push_back({{4.0, 0.0}, {5.0, 0.0}, {5.0, 1.0}, {4.0, 1.0}});
-  const Grid<double> blocked = apf_field(kernel_dmv(walled, s, o.gdm), o);
+  const Grid<double> blocked = methods::apf_field(methods::kernel_dmv(walled, s, o.gdm), o);
   EXPECT_TRUE(std::isnan(blocked(45, 5)));
   EXPECT_TRUE(std::isfinite(blocked(45, 15)));
 }
 
 TEST(ApfSuggestions, RepulsionPushesTheNextPickAway) {
   const Map arena = default_arena(10.0, 4.0);
-  const GdmMaps m = bump_maps();
-  const ApfOptions o = mean_only(0.2, 0.8);
-  const auto s = apf_suggestions(m, arena, o, {1.0, 1.0});
+  const methods::GdmMaps m = bump_maps();
+  const methods::ApfOptions o = mean_only(0.2, 0.8);
+  const auto s = methods::apf_suggestions(m, arena, o, {1.0, 1.0});
   ASSERT_EQ(s.size(), 10u);
   // The first pick is the bump's peak: 0.2 * 1 - 0.8 * 0.
   EXPECT_EQ(s[0].i, 50);
@@ -93,10 +94,10 @@ TEST(ApfSuggestions, RepulsionPushesTheNextPickAway) {
 
 TEST(ApfSuggestions, WithoutTheConfidenceTermThereIsNoRepulsion) {
   // Eq. 8.6 scales the repulsion by beta_C: with beta_C = 0 every pick is the same peak cell.
-  const auto s =
-      apf_suggestions(bump_maps(), default_arena(10.0, 4.0), mean_only(1.0, 0.0), {1.0, 1.0});
+  const auto s = methods::apf_suggestions(bump_maps(), default_arena(10.0, 4.0),
+                                          mean_only(1.0, 0.0), {1.0, 1.0});
   ASSERT_EQ(s.size(), 10u);
-  for (const ApfSuggestion& x : s) {
+  for (const methods::ApfSuggestion& x : s) {
     EXPECT_EQ(x.i, 50);
     EXPECT_EQ(x.j, 20);
     EXPECT_DOUBLE_EQ(x.value, 1.0);
@@ -104,31 +105,32 @@ TEST(ApfSuggestions, WithoutTheConfidenceTermThereIsNoRepulsion) {
 }
 
 TEST(ApfSuggestions, SkipCellsWithinTheMinimumStep) {
-  ApfOptions o = mean_only(1.0, 0.0);
+  methods::ApfOptions o = mean_only(1.0, 0.0);
   o.min_step = 1.0;
   const Vec2 robot{5.05, 2.05};  // on the peak
-  const auto s = apf_suggestions(bump_maps(), default_arena(10.0, 4.0), o, robot);
-  for (const ApfSuggestion& x : s)
+  const auto s = methods::apf_suggestions(bump_maps(), default_arena(10.0, 4.0), o, robot);
+  for (const methods::ApfSuggestion& x : s)
     EXPECT_GE(norm(x.position - robot), 1.0 - 1e-9);
   // The best cell a step away: about exp(-1 / 0.5), the bump on the ring (less, as the cells on
   // the ring itself may fall a hair inside it).
   EXPECT_NEAR(s[0].value, std::exp(-2.0), 0.01);
   EXPECT_LE(s[0].value, std::exp(-2.0) + 1e-9);
   // Maps of another arena are refused.
-  EXPECT_THROW(apf_suggestions(bump_maps(), default_arena(12.0, 8.0), o, robot), InputError);
+  EXPECT_THROW(methods::apf_suggestions(bump_maps(), default_arena(12.0, 8.0), o, robot),
+               InputError);
 }
 
 TEST(ApfLocality, ClosestPicksTheNearestSuggestion) {
-  const std::vector<ApfSuggestion> s{
+  const std::vector<methods::ApfSuggestion> s{
       {{8.0, 2.0}, 0, 0, 0.5}, {{3.0, 2.0}, 0, 0, 0.4}, {{2.0, 3.0}, 0, 0, 0.3}};
-  EXPECT_EQ(choose_closest(s, {2.0, 2.0}), 1u);  // 1 m to both: the earlier pick wins
-  EXPECT_EQ(choose_closest(s, {2.0, 3.5}), 2u);
-  EXPECT_EQ(choose_closest(s, {9.0, 2.0}), 0u);
+  EXPECT_EQ(methods::choose_closest(s, {2.0, 2.0}), 1u);  // 1 m to both: the earlier pick wins
+  EXPECT_EQ(methods::choose_closest(s, {2.0, 3.5}), 2u);
+  EXPECT_EQ(methods::choose_closest(s, {9.0, 2.0}), 0u);
 }
 
 TEST(ApfLocality, CounterCountsTheCellAndItsNeighboursAndResetsOnVisit) {
   const GridShape g = GridShape::with_cell(10.0, 4.0, 0.1);
-  SuggestionCounter s(g, 0.5);
+  methods::SuggestionCounter s(g, 0.5);
   const Vec2 p = g.centre(50, 20);
   s.suggest(p);
   s.suggest(p);
@@ -153,23 +155,23 @@ TEST(ApfLocality, CounterCountsTheCellAndItsNeighboursAndResetsOnVisit) {
 
 TEST(ApfLocality, MostSuggestedMaximisesCountOverDistance) {
   const GridShape g = GridShape::with_cell(10.0, 4.0, 0.1);
-  SuggestionCounter s(g, 0.0);
+  methods::SuggestionCounter s(g, 0.0);
   const Vec2 robot = g.centre(10, 20), far = g.centre(50, 20), near = g.centre(20, 20);
   for (int k = 0; k < 5; ++k)
     s.suggest(far);  // 4 m, S = 5: 1.25
   s.suggest(near);   // 1 m, S = 1: 1
-  const std::vector<ApfSuggestion> list{{near, 20, 20, 0.9}, {far, 50, 20, 0.8}};
-  EXPECT_EQ(choose_most_suggested(list, s, robot), 1u);
+  const std::vector<methods::ApfSuggestion> list{{near, 20, 20, 0.9}, {far, 50, 20, 0.8}};
+  EXPECT_EQ(methods::choose_most_suggested(list, s, robot), 1u);
   s.suggest(near);  // S = 2 at 1 m: 2 > 1.25
-  EXPECT_EQ(choose_most_suggested(list, s, robot), 0u);
+  EXPECT_EQ(methods::choose_most_suggested(list, s, robot), 0u);
   // Equal ratios: the earlier (higher-APF) pick.
   for (int k = 0; k < 3; ++k)
     s.suggest(far);  // 8 / 4 = 2
-  EXPECT_EQ(choose_most_suggested(list, s, robot), 0u);
+  EXPECT_EQ(methods::choose_most_suggested(list, s, robot), 0u);
 }
 
 TEST(ApfOptions, ValidationNamesTheField) {
-  const auto field_of = [](const ApfOptions& o) -> std::string {
+  const auto field_of = [](const methods::ApfOptions& o) -> std::string {
     try {
       o.validate();
     } catch (const OptionError& e) {
@@ -177,44 +179,44 @@ TEST(ApfOptions, ValidationNamesTheField) {
     }
     return "";
   };
-  ApfOptions o;
+  methods::ApfOptions o;
   EXPECT_EQ(field_of(o), "");
   EXPECT_NEAR(o.beta_m + o.beta_v + o.beta_c, 1.0, 1e-12);
   o.beta_c = 0.7;  // sums to 0.9
   EXPECT_EQ(field_of(o), "apf.beta_c");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.beta_m = -0.1;
   EXPECT_EQ(field_of(o), "apf.beta_m");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.suggestions = 0;
   EXPECT_EQ(field_of(o), "apf.suggestions");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.charge = 1.0;
   EXPECT_EQ(field_of(o), "apf.charge");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.sigma_d = 0.0;
   EXPECT_EQ(field_of(o), "apf.sigma_d");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.confidence_stop = 1.0;
   EXPECT_EQ(field_of(o), "apf.confidence_stop");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.estimator = "peak";
   EXPECT_EQ(field_of(o), "apf.estimator");
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.gdm.cell = 0.0;
   EXPECT_EQ(field_of(o), "gdm.cell");
-  EXPECT_EQ(parse_locality("b"), Locality::MostSuggested);
-  EXPECT_EQ(parse_locality("closest"), Locality::Closest);
+  EXPECT_EQ(methods::parse_locality("b"), Locality::MostSuggested);
+  EXPECT_EQ(methods::parse_locality("closest"), Locality::Closest);
   try {
-    parse_locality("c");
+    methods::parse_locality("c");
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "apf.locality");
   }
   const Map arena = default_arena();
-  o = ApfOptions{};
+  o = methods::ApfOptions{};
   o.beta_v = 0.5;
-  EXPECT_THROW(ApfMapping(methods::SearchArea{&arena}, o), OptionError);
+  EXPECT_THROW(methods::ApfMapping(methods::SearchArea{&arena}, o), OptionError);
 }
 
 methods::Observation at(Vec2 p, double gas) {
@@ -227,9 +229,9 @@ methods::Observation at(Vec2 p, double gas) {
 
 TEST(ApfMapping, StopsWhenConfidentEverywhereOrOutOfSteps) {
   const Map arena = default_arena(2.0, 2.0);
-  ApfOptions o;
+  methods::ApfOptions o;
   o.confidence_stop = 0.5;
-  ApfMapping m(methods::SearchArea{&arena}, o);
+  methods::ApfMapping m(methods::SearchArea{&arena}, o);
   EXPECT_EQ(m.name(), "apf");
   EXPECT_FALSE(m.estimate());
   EXPECT_EQ(m.stopped_by(), "");
@@ -249,7 +251,7 @@ TEST(ApfMapping, StopsWhenConfidentEverywhereOrOutOfSteps) {
   // 0 disables that stop; max_steps still ends the run.
   o.confidence_stop = 0.0;
   o.max_steps = 3;
-  ApfMapping quick(methods::SearchArea{&arena}, o);
+  methods::ApfMapping quick(methods::SearchArea{&arena}, o);
   for (int k = 0; k < 3; ++k) {
     EXPECT_EQ(quick.stopped_by(), "");
     quick.observe(at({1.0, 1.0}, 0.0));
@@ -261,10 +263,10 @@ TEST(ApfMapping, StopsWhenConfidentEverywhereOrOutOfSteps) {
 TEST(ApfMapping, GoesToTheSuggestionItsLocalityPicks) {
   const Map arena = default_arena(10.0, 4.0);
   for (Locality l : {Locality::None, Locality::Closest, Locality::MostSuggested}) {
-    ApfOptions o;
+    methods::ApfOptions o;
     o.locality = l;
-    auto m = make_apf_mapping(methods::SearchArea{&arena}, o);
-    auto* apf = dynamic_cast<ApfMapping*>(m.get());
+    auto m = methods::make_apf_mapping(methods::SearchArea{&arena}, o);
+    auto* apf = dynamic_cast<methods::ApfMapping*>(m.get());
     ASSERT_NE(apf, nullptr);
     const Vec2 robot{2.0, 2.0};
     m->observe(at(robot, 100.0));
@@ -275,8 +277,8 @@ TEST(ApfMapping, GoesToTheSuggestionItsLocalityPicks) {
     EXPECT_GE(norm(move.goal - robot), o.min_step - 1e-9);
     const std::size_t want = l == Locality::None ? 0u
                              : l == Locality::Closest
-                                 ? choose_closest(s, robot)
-                                 : choose_most_suggested(s, apf->counter(), robot);
+                                 ? methods::choose_closest(s, robot)
+                                 : methods::choose_most_suggested(s, apf->counter(), robot);
     EXPECT_EQ(apf->chosen(), want) << to_string(l);
     ASSERT_TRUE(m->estimate());
   }
@@ -302,9 +304,9 @@ struct LoopResult {
 // tunnel), the robot jumping to each goal and reading the analytic plume there.
 LoopResult closed_loop(Vec2 start, Locality locality, int stops) {
   const Map arena = default_arena(12.0, 8.0);
-  ApfOptions o;  // (0.1, 0.1, 0.8), n_sp 10, DM+V/W
+  methods::ApfOptions o;  // (0.1, 0.1, 0.8), n_sp 10, DM+V/W
   o.locality = locality;
-  ApfMapping m(methods::SearchArea{&arena}, o);
+  methods::ApfMapping m(methods::SearchArea{&arena}, o);
   LoopResult r;
   Grid<double> truth;
   Vec2 robot = start;
@@ -316,13 +318,13 @@ LoopResult closed_loop(Vec2 start, Locality locality, int stops) {
         for (int i = 0; i < truth.shape.nx; ++i)
           truth(i, j) = analytic_plume(truth.shape.centre(i, j));
     }
-    r.kl.push_back(score_mean(m.maps().mean, truth).kl_distance);
+    r.kl.push_back(run::score_mean(m.maps().mean, truth).kl_distance);
     const Vec2 goal = m.next(robot).goal;
     EXPECT_GE(norm(goal - robot), o.min_step - 1e-9);
     r.distance += norm(goal - robot);
     robot = goal;
   }
-  r.peak_mean = source_estimates(m.maps())[0].position;
+  r.peak_mean = methods::source_estimates(m.maps())[0].position;
   return r;
 }
 
@@ -362,4 +364,4 @@ TEST(ApfMapping, LocalityConstraintsShortenTheFlight) {
 }
 
 }  // namespace
-}  // namespace plumekit::gdm
+}  // namespace plumekit::methods

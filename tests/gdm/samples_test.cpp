@@ -5,10 +5,10 @@
 #include <fstream>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "gdm/samples.hpp"
+#include "map/map.hpp"
+#include "run/gdm_samples.hpp"
 
-namespace plumekit::gdm {
+namespace plumekit::methods {
 namespace {
 
 // A 10 x 4 m arena whose lower-left corner is at (-1, -2) in the map frame.
@@ -20,7 +20,7 @@ Map framed_arena() {
 
 std::string message_of(const std::string& text) {
   try {
-    parse_samples_csv(text, "log.csv", framed_arena());
+    run::parse_samples_csv(text, "log.csv", framed_arena());
   } catch (const InputError& e) {
     return e.what();
   }
@@ -28,15 +28,15 @@ std::string message_of(const std::string& text) {
 }
 
 TEST(SamplesCsv, ReadsColumnsInAnyOrderInTheMapFrame) {
-  const auto s = parse_samples_csv("# a robot's log\nreading, y, x\n\n12.5, 0, 1\n0,1.5,-0.5\n",
-                                   "log.csv", framed_arena());
+  const auto s = run::parse_samples_csv(
+      "# a robot's log\nreading, y, x\n\n12.5, 0, 1\n0,1.5,-0.5\n", "log.csv", framed_arena());
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[0].position, (Vec2{2.0, 2.0}));
   EXPECT_EQ(s[0].reading, 12.5);
   EXPECT_FALSE(s[0].wind.has_value());
   EXPECT_EQ(s[1].position, (Vec2{0.5, 3.5}));
   const auto w =
-      parse_samples_csv("x,y,reading,u,v\r\n1,0,3,0.5,-0.25\r\n", "w.csv", framed_arena());
+      run::parse_samples_csv("x,y,reading,u,v\r\n1,0,3,0.5,-0.25\r\n", "w.csv", framed_arena());
   ASSERT_TRUE(w[0].wind.has_value());
   EXPECT_EQ(*w[0].wind, (Vec2{0.5, -0.25}));
 }
@@ -57,7 +57,7 @@ TEST(SamplesCsv, FaultsNameTheFileLineAndColumn) {
 
 TEST(SamplesCsv, AByteOrderMarkAndAnyCaseOfTheHeaderAreRead) {
   const auto s =
-      parse_samples_csv("\xEF\xBB\xBFX,Y,Reading,U,V\n1,0,3,1,0\n", "log.csv", framed_arena());
+      run::parse_samples_csv("\xEF\xBB\xBFX,Y,Reading,U,V\n1,0,3,1,0\n", "log.csv", framed_arena());
   ASSERT_EQ(s.size(), 1u);
   EXPECT_EQ(s[0].position, (Vec2{2.0, 2.0}));
   EXPECT_EQ(s[0].reading, 3.0);
@@ -90,26 +90,26 @@ TEST(RunSamples, ReadsTheStepsOfALocalizeRun) {
   const auto file = dir / "run.json";
   std::ofstream(file) << R"({"steps": [{"recorded_position": [1, 0], "value": 7, "wind": [1, 0]},
                                       {"recorded_position": [2, 1], "value": 0, "wind": [0.5, 0.5]}]})";
-  const auto s = read_run_samples(file, framed_arena());
+  const auto s = run::read_run_samples(file, framed_arena());
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[0].position, (Vec2{2.0, 2.0}));
   EXPECT_EQ(s[0].reading, 7.0);
   EXPECT_EQ(*s[1].wind, (Vec2{0.5, 0.5}));
   std::ofstream(file) << R"({"steps": [{"recorded_position": [1, 0], "wind": [1, 0]}]})";
   try {
-    read_run_samples(file, framed_arena());
+    run::read_run_samples(file, framed_arena());
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("steps[0]"), std::string::npos) << e.what();
   }
   std::ofstream(file) << "{not json";
-  EXPECT_THROW(read_run_samples(file, framed_arena()), InputError);
+  EXPECT_THROW(run::read_run_samples(file, framed_arena()), InputError);
   std::filesystem::remove_all(dir);
 }
 
 std::string run_message(const std::string& json) {
   try {
-    run_samples(parse_run_json(json, "run.json"), "run.json", framed_arena());
+    run::run_samples(run::parse_run_json(json, "run.json"), "run.json", framed_arena());
   } catch (const InputError& e) {
     return e.what();
   }
@@ -118,13 +118,13 @@ std::string run_message(const std::string& json) {
 
 TEST(RunSamples, ATeamRunGivesEveryRobotsSteps) {
   // The top-level steps are the declaring robot's; the members hold every robot's.
-  const auto s = run_samples(parse_run_json(R"({"steps": [{"recorded_position": [1, 0],
+  const auto s = run::run_samples(run::parse_run_json(R"({"steps": [{"recorded_position": [1, 0],
       "value": 7, "wind": [1, 0]}], "team": {"robots": 2, "members": [
       {"steps": [{"recorded_position": [1, 0], "value": 7, "wind": [1, 0]}]},
       {"steps": [{"recorded_position": [3, 1], "value": 2, "wind": [0, 1]},
                  {"recorded_position": [4, 1], "value": 3, "wind": [0, 1]}]}]}})",
-                                            "run.json"),
-                             "run.json", framed_arena());
+                                                      "run.json"),
+                                  "run.json", framed_arena());
   ASSERT_EQ(s.size(), 3u);
   EXPECT_EQ(s[1].position, (Vec2{4.0, 3.0}));
   EXPECT_EQ(s[2].reading, 3.0);
@@ -153,21 +153,22 @@ TEST(RunMap, TheRecordedMapIsFoundFromTheRunsFolderOrRefused) {
   std::ofstream(dir / "maps" / "a.json") << "{}";
   const fs::path run = dir / "runs" / "r1" / "run.json";
   // Recorded relative to the folder localize ran in (dir), found from the run's folders.
-  EXPECT_EQ(find_run_map(nlohmann::json{{"map", "maps/a.json"}}, run, {}), dir / "maps" / "a.json");
+  EXPECT_EQ(run::find_run_map(nlohmann::json{{"map", "maps/a.json"}}, run, {}),
+            dir / "maps" / "a.json");
   // A bare name (the map lay outside that folder): among the shipped maps.
-  EXPECT_EQ(find_run_map(nlohmann::json{{"map", "a.json"}}, run, {dir / "maps"}),
+  EXPECT_EQ(run::find_run_map(nlohmann::json{{"map", "a.json"}}, run, {dir / "maps"}),
             dir / "maps" / "a.json");
   try {
-    find_run_map(nlohmann::json{{"map", "maps/gone.json"}}, run, {});
+    run::find_run_map(nlohmann::json{{"map", "maps/gone.json"}}, run, {});
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("the run's map 'maps/gone.json' is not a file here"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(find_run_map(nlohmann::json::object(), run, {}), InputError);
+  EXPECT_THROW(run::find_run_map(nlohmann::json::object(), run, {}), InputError);
   fs::remove_all(dir);
 }
 
 }  // namespace
-}  // namespace plumekit::gdm
+}  // namespace plumekit::methods

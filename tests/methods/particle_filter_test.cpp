@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
 #include "core/random.hpp"
+#include "map/map.hpp"
 #include "methods/pf_method.hpp"
 #include "methods/wind_statistics.hpp"
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/map.hpp"
+#include "map/map.hpp"
 #include "test_maps.hpp"
 
 namespace plumekit::planner {

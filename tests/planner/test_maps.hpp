@@ -8,8 +8,8 @@
 
 #include "core/error.hpp"
 #include "core/geometry.hpp"
-#include "core/map.hpp"
-#include "core/map_json.hpp"
+#include "map/map.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::planner::testing {
 

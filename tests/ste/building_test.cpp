@@ -7,8 +7,8 @@
 
 #include "core/error.hpp"
 #include "dataset/random_maps.hpp"
-#include "ste/scenario.hpp"
-#include "ste/seeds.hpp"
+#include "run/scenario.hpp"
+#include "world/random_streams.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -31,16 +31,16 @@ Map small_building() {
 TEST(BuildingSte, PhysicsFindsTheSourceInAnotherRoomOfASmallRandomBuilding) {
   const Map map = small_building();
   ASSERT_NEAR(map.width, 7.7, 1e-9);
-  SteOptions o;
-  o.model = PlumeModelKind::Physics;
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Physics;
   o.physics.advection_diffusion.decay_rate = 1.0 / 28.0;
   o.navigation.candidates = NavigationOptions::Candidates::Floor;
-  const Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   // The map's first source as `maps random --sources 2` draws it: about (5.20, 0.91).
   const Vec2 source = dataset::random_sources(map, 2, 0.1, 7, 0)[0];
   ASSERT_NEAR(source.x, 5.2, 0.01);
   const Vec2 start{2.16, 6.49};
-  const LocalizationResult r = sc.run(source, start, run_seed(1, 0, 0, 0));
+  const run::LocalizationResult r = sc.run(source, start, world::run_seed(1, 0, 0, 0));
   EXPECT_LT(norm(r.estimate - source), 0.5) << "estimate " << to_string(r.estimate);
   EXPECT_EQ(r.stopped_by, "entropy");
   EXPECT_GT(r.distance_m, norm(source - start));
@@ -50,19 +50,19 @@ TEST(BuildingSte, PhysicsFindsTheSourceInAnotherRoomOfASmallRandomBuilding) {
 // closer than min_start_distance to the source; one that none suits is refused.
 TEST(BuildingSte, RunsStartFromTheMapsStartsInTurn) {
   Map map = small_building();
-  SteOptions o;
-  o.model = PlumeModelKind::Gaussian;
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Gaussian;
   const Vec2 source{5.2, 0.9};
   map.starts = {{2.16, 6.49}, {5.4, 1.1}, {1.0, 1.0}};
-  const Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   EXPECT_EQ(sc.run_start(source, 0, 1), (Vec2{2.16, 6.49}));
   EXPECT_EQ(sc.run_start(source, 1, 1), (Vec2{1.0, 1.0}));  // (5.4, 1.1) is 0.28 m away
   EXPECT_EQ(sc.run_start(source, 2, 1), (Vec2{2.16, 6.49}));
   map.starts = {{5.4, 1.1}};
-  const Scenario close(map, o);
+  const run::Scenario close(map, o);
   EXPECT_THROW(close.run_start(source, 0, 1), InputError);
   map.starts.clear();
-  const Scenario random(map, o);
+  const run::Scenario random(map, o);
   EXPECT_EQ(random.run_start(source, 0, 1), random.random_start(source, 1));
 }
 
@@ -80,9 +80,9 @@ TEST(BuildingSte, AutoCandidatesAreTheFloorsOnArenasLargerThanTheThesiss) {
     EXPECT_EQ(resolve_candidates(C::Auto, map), expected) << w << " x " << h;
   }
   EXPECT_EQ(resolve_candidates(C::Lattice, small_building()), C::Lattice);
-  SteOptions o;
-  o.model = PlumeModelKind::Gaussian;
-  EXPECT_EQ(Scenario(small_building(), o).options().navigation.candidates, C::Floor);
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Gaussian;
+  EXPECT_EQ(run::Scenario(small_building(), o).options().navigation.candidates, C::Floor);
 }
 
 // 50 samples on the thesis's arena and on floors up to 500 m^2; one per 10 m^2 on larger ones
@@ -95,9 +95,9 @@ TEST(BuildingSte, AutoMaxSamplesGrowWithTheFloorsArea) {
   EXPECT_EQ(resolve_max_samples(30, 5000, 1.0), 30);
   StopOptions stop;
   EXPECT_EQ(stop.max_samples_in_use(), 50);  // unresolved auto: the thesis's
-  SteOptions o;
-  o.model = PlumeModelKind::Gaussian;
-  EXPECT_EQ(Scenario(small_building(), o).options().stop.max_samples, 50);
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Gaussian;
+  EXPECT_EQ(run::Scenario(small_building(), o).options().stop.max_samples, 50);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/sha256.hpp"
-#include "ste/evaluation_part_reader.hpp"
+#include "run/evaluation_part_reader.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -25,7 +25,7 @@ fs::path write_part(const std::string& name, int k, int n, long long total) {
   fs::create_directories(dir);
   const std::string runs = "map,source_index,run\n", timings = "map,source_index,run\n";
   nlohmann::ordered_json j{
-      {"format", kPartFormat},
+      {"format", run::kPartFormat},
       {"part", k},
       {"parts", n},
       {"pairs", {{"first", 0}, {"end", 0}, {"total", total}}},
@@ -37,8 +37,8 @@ fs::path write_part(const std::string& name, int k, int n, long long total) {
       {"wall_s", 1.0},
       {"map_times", {{{"ran", false}, {"wind_s", 0.0}, {"table_build_s", 0.0}, {"wall_s", 0.0}}}},
       {"runs", nlohmann::ordered_json::array()}};
-  j["sha256"] = part_body_sha256(j);
-  std::ofstream(dir / kPartFile) << j.dump(2);
+  j["sha256"] = run::part_body_sha256(j);
+  std::ofstream(dir / run::kPartFile) << j.dump(2);
   std::ofstream(dir / "runs.csv") << runs;
   std::ofstream(dir / "timings.csv") << timings;
   return dir;
@@ -46,16 +46,16 @@ fs::path write_part(const std::string& name, int k, int n, long long total) {
 
 TEST(EvaluationParts, APartThatEvaluateCouldHaveWrittenIsRead) {
   const fs::path dir = write_part("ok", 0, 1, 0);
-  const EvaluationPart p = read_evaluation_part(dir);
+  const run::EvaluationPart p = run::read_evaluation_part(dir);
   EXPECT_EQ(p.n, 1);
-  EXPECT_NO_THROW(check_part_coverage({p}));
+  EXPECT_NO_THROW(run::check_part_coverage({p}));
   fs::remove_all(dir);
 }
 
 TEST(EvaluationParts, CountsBeyondWhatEvaluateWritesAreRefusedNamingTheKey) {
   const fs::path dir = write_part("huge", 1, 3, 1LL << 40);
   try {
-    read_evaluation_part(dir);
+    run::read_evaluation_part(dir);
     FAIL() << "a part of 2^40 pairs was read";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("pairs.total is 1099511627776, outside 0.."),

@@ -9,12 +9,12 @@
 
 #include "../planner/test_maps.hpp"
 #include "core/error.hpp"
-#include "core/map.hpp"
+#include "map/map.hpp"
 #include "planner/free_space.hpp"
 #include "ste/cached_readings.hpp"
 #include "ste/grid_estimator.hpp"
-#include "ste/localizer.hpp"
 #include "ste/navigation.hpp"
+#include "ste/stop_rule.hpp"
 
 namespace plumekit::ste {
 namespace {

@@ -1,23 +1,24 @@
-// STE in the local framework (seed 004 ch. 12, Algorithm 1; ste/local_framework.hpp): the sample
-// budget, how the local map moves, an obstacle's zero, odometry, and a whole run without a map.
+// STE in the local framework (seed 004 ch. 12, Algorithm 1; methods/local_framework.hpp): the
+// sample budget, how the local map moves, an obstacle's zero, odometry, and a whole run without a
+// map.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "ste/local_framework.hpp"
-#include "ste/method_run.hpp"
-#include "ste/scenario.hpp"
+#include "map/map.hpp"
+#include "methods/local_framework.hpp"
+#include "run/method_run.hpp"
+#include "run/scenario.hpp"
 
 namespace plumekit::ste {
 namespace {
 
 TEST(LocalFramework, BudgetFallsByOneWithoutInformationAndByTheEntropyRatioWithIt) {
-  EXPECT_DOUBLE_EQ(next_budget(7.0, 2.0, 2.0), 6.0);  // entropy unchanged: 1
-  EXPECT_DOUBLE_EQ(next_budget(7.0, 2.5, 2.0), 6.0);  // entropy up: 1
-  EXPECT_DOUBLE_EQ(next_budget(7.0, 1.0, 2.0), 6.5);  // halved: 0.5
-  EXPECT_DOUBLE_EQ(next_budget(0.3, 0.2, 2.0), 0.2);  // a tenth: 0.1
+  EXPECT_DOUBLE_EQ(methods::next_budget(7.0, 2.0, 2.0), 6.0);  // entropy unchanged: 1
+  EXPECT_DOUBLE_EQ(methods::next_budget(7.0, 2.5, 2.0), 6.0);  // entropy up: 1
+  EXPECT_DOUBLE_EQ(methods::next_budget(7.0, 1.0, 2.0), 6.5);  // halved: 0.5
+  EXPECT_DOUBLE_EQ(methods::next_budget(0.3, 0.2, 2.0), 0.2);  // a tenth: 0.1
 }
 
 methods::Observation stop_at(Vec2 p, double gas, Vec2 wind = {1.0, 0.0}) {
@@ -29,7 +30,7 @@ methods::Observation stop_at(Vec2 p, double gas, Vec2 wind = {1.0, 0.0}) {
 }
 
 TEST(LocalFramework, AMapWhereNothingWasSensedMovesCrosswindByItsSize) {
-  LocalFrameworkSte m({}, 3);
+  methods::LocalFrameworkSte m({}, 3);
   const Vec2 at{5.0, 2.0};
   const Vec2 wind{0.0, 0.8};  // blowing up: crosswind is along x
   methods::Move move;
@@ -54,9 +55,9 @@ TEST(LocalFramework, AMapWhereNothingWasSensedMovesCrosswindByItsSize) {
 }
 
 TEST(LocalFramework, AMapWithGasMovesOntoItsMostProbableSource) {
-  LocalFrameworkOptions o;
+  methods::LocalFrameworkOptions o;
   o.budget = 3.0;
-  LocalFrameworkSte m(o, 5);
+  methods::LocalFrameworkSte m(o, 5);
   // Readings that rise upwind (wind along +x): the source lies upwind, at the map's edge.
   const Vec2 stops[] = {{5.5, 2.0}, {5.0, 2.0}, {4.5, 2.0}, {5.0, 2.3}, {5.0, 1.7}, {4.4, 2.0}};
   const double gas[] = {80.0, 120.0, 200.0, 60.0, 60.0, 220.0};
@@ -76,7 +77,7 @@ TEST(LocalFramework, AMapWithGasMovesOntoItsMostProbableSource) {
 }
 
 TEST(LocalFramework, AnObstaclesZeroGoesToTheGoalAndCosts) {
-  LocalFrameworkSte m({}, 7);
+  methods::LocalFrameworkSte m({}, 7);
   m.observe(stop_at({5.0, 2.0}, 0.0));
   const methods::Move move = m.next({5.0, 2.0});
   const double before = m.budget();
@@ -89,10 +90,10 @@ TEST(LocalFramework, AnObstaclesZeroGoesToTheGoalAndCosts) {
 }
 
 TEST(LocalFramework, BadOptionsNameTheirField) {
-  LocalFrameworkOptions o;
+  methods::LocalFrameworkOptions o;
   o.budget = 0.0;
   try {
-    LocalFrameworkSte m(o, 1);
+    methods::LocalFrameworkSte m(o, 1);
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "local.budget");
@@ -118,14 +119,14 @@ class StraightAhead : public methods::LocalizationMethod {
 TEST(LocalFramework, AStraightMoveStopsAtTheFirstObstacle) {
   Map map = default_arena(6.0, 3.0);
   map.obstacles = {{{2.5, 1.0}, {3.0, 1.0}, {3.0, 2.0}, {2.5, 2.0}}};
-  SteOptions o;
-  o.method.kind = MethodKind::SteLocal;
-  const Scenario sc(map, o);
-  SimulatedWorld world(map, sc.wind(), {0.5, 0.5}, o.world, 3);
+  run::SteOptions o;
+  o.method.kind = run::MethodKind::SteLocal;
+  const run::Scenario sc(map, o);
+  world::SimulatedWorld world(map, sc.wind(), {0.5, 0.5}, o.world, 3);
   StraightAhead method;
-  MethodRunOptions ro;
+  run::MethodRunOptions ro;
   ro.space = &sc.free_space();
-  const LocalizationResult r = run_method({1.0, 1.5}, method, world, sc.planner(), ro);
+  const run::LocalizationResult r = run::run_method({1.0, 1.5}, method, world, sc.planner(), ro);
   ASSERT_EQ(method.seen.size(), 2u);
   EXPECT_FALSE(method.seen[0].blocked);
   EXPECT_TRUE(method.seen[1].blocked);
@@ -136,14 +137,14 @@ TEST(LocalFramework, AStraightMoveStopsAtTheFirstObstacle) {
 
 TEST(LocalFramework, OdometryDriftsWithDistanceAndNotWithout) {
   const Map map = default_arena();
-  SteOptions o;
-  o.method.kind = MethodKind::SteLocal;
-  const Scenario sc(map, o);
-  WorldOptions w = o.world;
+  run::SteOptions o;
+  o.method.kind = run::MethodKind::SteLocal;
+  const run::Scenario sc(map, o);
+  world::WorldOptions w = o.world;
   w.filament.min_spinup = 2.0;
   w.filament.max_spinup = 4.0;
   w.odometry_drift = 0.05;
-  SimulatedWorld world(map, sc.wind(), {1.0, 2.0}, w, 9);
+  world::SimulatedWorld world(map, sc.wind(), {1.0, 2.0}, w, 9);
   EXPECT_EQ(world.stop({8.0, 2.0}).position, (Vec2{8.0, 2.0}));  // not moved yet
   double drift = 0.0;
   Vec2 p{8.0, 2.0};
@@ -159,17 +160,17 @@ TEST(LocalFramework, OdometryDriftsWithDistanceAndNotWithout) {
 }
 
 TEST(LocalFramework, ARunWithoutAMapFindsTheSourceAndRepeatsItself) {
-  SteOptions o;
-  o.method.kind = MethodKind::SteLocal;
-  dataset::set_world(o.world.filament, "thesis");
+  run::SteOptions o;
+  o.method.kind = run::MethodKind::SteLocal;
+  world::set_world(o.world.filament, "thesis");
   o.world.filament.min_spinup = 5.0;
   o.world.filament.max_spinup = 20.0;
   o.world.odometry_drift = 0.02;
   const Map map = default_arena();
-  const Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   EXPECT_FALSE(sc.has_model());  // no global plume model: it knows no map
-  const LocalizationResult a = sc.run({2.0, 2.0}, {6.0, 2.2}, 4);
-  const LocalizationResult b = sc.run({2.0, 2.0}, {6.0, 2.2}, 4);
+  const run::LocalizationResult a = sc.run({2.0, 2.0}, {6.0, 2.2}, 4);
+  const run::LocalizationResult b = sc.run({2.0, 2.0}, {6.0, 2.2}, 4);
   EXPECT_EQ(a.method, "ste-local");
   EXPECT_EQ(a.stopped_by, "entropy");
   EXPECT_LT(norm(a.estimate - Vec2{2.0, 2.0}), 1.0);

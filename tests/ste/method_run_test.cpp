@@ -1,11 +1,11 @@
-// Any localization method run against the simulated world (ste/method_run.hpp): goals moved off
+// Any localization method run against the simulated world (run/method_run.hpp): goals moved off
 // obstacles, the trackers' source box, and every method through Scenario::run.
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "ste/method_run.hpp"
-#include "ste/scenario.hpp"
+#include "map/map.hpp"
+#include "run/method_run.hpp"
+#include "run/scenario.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -36,19 +36,19 @@ class ScriptedMethod : public methods::LocalizationMethod {
 
 TEST(MethodRun, GoalsInObstaclesOrOutsideAreMovedToTheNearestFreePoint) {
   const Map map = block_map();
-  SteOptions o;
-  o.method.kind = MethodKind::SurgeCast;  // no plume model: the scenario builds none
-  const Scenario sc(map, o);
+  run::SteOptions o;
+  o.method.kind = run::MethodKind::SurgeCast;  // no plume model: the scenario builds none
+  const run::Scenario sc(map, o);
   EXPECT_FALSE(sc.has_model());
-  SimulatedWorld world(map, sc.wind(), {4.5, 0.5}, o.world, 3);
+  world::SimulatedWorld world(map, sc.wind(), {4.5, 0.5}, o.world, 3);
   // Inside the block, beyond the right wall, and a reachable free point.
   ScriptedMethod method({{2.75, 1.5}, {7.0, 1.5}, {1.0, 2.5}});
-  MethodRunOptions ro;
+  run::MethodRunOptions ro;
   ro.space = &sc.free_space();
-  const LocalizationResult r = run_method({1.0, 0.5}, method, world, sc.planner(), ro);
+  const run::LocalizationResult r = run::run_method({1.0, 0.5}, method, world, sc.planner(), ro);
   ASSERT_EQ(r.steps.size(), 4u);
   EXPECT_EQ(r.stopped_by, "max_samples");
-  for (const Step& s : r.steps)
+  for (const run::Step& s : r.steps)
     EXPECT_TRUE(sc.free_space().contains(s.position));
   // Moved to the block's edge at the margin, and to the right wall's margin.
   EXPECT_NEAR(norm(r.steps[1].position - Vec2{2.75, 1.5}), 0.25 + o.margin, 0.01);
@@ -64,7 +64,7 @@ TEST(MethodRun, GoalsInObstaclesOrOutsideAreMovedToTheNearestFreePoint) {
 }
 
 TEST(MethodRun, TheSourceBoxLiesDownwindOfTheSource) {
-  SourceBox box;
+  run::SourceBox box;
   box.source = {2.0, 4.0};
   box.downwind = {1.0, 0.0};
   EXPECT_TRUE(box.contains({2.0, 4.0}));
@@ -80,15 +80,15 @@ TEST(MethodRun, TheSourceBoxLiesDownwindOfTheSource) {
 // Lévy taxis' success disc (seed 004 ch. 15): a move through it ends the run where it enters.
 TEST(MethodRun, AMoveThroughTheSourceDiscEndsTheRunWhereItEnters) {
   const Map map = block_map();
-  SteOptions o;
-  o.method.kind = MethodKind::LevyTaxis;
-  const Scenario sc(map, o);
-  SimulatedWorld world(map, sc.wind(), {4.5, 2.0}, o.world, 3);
+  run::SteOptions o;
+  o.method.kind = run::MethodKind::LevyTaxis;
+  const run::Scenario sc(map, o);
+  world::SimulatedWorld world(map, sc.wind(), {4.5, 2.0}, o.world, 3);
   ScriptedMethod method({{5.5, 2.0}, {5.5, 2.5}});  // straight through the source
-  MethodRunOptions ro;
+  run::MethodRunOptions ro;
   ro.space = &sc.free_space();
-  ro.disc = SourceDisc{{4.5, 2.0}, 0.5};
-  const LocalizationResult r = run_method({3.5, 2.0}, method, world, sc.planner(), ro);
+  ro.disc = run::SourceDisc{{4.5, 2.0}, 0.5};
+  const run::LocalizationResult r = run::run_method({3.5, 2.0}, method, world, sc.planner(), ro);
   EXPECT_EQ(r.stopped_by, "reached");
   EXPECT_TRUE(r.reached);
   ASSERT_EQ(r.steps.size(), 2u);
@@ -101,20 +101,20 @@ TEST(MethodRun, AMoveThroughTheSourceDiscEndsTheRunWhereItEnters) {
 
 TEST(MethodRun, EveryMethodRunsOnAMapWithAnObstacleAndRepeatsItself) {
   const Map map = block_map();
-  for (const std::string& name : method_names()) {
+  for (const std::string& name : run::method_names()) {
     if (name == "ste") continue;
-    SteOptions o;
-    o.method.kind = parse_method_kind(name);
+    run::SteOptions o;
+    o.method.kind = run::parse_method_kind(name);
     o.method.max_steps = 40;
-    const Scenario sc(map, o);
-    const LocalizationResult a = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
-    const LocalizationResult b = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
+    const run::Scenario sc(map, o);
+    const run::LocalizationResult a = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
+    const run::LocalizationResult b = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
     EXPECT_EQ(a.method, name);
     EXPECT_GE(a.samples, 1) << name;
     EXPECT_LE(a.samples, 40) << name;
     EXPECT_FALSE(a.stopped_by.empty()) << name;
     EXPECT_EQ(a.reached, a.stopped_by == "reached") << name;
-    for (const Step& s : a.steps)
+    for (const run::Step& s : a.steps)
       EXPECT_TRUE(sc.free_space().contains(s.position)) << name;
     // The same seed gives the same run.
     ASSERT_EQ(a.steps.size(), b.steps.size()) << name;
@@ -124,7 +124,7 @@ TEST(MethodRun, EveryMethodRunsOnAMapWithAnObstacleAndRepeatsItself) {
 
 TEST(MethodRun, UnknownMethodNamesTheFieldAndTheChoices) {
   try {
-    parse_method_kind("infotaxis");
+    run::parse_method_kind("infotaxis");
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "ste.method");

@@ -1,4 +1,4 @@
-// One plume that several robots sample in one world clock (ste/shared_plume.hpp): each robot,
+// One plume that several robots sample in one world clock (world/shared_plume.hpp): each robot,
 // on its own thread, reads exactly what it reads in a world of its own with the same seed.
 #include <gtest/gtest.h>
 
@@ -8,8 +8,8 @@
 
 #include "core/error.hpp"
 #include "dataset/uniform_wind.hpp"
-#include "ste/shared_plume.hpp"
-#include "ste/world.hpp"
+#include "world/shared_plume.hpp"
+#include "world/simulated_world.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -21,12 +21,12 @@ struct PlumeWorld {
   cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
   Vec2 source{2.0, 2.0};
   std::uint64_t seed = 29;
-  WorldOptions options(const std::string& sensor) const {
-    WorldOptions o;
+  world::WorldOptions options(const std::string& sensor) const {
+    world::WorldOptions o;
     o.filament.release_per_second = 100.0;
     o.filament.min_spinup = 2.0;
     o.filament.max_spinup = 6.0;
-    o.sensor = dataset::gas_sensor_preset(sensor);
+    o.sensor = world::gas_sensor_preset(sensor);
     o.wind_direction_noise_deg = 10.0;
     o.position_noise = 0.1;
     return o;
@@ -35,13 +35,13 @@ struct PlumeWorld {
 
 // What a robot did: every reading and its clock after each action.
 struct Log {
-  std::vector<Reading> readings;
+  std::vector<world::Reading> readings;
   std::vector<double> times;
 };
 
 // A mission of `stops` stops along the plume, travelling `metres` between them (not multiples of
 // the plume's dt, so the leftover seconds carry from leg to leg).
-Log mission(SimulatedWorld& world, int stops, double metres) {
+Log mission(world::SimulatedWorld& world, int stops, double metres) {
   Log log;
   Vec2 p{3.0, 1.0};
   for (int k = 0; k < stops; ++k) {
@@ -76,16 +76,16 @@ TEST(SharedPlume, RobotsOnThreadsReadWhatEachReadsAlone) {
   const std::vector<double> legs{1.3, 0.77, 1.01};
   std::vector<Log> alone;
   for (std::size_t r = 0; r < sensors.size(); ++r) {
-    SimulatedWorld world(w.map, w.wind, w.source, w.options(sensors[r]), w.seed);
+    world::SimulatedWorld world(w.map, w.wind, w.source, w.options(sensors[r]), w.seed);
     alone.push_back(mission(world, stops[r], legs[r]));
   }
-  SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 3);
+  world::SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 3);
   std::vector<Log> shared(sensors.size());
   std::vector<std::thread> robots;
   for (std::size_t r = 0; r < sensors.size(); ++r)
     robots.emplace_back([&, r] {
-      SimulatedWorld world(plume, static_cast<int>(r), w.map, w.source, w.options(sensors[r]),
-                           w.seed);
+      world::SimulatedWorld world(plume, static_cast<int>(r), w.map, w.source,
+                                  w.options(sensors[r]), w.seed);
       shared[r] = mission(world, stops[r], legs[r]);
     });
   for (std::thread& t : robots)
@@ -100,7 +100,7 @@ TEST(SharedPlume, RobotsOnThreadsReadWhatEachReadsAlone) {
 
 TEST(SharedPlume, ARobotsStepsNeverGoBack) {
   const PlumeWorld w;
-  SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 1);
+  world::SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 1);
   const double t0 = plume.at(0, 0).time();
   EXPECT_DOUBLE_EQ(plume.at(4, 0).time(), t0 + 4 * w.options("ideal").filament.dt);
   EXPECT_THROW(plume.at(3, 0), std::logic_error);
@@ -108,11 +108,11 @@ TEST(SharedPlume, ARobotsStepsNeverGoBack) {
 
 TEST(SharedPlume, ARobotWhoseOptionsFailDoesNotHoldTheOthers) {
   const PlumeWorld w;
-  SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 2);
-  WorldOptions bad = w.options("ideal");
+  world::SharedPlume plume(w.map, w.wind, w.source, w.options("ideal").filament, w.seed, 2);
+  world::WorldOptions bad = w.options("ideal");
   bad.speed = -1.0;
-  EXPECT_THROW(SimulatedWorld(plume, 1, w.map, w.source, bad, w.seed), OptionError);
-  SimulatedWorld world(plume, 0, w.map, w.source, w.options("ideal"), w.seed);
+  EXPECT_THROW(world::SimulatedWorld(plume, 1, w.map, w.source, bad, w.seed), OptionError);
+  world::SimulatedWorld world(plume, 0, w.map, w.source, w.options("ideal"), w.seed);
   world.travel({}, 3.0);  // 6 s: the plume steps on without robot 1
   world.stop({4.0, 2.0});
   EXPECT_NEAR(world.time() - plume.spinup_s(), 6.0 + 5.0, 1e-9);

@@ -134,7 +134,7 @@ TEST_F(SteCli, TheTimeSummaryAddsUpAndSeveralMethodsGetOneTotal) {
   EXPECT_NE(r.out.find("\n\nall 2 methods in "), std::string::npos) << r.out;
 }
 
-// Several methods in one world (ste/shared_plume.hpp): OUT/NAME/ is byte for byte what
+// Several methods in one world (world/shared_plume.hpp): OUT/NAME/ is byte for byte what
 // `--method NAME --out OUT/NAME` writes, the pictures included.
 TEST_F(SteCli, SeveralMethodsInOneWorldWriteWhatEachWritesAlone) {
   write_map();

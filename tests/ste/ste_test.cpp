@@ -8,15 +8,16 @@
 
 #include "../dataset/uniform_wind.hpp"
 #include "core/error.hpp"
-#include "core/map.hpp"
-#include "core/map_json.hpp"
+#include "dataset/plume.hpp"
+#include "map/map.hpp"
+#include "map/map_json.hpp"
 #include "planner/free_space.hpp"
+#include "run/scenario.hpp"
 #include "ste/gaussian_plume.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/mission.hpp"
 #include "ste/physics_plume.hpp"
-#include "ste/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/network.hpp"
 #include "surrogate/plume_network.hpp"
@@ -58,6 +59,15 @@ TEST(GridEstimator, PhysicsPosteriorConcentratesOnTheTrueSource) {
   EXPECT_LT(norm(post.expected_source() - truth), 0.05);
   EXPECT_LT(norm(post.map - truth), 1e-9);
   EXPECT_LT(post.entropy, 0.02 * post.max_entropy);
+}
+
+// The physics model states the world's gas lifetime as a number (ste never includes the world);
+// it must be the world's own, or the model fills dead-end rooms the world never fills.
+TEST(PhysicsPlume, DecaysAsTheFilamentWorldLosesItsGas) {
+  EXPECT_EQ(PhysicsPlumeOptions::world_matched().decay_rate,
+            dataset::filament_world_mean().decay_rate);
+  EXPECT_EQ(PhysicsPlumeOptions{}.advection_diffusion.diffusivity,
+            dataset::filament_world_mean().diffusivity);
 }
 
 TEST(GridEstimator, ReleaseScaleIsMarginalisedAndEstimated) {
@@ -239,14 +249,14 @@ TEST(Likelihood, PredictedScatterWidensTheVarianceOfThatHypothesis) {
 
 TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   const Map map = small_map();
-  SteOptions o;
-  o.model = PlumeModelKind::Physics;
-  const Scenario sc(map, o);
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Physics;
+  const run::Scenario sc(map, o);
   // Below the block's wake: directly behind it the filament plume's widest
   // filaments pile up against the block and their kernels reach through it
   // (see ste/README.md), which no mean-plume model predicts.
   const Vec2 source{4.5, 0.5};
-  const LocalizationResult r = sc.run(source, {1.0, 2.5}, run_seed(3, 0, 0, 0));
+  const run::LocalizationResult r = sc.run(source, {1.0, 2.5}, world::run_seed(3, 0, 0, 0));
   EXPECT_LT(norm(r.estimate - source), 0.5) << "estimate " << to_string(r.estimate);
   EXPECT_EQ(r.stopped_by, "entropy");
   EXPECT_LT(r.samples, o.stop.max_samples_in_use());
@@ -254,7 +264,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   // Every sample is taken in free space, every path stays in it.
   const planner::FreeSpace& space = sc.free_space();
   int segments = 0;
-  for (const Step& s : r.steps) {
+  for (const run::Step& s : r.steps) {
     EXPECT_TRUE(space.contains(s.position)) << to_string(s.position);
     for (std::size_t k = 1; k < s.path_in.size(); ++k, ++segments)
       EXPECT_TRUE(space.segment_free(s.path_in[k - 1], s.path_in[k]))
@@ -262,7 +272,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   }
   EXPECT_GT(segments, 0);
   // Same seed, same run.
-  const LocalizationResult again = sc.run(source, {1.0, 2.5}, run_seed(3, 0, 0, 0));
+  const run::LocalizationResult again = sc.run(source, {1.0, 2.5}, world::run_seed(3, 0, 0, 0));
   EXPECT_EQ(again.samples, r.samples);
   EXPECT_EQ(again.estimate, r.estimate);
 }
@@ -271,18 +281,18 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
 // Mission driven by the simulated world), and refuses what is not a reading.
 TEST(Localize, AMissionFedARunsReadingsRetracesIt) {
   const Map map = small_map();
-  SteOptions o;
-  o.model = PlumeModelKind::Physics;
-  const Scenario sc(map, o);
-  const LocalizationResult r = sc.run({4.5, 0.5}, {1.0, 2.5}, run_seed(3, 0, 0, 0));
-  const std::unique_ptr<Estimator> estimator = sc.make_estimator(run_seed(3, 0, 0, 0));
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Physics;
+  const run::Scenario sc(map, o);
+  const run::LocalizationResult r = sc.run({4.5, 0.5}, {1.0, 2.5}, world::run_seed(3, 0, 0, 0));
+  const std::unique_ptr<Estimator> estimator = sc.make_estimator(world::run_seed(3, 0, 0, 0));
   Mission mission(*estimator, sc.planner(), sc.navigator(), sc.options().stop);
   EXPECT_THROW(mission.next({1.0, 2.5}), InputError);  // no sample yet
   EXPECT_THROW(mission.add({1.0, 2.5}, std::nan("")), InputError);
   EXPECT_THROW(mission.add({std::nan(""), 2.5}, 1.0), InputError);
   EXPECT_EQ(mission.samples(), 0);
   for (std::size_t k = 0; k < r.steps.size(); ++k) {
-    const Step& s = r.steps[k];
+    const run::Step& s = r.steps[k];
     const Posterior& p = mission.add(s.recorded, s.value);
     EXPECT_EQ(p.expected_source(), s.estimate);
     if (mission.stopped()) break;
@@ -295,36 +305,36 @@ TEST(Localize, AMissionFedARunsReadingsRetracesIt) {
 
 TEST(Localize, StopsOnTheSampleLimitWhenTheEntropyStaysHigh) {
   const Map map = small_map();
-  SteOptions o;
-  o.model = PlumeModelKind::Physics;
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Physics;
   o.stop.max_samples = 3;
-  const Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   // The robot starts far upwind of the source: three samples cannot settle it.
-  const LocalizationResult r = sc.run({5.5, 0.5}, {0.5, 2.5}, 11);
+  const run::LocalizationResult r = sc.run({5.5, 0.5}, {0.5, 2.5}, 11);
   EXPECT_EQ(r.samples, 3);
   EXPECT_EQ(r.stopped_by, "max_samples");
 }
 
 TEST(Localize, EntropyStopTriggersAtTheThreshold) {
   const Map map = small_map();
-  SteOptions o;
-  o.model = PlumeModelKind::Physics;
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Physics;
   o.stop.entropy_fraction = 1.01;  // above the maximum: the first sample stops it ...
   o.stop.seen_mass = 0.0;          // ... even where its plume reaches no sample
-  const Scenario sc(map, o);
-  const LocalizationResult r = sc.run({4.2, 1.3}, {0.8, 2.2}, 5);
+  const run::Scenario sc(map, o);
+  const run::LocalizationResult r = sc.run({4.2, 1.3}, {0.8, 2.2}, 5);
   EXPECT_EQ(r.samples, 1);
   EXPECT_EQ(r.stopped_by, "entropy");
 }
 
 TEST(Scenario, RejectsBadSourcesAndStarts) {
   const Map map = small_map();
-  SteOptions o;
-  o.model = PlumeModelKind::Gaussian;
-  const Scenario sc(map, o);
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Gaussian;
+  const run::Scenario sc(map, o);
   EXPECT_THROW(sc.check_source({2.7, 1.5}), InputError);  // inside the block
   EXPECT_THROW(sc.check_start({7.0, 1.0}), InputError);   // outside the arena
-  EXPECT_THROW(parse_plume_model_kind("kriging"), InputError);
+  EXPECT_THROW(run::parse_plume_model_kind("kriging"), InputError);
   // A start within the margin of the block is moved out of it.
   const Vec2 moved = sc.check_start({2.45, 1.5});
   EXPECT_TRUE(sc.free_space().contains(moved));

@@ -8,8 +8,8 @@
 
 #include "cfd/flow_policy.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
-#include "ste/scenario.hpp"
+#include "map/map_json.hpp"
+#include "run/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {
@@ -118,20 +118,20 @@ Map empty_map(double width, double height) {
 
 TEST(SurrogateTableGrid, TheDefaultTableCellCountsTheFreeSpace) {
   // Up to 100 m^2: the candidates' own cell (every thesis-arena result is unchanged).
-  EXPECT_DOUBLE_EQ(surrogate_table_cell(empty_map(10, 4), 0.2), 0.2);
-  EXPECT_DOUBLE_EQ(surrogate_table_cell(empty_map(10, 4), 0.3), 0.3);
+  EXPECT_DOUBLE_EQ(run::surrogate_table_cell(empty_map(10, 4), 0.2), 0.2);
+  EXPECT_DOUBLE_EQ(run::surrogate_table_cell(empty_map(10, 4), 0.3), 0.3);
   // 900 m^2 free: sqrt(900 / 2500) = 0.6 m; never finer than the candidates.
-  EXPECT_NEAR(surrogate_table_cell(empty_map(30, 30), 0.2), 0.6, 1e-12);
-  EXPECT_NEAR(surrogate_table_cell(empty_map(30, 30), 0.8), 0.8, 1e-12);
+  EXPECT_NEAR(run::surrogate_table_cell(empty_map(30, 30), 0.2), 0.6, 1e-12);
+  EXPECT_NEAR(run::surrogate_table_cell(empty_map(30, 30), 0.8), 0.8, 1e-12);
   // A 20 x 20 m rectangle whose free space is 80 m^2 (a block fills the rest): no coarser table.
   Map walled = empty_map(20, 20);
   walled.obstacles.push_back({{0.0, 4.0}, {20.0, 4.0}, {20.0, 20.0}, {0.0, 20.0}});
-  EXPECT_DOUBLE_EQ(surrogate_table_cell(walled, 0.2), 0.2);
+  EXPECT_DOUBLE_EQ(run::surrogate_table_cell(walled, 0.2), 0.2);
 
-  SteOptions o;
+  run::SteOptions o;
   o.table_cell = 0.6;
   EXPECT_NEAR(o.table_cell_in_use(empty_map(10, 4)), 0.6, 1e-12);
-  o.model = PlumeModelKind::Physics;
+  o.model = run::PlumeModelKind::Physics;
   EXPECT_DOUBLE_EQ(o.table_cell_in_use(empty_map(10, 4)), 0.0);
 }
 

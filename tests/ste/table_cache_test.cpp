@@ -16,8 +16,8 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/sha256.hpp"
+#include "map/map_json.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::ste {

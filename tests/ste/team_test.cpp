@@ -1,24 +1,24 @@
-// Robot teams (seed 004 ch. 13; ste/team.hpp): the rules on hand-made cases, a team of one is the
+// Robot teams (seed 004 ch. 13; run/team.hpp): the rules on hand-made cases, a team of one is the
 // robot alone, shared samples reach a teammate, robots keep their separation.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.hpp"
+#include "run/scenario.hpp"
+#include "run/team.hpp"
 #include "ste/grid_estimator.hpp"
 #include "ste/mission.hpp"
-#include "ste/scenario.hpp"
-#include "ste/team.hpp"
 
 namespace plumekit::ste {
 namespace {
 
 // The thesis's open arena (10 x 4 m, the default inlet), the physics model in the thesis's
 // world, and a short spin-up for a test.
-SteOptions team_options(int robots, TeamStrategy strategy) {
-  SteOptions o;
-  o.model = PlumeModelKind::Physics;
-  dataset::set_world(o.world.filament, "thesis");
+run::SteOptions team_options(int robots, run::TeamStrategy strategy) {
+  run::SteOptions o;
+  o.model = run::PlumeModelKind::Physics;
+  world::set_world(o.world.filament, "thesis");
   o.world.filament.min_spinup = 5.0;
   o.world.filament.max_spinup = 20.0;
   o.stop.max_samples = 25;
@@ -32,67 +32,68 @@ const Vec2 kStart{8.0, 2.2};
 
 TEST(Team, SeparationRuleLetsRobotsPartButNotClose) {
   const Vec2 other{1.0, 0.0};
-  EXPECT_TRUE(may_move({-1.0, 0.0}, {0.0, 0.0}, other, 0.5));  // ends 1 m away
-  EXPECT_FALSE(may_move({0.0, 0.0}, {0.6, 0.0}, other, 0.5));  // ends 0.4 m away, closer
-  EXPECT_TRUE(may_move({0.9, 0.0}, {0.8, 0.0}, other, 0.5));   // too close, but moving away
-  EXPECT_TRUE(may_move({0.6, 0.3}, {0.6, -0.3}, other, 0.5));  // 0.5 m before and after
-  EXPECT_TRUE(may_move({0.0, 0.0}, {0.5, 0.0}, other, 0.45));  // keeps a smaller separation
+  EXPECT_TRUE(run::may_move({-1.0, 0.0}, {0.0, 0.0}, other, 0.5));  // ends 1 m away
+  EXPECT_FALSE(run::may_move({0.0, 0.0}, {0.6, 0.0}, other, 0.5));  // ends 0.4 m away, closer
+  EXPECT_TRUE(run::may_move({0.9, 0.0}, {0.8, 0.0}, other, 0.5));   // too close, but moving away
+  EXPECT_TRUE(run::may_move({0.6, 0.3}, {0.6, -0.3}, other, 0.5));  // 0.5 m before and after
+  EXPECT_TRUE(run::may_move({0.0, 0.0}, {0.5, 0.0}, other, 0.45));  // keeps a smaller separation
 }
 
 TEST(Team, AGoalWhereATeammateIsMovesToTheNearestFreePoint) {
   const auto anywhere = [](Vec2) { return true; };
   // Clear of every teammate: kept.
-  EXPECT_EQ(*free_goal({1.0, 1.0}, {{2.0, 1.0}, {1.0, 2.0}}, 0.3, anywhere), (Vec2{1.0, 1.0}));
+  EXPECT_EQ(*run::free_goal({1.0, 1.0}, {{2.0, 1.0}, {1.0, 2.0}}, 0.3, anywhere), (Vec2{1.0, 1.0}));
   // A teammate 0.1 m off: the first point of the nearest ring clear of it, 0.3 m away.
-  const Vec2 moved = *free_goal({1.0, 1.0}, {{1.1, 1.0}}, 0.3, anywhere);
+  const Vec2 moved = *run::free_goal({1.0, 1.0}, {{1.1, 1.0}}, 0.3, anywhere);
   EXPECT_GE(norm(moved - Vec2{1.1, 1.0}), 0.3);
   EXPECT_NEAR(norm(moved - Vec2{1.0, 1.0}), 0.3, 1e-12);
   // Only points the caller accepts (free space, the robot's piece of it): here y <= 1.
-  const Vec2 below = *free_goal({1.0, 1.0}, {{1.0, 1.0}}, 0.3, [](Vec2 g) { return g.y <= 1.0; });
+  const Vec2 below =
+      *run::free_goal({1.0, 1.0}, {{1.0, 1.0}}, 0.3, [](Vec2 g) { return g.y <= 1.0; });
   EXPECT_LE(below.y, 1.0);
   EXPECT_GE(norm(below - Vec2{1.0, 1.0}), 0.3);
   // Nowhere usable: none.
-  EXPECT_FALSE(free_goal({1.0, 1.0}, {{1.0, 1.0}}, 0.3, [](Vec2) { return false; }));
+  EXPECT_FALSE(run::free_goal({1.0, 1.0}, {{1.0, 1.0}}, 0.3, [](Vec2) { return false; }));
 }
 
 TEST(Team, TaskSwapTakesTheTeammatesGoalWhenThatShortensTheTeamsPath) {
   const auto straight = [](Vec2 a, Vec2 b) { return norm(a - b); };
   // Robot at the origin chose a goal 10 m east; a teammate 9 m east heads for 1 m east. Swapped,
   // each goes 1 m instead of 10 and 8: the team saves 16 m.
-  const Heading robot{{0.0, 0.0}, {10.0, 0.0}};
-  std::vector<Heading> moving{{{9.0, 0.0}, {1.0, 0.0}}};
-  EXPECT_EQ(best_swap(robot, moving, straight), 0);
+  const run::Heading robot{{0.0, 0.0}, {10.0, 0.0}};
+  std::vector<run::Heading> moving{{{9.0, 0.0}, {1.0, 0.0}}};
+  EXPECT_EQ(run::best_swap(robot, moving, straight), 0);
   // Of two teammates, the one whose swap saves more: the second saves 18 m.
   moving = {{{5.0, 3.0}, {5.0, 2.0}}, {{10.0, 0.5}, {0.0, 0.5}}};
-  EXPECT_EQ(best_swap(robot, moving, straight), 1);
+  EXPECT_EQ(run::best_swap(robot, moving, straight), 1);
   // No swap saves anything: teammates already bound for the nearer goals.
   moving = {{{9.0, 0.0}, {9.5, 0.0}}, {{0.0, 3.0}, {0.0, 4.0}}};
-  EXPECT_EQ(best_swap(robot, moving, straight), -1);
+  EXPECT_EQ(run::best_swap(robot, moving, straight), -1);
   // An unreachable swapped goal (infinite distance) is never taken.
   const auto walled = [](Vec2 a, Vec2 b) {
     return b.x > 5.0 && a.x < 5.0 ? std::numeric_limits<double>::infinity() : norm(a - b);
   };
-  EXPECT_EQ(best_swap({{0.0, 0.0}, {1.0, 0.0}}, {{{9.0, 0.0}, {8.0, 0.0}}}, walled), -1);
+  EXPECT_EQ(run::best_swap({{0.0, 0.0}, {1.0, 0.0}}, {{{9.0, 0.0}, {8.0, 0.0}}}, walled), -1);
 }
 
 TEST(Team, StrategiesParseAndBadOptionsNameTheirField) {
-  EXPECT_EQ(parse_team_strategy("collaborative"), TeamStrategy::Collaborative);
-  EXPECT_STREQ(to_string(TeamStrategy::Cooperative), "cooperative");
+  EXPECT_EQ(run::parse_team_strategy("collaborative"), run::TeamStrategy::Collaborative);
+  EXPECT_STREQ(to_string(run::TeamStrategy::Cooperative), "cooperative");
   try {
-    parse_team_strategy("swarm");
+    run::parse_team_strategy("swarm");
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "ste.team.strategy");
   }
-  SteOptions o = team_options(0, TeamStrategy::Individualist);
+  run::SteOptions o = team_options(0, run::TeamStrategy::Individualist);
   try {
     o.validate();
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "ste.team.robots");
   }
-  o = team_options(2, TeamStrategy::Individualist);
-  o.method.kind = MethodKind::SurgeCast;  // teams run STE
+  o = team_options(2, run::TeamStrategy::Individualist);
+  o.method.kind = run::MethodKind::SurgeCast;  // teams run STE
   try {
     o.validate();
     FAIL();
@@ -103,10 +104,10 @@ TEST(Team, StrategiesParseAndBadOptionsNameTheirField) {
 
 TEST(Team, MissionCountsItsOwnSamplesAgainstItsBudget) {
   const Map map = default_arena();
-  SteOptions o = team_options(1, TeamStrategy::Cooperative);
+  run::SteOptions o = team_options(1, run::TeamStrategy::Cooperative);
   o.stop.max_samples = 3;
   o.stop.entropy_fraction = 0.0;  // only the budget stops it
-  const Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   const auto est = sc.make_estimator(1);
   Mission m(*est, sc.planner(), sc.navigator(), sc.options().stop);
   m.add({8.0, 2.0}, 0.0, {{{7.0, 1.0}, 0.0}, {{7.0, 3.0}, 0.0}, {{6.0, 2.0}, 0.0}});
@@ -123,7 +124,7 @@ TEST(Team, MissionCountsItsOwnSamplesAgainstItsBudget) {
 
 TEST(Team, VirtualSamplesAtTeammatesGoalsChangeWhereARobotGoes) {
   const Map map = default_arena();
-  const Scenario sc(map, team_options(1, TeamStrategy::Collaborative));
+  const run::Scenario sc(map, team_options(1, run::TeamStrategy::Collaborative));
   const auto est = sc.make_estimator(1);
   Mission m(*est, sc.planner(), sc.navigator(), sc.options().stop);
   m.add({6.0, 2.0}, 40.0);
@@ -145,11 +146,11 @@ TEST(Team, ATeamOfOneIsTheRobotAlone) {
   // The fast MOX sensor reads on the way too.
   for (const std::string sensor : {"ideal", "mox-fast"}) {
     SCOPED_TRACE(sensor);
-    SteOptions o = team_options(1, TeamStrategy::Individualist);
-    o.world.sensor = dataset::gas_sensor_preset(sensor);
-    const Scenario sc(map, o);
-    const LocalizationResult alone = sc.run(kSource, kStart, 11);
-    const LocalizationResult team = sc.run_team(kSource, {kStart}, 11);
+    run::SteOptions o = team_options(1, run::TeamStrategy::Individualist);
+    o.world.sensor = world::gas_sensor_preset(sensor);
+    const run::Scenario sc(map, o);
+    const run::LocalizationResult alone = sc.run(kSource, kStart, 11);
+    const run::LocalizationResult team = sc.run_team(kSource, {kStart}, 11);
     ASSERT_EQ(team.team.size(), 1u);
     ASSERT_EQ(alone.steps.size(), team.steps.size());
     for (std::size_t k = 0; k < alone.steps.size(); ++k) {
@@ -170,28 +171,29 @@ TEST(Team, ATeamOfOneIsTheRobotAlone) {
 }
 
 // The entropy a fresh estimator reaches from these samples, in this order.
-double entropy_after(const Scenario& sc, const std::vector<Step>& samples) {
+double entropy_after(const run::Scenario& sc, const std::vector<run::Step>& samples) {
   const auto est = sc.make_estimator(1);
-  for (const Step& s : samples)
+  for (const run::Step& s : samples)
     est->add(s.recorded, s.value);
   return est->posterior().entropy;
 }
 
 TEST(Team, CooperativeRobotsShareEverySampleAndIndividualistsNone) {
   const Map map = default_arena();
-  for (TeamStrategy strategy : {TeamStrategy::Cooperative, TeamStrategy::Individualist}) {
-    const Scenario sc(map, team_options(2, strategy));
-    const LocalizationResult r = sc.run(kSource, kStart, 5);
+  for (run::TeamStrategy strategy :
+       {run::TeamStrategy::Cooperative, run::TeamStrategy::Individualist}) {
+    const run::Scenario sc(map, team_options(2, strategy));
+    const run::LocalizationResult r = sc.run(kSource, kStart, 5);
     ASSERT_EQ(r.team.size(), 2u);
-    const std::vector<Step>& first = r.team[0].steps;
-    const std::vector<Step>& second = r.team[1].steps;
+    const std::vector<run::Step>& first = r.team[0].steps;
+    const std::vector<run::Step>& second = r.team[1].steps;
     ASSERT_GE(first.size(), 1u);
     ASSERT_GE(second.size(), 1u);
     // Both stops end at the same time; robot 1 decides first, so robot 2's first posterior holds
     // robot 1's sample too when they cooperate.
     EXPECT_EQ(first[0].time_s, second[0].time_s);
     EXPECT_EQ(first[0].entropy, entropy_after(sc, {first[0]}));
-    if (strategy == TeamStrategy::Cooperative)
+    if (strategy == run::TeamStrategy::Cooperative)
       EXPECT_EQ(second[0].entropy, entropy_after(sc, {first[0], second[0]}));
     else
       EXPECT_EQ(second[0].entropy, entropy_after(sc, {second[0]}));
@@ -202,22 +204,23 @@ TEST(Team, CooperativeRobotsShareEverySampleAndIndividualistsNone) {
 
 TEST(Team, RobotsKeepTheirSeparationAndRepeatThemselves) {
   const Map map = default_arena();
-  for (TeamStrategy strategy :
-       {TeamStrategy::Individualist, TeamStrategy::Cooperative, TeamStrategy::Collaborative}) {
-    SteOptions o = team_options(3, strategy);
+  for (run::TeamStrategy strategy :
+       {run::TeamStrategy::Individualist, run::TeamStrategy::Cooperative,
+        run::TeamStrategy::Collaborative}) {
+    run::SteOptions o = team_options(3, strategy);
     // One team's sensor reads on the way: every robot's reads interleave on the one thread.
-    if (strategy == TeamStrategy::Collaborative)
-      o.world.sensor = dataset::gas_sensor_preset("mox-fast");
-    const Scenario sc(map, o);
+    if (strategy == run::TeamStrategy::Collaborative)
+      o.world.sensor = world::gas_sensor_preset("mox-fast");
+    const run::Scenario sc(map, o);
     const std::vector<Vec2> starts = sc.team_starts(kStart, kSource);
     ASSERT_EQ(starts.size(), 3u);
-    const LocalizationResult a = sc.run(kSource, kStart, 9);
-    const LocalizationResult b = sc.run(kSource, kStart, 9);
+    const run::LocalizationResult a = sc.run(kSource, kStart, 9);
+    const run::LocalizationResult b = sc.run(kSource, kStart, 9);
     ASSERT_EQ(a.team.size(), 3u);
     for (std::size_t k = 0; k < 3; ++k) {
       EXPECT_EQ(a.team[k].start, starts[k]);
       EXPECT_GE(a.team[k].closest_m, sc.options().team.separation - 1e-9) << to_string(strategy);
-      for (const Step& s : a.team[k].steps)
+      for (const run::Step& s : a.team[k].steps)
         EXPECT_TRUE(sc.free_space().contains(s.position));
       // The same seed gives the same run.
       ASSERT_EQ(a.team[k].steps.size(), b.team[k].steps.size());
@@ -228,7 +231,7 @@ TEST(Team, RobotsKeepTheirSeparationAndRepeatThemselves) {
     EXPECT_LT(norm(a.estimate - kSource), 1.0) << to_string(strategy);
     // The mission ends at the declaration: no robot's stop ends after it.
     if (a.stopped_by == "entropy") {
-      for (const TeamRobot& t : a.team)
+      for (const run::TeamRobot& t : a.team)
         EXPECT_LE(t.steps.back().time_s, a.time_s);
     }
   }
@@ -238,24 +241,25 @@ TEST(Team, RobotsKeepTheirSeparationAndRepeatThemselves) {
 // step and give-up keeps the one thread's plume clock (SharedPlume::promise throws otherwise).
 TEST(Team, ImpatientRobotsWithAMemorySensorKeepTheWorldClock) {
   const Map map = default_arena();
-  for (TeamStrategy strategy : {TeamStrategy::Individualist, TeamStrategy::Collaborative}) {
-    SteOptions o = team_options(3, strategy);
-    o.world.sensor = dataset::gas_sensor_preset("mox-fast");
+  for (run::TeamStrategy strategy :
+       {run::TeamStrategy::Individualist, run::TeamStrategy::Collaborative}) {
+    run::SteOptions o = team_options(3, strategy);
+    o.world.sensor = world::gas_sensor_preset("mox-fast");
     o.team.patience_s = 0.2;
     o.team.separation = 0.6;
-    const Scenario sc(map, o);
-    const LocalizationResult r = sc.run(kSource, kStart, 13);
+    const run::Scenario sc(map, o);
+    const run::LocalizationResult r = sc.run(kSource, kStart, 13);
     ASSERT_EQ(r.team.size(), 3u);
-    for (const TeamRobot& t : r.team)
+    for (const run::TeamRobot& t : r.team)
       EXPECT_GE(t.closest_m, 0.6 - 1e-9) << to_string(strategy);
   }
 }
 
 TEST(Team, StartsSitSideBySideInTheSourcesPieceOfFreeSpace) {
   const Map map = default_arena();
-  SteOptions o = team_options(4, TeamStrategy::Cooperative);
+  run::SteOptions o = team_options(4, run::TeamStrategy::Cooperative);
   o.team.separation = 0.6;
-  const Scenario sc(map, o);
+  const run::Scenario sc(map, o);
   const std::vector<Vec2> s = sc.team_starts({9.7, 0.3}, kSource);  // a corner
   ASSERT_EQ(s.size(), 4u);
   for (std::size_t i = 0; i < s.size(); ++i) {
@@ -265,7 +269,7 @@ TEST(Team, StartsSitSideBySideInTheSourcesPieceOfFreeSpace) {
   }
   o.team.robots = 64;
   o.team.separation = 3.0;  // 64 robots 3 m apart do not fit in 10 x 4 m
-  const Scenario crowded(map, o);
+  const run::Scenario crowded(map, o);
   EXPECT_THROW(crowded.team_starts(kStart, kSource), InputError);
 }
 

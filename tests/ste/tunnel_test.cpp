@@ -1,14 +1,14 @@
 // Seed 004's 3-D systems in the tunnel: the 3-D plume model (Eq. 7.1), the 6-D posterior
 // concentrating on a known source, the 6 candidate moves, the tunnel world's readings, and whole
-// runs of the 3-D STE, the surge-spiral and the 2-D surge-cast (ste/tunnel_run.hpp).
+// runs of the 3-D STE, the surge-spiral and the 2-D surge-cast (run/tunnel_run.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.hpp"
+#include "run/tunnel_run.hpp"
 #include "ste/ste_3d.hpp"
-#include "ste/tunnel_run.hpp"
-#include "ste/tunnel_world.hpp"
+#include "world/tunnel_world.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -97,25 +97,25 @@ TEST(Decide3d, SixMovesOneAxisAtATimeAndTheMapPull) {
   EXPECT_TRUE(kTunnel.contains(corner.goal));
 }
 
-TunnelOptions fast_options(TunnelMethod method) {
-  TunnelOptions o;
+run::TunnelOptions fast_options(run::TunnelMethod method) {
+  run::TunnelOptions o;
   o.method = method;
   return o;
 }
 
 TEST(TunnelWorld, StopsReadTheMeanOfTheirReadingsAndNoiseIsClipped) {
-  TunnelOptions o = fast_options(TunnelMethod::Ste3d);
-  TunnelWorld a(o.tunnel, {1.0, 2.0, 1.0}, o.world, 9);
-  TunnelWorld b(o.tunnel, {1.0, 2.0, 1.0}, o.world, 9);
-  const Reading3 ra = a.stop({4.0, 2.0, 1.0}), rb = b.stop({4.0, 2.0, 1.0});
+  run::TunnelOptions o = fast_options(run::TunnelMethod::Ste3d);
+  world::TunnelWorld a(o.tunnel, {1.0, 2.0, 1.0}, o.world, 9);
+  world::TunnelWorld b(o.tunnel, {1.0, 2.0, 1.0}, o.world, 9);
+  const world::Reading3 ra = a.stop({4.0, 2.0, 1.0}), rb = b.stop({4.0, 2.0, 1.0});
   EXPECT_EQ(ra.gas, rb.gas);  // deterministic
   EXPECT_GT(ra.gas, 100.0);   // on the plume's axis 3 m downwind
   EXPECT_NEAR(a.time(), 5.0, 1e-9);
   EXPECT_NEAR(ra.wind.x, 0.9, 0.1);
   // Far off the plume nothing, and noise never reads below 0.
   o.world.noise = 50.0;
-  TunnelWorld noisy(o.tunnel, {1.0, 2.0, 1.0}, o.world, 9);
-  const Reading3 off = noisy.stop({4.0, 0.2, 0.2});
+  world::TunnelWorld noisy(o.tunnel, {1.0, 2.0, 1.0}, o.world, 9);
+  const world::Reading3 off = noisy.stop({4.0, 0.2, 0.2});
   EXPECT_GE(off.gas, 0.0);
   EXPECT_GT(off.gas, 0.0);  // the clipped noise's mean is positive
   // A move of 0.05 m at 0.05 m/s takes 1 s: 10 readings.
@@ -125,7 +125,7 @@ TEST(TunnelWorld, StopsReadTheMeanOfTheirReadingsAndNoiseIsClipped) {
 }
 
 TEST(TunnelWorld, RefusesWhatNeedsAMap) {
-  TunnelOptions o;
+  run::TunnelOptions o;
   o.world.rotor_disc = 0.5;
   try {
     o.validate();
@@ -136,33 +136,33 @@ TEST(TunnelWorld, RefusesWhatNeedsAMap) {
 }
 
 TEST(TunnelRun, SteFindsTheSourceIn3d) {
-  const TunnelOptions o = fast_options(TunnelMethod::Ste3d);
+  const run::TunnelOptions o = fast_options(run::TunnelMethod::Ste3d);
   const Vec3 source{1.0, 1.5, 0.6};
-  const TunnelRun r = run_tunnel(o, source, {8.0, 2.5, 1.5}, 21);
+  const run::TunnelRun r = run::run_tunnel(o, source, {8.0, 2.5, 1.5}, 21);
   EXPECT_EQ(r.stopped_by, "entropy");
   EXPECT_LT(r.error_m(), 0.5);
   EXPECT_LT(r.error().z, 0.2);  // Fig. 11.3: 10-20 cm
   EXPECT_EQ(r.estimate.x, r.steps.back().estimate.x);
   EXPECT_GT(r.distance_m, 0.0);
-  for (const TunnelStep& s : r.steps)
+  for (const run::TunnelStep& s : r.steps)
     EXPECT_TRUE(o.tunnel.box().contains(s.position));
   // Deterministic.
-  const TunnelRun again = run_tunnel(o, source, {8.0, 2.5, 1.5}, 21);
+  const run::TunnelRun again = run::run_tunnel(o, source, {8.0, 2.5, 1.5}, 21);
   EXPECT_EQ(again.estimate.x, r.estimate.x);
   EXPECT_EQ(again.steps.size(), r.steps.size());
 }
 
 TEST(TunnelRun, TrackersEndFoundOrOutOfTime) {
-  for (TunnelMethod m : {TunnelMethod::SurgeSpiral, TunnelMethod::SurgeCast2d}) {
-    TunnelOptions o = fast_options(m);
+  for (run::TunnelMethod m : {run::TunnelMethod::SurgeSpiral, run::TunnelMethod::SurgeCast2d}) {
+    run::TunnelOptions o = fast_options(m);
     o.time_limit_s = 120.0;
     const Vec3 source{1.0, 2.0, 1.0};
-    const Vec3 start = random_tunnel_start(o, source, 4);
+    const Vec3 start = run::random_tunnel_start(o, source, 4);
     EXPECT_NEAR(start.x, 9.9, 1e-12);  // 10 m downwind, cut to the 10 m tunnel's margin
-    if (m == TunnelMethod::SurgeCast2d) {
+    if (m == run::TunnelMethod::SurgeCast2d) {
       EXPECT_NEAR(start.z, 0.9, 1e-12);  // 10 cm below the source
     }
-    const TunnelRun r = run_tunnel(o, source, start, 4);
+    const run::TunnelRun r = run::run_tunnel(o, source, start, 4);
     EXPECT_TRUE(r.stopped_by == "found" || r.stopped_by == "time_limit") << r.stopped_by;
     if (r.stopped_by == "time_limit") {
       EXPECT_GE(r.mission_s, 120.0);
@@ -171,32 +171,32 @@ TEST(TunnelRun, TrackersEndFoundOrOutOfTime) {
     ASSERT_GT(r.steps.size(), 10u);
     EXPECT_NEAR(r.steps[5].time_s - r.steps[4].time_s, 1.0, 1e-6);
     EXPECT_LE(norm(r.steps[5].position - r.steps[4].position), 0.05 + 1e-9);
-    for (const TunnelStep& s : r.steps) {
+    for (const run::TunnelStep& s : r.steps) {
       EXPECT_TRUE(o.tunnel.box().contains(s.position));
-      if (m == TunnelMethod::SurgeCast2d) {
+      if (m == run::TunnelMethod::SurgeCast2d) {
         EXPECT_NEAR(s.position.z, 0.9, 1e-9);
       }
     }
     EXPECT_LE(r.closest_m(), norm(start - source));
     // The first reading within 0.5 m, or -1 when the robot never came that close.
     const double t = r.time_within(0.5);
-    EXPECT_EQ(t < 0.0, r.closest_m() > 0.5);
+    EXPECT_EQ(t<0.0, r.closest_m()> 0.5);
     EXPECT_EQ(r.time_within(100.0), r.steps.front().time_s);
   }
 }
 
 TEST(TunnelRun, RefusesPointsOutsideTheTunnelAndUnknownMethods) {
-  const TunnelOptions o;
+  const run::TunnelOptions o;
   try {
-    run_tunnel(o, {1.0, 2.0, 2.5}, {5, 2, 1}, 1);
+    run::run_tunnel(o, {1.0, 2.0, 2.5}, {5, 2, 1}, 1);
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("tunnel.source"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(run_tunnel(o, {1.0, 2.0, 1.0}, {5, 2, NAN}, 1), InputError);
-  EXPECT_THROW(parse_tunnel_method("ste"), OptionError);
-  EXPECT_THROW(parse_tunnel_methods("ste-3d,ste-3d"), OptionError);
-  EXPECT_EQ(parse_tunnel_methods("all").size(), 3u);
+  EXPECT_THROW(run::run_tunnel(o, {1.0, 2.0, 1.0}, {5, 2, NAN}, 1), InputError);
+  EXPECT_THROW(run::parse_tunnel_method("ste"), OptionError);
+  EXPECT_THROW(run::parse_tunnel_methods("ste-3d,ste-3d"), OptionError);
+  EXPECT_EQ(run::parse_tunnel_methods("all").size(), 3u);
 }
 
 }  // namespace

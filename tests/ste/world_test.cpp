@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 #include "dataset/uniform_wind.hpp"
-#include "ste/world.hpp"
+#include "world/simulated_world.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -16,25 +16,25 @@ namespace {
 struct PlumeWorld {
   Map map = default_arena(10.0, 4.0);
   cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  SimulatedWorld make(const std::string& sensor, WorldOptions o = {},
-                      std::uint64_t seed = 17) const {
-    o.sensor = dataset::gas_sensor_preset(sensor);
-    return SimulatedWorld(map, wind, {2.0, 2.0}, o, seed);
+  world::SimulatedWorld make(const std::string& sensor, world::WorldOptions o = {},
+                             std::uint64_t seed = 17) const {
+    o.sensor = world::gas_sensor_preset(sensor);
+    return world::SimulatedWorld(map, wind, {2.0, 2.0}, o, seed);
   }
 };
 
 TEST(SimulatedWorld, ASlowSensorLagsAndCarriesWhatThePathLeftInIt) {
   const PlumeWorld w;
   const Vec2 stop{4.0, 2.0};
-  SimulatedWorld ideal = w.make("ideal");
+  world::SimulatedWorld ideal = w.make("ideal");
   const double truth = ideal.stop(stop).gas;
   // Arriving from clean air (along y = 0.2), the catalytic sensor's 5 s dead
   // time swallows the whole 5 s stop.
-  SimulatedWorld from_clean = w.make("catalytic");
+  world::SimulatedWorld from_clean = w.make("catalytic");
   from_clean.travel({{9.0, 0.2}, {4.0, 0.2}, stop}, 6.8);
   const double cold = from_clean.stop(stop).gas;
   // Arriving along the plume's axis, it has been in gas for 10 s already.
-  SimulatedWorld along_plume = w.make("catalytic");
+  world::SimulatedWorld along_plume = w.make("catalytic");
   along_plume.travel({{9.0, 2.0}, stop}, 5.0);
   const double warm = along_plume.stop(stop).gas;
   std::printf("ideal %.1f, catalytic from clean air %.1f, along the plume %.1f\n", truth, cold,
@@ -46,7 +46,7 @@ TEST(SimulatedWorld, ASlowSensorLagsAndCarriesWhatThePathLeftInIt) {
 
 TEST(SimulatedWorld, TheIdealSensorDoesNotReadOnTheWay) {
   const PlumeWorld w;
-  SimulatedWorld a = w.make("ideal"), b = w.make("ideal");
+  world::SimulatedWorld a = w.make("ideal"), b = w.make("ideal");
   a.travel({{9.0, 2.0}, {4.0, 2.0}}, 5.0);
   b.travel({}, 5.0);  // only the time passes, as before there were sensors
   EXPECT_EQ(a.stop({4.0, 2.0}).gas, b.stop({4.0, 2.0}).gas);
@@ -54,8 +54,8 @@ TEST(SimulatedWorld, TheIdealSensorDoesNotReadOnTheWay) {
 }
 
 // For the noise statistics, which need many worlds but no plume to speak of.
-WorldOptions a_thin_plume() {
-  WorldOptions o;
+world::WorldOptions a_thin_plume() {
+  world::WorldOptions o;
   o.filament.release_per_second = 10.0;
   o.filament.min_spinup = 0.0;
   o.filament.max_spinup = 1.0;
@@ -66,17 +66,18 @@ WorldOptions a_thin_plume() {
 // its direction error has the asked std, and the speed none.
 TEST(SimulatedWorld, TheAnemometerAveragesTheWindAndItsDirectionErrorHasTheAskedStd) {
   const PlumeWorld w;
-  SimulatedWorld exact = w.make("ideal");
+  world::SimulatedWorld exact = w.make("ideal");
   const Vec2 calm = exact.stop({6.0, 1.0}).wind;
   EXPECT_NEAR(calm.x, 1.0, 0.2);  // 1 m/s plus a 0.15 m/s meander, averaged over 5 s
   EXPECT_NEAR(calm.y, 0.0, 0.2);
-  WorldOptions o = a_thin_plume();
+  world::WorldOptions o = a_thin_plume();
   o.wind_noise_from_table35 = true;  // 5 s stops: 22.26 degrees
   EXPECT_DOUBLE_EQ(o.direction_noise_deg(), 22.26);
   double sum2 = 0.0;
   int n = 0;
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
-    SimulatedWorld noisy = w.make("ideal", o, seed), clean = w.make("ideal", a_thin_plume(), seed);
+    world::SimulatedWorld noisy = w.make("ideal", o, seed),
+                          clean = w.make("ideal", a_thin_plume(), seed);
     const Vec2 a = noisy.stop({6.0, 1.0}).wind, b = clean.stop({6.0, 1.0}).wind;
     EXPECT_NEAR(norm(a), norm(b), 1e-12);  // the speed is exact
     const double d = std::atan2(cross(b, a), b.x * a.x + b.y * a.y) * 180.0 / 3.14159265358979;
@@ -90,9 +91,9 @@ TEST(SimulatedWorld, TheAnemometerAveragesTheWindAndItsDirectionErrorHasTheAsked
 // robot is: it swings in the open and hardly at all beside a wall.
 TEST(SimulatedWorld, TheUnsteadyAnemometerSwingsInTheOpenAndHardlyAtAWall) {
   const PlumeWorld w;
-  WorldOptions o = a_thin_plume();
+  world::WorldOptions o = a_thin_plume();
   o.filament.unsteady_wind = true;
-  SimulatedWorld world = w.make("ideal", o);
+  world::SimulatedWorld world = w.make("ideal", o);
   double open2 = 0.0, wall2 = 0.0, open_x = 0.0;
   const int stops = 200;
   for (int k = 0; k < stops; ++k) {
@@ -114,13 +115,14 @@ TEST(SimulatedWorld, TheUnsteadyAnemometerSwingsInTheOpenAndHardlyAtAWall) {
 TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpace) {
   PlumeWorld w;
   w.map.obstacles = {{{5.0, 0.5}, {5.6, 0.5}, {5.6, 1.5}, {5.0, 1.5}}};
-  WorldOptions o = a_thin_plume();
-  o.position_noise = kGpsPositionNoise;  // seed 000, Eq. 4.3: 1.08 m
+  world::WorldOptions o = a_thin_plume();
+  o.position_noise = world::kGpsPositionNoise;  // seed 000, Eq. 4.3: 1.08 m
   double sum2 = 0.0;
   int n = 0;
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
-    SimulatedWorld noisy = w.make("ideal", o, seed), clean = w.make("ideal", a_thin_plume(), seed);
-    const Reading a = noisy.stop({4.0, 1.0}), b = clean.stop({4.0, 1.0});
+    world::SimulatedWorld noisy = w.make("ideal", o, seed),
+                          clean = w.make("ideal", a_thin_plume(), seed);
+    const world::Reading a = noisy.stop({4.0, 1.0}), b = clean.stop({4.0, 1.0});
     EXPECT_EQ(a.gas, b.gas);  // the robot is where it is; only its record moves
     EXPECT_TRUE(w.map.is_free(a.position)) << to_string(a.position);
     sum2 += 0.5 * (a.position.x - 4.0) * (a.position.x - 4.0) +
@@ -136,20 +138,20 @@ TEST(SimulatedWorld, PositionNoiseMovesTheRecordedPositionOnlyAndStaysInFreeSpac
 // is 1.08 / sqrt(20) = 0.24 m per axis.
 TEST(SimulatedWorld, PositionNoisePerFixAveragesOverTheStopsReadings) {
   const PlumeWorld w;
-  WorldOptions o = a_thin_plume();
+  world::WorldOptions o = a_thin_plume();
   o.sample_s = 4.0;
   o.sample_rate = 5.0;  // 20 readings
-  o.position_noise = kGpsPositionNoise;
+  o.position_noise = world::kGpsPositionNoise;
   o.position_noise_per_fix = true;
   double sum2 = 0.0;
   const int stops = 300;
   for (std::uint64_t seed = 1; seed <= stops; ++seed) {
-    const Reading a = w.make("ideal", o, seed).stop({5.0, 2.0});
+    const world::Reading a = w.make("ideal", o, seed).stop({5.0, 2.0});
     sum2 += 0.5 * ((a.position.x - 5.0) * (a.position.x - 5.0) +
                    (a.position.y - 2.0) * (a.position.y - 2.0));
   }
   // 600 squared errors: the estimated std is within about 3 % (1 sigma) of 0.242.
-  EXPECT_NEAR(std::sqrt(sum2 / stops), kGpsPositionNoise / std::sqrt(20.0), 0.025);
+  EXPECT_NEAR(std::sqrt(sum2 / stops), world::kGpsPositionNoise / std::sqrt(20.0), 0.025);
 }
 
 }  // namespace
@@ -163,16 +165,16 @@ namespace {
 // 23.08 degrees: seed 002's S0 of about 0.075).
 TEST(SimulatedWorld, CircularVarianceOfTheStopsWind) {
   const PlumeWorld w;
-  WorldOptions o;
-  dataset::set_world(o.filament, "neumann");  // no meander
+  world::WorldOptions o;
+  world::set_world(o.filament, "neumann");  // no meander
   o.filament.min_spinup = o.filament.max_spinup = 2.0;
   o.filament.release_per_second = 10.0;  // the gas does not matter here
   o.sample_s = 20.0;
   o.sample_rate = 1.0;
-  SimulatedWorld laminar = w.make("ideal", o);
+  world::SimulatedWorld laminar = w.make("ideal", o);
   EXPECT_LT(laminar.stop({6.0, 1.0}).wind_variance, 1e-12);
   o.wind_variance_noise_deg = 23.08;
-  SimulatedWorld noisy = w.make("ideal", o);
+  world::SimulatedWorld noisy = w.make("ideal", o);
   double sum = 0.0;
   for (int k = 0; k < 100; ++k)
     sum += noisy.stop({6.0, 1.0}).wind_variance;
@@ -184,7 +186,7 @@ TEST(SimulatedWorld, CircularVarianceOfTheStopsWind) {
 TEST(SimulatedWorld, DiscPointsStandForTheDisc) {
   const Vec2 c{3.0, -1.0};
   const double r = 0.5;
-  const std::vector<Vec2> points = disc_points(c, r);
+  const std::vector<Vec2> points = world::disc_points(c, r);
   ASSERT_EQ(points.size(), 19u);
   Vec2 mean;
   double square = 0.0;
@@ -200,9 +202,9 @@ TEST(SimulatedWorld, DiscPointsStandForTheDisc) {
 
 TEST(SimulatedWorld, TheRotorDiscSmoothsThePlume) {
   const PlumeWorld w;
-  WorldOptions rotor;
+  world::WorldOptions rotor;
   rotor.rotor_disc = 0.5;
-  SimulatedWorld point = w.make("ideal"), disc = w.make("ideal", rotor);
+  world::SimulatedWorld point = w.make("ideal"), disc = w.make("ideal", rotor);
   double axis_point = 0.0, axis_disc = 0.0, flank_point = 0.0, flank_disc = 0.0;
   for (int k = 0; k < 10; ++k) {  // the same plume at the same times in both worlds
     axis_point += point.stop({3.0, 2.0}).gas;
@@ -214,7 +216,7 @@ TEST(SimulatedWorld, TheRotorDiscSmoothsThePlume) {
               axis_disc / 10, flank_point / 10, flank_disc / 10);
   EXPECT_LT(axis_disc, 0.9 * axis_point);
   EXPECT_GT(flank_disc, 1.2 * flank_point);
-  WorldOptions bad;
+  world::WorldOptions bad;
   bad.rotor_disc = -1.0;
   EXPECT_THROW(w.make("ideal", bad), OptionError);
 }

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
-#include "core/map_json.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::test {
 

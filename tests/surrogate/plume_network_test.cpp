@@ -10,9 +10,9 @@
 #include <filesystem>
 
 #include "core/error.hpp"
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
 #include "dataset/generator.hpp"
+#include "map/map_json.hpp"
 
 namespace plumekit::surrogate {
 namespace {

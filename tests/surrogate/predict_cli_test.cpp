@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "core/map_json.hpp"
 #include "core/npy.hpp"
+#include "map/map_json.hpp"
 #include "support/cli_runner.hpp"
 #include "surrogate/plume_network.hpp"
 

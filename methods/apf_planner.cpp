@@ -1,0 +1,276 @@
+#include "methods/apf_planner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "core/error.hpp"
+#include "core/option_check.hpp"
+#include "methods/gdm_estimates.hpp"
+
+namespace plumekit::methods {
+
+namespace {
+
+const std::vector<std::string>& estimator_names() {
+  static const std::vector<std::string> names{
+      "peak mean",     "peak variance",     "peak mean x variance",
+      "90% area mean", "90% area variance", "90% area mean x variance"};
+  return names;
+}
+
+// 1 / the largest finite value of `g`, or 0 when there is none above 0 (a map with no gas then
+// adds nothing, rather than dividing by zero).
+double inverse_peak(const Grid<double>& g) {
+  double top = 0.0;
+  for (double x : g.values)
+    if (std::isfinite(x)) top = std::max(top, x);
+  return top > 0.0 ? 1.0 / top : 0.0;
+}
+
+void check_covers(const GdmMaps& maps, const Map& map) {
+  const GridShape& g = maps.mean.shape;
+  const double tol = map.round_off();
+  if (g.size() == 0 || maps.confidence.values.size() != g.size() ||
+      maps.variance.values.size() != g.size() || std::abs(g.width - map.width) > tol ||
+      std::abs(g.height - map.height) > tol)
+    throw InputError("apf: the maps do not cover the arena");
+}
+
+// The index of the largest finite field value among `eligible` cells; -1 when there is none.
+long argmax(const Grid<double>& field, const std::vector<char>& eligible) {
+  long best = -1;
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < field.values.size(); ++c)
+    if (eligible[c] && field.values[c] > top) top = field.values[c], best = static_cast<long>(c);
+  return best;
+}
+
+}  // namespace
+
+const char* to_string(Locality l) {
+  switch (l) {
+    case Locality::None:
+      return "none";
+    case Locality::Closest:
+      return "closest";
+    case Locality::MostSuggested:
+      return "most-suggested";
+  }
+  return "?";
+}
+
+Locality parse_locality(const std::string& name) {
+  if (name == "none") return Locality::None;
+  if (name == "closest" || name == "a") return Locality::Closest;
+  if (name == "most-suggested" || name == "b") return Locality::MostSuggested;
+  throw OptionError("apf.locality",
+                    "unknown locality '" + name + "'; use none, closest (a) or most-suggested (b)");
+}
+
+GdmOptions ApfOptions::default_gdm() {
+  GdmOptions g;
+  g.cell = 0.1;
+  g.kernel_width = 0.4;
+  g.sigma_omega = 1.0;
+  g.wind_stretch = 0.2;
+  g.background = Background::Min;
+  return g;
+}
+
+void ApfOptions::validate() const {
+  check_range("apf.beta_m", beta_m, 0.0, 1.0, "", "the seed's best is 0.1");
+  check_range("apf.beta_v", beta_v, 0.0, 1.0, "", "the seed's best is 0.1");
+  check_range("apf.beta_c", beta_c, 0.0, 1.0, "", "the seed's best is 0.8");
+  const double sum = beta_m + beta_v + beta_c;
+  if (std::abs(sum - 1.0) > 1e-6)
+    throw OptionError("apf.beta_c", "beta_m + beta_v + beta_c must be 1 (seed 000 eq. 8.5), got " +
+                                        compact(sum) + "; the seed's best is 0.1, 0.1, 0.8");
+  check_count("apf.suggestions", suggestions, 1, 10000, "the seed's n_sp is 10");
+  check_range("apf.charge", charge, -1000.0, 0.0, "", "q <= 0 repels; the seed's is -1");
+  check_positive("apf.sigma_d", sigma_d, 1000.0, "m", "the seed's is 1 m");
+  check_non_negative("apf.counter_radius", counter_radius, 100.0, "m", "the seed's is 0.5 m");
+  check_non_negative("apf.min_step", min_step, 1000.0, "m", "the seed's drone's is 1 m");
+  check_count("apf.max_steps", max_steps, 1, 1000000, "the seed compared runs at 206");
+  check_range("apf.confidence_stop", confidence_stop, 0.0, 1.0, "", "0 disables the stop; e.g. 0.9",
+              false, true);
+  check_name("apf.estimator", estimator, estimator_names());
+  gdm.validate();
+}
+
+Grid<double> apf_field(const GdmMaps& maps, const ApfOptions& o) {
+  const double sr = o.normalise ? inverse_peak(maps.mean) : 1.0;
+  const double sv = o.normalise ? inverse_peak(maps.variance) : 1.0;
+  Grid<double> apf(maps.mean.shape, 0.0);
+  for (std::size_t c = 0; c < apf.values.size(); ++c)
+    apf.values[c] = o.beta_m * sr * maps.mean.values[c] + o.beta_v * sv * maps.variance.values[c] -
+                    o.beta_c * maps.confidence.values[c];  // NaN stays NaN in obstacles
+  return apf;
+}
+
+std::vector<ApfSuggestion> apf_suggestions(const GdmMaps& maps, const Map& map, const ApfOptions& o,
+                                           Vec2 robot) {
+  check_covers(maps, map);
+  Grid<double> field = apf_field(maps, o);
+  const GridShape& g = field.shape;
+  // Free cells at least a step from the robot; all free cells when none is that far.
+  std::vector<char> eligible(g.size(), 0);
+  bool any_far = false;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i) {
+      const std::size_t c = g.index(i, j);
+      // 1e-9 m of slack: a cell exactly a step away stays eligible whatever the round-off.
+      eligible[c] =
+          std::isfinite(field.values[c]) && norm(g.centre(i, j) - robot) + 1e-9 >= o.min_step;
+      any_far = any_far || eligible[c];
+    }
+  if (!any_far)
+    for (std::size_t c = 0; c < g.size(); ++c)
+      eligible[c] = std::isfinite(field.values[c]);
+  std::vector<ApfSuggestion> out;
+  const double strength = o.beta_c * o.charge;  // beta_C q of eq. 8.6-8.7
+  for (int n = 0; n < o.suggestions; ++n) {
+    const long best = argmax(field, eligible);
+    if (best < 0) break;
+    const int i = static_cast<int>(best % g.nx), j = static_cast<int>(best / g.nx);
+    const Vec2 p = g.centre(i, j);
+    out.push_back({p, i, j, field.values[best]});
+    if (strength == 0.0 || n + 1 == o.suggestions) continue;
+    // Eq. 8.7 read with exp(-d / sigma_d): the repulsion fades with distance (as eq. 8.12's).
+    for (int jj = 0; jj < g.ny; ++jj)
+      for (int ii = 0; ii < g.nx; ++ii)
+        field(ii, jj) += strength * std::exp(-norm(g.centre(ii, jj) - p) / o.sigma_d);
+  }
+  return out;
+}
+
+SuggestionCounter::SuggestionCounter(const GridShape& shape, double radius)
+    : counts_(shape, 0), radius_(radius) {}
+
+template <class F>
+void SuggestionCounter::for_each_near(Vec2 p, F&& f) {
+  const GridShape& g = counts_.shape;
+  if (g.size() == 0) return;
+  const int pi = static_cast<int>(std::floor(p.x / g.dx()));
+  const int pj = static_cast<int>(std::floor(p.y / g.dy()));
+  const int i0 = std::max(0, static_cast<int>(std::floor((p.x - radius_) / g.dx())));
+  const int i1 = std::min(g.nx - 1, static_cast<int>(std::floor((p.x + radius_) / g.dx())));
+  const int j0 = std::max(0, static_cast<int>(std::floor((p.y - radius_) / g.dy())));
+  const int j1 = std::min(g.ny - 1, static_cast<int>(std::floor((p.y + radius_) / g.dy())));
+  // A little slack so that a neighbour exactly at the radius counts despite round-off.
+  const double reach = radius_ + 1e-9;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i)
+      if ((i == pi && j == pj) || norm(g.centre(i, j) - p) <= reach) f(counts_(i, j));
+}
+
+void SuggestionCounter::suggest(Vec2 p) {
+  for_each_near(p, [](int& s) { ++s; });
+}
+
+void SuggestionCounter::visit(Vec2 p) {
+  for_each_near(p, [](int& s) { s = 0; });
+}
+
+int SuggestionCounter::count(Vec2 p) const {
+  const GridShape& g = counts_.shape;
+  if (g.size() == 0) return 0;
+  const int i = static_cast<int>(std::floor(p.x / g.dx()));
+  const int j = static_cast<int>(std::floor(p.y / g.dy()));
+  return g.contains(i, j) ? counts_(i, j) : 0;
+}
+
+std::size_t choose_closest(const std::vector<ApfSuggestion>& s, Vec2 robot) {
+  std::size_t best = 0;
+  double nearest = norm(s.at(0).position - robot);
+  // A relative margin so that equal distances computed along different axes stay a tie.
+  for (std::size_t k = 1; k < s.size(); ++k) {
+    const double d = norm(s[k].position - robot);
+    if (d < nearest * (1.0 - 1e-12)) nearest = d, best = k;
+  }
+  return best;
+}
+
+std::size_t choose_most_suggested(const std::vector<ApfSuggestion>& s,
+                                  const SuggestionCounter& counter, Vec2 robot) {
+  const GridShape& g = counter.counts().shape;
+  // A suggestion in the robot's own cell would divide by ~0: half a cell is as near as it gets.
+  const double floor = 0.5 * std::min(g.dx(), g.dy());
+  const auto ratio = [&](const ApfSuggestion& a) {
+    return counter.count(a.position) / std::max(norm(a.position - robot), floor);
+  };
+  std::size_t best = 0;
+  double top = ratio(s.at(0));
+  for (std::size_t k = 1; k < s.size(); ++k) {
+    const double r = ratio(s[k]);
+    if (r > top * (1.0 + 1e-12)) top = r, best = k;
+  }
+  return best;
+}
+
+ApfMapping::ApfMapping(const methods::SearchArea& area, const ApfOptions& options)
+    : area_(area), options_(options) {
+  options_.validate();
+  if (area_.map == nullptr) throw std::invalid_argument("apf: the search area has no map");
+  counter_ =
+      SuggestionCounter(GridShape::with_cell(area_.width(), area_.height(), options_.gdm.cell),
+                        options_.counter_radius);
+}
+
+void ApfMapping::observe(const methods::Observation& o) {
+  if (!is_finite(o.position) || !std::isfinite(o.gas) || !is_finite(o.wind))
+    throw InputError("apf: observation " + std::to_string(samples_.size() + 1) + " is not finite");
+  // The wind only matters to DM+V/W; DM+V's round kernels ignore it.
+  std::optional<Vec2> wind;
+  if (options_.gdm.wind_stretch > 0.0) wind = o.wind;
+  samples_.push_back({o.position, o.gas, wind});
+  counter_.visit(o.position);
+  maps_ = kernel_dmv(*area_.map, samples_, options_.gdm);
+  min_confidence_ = std::numeric_limits<double>::infinity();
+  for (double a : maps_.confidence.values)
+    if (std::isfinite(a)) min_confidence_ = std::min(min_confidence_, a);
+}
+
+methods::Move ApfMapping::next(Vec2 robot) {
+  if (samples_.empty()) throw std::logic_error("apf: next() before the first observe()");
+  suggestions_ = apf_suggestions(maps_, *area_.map, options_, robot);
+  if (suggestions_.empty()) return {robot, {}, 0.0};  // no free cell at all: stay
+  // S is kept whatever the locality, so that it can be shown; only B reads it.
+  for (const ApfSuggestion& s : suggestions_)
+    counter_.suggest(s.position);
+  switch (options_.locality) {
+    case Locality::None:
+      chosen_ = 0;
+      break;
+    case Locality::Closest:
+      chosen_ = choose_closest(suggestions_, robot);
+      break;
+    case Locality::MostSuggested:
+      chosen_ = choose_most_suggested(suggestions_, counter_, robot);
+      break;
+  }
+  return {suggestions_[chosen_].position, {}, 0.0};
+}
+
+std::optional<Vec2> ApfMapping::estimate() const {
+  if (samples_.empty()) return std::nullopt;
+  for (const SourceEstimate& e : source_estimates(maps_))
+    if (e.name == options_.estimator) return e.position;
+  return std::nullopt;
+}
+
+std::string ApfMapping::stopped_by() const {
+  if (samples_.empty()) return "";
+  if (options_.confidence_stop > 0.0 && min_confidence_ > options_.confidence_stop)
+    return "confident";
+  if (static_cast<int>(samples_.size()) >= options_.max_steps) return "max_samples";
+  return "";
+}
+
+std::unique_ptr<methods::LocalizationMethod> make_apf_mapping(const methods::SearchArea& area,
+                                                              const ApfOptions& options) {
+  return std::make_unique<ApfMapping>(area, options);
+}
+
+}  // namespace plumekit::methods

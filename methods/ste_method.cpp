@@ -1,0 +1,19 @@
+#include "methods/ste_method.hpp"
+
+namespace plumekit::methods {
+
+methods::Move SteMethod::next(Vec2 robot) {
+  planner::PlanResult p = mission_.next(robot);
+  methods::Move m;
+  m.goal = p.goal;
+  m.path = std::move(p.path);
+  m.length = p.length;
+  return m;
+}
+
+std::optional<Vec2> SteMethod::estimate() const {
+  if (mission_.samples() == 0) return std::nullopt;
+  return mission_.posterior().expected_source();
+}
+
+}  // namespace plumekit::methods

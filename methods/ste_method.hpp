@@ -1,0 +1,30 @@
+#pragma once
+// plumekit's Bayesian source term estimation as one localization method among the others
+// (methods/method.hpp): a Mission (the estimator, the information-driven navigator and the stop
+// rule) behind the common interface. It plans its own paths while it decides.
+#include "methods/method.hpp"
+#include "ste/mission.hpp"
+
+namespace plumekit::methods {
+
+class SteMethod : public methods::LocalizationMethod {
+ public:
+  // Keeps references: every argument must outlive the method.
+  SteMethod(ste::Estimator& estimator, const planner::Planner& planner,
+            const ste::Navigator& navigator, const ste::StopOptions& stop)
+      : mission_(estimator, planner, navigator, stop) {}
+
+  std::string name() const override { return "ste"; }
+  void observe(const methods::Observation& o) override { mission_.add(o.position, o.gas); }
+  methods::Move next(Vec2 robot) override;
+  // The posterior's expected value, once there is a sample.
+  std::optional<Vec2> estimate() const override;
+  std::string stopped_by() const override { return mission_.stopped_by(); }
+
+  const ste::Mission& mission() const { return mission_; }
+
+ private:
+  ste::Mission mission_;
+};
+
+}  // namespace plumekit::methods

@@ -1,0 +1,219 @@
+#include "run/method_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include "core/error.hpp"
+#include "core/interrupt.hpp"
+#include "core/statistics.hpp"
+#include "methods/pf_method.hpp"
+#include "methods/ste_method.hpp"
+
+namespace plumekit::run {
+
+double thread_cpu_s() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+double wall_clock_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+namespace {
+
+// The straight way from the robot towards `goal` (in the arena), up to where it would first
+// leave the free space at the planner's margin: where an obstacle's avoidance stops the robot.
+// `blocked` says whether it stopped short.
+planner::PlanResult straight_to(Vec2 goal, Vec2 robot, const planner::FreeSpace& space,
+                                bool& blocked) {
+  const Map& map = space.map();
+  goal = {std::clamp(goal.x, 0.0, map.width), std::clamp(goal.y, 0.0, map.height)};
+  const double length = norm(goal - robot);
+  const int steps = static_cast<int>(std::ceil(length / 0.01));
+  Vec2 end = robot;
+  blocked = false;
+  for (int k = 1; k <= steps; ++k) {
+    const Vec2 q = robot + (static_cast<double>(k) / steps) * (goal - robot);
+    if (!space.contains(q)) {
+      blocked = true;
+      break;
+    }
+    end = q;
+  }
+  planner::PlanResult p;
+  p.path = {robot, end};
+  p.length = norm(end - robot);
+  p.goal = end;
+  return p;
+}
+
+// The path to a method's goal: its own, the straight way of a method without a map, or the
+// planner's to the goal moved into the arena and off the obstacles (by the planner's margin). An
+// unreachable goal gives a path of length 0.
+planner::PlanResult path_to(const methods::Move& move, Vec2 robot, const planner::Planner& planner,
+                            const MethodRunOptions& o, bool& blocked) {
+  blocked = false;
+  if (move.straight) {
+    if (o.space == nullptr)
+      throw std::logic_error("run_method: a method that drives straight needs the free space");
+    return straight_to(move.goal, robot, *o.space, blocked);
+  }
+  planner::PlanResult p;
+  if (!move.path.empty()) {
+    p.path = move.path;
+    p.length = move.length;
+    p.goal = move.goal;
+    return p;
+  }
+  if (o.space == nullptr)
+    throw std::logic_error("run_method: a method without its own paths needs the free space");
+  const Map& map = o.space->map();
+  Vec2 goal{std::clamp(move.goal.x, 0.0, map.width), std::clamp(move.goal.y, 0.0, map.height)};
+  if (!o.space->contains(goal)) goal = o.space->nearest_free(goal);
+  if (o.space->region_of(goal) != o.space->region_of(o.space->nearest_free(robot))) goal = robot;
+  if (norm(goal - robot) < 1e-9) {
+    p.path = {robot, robot};
+    p.goal = robot;
+    return p;
+  }
+  return planner.plan(robot, goal);
+}
+
+}  // namespace
+
+void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
+  double walked = 0.0;
+  for (std::size_t k = 1; k < path.path.size(); ++k) {
+    const Vec2 a = path.path[k - 1], d = path.path[k] - a;
+    const double leg = norm(d);
+    // The smallest t in [0, 1] with |a + t d - source| <= radius.
+    const Vec2 f = a - disc.source;
+    const double qa = dot(d, d), qb = 2.0 * dot(f, d), qc = dot(f, f) - disc.radius * disc.radius;
+    double t = -1.0;
+    if (qc <= 0.0) {
+      t = 0.0;
+    } else if (qa > 0.0) {
+      const double disc2 = qb * qb - 4.0 * qa * qc;
+      if (disc2 >= 0.0) {
+        const double t0 = (-qb - std::sqrt(disc2)) / (2.0 * qa);
+        if (t0 >= 0.0 && t0 <= 1.0) t = t0;
+      }
+    }
+    if (t >= 0.0) {
+      const Vec2 entry = a + t * d;
+      path.path.resize(k);
+      path.path.push_back(entry);
+      path.length = walked + t * leg;
+      path.goal = entry;
+      return;
+    }
+    walked += leg;
+  }
+}
+
+namespace {
+
+// The method's state after a stop, into the step's record (STE adds its posterior's).
+void record_state(const methods::LocalizationMethod& method, Step& s, LocalizationResult& r) {
+  if (const auto* ste = dynamic_cast<const methods::SteMethod*>(&method)) {
+    r.posterior = ste->mission().posterior();
+    s.estimate = r.posterior.expected_source();
+    s.map = r.posterior.map;
+    s.entropy = r.posterior.entropy;
+    return;
+  }
+  s.estimate = method.estimate().value_or(s.position);
+  s.map = s.estimate;
+}
+
+// The particle filter's final weights binned on 0.1 m cells: its picture's "posterior".
+Grid<double> particle_histogram(const methods::ParticleFilter& f, const Map& map) {
+  Grid<double> g(GridShape::with_cell(map.width, map.height, 0.1), 0.0);
+  const auto& p = f.particles();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const int i = std::clamp(static_cast<int>(p[k].x / g.shape.dx()), 0, g.shape.nx - 1);
+    const int j = std::clamp(static_cast<int>(p[k].y / g.shape.dy()), 0, g.shape.ny - 1);
+    g(i, j) += f.weights()[k];
+  }
+  return g;
+}
+
+}  // namespace
+
+bool SourceBox::contains(Vec2 p) const {
+  const Vec2 d = p - source;
+  const double a = dot(d, downwind), c = cross(downwind, d);
+  return a >= 0.0 && a <= along && std::abs(c) <= 0.5 * across;
+}
+
+LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
+                              world::SimulatedWorld& world, const planner::Planner& planner,
+                              const MethodRunOptions& options) {
+  LocalizationResult r;
+  r.method = method.name();
+  r.start = start;
+  const double t_start = world.time();
+  Vec2 pos = start;
+  std::vector<Vec2> path_in;
+  bool blocked = false;  // the last move stopped short at an obstacle
+  std::vector<double> step_times;
+  for (int stop = 1;; ++stop) {
+    check_interrupt();  // a caller's Ctrl-C (core/interrupt.hpp)
+    Step s;
+    s.position = pos;
+    s.distance_m = r.distance_m;
+    s.path_in = std::move(path_in);
+    const world::Reading reading = world.stop(pos);
+    s.value = reading.gas;
+    s.wind = reading.wind;
+    s.recorded = reading.position;
+    s.time_s = world.time() - t_start;
+
+    const double t0 = thread_cpu_s(), w0 = wall_clock_s();
+    method.observe(
+        {reading.position, reading.gas, reading.wind, reading.wind_variance, s.time_s, blocked});
+    record_state(method, s, r);
+    r.stopped_by = method.stopped_by();
+    if (r.stopped_by.empty() && options.box && options.box->contains(pos)) r.stopped_by = "reached";
+    if (r.stopped_by.empty() && options.disc && options.disc->contains(pos))
+      r.stopped_by = "reached";
+    if (r.stopped_by.empty() && stop >= options.max_stops) r.stopped_by = "max_samples";
+    planner::PlanResult path;
+    if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options, blocked);
+    if (r.stopped_by.empty() && options.disc) cut_at_entry(*options.disc, path);
+    s.compute_s = thread_cpu_s() - t0;
+    r.decisions_s += wall_clock_s() - w0;
+    step_times.push_back(s.compute_s);
+    r.compute_s += s.compute_s;
+    r.steps.push_back(std::move(s));
+    ++r.samples;
+    if (!r.stopped_by.empty()) break;
+
+    world.travel(path.path, path.length);
+    r.distance_m += path.length;
+    pos = path.goal;
+    path_in = std::move(path.path);
+  }
+  r.reached = r.stopped_by == "reached";
+  if (const auto* pf = dynamic_cast<const methods::ParticleFilterMethod*>(&method))
+    r.posterior.marginal = particle_histogram(pf->filter(), world.map());
+  r.expected = r.posterior.expected;
+  r.estimate = method.estimate().value_or(pos);
+  r.map = r.steps.back().map;
+  r.time_s = world.time() - t_start;
+  r.median_step_s = median(step_times);
+  return r;
+}
+
+LocalizationResult localize(Vec2 start, ste::Estimator& estimator, world::SimulatedWorld& world,
+                            const planner::Planner& planner, const ste::Navigator& navigator,
+                            const ste::StopOptions& stop, const MethodRunOptions& options) {
+  methods::SteMethod method(estimator, planner, navigator, stop);
+  return run_method(start, method, world, planner, options);
+}
+
+}  // namespace plumekit::run

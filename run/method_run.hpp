@@ -1,0 +1,68 @@
+#pragma once
+// Runs any localization method (methods/method.hpp) against the simulated world: stop and read
+// the sensors, let the method observe and decide, drive to its goal along a planner path around
+// the obstacles, and record every stop. localize() is this loop with plumekit's STE.
+#include <optional>
+
+#include "methods/method.hpp"
+#include "planner/free_space.hpp"
+#include "planner/planner.hpp"
+#include "run/run_record.hpp"
+#include "ste/mission.hpp"
+#include "ste/stop_rule.hpp"
+#include "world/simulated_world.hpp"
+
+namespace plumekit::run {
+
+// The plume trackers' success area (seed 002 §5.1): 1.5 m along the wind by 2 m across it,
+// right downwind of the source. A tracker cannot know the source; the runner ends its run when a
+// stop lies in this box ("reached").
+struct SourceBox {
+  Vec2 source;
+  Vec2 downwind{1.0, 0.0};  // unit vector: the mean wind's direction at the source
+  double along = 1.5, across = 2.0;
+  bool contains(Vec2 p) const;
+};
+
+// Seed 004 ch. 15's success area: a disc about the source (0.5 m in ch. 16). The runner ends a run
+// as soon as the robot enters it, on its way too: a move that passes through it stops there.
+struct SourceDisc {
+  Vec2 source;
+  double radius = 0.5;
+  bool contains(Vec2 p) const { return norm(p - source) <= radius; }
+};
+
+// CPU time of the calling thread, s: a decision step runs on one thread, and this reads the same
+// on a loaded machine as on a quiet one.
+double thread_cpu_s();
+// Wall-clock seconds (a steady clock): the times a run's report adds up (LocalizationResult).
+double wall_clock_s();
+
+// `path` cut at its first point in `disc` (unchanged when it never enters it): a run ends where
+// its robot enters the disc.
+void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path);
+
+struct MethodRunOptions {
+  std::optional<SourceBox> box;    // stop a run whose stop lies in it
+  std::optional<SourceDisc> disc;  // stop a run where it enters it
+  // Moves goals off obstacles and walls (the planner's margin); needed by every method that does
+  // not plan its own paths (all but STE).
+  const planner::FreeSpace* space = nullptr;
+  // A guard on every method (each has its own budget below this): no run is longer.
+  int max_stops = 2000;
+};
+
+// One run of `method` from `start`. A goal the robot cannot reach leaves it where it is (the
+// method sees that in its next observation). The result's estimate is the method's, or where the
+// robot ended for a method without one (a plume tracker).
+LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
+                              world::SimulatedWorld& world, const planner::Planner& planner,
+                              const MethodRunOptions& options);
+
+// run_method with STE (methods::SteMethod) on `estimator`, which plans its own paths; `options`
+// may end the run on arrival (its disc).
+LocalizationResult localize(Vec2 start, ste::Estimator& estimator, world::SimulatedWorld& world,
+                            const planner::Planner& planner, const ste::Navigator& navigator,
+                            const ste::StopOptions& stop, const MethodRunOptions& options);
+
+}  // namespace plumekit::run

@@ -1,0 +1,211 @@
+#pragma once
+// Everything STE needs for one map, built once and shared (read-only, so
+// thread-safe) by all runs on it: the wind, the plume model, the planner and
+// its free space. A run adds its own estimator, world and start.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cfd/options.hpp"
+#include "cfd/wind_field.hpp"
+#include "core/thread_pool.hpp"
+#include "map/map.hpp"
+#include "planner/free_space.hpp"
+#include "planner/planner.hpp"
+#include "run/method_choice.hpp"
+#include "run/method_run.hpp"
+#include "run/team.hpp"
+#include "ste/forward_model.hpp"
+#include "ste/gaussian_plume.hpp"
+#include "ste/mh_estimator.hpp"
+#include "ste/physics_plume.hpp"
+#include "world/random_streams.hpp"
+#include "world/simulated_world.hpp"
+
+namespace plumekit::run {
+
+enum class PlumeModelKind { Surrogate, Gaussian, Physics };
+const char* to_string(PlumeModelKind kind);
+// "surrogate", "gaussian", "physics"; InputError naming the value otherwise.
+PlumeModelKind parse_plume_model_kind(const std::string& name);
+
+// The sample error each model runs with unless told otherwise: the thesis's sigma_M = 30 for the
+// Gaussian baseline. For the physics model, sigma_M = 150: a 5 s mean of the filament world
+// scatters about its steady mean by about 100 near a plume's axis; chosen on held-out random maps
+// in the faithful world (ste/README.md). Plus 15 % of the prediction (sigma_rel): near a source
+// the 5 s means scatter by thousands, and a fixed 150 let a few of them lock the posterior onto a
+// cell next to the source's; chosen on held-out buildings (ste/README.md, "Floors"). For the
+// surrogate, sigma_M = 200 (about the shipped model's RMSE on the test maps) plus twice the CNN's
+// own predicted std of the readings (sigma_std), since a 5 s sample departs from the mean, and the
+// CNN errs, most where the plume is intermittent; chosen on held-out random maps (ste/README.md).
+ste::LikelihoodOptions default_likelihood(PlumeModelKind kind);
+
+// The likelihood's settings in SteOptions. sigma_m, sigma_rel and sigma_std follow the plume model
+// unless set (default_likelihood): the same number cannot suit a CNN and an exact model.
+struct SteLikelihood {
+  std::optional<double> sigma_m;  // unset: 200 for the surrogate, 150 for physics, 30 for gaussian
+  double sigma_d = 0.0;
+  std::optional<double> sigma_rel;  // unset: 0.15 for physics, 0 otherwise
+  std::optional<double> sigma_std;  // unset: 2 for the surrogate, 0 otherwise (surrogate only)
+};
+
+// Every option of a localization, with its default (ste/README.md, "Options"). The default plume
+// model is the surrogate; its CNN file (model_path) has no default here, since where the shipped
+// model lies is the CLI's to say (it fills in data/models/plume-unet.pkcnn).
+struct SteOptions {
+  // The localization method (--method): plumekit's STE, or one of the seeds' trackers and
+  // particle filters, which use no plume model (the model's options below are then unused).
+  MethodOptions method;
+  PlumeModelKind model = PlumeModelKind::Surrogate;
+  std::string model_path;  // the surrogate's CNN file (plumekit-cnn)
+  SteLikelihood likelihood;
+  ste::BinOptions bins;
+  ste::MhOptions mh;
+  ste::NavigationOptions navigation;
+  ste::StopOptions stop;
+  world::WorldOptions world;
+  // A team of robots instead of one (--robots, --team; run/team.hpp).
+  TeamOptions team;
+  // The wind every run of a map shares (the flow's defaults: 5 cm cells).
+  cfd::FlowOptions flow;
+  // A `plumekit flow` output folder for this map (either engine) whose wind is
+  // used instead of solving one (cfd/wind_file.hpp); empty: solve it.
+  std::string wind_dir;
+  // The diffusivity of the physics model, and the release-scale prior [scale_lo, scale_hi] of
+  // the surrogate and physics models. Its source_cell is the physics default of `source_cell`.
+  ste::PhysicsPlumeOptions physics;
+  ste::GaussianPlumeBounds gaussian;
+  // Candidate source grid, m, of the surrogate and physics models; unset: the model's own default
+  // (SurrogatePlumeOptions: 0.2 m; physics.source_cell: 0.1 m). The Gaussian plume has none.
+  std::optional<double> source_cell;
+  // The surrogate's table grid, m (one network run per allowed cell); unset: source_cell, or
+  // coarser on maps of over 100 m^2 of free space (surrogate_table_cell). At least source_cell.
+  std::optional<double> table_cell;
+  double margin = 0.15;             // m, the planner's clearance (thesis 14.3.1)
+  std::string table_cache;          // folder caching surrogate tables; empty: none
+  int threads = kDefaultThreads;    // for the surrogate's table build; 0: one per core
+  double min_start_distance = 1.0;  // m, random starts are at least this far from the source
+  // m: a run ends as soon as the robot comes this close to the source, on its way too (seed 004
+  // ch. 15's benchmark protocol: 0.5 m; SourceDisc). 0: never, but levy-taxis always ends at 0.5 m.
+  double success_radius = 0.0;
+
+  // The likelihood the plume model runs with (the unset sigmas filled in).
+  ste::LikelihoodOptions likelihood_options() const;
+  // The candidate source grid in use (0 for the Gaussian plume, which has none).
+  double source_cell_in_use() const;
+  // The surrogate's table grid in use on `map` (0 for the other models).
+  double table_cell_in_use(const Map& map) const;
+  // Every field, the nested options' too (OptionError naming it: "ste.world.noise", ...), and
+  // that a surrogate's model file exists. Scenario's constructor calls it.
+  void validate() const;
+
+ private:
+  void check_model_file() const;
+};
+
+// The surrogate's default table cell on `map` for candidates of `source_cell`: the source cell
+// itself, or on maps with over kSurrogateTableArea of free space the cell (rounded up to 5 cm,
+// at least source_cell) that gives about kSurrogateTableCells free cells, so that the table (one
+// plume per cell) stays within a minute to build and its memory bounded (ste/README.md, "The
+// learned model at building scale").
+inline constexpr double kSurrogateTableArea = 100.0;  // m^2
+inline constexpr double kSurrogateTableCells = 2500;
+double surrogate_table_cell(const Map& map, double source_cell);
+
+// What a run is labelled with in reports and pictures: STE's plume model ("surrogate", ...), or
+// the method's name ("surge-cast", ...).
+std::string run_label(const SteOptions& options);
+
+class Scenario {
+ public:
+  // Solves the wind (options.flow; upwind if Newton stalls with central convection) and builds
+  // the plume model. InputError for a map STE cannot run on.
+  Scenario(const Map& map, const SteOptions& options);
+  // The same with the wind of `same_map`, a scenario of this map with the same flow options (the
+  // other methods of `evaluate --method a,b,...`): no second solve.
+  Scenario(const Map& map, const SteOptions& options, const Scenario& same_map);
+  ~Scenario();
+
+  const Map& map() const { return map_; }
+  const SteOptions& options() const { return options_; }
+  const cfd::WindField& wind() const { return wind_; }
+  // The plume model; STE's alone (has_model() is false for the other methods).
+  bool has_model() const { return model_ != nullptr; }
+  const ste::ForwardModel& model() const;
+  const planner::FreeSpace& free_space() const { return *space_; }
+  double wind_s() const { return wind_s_; }
+  // The plume model's build: the surrogate's table, and the readings at the floor's goals.
+  double model_build_s() const { return model_build_s_; }
+  bool table_from_cache() const { return table_from_cache_; }
+  // The surrogate's table grid in use, m (SteOptions::table_cell_in_use); 0 for the other models.
+  double table_cell() const { return table_cell_; }
+
+  // Checks a true source and a start (OptionError on ste.source / ste.start naming the fault);
+  // a start inside the planner's margin is moved to the nearest free point (the caller reports
+  // the move: the point returned differs from the one given).
+  Vec2 check_source(Vec2 source) const;
+  Vec2 check_start(Vec2 start) const;
+  // A uniformly random start in the free space that can reach the source,
+  // at least min_start_distance from it.
+  Vec2 random_start(Vec2 source, std::uint64_t seed) const;
+  // The start of run `run` of a source: the map's own starts (Map::starts) in turn, skipping
+  // those closer than min_start_distance to the source or that cannot reach it; a map without
+  // starts gives random_start(source, seed). InputError when no start of the map qualifies.
+  Vec2 run_start(Vec2 source, int run, std::uint64_t seed) const;
+
+  // A fresh estimator on this scenario's plume model (the grid estimator on a source table, MH
+  // otherwise); `seed` drives MH.
+  std::unique_ptr<ste::Estimator> make_estimator(std::uint64_t seed) const;
+  const planner::Planner& planner() const { return *planner_; }
+  const ste::Navigator& navigator() const { return *navigator_; }
+
+  // One localization run with the options' method (a team's when options.team.robots > 1, its
+  // first robot at `start`: team_starts); `seed` drives the plume, the sensor noise, MH and the
+  // particle filter.
+  LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;
+  // The same run in `world`, which holds the plume of `source` and `seed` (a robot of a shared
+  // plume: world/shared_plume.hpp).
+  LocalizationResult run(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
+
+  // The starts of a team whose first robot starts at `first`: the team is deployed together, its
+  // other robots on the free points nearest `first` of a lattice of the team's separation
+  // (nearest first, then counter-clockwise from downwind x), in the piece of free space that
+  // reaches `source`. InputError when the piece has no room for them.
+  std::vector<Vec2> team_starts(Vec2 first, Vec2 source) const;
+  // A team's run (options.team.robots robots) from `starts`; `seed` drives the plume, each
+  // robot's sensors and MH (team_robot_seed).
+  LocalizationResult run_team(Vec2 source, const std::vector<Vec2>& starts,
+                              std::uint64_t seed) const;
+
+  // The plume trackers' success box of a source: along the steady wind at the source.
+  SourceBox source_box(Vec2 source) const;
+
+  // The steady advection-diffusion mean of a source on the flow grid: the
+  // picture's background (the filament plume's long-time mean, up to its meander).
+  Grid<double> mean_plume(Vec2 source) const;
+
+ private:
+  // The piece of free space (at the planner's margin) that `p`, or the free point nearest it,
+  // lies in: a start must be in its source's.
+  int region_reaching(Vec2 p) const;
+  // run(world, ...) without its times.
+  LocalizationResult run_in(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
+
+  // The wind of `same_map`, or solved when it is null.
+  Scenario(const Map& map, const SteOptions& options, const Scenario* same_map);
+
+  Map map_;
+  SteOptions options_;
+  cfd::WindField wind_;
+  std::unique_ptr<ste::ForwardModel> model_;
+  std::unique_ptr<planner::Planner> planner_;
+  std::unique_ptr<planner::FreeSpace> space_;
+  std::unique_ptr<ste::Navigator> navigator_;
+  GridShape bins_;
+  double wind_s_ = 0.0, model_build_s_ = 0.0;
+  bool table_from_cache_ = false;
+  double table_cell_ = 0.0;
+};
+
+}  // namespace plumekit::run

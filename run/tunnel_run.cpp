@@ -1,0 +1,272 @@
+#include "run/tunnel_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+#include "core/error.hpp"
+#include "core/option_check.hpp"
+#include "core/random.hpp"
+#include "core/statistics.hpp"
+#include "core/thread_pool.hpp"
+#include "run/method_run.hpp"
+#include "world/random_streams.hpp"
+#include "world/tunnel_world.hpp"
+
+namespace plumekit::run {
+
+namespace {
+
+constexpr TunnelMethod kMethods[] = {TunnelMethod::Ste3d, TunnelMethod::SurgeSpiral,
+                                     TunnelMethod::SurgeCast2d};
+
+std::string point_text(Vec3 p) {
+  return "(" + compact(p.x) + ", " + compact(p.y) + ", " + compact(p.z) + ")";
+}
+
+Box3 inner_box(const TunnelOptions& o) {
+  return o.tunnel.box().inset(o.margin);
+}
+
+// The 2-D baseline flies 10 cm below the source (ch. 17, after Rahbar et al. 2017).
+double cast_altitude(const TunnelOptions& o, Vec3 source) {
+  return std::clamp(source.z - 0.1, o.margin, o.tunnel.height - o.margin);
+}
+
+TunnelRun run_ste(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed) {
+  world::TunnelWorld world(o.tunnel, source, o.world, seed);
+  const Box3 box = o.tunnel.box();
+  ste::Ste3dEstimator estimator(box, o.ste,
+                                splitmix64(world::stream_seed(seed, world::SteStream::Mh)));
+  TunnelRun run;
+  run.spinup_s = world.spinup_s();
+  Vec3 robot = start;
+  for (;;) {
+    const world::Reading3 r = world.stop(robot);
+    estimator.add(r.position, r.gas, norm(r.wind));
+    const double cpu = thread_cpu_s();
+    const ste::Posterior3 post = estimator.posterior();
+    TunnelStep step{robot,          r.gas,    world.time(),
+                    run.distance_m, "sample", post.expected_source(),
+                    post.entropy,   0.0};
+    run.estimate = post.expected_source();
+    run.max_entropy = post.max_entropy;
+    if (post.entropy < o.ste.entropy_fraction * post.max_entropy)
+      run.stopped_by = "entropy";
+    else if (estimator.samples() >= o.ste.max_samples)
+      run.stopped_by = "max_samples";
+    Vec3 goal = robot;
+    if (run.stopped_by.empty())
+      goal = ste::decide_3d(robot, estimator, post, box, o.ste, o.margin).goal;
+    step.compute_s = thread_cpu_s() - cpu;
+    run.steps.push_back(step);
+    if (!run.stopped_by.empty()) break;
+    world.travel(robot, goal);
+    run.distance_m += norm(goal - robot);
+    robot = goal;
+  }
+  run.mission_s = world.time();
+  return run;
+}
+
+TunnelRun run_tracker(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed) {
+  world::TunnelWorld world(o.tunnel, source, o.world, seed);
+  methods::CrosswindSearchOptions so = o.search;
+  so.mode = o.method == TunnelMethod::SurgeSpiral ? methods::CrosswindMode::Spiral3d
+                                                  : methods::CrosswindMode::Cast2d;
+  so.step = o.tracker_speed * o.decision_s;
+  so.altitude = cast_altitude(o, source);
+  methods::CrosswindSearch search(o.tunnel.box(), so,
+                                  world::stream_seed(seed, world::SteStream::Method));
+  TunnelRun run;
+  run.spinup_s = world.spinup_s();
+  const double half = 0.5 * o.box;
+  Vec3 robot = start;
+  // The first reading: a moment at the start.
+  world::Reading3 r = world.move(robot, robot, o.tracker_speed);
+  for (;;) {
+    search.observe({r.position, r.gas, r.wind, world.time()});
+    run.steps.push_back({robot, r.gas, world.time(), run.distance_m, search.phase(), {}, 0.0, 0.0});
+    const Vec3 d = robot - source;
+    if (std::abs(d.x) <= half && std::abs(d.y) <= half && std::abs(d.z) <= half &&
+        r.gas >= search.threshold()) {
+      run.stopped_by = "found";
+      break;
+    }
+    if (world.time() >= o.time_limit_s) {
+      run.stopped_by = "time_limit";
+      break;
+    }
+    const Vec3 goal = search.next(robot);
+    r = world.move(robot, goal, o.tracker_speed);
+    run.distance_m += norm(goal - robot);
+    robot = goal;
+  }
+  run.estimate = robot;
+  run.mission_s = world.time();
+  return run;
+}
+
+}  // namespace
+
+const char* to_string(TunnelMethod method) {
+  switch (method) {
+    case TunnelMethod::Ste3d:
+      return "ste-3d";
+    case TunnelMethod::SurgeSpiral:
+      return "surge-spiral";
+    case TunnelMethod::SurgeCast2d:
+      return "surge-cast-2d";
+  }
+  return "?";
+}
+
+TunnelMethod parse_tunnel_method(const std::string& name) {
+  for (TunnelMethod m : kMethods)
+    if (name == to_string(m)) return m;
+  throw OptionError("tunnel.method",
+                    "unknown method '" + name + "'; use ste-3d, surge-spiral or surge-cast-2d");
+}
+
+std::vector<TunnelMethod> parse_tunnel_methods(const std::string& text) {
+  if (text == "all") return {std::begin(kMethods), std::end(kMethods)};
+  std::vector<TunnelMethod> out;
+  std::size_t begin = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', begin);
+    const TunnelMethod m = parse_tunnel_method(text.substr(begin, comma - begin));
+    if (std::find(out.begin(), out.end(), m) != out.end())
+      throw OptionError("tunnel.method", std::string("'") + to_string(m) + "' given twice");
+    out.push_back(m);
+    if (comma == std::string::npos) return out;
+    begin = comma + 1;
+  }
+}
+
+bool is_tracker(TunnelMethod method) {
+  return method != TunnelMethod::Ste3d;
+}
+
+world::WorldOptions TunnelOptions::default_world() {
+  world::WorldOptions w;
+  w.filament = world::tunnel_filament_options();
+  return w;
+}
+
+void TunnelOptions::validate() const {
+  tunnel.validate();
+  world::validate_tunnel_world(world);
+  ste.validate();
+  search.validate();
+  check_positive("tunnel.tracker_speed", tracker_speed, 10.0, "m/s", "ch. 17: 0.05 m/s");
+  check_positive("tunnel.decision_s", decision_s, 60.0, "s", "the default is 1 s");
+  check_positive("tunnel.time_limit_s", time_limit_s, 1e6, "s", "ch. 17: 720 s");
+  check_positive("tunnel.box", box, 10.0, "m", "ch. 17: 0.2 m");
+  const double smallest = std::min(tunnel.width, tunnel.height);
+  check_non_negative("tunnel.margin", margin, 0.25 * smallest, "m", "the default is 0.1 m");
+  check_range("tunnel.source_x", source_x, margin, tunnel.length - margin, "m",
+              "ch. 5.1: 1 m from the upwind wall");
+  check_non_negative("tunnel.min_start_distance", min_start_distance, 0.5 * tunnel.length, "m",
+                     "the default is 1 m");
+  check_positive("tunnel.start_downwind", start_downwind, 1000.0, "m", "ch. 17: 10 m");
+}
+
+Vec3 TunnelRun::error() const {
+  const Vec3 d = estimate - source;
+  return {std::abs(d.x), std::abs(d.y), std::abs(d.z)};
+}
+
+double TunnelRun::closest_m() const {
+  double best = norm(start - source);
+  for (const TunnelStep& step : steps)
+    best = std::min(best, norm(step.position - source));
+  return best;
+}
+
+double TunnelRun::time_within(double radius) const {
+  for (const TunnelStep& step : steps)
+    if (norm(step.position - source) <= radius) return step.time_s;
+  return -1.0;
+}
+
+double TunnelRun::median_step_s() const {
+  if (method != TunnelMethod::Ste3d) return 0.0;
+  std::vector<double> s;
+  for (const TunnelStep& step : steps)
+    s.push_back(step.compute_s);
+  return median(s);
+}
+
+void check_tunnel_point(const TunnelOptions& o, Vec3 p, const std::string& what) {
+  if (!is_finite(p) || !inner_box(o).contains(p))
+    throw InputError("tunnel." + what + ": " + point_text(p) + " is not inside the " +
+                     compact(o.tunnel.length) + " x " + compact(o.tunnel.width) + " x " +
+                     compact(o.tunnel.height) + " m tunnel at least " + compact(o.margin) +
+                     " m from its walls");
+}
+
+Vec3 random_tunnel_source(const TunnelOptions& o, std::uint64_t seed) {
+  std::mt19937_64 rng(world::stream_seed(seed, world::SteStream::Start));
+  const Box3 in = inner_box(o);
+  const double y = uniform(rng, in.lo.y, in.hi.y);
+  const double z = uniform(rng, in.lo.z, in.hi.z);
+  return {o.source_x, y, z};
+}
+
+Vec3 random_tunnel_start(const TunnelOptions& o, Vec3 source, std::uint64_t seed) {
+  std::mt19937_64 rng(splitmix64(world::stream_seed(seed, world::SteStream::Start)));
+  const Box3 in = inner_box(o);
+  if (is_tracker(o.method)) {
+    const double x = std::min(source.x + o.start_downwind, in.hi.x);
+    const double y = uniform(rng, in.lo.y, in.hi.y);
+    const double z = uniform(rng, in.lo.z, in.hi.z);
+    return {x, y, o.method == TunnelMethod::SurgeCast2d ? cast_altitude(o, source) : z};
+  }
+  for (int attempt = 0; attempt < 10000; ++attempt) {
+    const Vec3 p{uniform(rng, in.lo.x, in.hi.x), uniform(rng, in.lo.y, in.hi.y),
+                 uniform(rng, in.lo.z, in.hi.z)};
+    if (norm(p - source) >= o.min_start_distance) return p;
+  }
+  throw InputError("tunnel: no start at least " + compact(o.min_start_distance) +
+                   " m from the source " + point_text(source));
+}
+
+TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed) {
+  o.validate();
+  check_tunnel_point(o, source, "source");
+  check_tunnel_point(o, start, "start");
+  TunnelRun run =
+      is_tracker(o.method) ? run_tracker(o, source, start, seed) : run_ste(o, source, start, seed);
+  run.method = o.method;
+  run.source = source;
+  run.start = start;
+  return run;
+}
+
+TunnelRun localize_tunnel(const TunnelOptions& o, std::optional<Vec3> source,
+                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run) {
+  const std::uint64_t s = world::run_seed(seed, 0, 0, run);
+  if (!source) source = random_tunnel_source(o, s);
+  check_tunnel_point(o, *source, "source");  // before a start is drawn about it
+  if (!start) start = random_tunnel_start(o, *source, s);
+  return run_tunnel(o, *source, *start, s);
+}
+
+std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::uint64_t seed,
+                                       int threads, const std::function<void(int, int)>& progress) {
+  o.validate();
+  check_count("tunnel.runs", runs, 1, 100'000, "the default is 10");
+  std::vector<TunnelRun> out(runs);
+  ThreadPool pool(threads);
+  std::mutex mutex;
+  int done = 0;
+  pool.parallel_for(runs, [&](std::size_t k) {
+    out[k] = localize_tunnel(o, std::nullopt, std::nullopt, seed, k);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (progress) progress(++done, runs);
+  });
+  return out;
+}
+
+}  // namespace plumekit::run

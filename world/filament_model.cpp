@@ -1,0 +1,407 @@
+#include "world/filament_model.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/memory_limit.hpp"
+#include "core/option_check.hpp"
+#include "core/seed.hpp"
+
+namespace plumekit::world {
+
+namespace {
+
+// Mixed into the plume's seed for the unsteady wind's own random stream.
+constexpr std::uint64_t kFluctuationStream = 0x77696e64;  // "wind"
+
+// Whether an outlet on an arena wall covers position s along that wall.
+bool outlet_on_wall(const Map& map, Side side, double s) {
+  const int k = map.opening_on_wall(side, s);
+  return k >= 0 && !map.openings[static_cast<std::size_t>(k)].is_inlet();
+}
+
+// Whether the move from a to b crosses an outlet on an obstacle's edge.
+bool through_obstacle_outlet(const Map& map, Vec2 a, Vec2 b) {
+  for (const Opening& o : map.openings)
+    if (!o.is_inlet() && !map.wall_of(o) && segments_intersect(a, b, o.from, o.to)) return true;
+  return false;
+}
+
+// A filament's kernel window: sensor columns i0..i1, rows j0..j1 of a grid of cell dx x dy.
+struct Window {
+  int i0, i1, j0, j1;
+  double dx, dy;
+};
+
+// Zeroes, in the window's row-major mask, the sensors in `shadow`; a row's
+// mask is set to ones the first time a shadow reaches it (masked[row] = 1).
+void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
+           std::vector<std::uint8_t>& masked) {
+  const std::size_t width = static_cast<std::size_t>(w.i1 - w.i0 + 1);
+  // Rows and columns whose centres lie in the shadow, clamped in double (bounds may be infinite).
+  const double from_j = std::max<double>(w.j0, std::ceil(shadow.y_lo() / w.dy - 0.5));
+  const double to_j = std::min<double>(w.j1, std::floor(shadow.y_hi() / w.dy - 0.5));
+  if (from_j > to_j) return;
+  for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
+    double lo, hi;
+    if (!shadow.on_row((j + 0.5) * w.dy, lo, hi)) continue;
+    const double from_i = std::max<double>(w.i0, std::ceil(lo / w.dx - 0.5));
+    const double to_i = std::min<double>(w.i1, std::floor(hi / w.dx - 0.5));
+    if (from_i > to_i) continue;
+    double* row = mask.data() + (j - w.j0) * width;
+    if (!masked[j - w.j0]) std::fill(row, row + width, 1.0);
+    masked[j - w.j0] = 1;
+    std::fill(row + (static_cast<int>(from_i) - w.i0), row + (static_cast<int>(to_i) - w.i0 + 1),
+              0.0);
+  }
+}
+
+}  // namespace
+
+// Bounds well beyond any useful setting: they catch NaN, signs and unit
+// mistakes (dataset/README.md, "Options").
+void FilamentOptions::validate() const {
+  check_positive("plume.filaments_per_second", release_per_second, 1e5, "per second",
+                 "the default is 200 (more only lowers the sampling noise)");
+  check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
+                 "the default is 1000");
+  check_positive("plume.initial_radius", initial_radius, 10.0, "m", "the default is 0.1 m");
+  check_non_negative("plume.source_radius", source_radius, 100.0, "m",
+                     "0 releases at the source's point; seed 002's source is 0.2 m");
+  check_non_negative("plume.growth", growth, 100.0, "m^2/s", "the default is 0.08 m^2/s");
+  check_non_negative("plume.sigma_walk", sigma_walk, 100.0, "m/sqrt(s)",
+                     "the default is 0.245 m/sqrt(s)");
+  check_non_negative("plume.meander_speed", meander_speed, 100.0, "m/s", "the default is 0.15 m/s");
+  check_positive("plume.meander_time", meander_time, 1e4, "s", "the default is 1 s");
+  check_positive("plume.meander_length", meander_length, 1e4, "m", "the default is 2 m");
+  check_positive("plume.meander_wall_layer", meander_wall_layer, 1e4, "m", "the default is 1 m");
+  check_positive("plume.dt", dt, 10.0, "s", "the default is 0.05 s");
+  check_range("plume.max_radius", max_radius, initial_radius, 1e3, "m",
+              "it must exceed plume.initial_radius; the default is 1.5 m", true);
+  check_positive("plume.steady_window", steady_window, 1e4, "s", "the default is 2 s");
+  check_positive("plume.steady_tolerance", steady_tolerance, 1.0, "", "the default is 0.02");
+  check_non_negative("plume.min_spinup", min_spinup, 1e5, "s", "the default is 4 s");
+  check_range("plume.max_spinup", max_spinup, min_spinup, 1e5, "s",
+              "it must be at least plume.min_spinup; the default is 60 s");
+  check_positive("plume.record_s", record_s, 1e5, "s", "the default is 5 s");
+  check_positive("plume.sample_rate", sample_rate, 1e3, "Hz", "the default is 10 Hz");
+  check_positive("plume.cutoff", cutoff, 10.0, "filament radii", "the default is 3");
+  // The step count bounds the run time: a tiny dt over a long spin-up never ends.
+  const double steps = (max_spinup + record_s) / dt;
+  if (steps > 1e8)
+    throw OptionError("plume.dt", compact(dt) + " s gives " + compact(steps) +
+                                      " steps over the spin-up and the recording, more than "
+                                      "1e+08; use a larger dt or shorter times");
+}
+
+void set_world(FilamentOptions& options, const std::string& name) {
+  if (name != "faithful" && name != "thesis" && name != "neumann")
+    throw OptionError("plume.world",
+                      "unknown world '" + name + "'; use faithful, thesis or neumann");
+  options.occlusion = options.unsteady_wind = name == "faithful";
+  if (name != "neumann") return;
+  // Seed 000 Eqs. 4.1-4.2 with its step taken as 0.1 s (the seed gives none), also the
+  // integration step (5 cm at 0.5 m/s: one flow cell): a walk of
+  // sigma_p = 0.1 m per step is 0.1 / sqrt(0.1) m/sqrt(s), and R grows by gamma / (2 R) per step
+  // with gamma = 4e-7, i.e. dR^2/dt = gamma / 0.1 s. "Predominantly laminar": no meander.
+  constexpr double kSeedStep = 0.1;
+  options.release_per_second = 500.0;
+  options.initial_radius = 0.2;
+  options.source_radius = 0.2;
+  options.sigma_walk = 0.1 / std::sqrt(kSeedStep);
+  options.growth = 4e-7 / kSeedStep;
+  options.meander_speed = 0.0;
+  options.dt = kSeedStep;
+  // The plume takes 64 s to cross the tunnel at 0.5 m/s (the seed shows it at 99 s).
+  options.min_spinup = 100.0;
+  options.max_spinup = 200.0;
+}
+
+double FilamentOptions::max_filaments() const {
+  return release_per_second * (max_spinup + record_s) + 1.0;
+}
+
+FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& wind, Vec2 source,
+                                       const FilamentOptions& options, std::uint64_t seed)
+    : map_(map), wind_(wind), source_(source), o_(options), rng_(seed) {
+  o_.validate();
+  // The filament vector at its largest, twice over for its growth by doubling.
+  const double bytes = 2.0 * sizeof(Filament) * o_.max_filaments();
+  if (!fits_in_memory(bytes)) {
+    const double fits = memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_s));
+    check_memory(
+        bytes, "the filament model at " + compact(o_.release_per_second) + " filaments per second",
+        "use fewer plume.filaments_per_second (" + compact(std::floor(0.9 * fits)) + " fits)");
+  }
+  if (!map.is_free(source))
+    throw InputError("filament model: source " + to_string(source) +
+                     " is outside the arena or inside an obstacle");
+  mass_ = o_.release_rate / o_.release_per_second;
+  // Cells no obstacle reaches need no polygon test: the common case, and the
+  // exact test stays for cells an obstacle edge crosses.
+  const GridShape& s = wind.shape();
+  clear_.assign(s.size(), 1);
+  const double half_diagonal = 0.5 * std::hypot(s.dx(), s.dy()) * (1.0 + 1e-9);
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const Vec2 c = s.centre(i, j);
+      bool clear = map.obstacle_at(c) < 0;
+      for (const Polygon& poly : map.obstacles) {
+        for (std::size_t k = 0; clear && k < poly.size(); ++k)
+          if (distance_to_segment(c, poly[k], poly[(k + 1) % poly.size()]) <= half_diagonal)
+            clear = false;
+        if (!clear) break;
+      }
+      clear_[s.index(i, j)] = clear;
+    }
+  if (o_.occlusion) sight_ = std::make_unique<LineOfSight>(map);
+  if (o_.unsteady_wind) {
+    world::FluctuationOptions f;
+    f.intensity = o_.meander_speed;
+    f.time_scale = o_.meander_time;
+    f.length_scale = o_.meander_length;
+    f.wall_layer = o_.meander_wall_layer;
+    // Its own stream, derived from the plume's seed.
+    fluctuation_ =
+        std::make_unique<world::FluctuatingWind>(wind, f, splitmix64(seed ^ kFluctuationStream));
+  }
+}
+
+bool FilamentSimulation::free_at(Vec2 p) const {
+  if (!map_.in_arena(p)) return false;
+  const GridShape& s = wind_.shape();
+  const int i = std::min(s.nx - 1, static_cast<int>(p.x / s.dx()));
+  const int j = std::min(s.ny - 1, static_cast<int>(p.y / s.dy()));
+  return clear_[s.index(i, j)] || map_.obstacle_at(p) < 0;
+}
+
+Vec2 FilamentSimulation::release_point() {
+  if (o_.source_radius <= 0.0) return source_;
+  // Uniform over the disc's free part: redrawn where the disc overlaps a wall or an obstacle.
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const double r = o_.source_radius * std::sqrt(uniform01(rng_));
+    const double a = 2.0 * kPi * uniform01(rng_);
+    const Vec2 p{source_.x + r * std::cos(a), source_.y + r * std::sin(a)};
+    if (map_.is_free(p)) return p;
+  }
+  return source_;
+}
+
+void FilamentSimulation::step() {
+  const double dt = o_.dt;
+  const double walk = o_.sigma_walk * std::sqrt(dt);
+  if (fluctuation_) {
+    fluctuation_->advance(dt);
+  } else {
+    // Ornstein-Uhlenbeck meander, exact update over dt.
+    const double decay = std::exp(-dt / o_.meander_time);
+    const double kick = o_.meander_speed * std::sqrt(1.0 - decay * decay);
+    meander_.x = decay * meander_.x + kick * normal_(rng_);
+    meander_.y = decay * meander_.y + kick * normal_(rng_);
+  }
+
+  release_debt_ += o_.release_per_second * dt;
+  while (release_debt_ >= 1.0) {
+    filaments_.push_back({release_point(), o_.initial_radius * o_.initial_radius});
+    release_debt_ -= 1.0;
+    ++summary_.released;
+  }
+
+  const double W = map_.width, H = map_.height;
+  const double max_r2 = o_.max_radius * o_.max_radius;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < filaments_.size(); ++k) {
+    Filament f = filaments_[k];
+    const Vec2 w = wind_at(f.position);
+    Vec2 p = f.position + dt * w;
+    p.x += walk * normal_(rng_);
+    p.y += walk * normal_(rng_);
+    // Through an arena wall: gone if through the outlet, else reflected.
+    bool gone = false;
+    if (p.x < 0.0 || p.x > W) {
+      const Side side = p.x < 0.0 ? Side::Left : Side::Right;
+      if (outlet_on_wall(map_, side, std::clamp(p.y, 0.0, H))) gone = true;
+      p.x = p.x < 0.0 ? -p.x : 2.0 * W - p.x;
+    }
+    if (p.y < 0.0 || p.y > H) {
+      const Side side = p.y < 0.0 ? Side::Bottom : Side::Top;
+      if (outlet_on_wall(map_, side, std::clamp(p.x, 0.0, W))) gone = true;
+      p.y = p.y < 0.0 ? -p.y : 2.0 * H - p.y;
+    }
+    if (gone) {
+      ++summary_.left_through_outlet;
+      continue;
+    }
+    p.x = std::clamp(p.x, 0.0, W);
+    p.y = std::clamp(p.y, 0.0, H);
+    if (free_at(p)) {
+      f.position = p;
+    } else if (through_obstacle_outlet(map_, f.position, p)) {
+      ++summary_.left_through_outlet;  // out through a door or vent in an obstacle's edge
+      continue;
+    } else {
+      ++summary_.rejected_moves;  // into an obstacle: the move is not taken
+    }
+    f.radius2 += o_.growth * dt;
+    if (f.radius2 > max_r2) {
+      ++summary_.dropped_too_wide;
+      continue;
+    }
+    filaments_[kept++] = f;
+  }
+  filaments_.resize(kept);
+  time_ += dt;
+}
+
+void FilamentSimulation::concentration(const GridShape& shape, std::vector<double>& out) const {
+  const double dx = shape.dx(), dy = shape.dy();
+  std::vector<double> ex, ey, mask;
+  std::vector<std::uint8_t> masked;  // per window row: some sensor in it is hidden
+  std::vector<Edge> edges;
+  for (const Filament& f : filaments_) {
+    const double r = o_.cutoff * std::sqrt(f.radius2);
+    const int i0 = std::max(0, static_cast<int>(std::ceil((f.position.x - r) / dx - 0.5)));
+    const int i1 =
+        std::min(shape.nx - 1, static_cast<int>(std::floor((f.position.x + r) / dx - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((f.position.y - r) / dy - 0.5)));
+    const int j1 =
+        std::min(shape.ny - 1, static_cast<int>(std::floor((f.position.y + r) / dy - 0.5)));
+    if (i0 > i1 || j0 > j1) continue;
+    const double inv = 1.0 / f.radius2;
+    // The kernel is separable: two short 1-D tables, then an outer product.
+    ex.resize(i1 - i0 + 1);
+    ey.resize(j1 - j0 + 1);
+    for (int i = i0; i <= i1; ++i) {
+      const double d = (i + 0.5) * dx - f.position.x;
+      ex[i - i0] = std::exp(-d * d * inv);
+    }
+    const double amp = mass_ * inv / kPi;
+    for (int j = j0; j <= j1; ++j) {
+      const double d = (j + 0.5) * dy - f.position.y;
+      ey[j - j0] = amp * std::exp(-d * d * inv);
+    }
+    // With occlusion, mark the window's rows that some obstacle edge shadows.
+    masked.assign(ey.size(), 0);
+    if (sight_) {
+      // The sensors' centres and the filament: every segment between them lies inside.
+      const Vec2 lo{(i0 + 0.5) * dx, (j0 + 0.5) * dy}, hi{(i1 + 0.5) * dx, (j1 + 0.5) * dy};
+      const Box window{{std::min(lo.x, f.position.x), std::min(lo.y, f.position.y)},
+                       {std::max(hi.x, f.position.x), std::max(hi.y, f.position.y)}};
+      edges.clear();
+      sight_->facing_edges(f.position, window, edges);
+      mask.resize(ex.size() * ey.size());
+      for (const Edge& e : edges)
+        shade(EdgeShadow(f.position, e), {i0, i1, j0, j1, dx, dy}, mask, masked);
+    }
+    for (int j = j0; j <= j1; ++j) {
+      double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
+      const double a = ey[j - j0];
+      if (!masked[j - j0]) {
+        for (int i = i0; i <= i1; ++i)
+          row[i] += a * ex[i - i0];
+        continue;
+      }
+      const double* row_mask = mask.data() + (j - j0) * ex.size();
+      for (int i = i0; i <= i1; ++i)
+        row[i] += a * ex[i - i0] * row_mask[i - i0];
+    }
+  }
+}
+
+double FilamentSimulation::concentration_at(Vec2 p) const {
+  // The same kernel and cutoff as concentration(), at one point (a square of
+  // half-side cutoff * R, as there). With occlusion, the edges that face the
+  // sensor within any filament's reach decide which filaments it sees.
+  std::vector<Edge> edges;
+  if (sight_) {
+    const double reach = o_.cutoff * o_.max_radius;
+    sight_->facing_edges(p, {{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}}, edges);
+  }
+  double c = 0.0;
+  for (const Filament& f : filaments_) {
+    const double dx = p.x - f.position.x, dy = p.y - f.position.y;
+    const double reach = o_.cutoff * o_.cutoff * f.radius2;
+    if (dx * dx > reach || dy * dy > reach) continue;
+    if (std::any_of(edges.begin(), edges.end(),
+                    [&](const Edge& e) { return hides(p, e, f.position); }))
+      continue;
+    c += std::exp(-(dx * dx + dy * dy) / f.radius2) / f.radius2;
+  }
+  return c * mass_ / kPi;
+}
+
+SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
+                                const GridShape& sensors, const FilamentOptions& options,
+                                std::uint64_t seed, const GasSensorModel& sensor) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FilamentSimulation sim(map, wind, source, options, seed);
+  const bool steady = spin_up(sim, options);
+  SensorRecord rec;
+  rec.summary = sim.summary();
+  rec.summary.spinup_s = sim.time();
+  rec.summary.steady = steady;
+
+  const int frames =
+      std::max(1, static_cast<int>(std::lround(options.record_s * options.sample_rate)));
+  const int steps_per_frame =
+      std::max(1, static_cast<int>(std::lround(1.0 / (options.sample_rate * options.dt))));
+  std::vector<double> sum(sensors.size(), 0.0), sum2(sensors.size(), 0.0), frame(sensors.size());
+  // The concentrations of the next frame, one frame's time after the last.
+  bool first = true;
+  auto next_frame = [&] {
+    if (!first)
+      for (int s = 0; s < steps_per_frame; ++s)
+        sim.step();
+    first = false;
+    std::fill(frame.begin(), frame.end(), 0.0);
+    sim.concentration(sensors, frame);
+  };
+  std::vector<GasSensor> readers;
+  if (!sensor.ideal() || sensor.baseline != 0.0) {
+    readers.assign(sensors.size(), GasSensor(sensor, 1.0 / options.sample_rate));
+    if (!sensor.ideal()) {
+      next_frame();
+      for (std::size_t k = 0; k < frame.size(); ++k)
+        readers[k].settle(frame[k]);
+      const int warmup =
+          static_cast<int>(std::lround(sensor_warmup_s(sensor) * options.sample_rate));
+      for (int w = 0; w < warmup; ++w) {
+        next_frame();
+        for (std::size_t k = 0; k < frame.size(); ++k)
+          readers[k].read(frame[k]);
+      }
+      rec.summary.sensor_warmup_s = (warmup + 1) / options.sample_rate;
+    }
+  }
+  for (int f = 0; f < frames; ++f) {
+    next_frame();
+    for (std::size_t k = 0; k < frame.size(); ++k) {
+      const double c = readers.empty() ? frame[k] : readers[k].read(frame[k]);
+      sum[k] += c;
+      sum2[k] += c * c;
+    }
+  }
+  rec.mean = Grid<double>(sensors, 0.0);
+  rec.std = Grid<double>(sensors, 0.0);
+  for (int j = 0; j < sensors.ny; ++j)
+    for (int i = 0; i < sensors.nx; ++i) {
+      if (map.obstacle_at(sensors.centre(i, j)) >= 0) continue;  // a sensor inside an obstacle
+      const std::size_t k = sensors.index(i, j);
+      const double m = sum[k] / frames;
+      rec.mean.values[k] = m;
+      rec.std.values[k] = std::sqrt(std::max(0.0, sum2[k] / frames - m * m));
+    }
+  const FilamentSummary& end = sim.summary();
+  rec.summary.released = end.released;
+  rec.summary.rejected_moves = end.rejected_moves;
+  rec.summary.left_through_outlet = end.left_through_outlet;
+  rec.summary.dropped_too_wide = end.dropped_too_wide;
+  rec.summary.filaments_at_end = static_cast<int>(sim.filaments().size());
+  rec.summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return rec;
+}
+
+}  // namespace plumekit::world

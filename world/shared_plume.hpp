@@ -1,0 +1,57 @@
+#pragma once
+// One filament plume that several robots sample in one world clock. The plume is spun up once;
+// after that each robot's world (SimulatedWorld) counts its own steps of the plume's dt as it
+// travels and stops, and asks for the plume at its step when it reads a sensor. The plume steps
+// on only when every robot still in the world needs a later step, so each robot reads it exactly
+// at its own times.
+//
+// The plume does not depend on the robots (they neither carry nor disturb gas), so a robot reads
+// what it would have read alone in a world of the same seed: one plume serves every method of a
+// run (`evaluate --method a,b,...`), each at the cost of its own decisions only. Robots that read
+// at the same time run on their own threads; a robot alone needs none.
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <vector>
+
+#include "cfd/wind_field.hpp"
+#include "map/map.hpp"
+#include "world/filament_model.hpp"
+
+namespace plumekit::world {
+
+class SharedPlume {
+ public:
+  // Builds the plume of `source` (seeded by `seed`) and spins it up
+  // (world::spin_up) for `robots` robots, numbered 0 .. robots - 1.
+  SharedPlume(const Map& map, const cfd::WindField& wind, Vec2 source,
+              const world::FilamentOptions& options, std::uint64_t seed, int robots);
+  SharedPlume(const SharedPlume&) = delete;
+  SharedPlume& operator=(const SharedPlume&) = delete;
+
+  // The plume's time when the spin-up ended, s since the release.
+  double spinup_s() const { return spinup_s_; }
+  int robots() const { return static_cast<int>(need_.size()); }
+
+  // The plume `step` steps after the spin-up, for `robot` to read. Blocks until every other
+  // robot is done with the steps before it. The plume stays there until this robot asks for a
+  // later step or leaves; a robot's steps never go back (std::logic_error).
+  const world::FilamentSimulation& at(long long step, int robot);
+  // The robot reads nothing before `step`: the plume need not wait for it until then. A loop that
+  // moves several robots on one thread, always the one furthest behind (run/team.hpp), promises
+  // each robot's next step after each of its actions, so that at() never waits there.
+  void promise(int robot, long long step);
+  // The robot reads no more: the plume no longer waits for it.
+  void leave(int robot);
+
+ private:
+  world::FilamentSimulation sim_;
+  double spinup_s_ = 0.0;
+  long long step_ = 0;  // the plume's steps since the spin-up
+  std::mutex lock_;
+  std::condition_variable moved_;
+  // Per robot, the earliest step it may still read (its last request); "gone" once it left.
+  std::vector<long long> need_;
+};
+
+}  // namespace plumekit::world
