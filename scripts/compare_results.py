@@ -3,11 +3,16 @@
 
     scripts/compare_results.py COMMITTED NEW
 
-Every file under COMMITTED is looked for under NEW. Timings differ from run to run and machine to
-machine, so they are left out: the files timings.csv, timings.json and wall.txt, the CSV columns
-and JSON keys in TIMING_FIELDS. CSV files are compared row by row on the other columns, JSON
-files as data without those keys, everything else (pictures, tables, maps) byte for byte.
-Prints one line per file that differs and exits 1 if any does, 0 if all agree.
+Every file under COMMITTED is looked for under NEW. What is not the experiment's result is left
+out: timings, which differ from run to run (the files in TIMING_FILES, the CSV columns and JSON
+keys in TIMING_FIELDS, the Markdown table columns in TIMING_COLUMNS), and map_dir, the folder the
+maps were read from, which for generated maps lies under the output folder. CSV files are
+compared row by row, JSON files as data, Markdown tables cell by cell, .plumekit-output.json by
+the files it lists, everything else (pictures, maps) byte for byte. Numbers within ROUNDING of
+each other (relative) are reported apart, as last-digit rounding, not as differences.
+
+Prints one line per file that differs or agrees only to rounding, then a count; exits 1 if any
+file differs, 0 if all agree (to rounding at worst), 2 on bad arguments.
 """
 import csv
 import json
@@ -21,6 +26,10 @@ TIMING_FILES = {"timings.csv", "timings.json", "wall.txt"}
 TIMING_COLUMNS = {"step ms"}
 PATH_FIELDS = {"map_dir"}
 ROUNDING = 1e-9
+ROUNDED = "agrees to rounding (numbers within 1e-9 relative, last digits)"
+# plumekit's list of the files it wrote, with their sizes and hashes: the files themselves are
+# compared, so only which files it lists is.
+MANIFEST = ".plumekit-output.json"
 
 
 def close(a, b):
@@ -49,20 +58,29 @@ def csv_rows(path):
                 for row in csv.DictReader(f)]
 
 
-ROUNDED = "agrees to rounding (numbers within 1e-9 relative, last digits)"
+def data(path):
+    return without_timings(json.loads(path.read_text()))
+
+
+def manifest(path):
+    m = json.loads(path.read_text())
+    names = [f["path"] if isinstance(f, dict) else f for f in m.get("files", [])]
+    return {**m, "files": sorted(n for n in names if Path(n).name not in TIMING_FILES)}
 
 
 def json_differences(a, b, where):
     """Where two JSON values differ: key paths, a key only on one side marked - (gone) or +,
     numbers that agree to rounding marked ~."""
     if isinstance(a, dict) and isinstance(b, dict):
-        out = [f"-{where}/{k}" for k in a if k not in b] + [f"+{where}/{k}" for k in b if k not in a]
+        out = [f"-{where}/{k}" for k in a if k not in b]
+        out += [f"+{where}/{k}" for k in b if k not in a]
         for k in a:
             if k in b:
                 out += json_differences(a[k], b[k], f"{where}/{k}")
         return out
     if isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
-        return [d for i, (x, y) in enumerate(zip(a, b)) for d in json_differences(x, y, f"{where}/{i}")]
+        return [d for i, (x, y) in enumerate(zip(a, b))
+                for d in json_differences(x, y, f"{where}/{i}")]
     if a == b:
         return []
     return [("~" if close(a, b) else "") + (where or "/")]
@@ -103,8 +121,8 @@ def first_difference(old, new):
                     f"{' ...' if len(rows) > 8 else ''}) in {', '.join(cols[:6])}")
         return ROUNDED if rounding else None
     if old.suffix == ".json":
-        paths = json_differences(without_timings(json.loads(old.read_text())),
-                                 without_timings(json.loads(new.read_text())), "")
+        read = manifest if old.name == MANIFEST else data
+        paths = json_differences(read(old), read(new), "")
         real = [p for p in paths if not p.startswith("~")]
         if not real:
             return ROUNDED if paths else None
