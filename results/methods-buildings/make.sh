@@ -5,8 +5,10 @@
 # OUT/buildings/ in this folder's layout (the maps in OUT/buildings-maps):
 #   scripts/compare_results.py results/methods-buildings OUT/buildings
 #   results/methods-buildings/make.sh [OUT]
+# OUT as given from where this was called; then work from the repository root.
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
-source results/make-lib.sh "${1:-}"
+source results/make-lib.sh "$1"
 bash scripts/compare-methods.sh 3 "$out" buildings
 dirs=()
 for m in ste sweeping surge-cast zigzag pseudo-gradient pf-gradient pf-sweep apf; do

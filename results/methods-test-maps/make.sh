@@ -4,8 +4,10 @@
 # scripts/compare-methods.sh, then its table and box plot. Writes OUT/test-maps/ in this folder's
 # layout: scripts/compare_results.py results/methods-test-maps OUT/test-maps
 #   results/methods-test-maps/make.sh [OUT]
+# OUT as given from where this was called; then work from the repository root.
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
-source results/make-lib.sh "${1:-}"
+source results/make-lib.sh "$1"
 bash scripts/compare-methods.sh 3 "$out" test-maps
 dirs=()
 for m in ste sweeping surge-cast zigzag pseudo-gradient pf-gradient pf-sweep apf; do

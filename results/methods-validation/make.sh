@@ -5,6 +5,8 @@
 # script does not make them.
 #   results/methods-validation/make.sh [OUT]
 #   scripts/validation_table.py OUT       # the table of methods/README.md
+# OUT as given from where this was called; then work from the repository root.
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
-source results/make-lib.sh "${1:-}"
+source results/make-lib.sh "$1"
 TRACKING_RUNS=10 bash scripts/validate-methods.sh 10 "$out"

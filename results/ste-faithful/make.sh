@@ -3,8 +3,10 @@
 # fast MOX sensor, seeds 1 and 2: 1,080 runs each, 2 threads (ste/README.md, "Figures", "The
 # faithful world"; surrogate-v2: "The nine test maps, against v1").
 #   results/ste-faithful/make.sh [OUT] [MODEL...]   # surrogate physics gaussian surrogate-v2
+# OUT as given from where this was called; then work from the repository root.
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
-source results/make-lib.sh "${1:-}"
+source results/make-lib.sh "$1"
 models=("${@:2}")
 [[ ${#models[@]} -gt 0 ]] || models=(surrogate physics gaussian surrogate-v2)
 for model in "${models[@]}"; do

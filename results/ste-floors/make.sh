@@ -5,8 +5,10 @@
 #   results/ste-floors/make.sh [OUT] [PART...]
 #   PART: real buildings real-gaussian buildings-gaussian real-surrogate-v2
 #         buildings-surrogate-v2 (default all)
+# OUT as given from where this was called; then work from the repository root.
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
-source results/make-lib.sh "${1:-}"
+source results/make-lib.sh "$1"
 parts=("${@:2}")
 [[ ${#parts[@]} -gt 0 ]] ||
   parts=(real buildings real-gaussian buildings-gaussian real-surrogate-v2 buildings-surrogate-v2)

@@ -2,8 +2,10 @@
 # STE with each plume model on the nine test maps in the thesis-style world (ste/README.md,
 # "Figures", "The thesis-style world"): 540 runs each, seed 1, 2 threads.
 #   results/ste-thesis/make.sh [OUT] [MODEL...]   # MODEL: surrogate physics gaussian (default all)
+# OUT as given from where this was called; then work from the repository root.
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
-source results/make-lib.sh "${1:-}"
+source results/make-lib.sh "$1"
 models=("${@:2}")
 [[ ${#models[@]} -gt 0 ]] || models=(surrogate physics gaussian)
 for model in "${models[@]}"; do
