@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Compare a committed results folder with a fresh run of the same command (results/README.md).
 
     scripts/compare_results.py COMMITTED NEW
