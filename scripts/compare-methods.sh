@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 20's comparison: every localization method on the nine test maps and on random buildings,
-# in the faithful world with the fast MOX sensor (as ste/results/faithful), one `evaluate` folder
+# in the faithful world with the fast MOX sensor (as results/ste-faithful), one `evaluate` folder
 # per method and map set under OUT (default out/compare). All the methods run in one `evaluate`
 # (--method a,b,...): each run's plume is simulated once and sampled by every method's robot, which
 # reads what it would read alone (ste/README.md, "Several methods in one world"). The test maps

@@ -7,7 +7,7 @@
 #
 #   scripts/validate-methods.sh [RUNS] [OUT]      # RUNS per configuration (the seeds: 100)
 #   TRACKING_RUNS=10 scripts/validate-methods.sh 20   # fewer runs for the trackers' eight
-#   scripts/validate-methods.sh 10                    # methods/results/validation/
+#   scripts/validate-methods.sh 10                    # as results/methods-validation/
 #   scripts/validation_table.py OUT                   # the table of methods/README.md
 #
 # Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 to
