@@ -2,7 +2,7 @@
 // The random streams of a localization run, in one place. Every run has one
 // seed (run_seed); each consumer draws from its own stream of it, so that, for
 // example, sensor noise never shifts the plume. The stream values are those
-// the committed evaluation results were made with (ste/results/): changing one
+// the committed evaluation results were made with (results/): changing one
 // changes every run.
 #include <cstdint>
 
