@@ -18,7 +18,6 @@
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "dataset/dataset_reader.hpp"
-#include "dataset/features.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/map_set.hpp"
 #include "dataset/plume.hpp"
@@ -26,6 +25,7 @@
 #include "dataset/reports.hpp"
 #include "map/map_json.hpp"
 #include "map/map_render.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::cli {
 

@@ -7,9 +7,9 @@
 #include "core/error.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
-#include "dataset/features.hpp"
 #include "dataset/manifest.hpp"
 #include "map/map_json.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 
@@ -365,10 +365,10 @@ DatasetSample read_sample(const fs::path& dir, long long index) {
     start += e.samples;
   }
   const double cell = feature_cell(m);
-  const int channels = input_channels(cell);
+  const int channels = surrogate::input_channels(cell);
   const ShardArrays arrays = read_shard(dir, s.shard, channels);
   s.map = read_map(dir / s.shard.map);
-  const GridShape g = sample_grid(s.map, cell);
+  const GridShape g = surrogate::sample_grid(s.map, cell);
   if (g.nx != arrays.nx || g.ny != arrays.ny)
     throw InputError((dir / s.shard.map).string() + ": its feature grid is not the shard's");
   s.source = {arrays.sources[2 * s.row], arrays.sources[2 * s.row + 1]};

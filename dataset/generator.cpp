@@ -21,9 +21,9 @@
 #include "core/temporary_files.hpp"
 #include "core/thread_pool.hpp"
 #include "dataset/dataset_reader.hpp"
-#include "dataset/features.hpp"
 #include "dataset/wind_cache.hpp"
 #include "map/map_json.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 
@@ -240,16 +240,16 @@ MapAndWind map_and_wind(const DatasetOptions& o, int index, const MapFiles& file
 // each source's randomness derived from (seed, map index, source index).
 ShardArrays map_samples(const DatasetOptions& o, int index, const Map& map,
                         const cfd::WindField& wind, int samples, SampleProgress& progress) {
-  const GridShape sensors = sample_grid(map, o.feature_cell);
-  std::vector<float> base = map_features(map, sensors);
+  const GridShape sensors = surrogate::sample_grid(map, o.feature_cell);
+  std::vector<float> base = surrogate::map_features(map, sensors);
   if (o.feature_cell > 0) {
-    const std::vector<float> w = wind_features(wind, sensors);
+    const std::vector<float> w = surrogate::wind_features(wind, sensors);
     base.insert(base.end(), w.begin(), w.end());
   }
   const MapPlumes plumes(map, wind, sensors, o.plume);
   ShardArrays a;
   a.samples = samples;
-  a.channels = input_channels(o.feature_cell);
+  a.channels = surrogate::input_channels(o.feature_cell);
   a.nx = sensors.nx;
   a.ny = sensors.ny;
   const std::size_t cells = sensors.size();
@@ -259,7 +259,7 @@ ShardArrays map_samples(const DatasetOptions& o, int index, const Map& map,
     const Vec2 src = map.sources[s];
     const PlumeTargets p = plumes.run(src, derive_seed(o.seed, index, s, Stream::Filaments));
     a.inputs.insert(a.inputs.end(), base.begin(), base.end());
-    const std::vector<float> d = source_feature(src, sensors);
+    const std::vector<float> d = surrogate::source_feature(src, sensors);
     a.inputs.insert(a.inputs.end(), d.begin(), d.end());
     for (double v : p.mean.values)
       a.targets.push_back(static_cast<float>(v));

@@ -5,7 +5,7 @@
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/error.hpp"
-#include "dataset/features.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 
@@ -92,7 +92,7 @@ SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& option
   const cfd::WindField wind =
       wind_dir.empty() ? cfd::solve_wind(map, flow).flow.wind : cfd::read_wind(wind_dir, map);
   const auto t1 = Clock::now();
-  const MapPlumes plumes(map, wind, feature_grid(map), options);
+  const MapPlumes plumes(map, wind, surrogate::feature_grid(map), options);
   r.targets = plumes.run(source, seed);
   r.flow_s = std::chrono::duration<double>(t1 - t0).count();
   r.plume_s = std::chrono::duration<double>(Clock::now() - t1).count();

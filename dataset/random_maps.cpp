@@ -12,9 +12,9 @@
 #include "core/option_check.hpp"
 #include "core/seed.hpp"
 #include "dataset/building_maps.hpp"
-#include "dataset/features.hpp"
 #include "map/map_json.hpp"
 #include "map/rasterize.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 
@@ -142,7 +142,7 @@ bool robot_can_cross(const Map& map, double margin) {
   std::vector<std::uint8_t> ok(g.size(), 0), seen(g.size(), 0);
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i)
-      ok[g.index(i, j)] = signed_distance(map, g.centre(i, j)) >= margin;
+      ok[g.index(i, j)] = surrogate::signed_distance(map, g.centre(i, j)) >= margin;
   std::vector<std::pair<int, int>> stack;
   for (int j = 0; j < g.ny; ++j)
     if (ok[g.index(0, j)]) {
@@ -281,7 +281,7 @@ std::vector<Vec2> random_sources(const Map& map, int count, double clearance, st
                        "dataset.source_clearance or fewer sources");
     const Vec2 p{d.uniform(clearance, map.width - clearance),
                  d.uniform(clearance, map.height - clearance)};
-    if (signed_distance(map, p) >= clearance && flow->fluid_at(p)) out.push_back(p);
+    if (surrogate::signed_distance(map, p) >= clearance && flow->fluid_at(p)) out.push_back(p);
   }
   return out;
 }

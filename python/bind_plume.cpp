@@ -2,12 +2,12 @@
 #include <pybind11/stl.h>
 
 #include "core/seed.hpp"
-#include "dataset/features.hpp"
 #include "dataset/plume.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/options.hpp"
 #include "python/wind.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::python {
 
@@ -121,7 +121,7 @@ void bind_plume(py::module_& m) {
         const Map& map = *wind.map;
         const Vec2 s = map.from_frame(to_point(source, "source"));
         const GridShape grid = cell > 0 ? GridShape::with_cell(map.width, map.height, cell)
-                                        : dataset::feature_grid(map);
+                                        : surrogate::feature_grid(map);
         dataset::PlumeTargets t;
         {
           ReleasedGil release;

@@ -8,7 +8,7 @@
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/error.hpp"
-#include "dataset/features.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::surrogate {
 
@@ -101,11 +101,11 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   const ModelFile& f = network_->file();
   const FeatureContract& c = f.features;
   const std::string who = "the surrogate model does not fit map \"" + map.name + "\": ";
-  if (!c.physical() && (c.rows != dataset::kFeatureGrid || c.cols != dataset::kFeatureGrid)) {
+  if (!c.physical() && (c.rows != surrogate::kFeatureGrid || c.cols != surrogate::kFeatureGrid)) {
     throw InputError(who + "the model's grid is " + std::to_string(c.rows) + "x" +
                      std::to_string(c.cols) + ", the dataset's features are " +
-                     std::to_string(dataset::kFeatureGrid) + "x" +
-                     std::to_string(dataset::kFeatureGrid));
+                     std::to_string(surrogate::kFeatureGrid) + "x" +
+                     std::to_string(surrogate::kFeatureGrid));
   }
   check_map_size(c, map);
   const std::vector<std::string> names = feature_channel_names(c.physical());
@@ -146,7 +146,7 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   warnings_ = training_warnings(f.trained_on, map);
   channels_ = n_in;
   if (c.physical()) {
-    grid_ = dataset::physical_grid(map, c.cell_size);
+    grid_ = surrogate::physical_grid(map, c.cell_size);
     const auto up = [&](int n) { return (n + c.multiple - 1) / c.multiple * c.multiple; };
     rows_ = up(grid_.ny);
     cols_ = up(grid_.nx);
@@ -156,14 +156,14 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
                        " m is larger than the engine's " + std::to_string(Network::kMaxInputSide) +
                        " cells a side");
   } else {
-    grid_ = dataset::feature_grid(map);
+    grid_ = surrogate::feature_grid(map);
     rows_ = grid_.ny;
     cols_ = grid_.nx;
   }
   // The map's channels on its grid, then copied into the padded input planes (zeros beyond).
-  std::vector<float> planes = dataset::map_features(map, grid_);
+  std::vector<float> planes = surrogate::map_features(map, grid_);
   if (c.has_wind()) {
-    const std::vector<float> w = dataset::wind_features(*wind, grid_);
+    const std::vector<float> w = surrogate::wind_features(*wind, grid_);
     planes.insert(planes.end(), w.begin(), w.end());
   }
   const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
@@ -185,7 +185,7 @@ void PlumeNetwork::check_source(Vec2 source) const {
 
 std::vector<float> PlumeNetwork::features(Vec2 source) const {
   std::vector<float> x = map_features_;
-  const std::vector<float> d = dataset::source_feature(source, grid_);
+  const std::vector<float> d = surrogate::source_feature(source, grid_);
   const FeatureContract& c = network_->file().features;
   const std::size_t first = x.size();
   x.resize(first + static_cast<std::size_t>(rows_) * cols_, 0.0f);

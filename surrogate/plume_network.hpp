@@ -1,7 +1,7 @@
 #pragma once
 // The surrogate as the rest of plumekit sees it: a network plus one map gives the plume of any
 // source in that map's free space. The input features are built by the dataset module's own
-// functions (dataset/features.hpp), so the network sees exactly what it was trained on.
+// functions (surrogate/features.hpp), so the network sees exactly what it was trained on.
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -17,7 +17,7 @@
 namespace plumekit::surrogate {
 
 // One source's plume on the model's grid over the map: 64 x 64 cells over the arena (a thesis
-// model), or the physical grid of the model's cell size (dataset::physical_grid).
+// model), or the physical grid of the model's cell size (surrogate::physical_grid).
 struct PlumePrediction {
   GridShape grid;
   // [ny][nx], row 0 at y = 0, in the model's output units (model file `outputs[].unit`). Cells
@@ -83,7 +83,7 @@ class PlumeNetwork {
   // Whether the model predicts the std of the readings (not a mean-only model).
   bool has_std() const { return std_channel_ >= 0; }
   // The network's input for one source, [channels][rows][cols] (channels as in
-  // dataset/features.hpp; the source channel in the model's form). For a physical-grid model,
+  // surrogate/features.hpp; the source channel in the model's form). For a physical-grid model,
   // the map's grid padded with zeros to input_rows() x input_cols().
   std::vector<float> features(Vec2 source) const;
   int input_rows() const { return rows_; }

@@ -16,10 +16,10 @@
 #include "cfd/flow_solver.hpp"
 #include "core/error.hpp"
 #include "dataset/building_maps.hpp"
-#include "dataset/features.hpp"
 #include "dataset/random_maps.hpp"
 #include "map/map_json.hpp"
 #include "map/rasterize.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 namespace {
@@ -44,7 +44,7 @@ bool eroded_free_space_is_one_region(const Map& map, double radius) {
   long long total = 0;
   for (int j = 0; j < g.ny; ++j)
     for (int i = 0; i < g.nx; ++i)
-      total += ok[g.index(i, j)] = signed_distance(map, g.centre(i, j)) >= radius;
+      total += ok[g.index(i, j)] = surrogate::signed_distance(map, g.centre(i, j)) >= radius;
   std::vector<std::size_t> stack;
   for (std::size_t k = 0; k < ok.size() && stack.empty(); ++k)
     if (ok[k]) stack.push_back(k), seen[k] = 1;

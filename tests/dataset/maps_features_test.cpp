@@ -9,10 +9,10 @@
 
 #include "core/error.hpp"
 #include "core/seed.hpp"
-#include "dataset/features.hpp"
 #include "dataset/random_maps.hpp"
 #include "map/map_json.hpp"
 #include "map/rasterize.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 namespace {
@@ -109,7 +109,7 @@ TEST(RandomSources, StayClearOfObstaclesAndWalls) {
   ASSERT_EQ(s.size(), 200u);
   for (Vec2 p : s) {
     EXPECT_TRUE(r.map.is_free(p));
-    EXPECT_GE(signed_distance(r.map, p), 0.1);
+    EXPECT_GE(surrogate::signed_distance(r.map, p), 0.1);
   }
 }
 
@@ -148,10 +148,10 @@ TEST(RandomSources, NoneInAPocketTheFlowSealsOff) {
 TEST(Features, FollowTheContract) {
   Map m = default_arena(10.0, 4.0);
   m.obstacles = {{{4.0, 0.0}, {5.0, 0.0}, {5.0, 2.0}, {4.0, 2.0}}};
-  const GridShape g = feature_grid(m);
+  const GridShape g = surrogate::feature_grid(m);
   ASSERT_EQ(g.nx, 64);
   ASSERT_EQ(g.ny, 64);
-  const std::vector<float> f = map_features(m, g);
+  const std::vector<float> f = surrogate::map_features(m, g);
   ASSERT_EQ(f.size(), 2 * g.size());
   const Grid<std::uint8_t> labels = rasterize_labels(m, g);
   for (int j = 0; j < g.ny; ++j)
@@ -172,8 +172,8 @@ TEST(Features, FollowTheContract) {
       }
     }
   // Inside the obstacle, 0.25 m from its left edge and deeper from the others.
-  EXPECT_NEAR(signed_distance(m, {4.25, 1.0}), -0.25, 1e-12);
-  const std::vector<float> d = source_feature({2.0, 1.0}, g);
+  EXPECT_NEAR(surrogate::signed_distance(m, {4.25, 1.0}), -0.25, 1e-12);
+  const std::vector<float> d = surrogate::source_feature({2.0, 1.0}, g);
   EXPECT_NEAR(d[g.index(10, 20)], std::hypot(g.centre(10, 20).x - 2.0, g.centre(10, 20).y - 1.0),
               1e-5);
 }
@@ -197,7 +197,7 @@ TEST(TestMaps, NineValidMapsWithTwentySourcesEach) {
     EXPECT_EQ(m.obstacles.empty(), k == 0) << files[k] << ": only map 0 is empty";
     EXPECT_TRUE(robot_can_cross(m, 0.15)) << files[k];
     for (Vec2 s : m.sources)
-      EXPECT_GE(signed_distance(m, s), 0.1) << files[k] << " source " << to_string(s);
+      EXPECT_GE(surrogate::signed_distance(m, s), 0.1) << files[k] << " source " << to_string(s);
   }
 }
 

@@ -19,12 +19,12 @@
 #include "core/error.hpp"
 #include "core/npy.hpp"
 #include "dataset/dataset_reader.hpp"
-#include "dataset/features.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/random_maps.hpp"
 #include "dataset/wind_cache.hpp"
 #include "map/map_json.hpp"
 #include "support/small_map.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 namespace {
@@ -40,7 +40,7 @@ fs::path scratch(const std::string& name) {
 
 TEST(PhysicalGrid, NominalCellsOverTheWholeMap) {
   Map m = default_arena(10.0, 4.0);
-  GridShape g = physical_grid(m, 0.2);
+  GridShape g = surrogate::physical_grid(m, 0.2);
   EXPECT_EQ(g.nx, 50);
   EXPECT_EQ(g.ny, 20);
   EXPECT_EQ(g.width, 10.0);
@@ -49,7 +49,7 @@ TEST(PhysicalGrid, NominalCellsOverTheWholeMap) {
   EXPECT_DOUBLE_EQ(g.dy(), 0.2);
   // Halves round away from zero (std::lround): 32.5 -> 33, 22.5 -> 23 (not to even).
   m = default_arena(6.5, 4.5);
-  g = physical_grid(m, 0.2);
+  g = surrogate::physical_grid(m, 0.2);
   EXPECT_EQ(g.nx, 33);
   EXPECT_EQ(g.ny, 23);
   // The cells cover the whole map: the last cell ends on its far side.
@@ -59,7 +59,7 @@ TEST(PhysicalGrid, NominalCellsOverTheWholeMap) {
   // W / cell in floating point: 6.1 / 0.2 is 30.499999999999996 and 4.3 / 0.2 21.499999999999996,
   // so 30 x 21 (not the 31 x 22 of exact decimals), as the flow's GridShape::with_cell rounds.
   m = default_arena(6.1, 4.3);
-  g = physical_grid(m, 0.2);
+  g = surrogate::physical_grid(m, 0.2);
   EXPECT_EQ(g.nx, 30);
   EXPECT_EQ(g.ny, 21);
   const GridShape w = GridShape::with_cell(6.1, 4.3, 0.2);
@@ -69,16 +69,16 @@ TEST(PhysicalGrid, NominalCellsOverTheWholeMap) {
   // A cell within half a cell of nominal; at least one cell a side.
   EXPECT_NEAR(g.dx(), 0.2, 0.1 / g.nx + 1e-12);
   m = default_arena(0.05, 3.0);
-  g = physical_grid(m, 0.2);
+  g = surrogate::physical_grid(m, 0.2);
   EXPECT_EQ(g.nx, 1);
   EXPECT_EQ(g.ny, 15);
   // The dataset's grid: the thesis's 64 x 64 at feature_cell 0, else the physical one.
   m = default_arena(6.5, 4.5);
-  EXPECT_EQ(sample_grid(m, 0.0).nx, 64);
-  EXPECT_EQ(sample_grid(m, 0.0).ny, 64);
-  EXPECT_EQ(sample_grid(m, 0.2).nx, 33);
-  EXPECT_EQ(input_channels(0.0), 3);
-  EXPECT_EQ(input_channels(0.2), 5);
+  EXPECT_EQ(surrogate::sample_grid(m, 0.0).nx, 64);
+  EXPECT_EQ(surrogate::sample_grid(m, 0.0).ny, 64);
+  EXPECT_EQ(surrogate::sample_grid(m, 0.2).nx, 33);
+  EXPECT_EQ(surrogate::input_channels(0.0), 3);
+  EXPECT_EQ(surrogate::input_channels(0.2), 5);
 }
 
 TEST(PhysicalGrid, WindFeaturesAreTheWindAtTheCellCentres) {
@@ -90,10 +90,11 @@ TEST(PhysicalGrid, WindFeaturesAreTheWindAtTheCellCentres) {
   cfd::FlowOptions fo;
   fo.cell = 0.1;
   const cfd::WindField wind = cfd::solve_wind(m, fo).flow.wind;
-  const GridShape g = physical_grid(m, 0.2);  // 15 x 8 (7.5 rounds up): cells of 0.1875 m high
+  const GridShape g =
+      surrogate::physical_grid(m, 0.2);  // 15 x 8 (7.5 rounds up): cells of 0.1875 m high
   ASSERT_EQ(g.nx, 15);
   ASSERT_EQ(g.ny, 8);
-  const std::vector<float> f = wind_features(wind, g);
+  const std::vector<float> f = surrogate::wind_features(wind, g);
   ASSERT_EQ(f.size(), 2 * g.size());
   int obstacle = 0, blowing = 0;
   for (int j = 0; j < g.ny; ++j)
@@ -151,7 +152,7 @@ TEST(PhysicalGridDataset, ShardsHoldFiveChannelsOnEachMapsGrid) {
   for (int k = 0; k < 2; ++k) {
     const std::string id = k == 0 ? "00000" : "00001";
     const Map map = read_map(d / "maps" / ("map-" + id + ".json"));
-    const GridShape g = physical_grid(map, 0.2);
+    const GridShape g = surrogate::physical_grid(map, 0.2);
     EXPECT_EQ(g.nx, 25);
     EXPECT_EQ(g.ny, 16);
     const fs::path shard = d / "shards" / ("shard-" + id);
@@ -161,16 +162,16 @@ TEST(PhysicalGridDataset, ShardsHoldFiveChannelsOnEachMapsGrid) {
     ASSERT_EQ(inputs.shape, (std::vector<std::size_t>{2, 5, ny, nx}));
     ASSERT_EQ(targets.shape, (std::vector<std::size_t>{2, 2, ny, nx}));
     // Channels 0 and 1 the map's, 2 and 3 its cached wind's, 4 the source's distance.
-    const std::vector<float> base = map_features(map, g);
+    const std::vector<float> base = surrogate::map_features(map, g);
     const std::optional<cfd::WindField> wind = read_wind_cache(d / "wind" / ("map-" + id), map);
     ASSERT_TRUE(wind);
-    const std::vector<float> w = wind_features(*wind, g);
+    const std::vector<float> w = surrogate::wind_features(*wind, g);
     ASSERT_EQ(map.sources.size(), 2u);
     for (int r = 0; r < 2; ++r) {
       const std::size_t row = static_cast<std::size_t>(r) * 5 * cells;
       EXPECT_EQ(slice(inputs, row, 2 * cells), base) << k << "/" << r;
       EXPECT_EQ(slice(inputs, row + 2 * cells, 2 * cells), w) << k << "/" << r;
-      EXPECT_EQ(slice(inputs, row + 4 * cells, cells), source_feature(map.sources[r], g))
+      EXPECT_EQ(slice(inputs, row + 4 * cells, cells), surrogate::source_feature(map.sources[r], g))
           << k << "/" << r;
       double peak = 0.0;
       for (std::size_t c = 0; c < cells; ++c)

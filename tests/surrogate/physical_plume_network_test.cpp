@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "dataset/features.hpp"
 #include "physical_model.hpp"
+#include "surrogate/features.hpp"
 #include "surrogate/plume_network.hpp"
 
 namespace plumekit::surrogate {
@@ -51,7 +51,7 @@ TEST(PhysicalPlumeNetwork, PadsTheMapsGridWithZerosToTheNetworksMultiple) {
   const cfd::WindField& wind = tiny_wind();
   const PlumeNetwork model(physical_network({4, 4}), map, &wind);  // multiple 4
   const GridShape g = model.grid();
-  const GridShape want = dataset::physical_grid(map, 0.2);
+  const GridShape want = surrogate::physical_grid(map, 0.2);
   EXPECT_EQ(g.nx, 15);
   EXPECT_EQ(g.ny, 7);
   EXPECT_EQ(g.nx, want.nx);
@@ -66,9 +66,9 @@ TEST(PhysicalPlumeNetwork, PadsTheMapsGridWithZerosToTheNetworksMultiple) {
   const int rows = 8, cols = 16;
   const std::size_t plane = rows * cols;
   ASSERT_EQ(x.size(), 5 * plane);
-  const std::vector<float> m = dataset::map_features(map, g);
-  const std::vector<float> w = dataset::wind_features(wind, g);
-  const std::vector<float> d = dataset::source_feature(source, g);
+  const std::vector<float> m = surrogate::map_features(map, g);
+  const std::vector<float> w = surrogate::wind_features(wind, g);
+  const std::vector<float> d = surrogate::source_feature(source, g);
   const double floor = 0.1;  // the inverse form's default: half the model's cell
   bool some_wind = false;
   for (int j = 0; j < rows; ++j)

@@ -1,4 +1,4 @@
-#include "dataset/features.hpp"
+#include "surrogate/features.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include "map/rasterize.hpp"
 
-namespace plumekit::dataset {
+namespace plumekit::surrogate {
 
 namespace {
 
@@ -78,4 +78,4 @@ std::vector<float> source_feature(Vec2 source, const GridShape& shape) {
   return out;
 }
 
-}  // namespace plumekit::dataset
+}  // namespace plumekit::surrogate

@@ -15,7 +15,7 @@
 #include "core/grid.hpp"
 #include "map/map.hpp"
 
-namespace plumekit::dataset {
+namespace plumekit::surrogate {
 
 inline constexpr int kFeatureGrid = 64;
 
@@ -46,4 +46,4 @@ std::vector<float> source_feature(Vec2 source, const GridShape& shape);
 // Signed distance from p to the nearest solid surface (see above).
 double signed_distance(const Map& map, Vec2 p);
 
-}  // namespace plumekit::dataset
+}  // namespace plumekit::surrogate
