@@ -29,6 +29,8 @@ packages=(
   libopencv-dev libyaml-cpp-dev libpng-dev
   # file formats and the command line
   nlohmann-json3-dev libcli11-dev
+  # SHA-256 of shards, model and wind files: OpenSSL's EVP (docs/own-code.md)
+  libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # surrogate training and its golden files, and the dataset tests' numpy round trip: run with
