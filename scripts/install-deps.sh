@@ -33,6 +33,9 @@ packages=(
   libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the libraries our own core/ code was measured against (docs/own-code.md): oneTBB for
+  # bench/thread_pool_bench, xtensor for bench/npy_vs_xtensor; the build never needs them
+  libtbb-dev libxtensor-dev
   # surrogate training and its golden files, and the dataset tests' numpy round trip: run with
   # /usr/bin/python3. Debian's torch uses one thread unless told otherwise (torch.set_num_threads),
   # which the training script does.
