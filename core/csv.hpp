@@ -2,6 +2,7 @@
 // CSV as RFC 4180 gives it: what plumekit writes (an evaluation's runs.csv and timings.csv, a
 // tunnel evaluation's runs.csv) and reads back (`evaluate merge`). A map name may hold a comma, a
 // quote or a line break; quoted, the file still parses (python's csv module reads it back).
+// Ours rather than libcsv: docs/own-code.md.
 #include <string>
 #include <string_view>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 // NumPy .npy files (format 1.0), little-endian float32 or float64, C order:
-// what numpy.load and torch.from_numpy read directly.
+// what numpy.load and torch.from_numpy read directly. Ours rather than xtensor's xnpy:
+// docs/own-code.md.
 #include <cstdint>
 #include <filesystem>
 #include <string>

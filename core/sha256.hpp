@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -12,20 +13,22 @@ namespace plumekit {
 
 using Sha256Digest = std::array<std::uint8_t, 32>;
 
-// Incremental hashing, for files read in pieces.
+// Incremental hashing, for files read in pieces. OpenSSL's EVP does the work
+// (docs/own-code.md: the same digests, 3.7-6x faster than the hand-written code it replaced);
+// the header names no OpenSSL type, so callers need not include or link it.
 class Sha256 {
  public:
   Sha256();
+  ~Sha256();
+  Sha256(Sha256&&) noexcept;
+  Sha256& operator=(Sha256&&) noexcept;
   void update(std::string_view bytes);
   Sha256Digest digest();     // finishes the hash
   std::string hex_digest();  // 64 lowercase hex digits; finishes the hash
 
  private:
-  void block(const unsigned char* p);
-  std::uint32_t h_[8];
-  unsigned char buf_[64];
-  std::size_t used_ = 0;
-  std::uint64_t length_ = 0;  // bytes
+  struct Context;  // OpenSSL's EVP_MD_CTX
+  std::unique_ptr<Context> ctx_;
 };
 
 Sha256Digest sha256(std::string_view bytes);

@@ -1,7 +1,7 @@
 #pragma once
 // The one parallel loop of plumekit: a small pool of threads that persist
 // between calls (the inference engine calls it for every layer), used by dataset
-// generation, evaluation and the engine alike.
+// generation, evaluation and the engine alike. Ours rather than oneTBB: docs/own-code.md.
 #include <condition_variable>
 #include <cstddef>
 #include <exception>

@@ -29,8 +29,13 @@ packages=(
   libopencv-dev libyaml-cpp-dev libpng-dev
   # file formats and the command line
   nlohmann-json3-dev libcli11-dev
+  # SHA-256 of shards, model and wind files: OpenSSL's EVP (docs/own-code.md)
+  libssl-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # the libraries our own core/ code was measured against (docs/own-code.md): oneTBB for
+  # bench/thread_pool_bench, xtensor for bench/npy_vs_xtensor; the build never needs them
+  libtbb-dev libxtensor-dev
   # surrogate training and its golden files, and the dataset tests' numpy round trip: run with
   # /usr/bin/python3. Debian's torch uses one thread unless told otherwise (torch.set_num_threads),
   # which the training script does.
