@@ -11,6 +11,7 @@
 #include "core/memory_limit.hpp"
 #include "core/seed.hpp"
 #include "core/thread_pool.hpp"
+#include "surrogate/shipped_models.hpp"
 
 namespace plumekit::cli {
 
@@ -23,8 +24,12 @@ std::filesystem::path default_map() {
   return data_dir() / "maps" / "cluttered-1.json";
 }
 
+std::filesystem::path shipped_cnn() {
+  return surrogate::thesis_model(data_dir());
+}
+
 std::filesystem::path any_map_cnn() {
-  return data_dir() / "models" / "plume-unet-v2.pkcnn";
+  return surrogate::any_map_model(data_dir());
 }
 
 std::string with_map_size_advice(const std::string& message, bool physics) {

@@ -20,6 +20,8 @@ std::filesystem::path data_dir();
 // The map commands use when none is given.
 std::filesystem::path default_map();
 // The shipped physical-grid surrogate (plume-unet-v2), which fits a map of any size.
+// The shipped plume models (surrogate/shipped_models.hpp) in this program's data folder.
+std::filesystem::path shipped_cnn();
 std::filesystem::path any_map_cnn();
 // A fixed-grid surrogate's refusal of a map's size (surrogate::MapSizeError's message) with what
 // to type instead: --cnn naming any_map_cnn(), and with `physics` also --plume-model physics.

@@ -26,10 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using surrogate::PlumePrediction;
 
-std::filesystem::path shipped_model() {
-  return data_dir() / "models" / "plume-unet.pkcnn";
-}
-
 }  // namespace
 
 void add_predict_commands(CLI::App& app) {
@@ -38,7 +34,7 @@ void add_predict_commands(CLI::App& app) {
       "The surrogate CNN's plume for one source: mean.npy, std.npy (float32 [rows, cols] on the "
       "model's grid, row 0 at y = 0) and plume.png");
   struct Args {
-    std::string cnn = shipped_model().string();
+    std::string cnn = shipped_cnn().string();
     std::string map, source, out, wind;
     double flow_cell = surrogate::kModelWindCell;
     surrogate::EngineOptions engine;
@@ -68,7 +64,7 @@ void add_predict_commands(CLI::App& app) {
     std::error_code ec;
     if (!fs::exists(a->cnn, ec)) {
       throw InputError(a->cnn + ": no such model file" +
-                       std::string(a->cnn == shipped_model().string()
+                       std::string(a->cnn == shipped_cnn().string()
                                        ? " (the shipped model is not there yet: train one as "
                                          "surrogate/README.md says, or give --cnn)"
                                        : ""));

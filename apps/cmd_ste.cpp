@@ -37,10 +37,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
-fs::path shipped_cnn() {
-  return data_dir() / "models" / "plume-unet.pkcnn";
-}
-
 // `flag` bound to `field` with the field's value as the --help default.
 template <typename T>
 void bind_to(CLI::App* cmd, const std::string& flag, T& field, const std::string& help,

@@ -17,6 +17,7 @@
 #include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/mission.hpp"
+#include "surrogate/shipped_models.hpp"
 
 namespace plumekit::python {
 
@@ -29,7 +30,7 @@ using run::SteOptions;
 run::SteOptions ste_options(const py::object& base, const py::kwargs& kw, const std::string& what) {
   run::SteOptions o = options_from<run::SteOptions>(base, kw, what);
   if (o.model == run::PlumeModelKind::Surrogate && o.model_path.empty())
-    o.model_path = (std::filesystem::path(data_dir()) / "models" / "plume-unet.pkcnn").string();
+    o.model_path = surrogate::thesis_model(data_dir()).string();
   return o;
 }
 

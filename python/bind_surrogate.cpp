@@ -11,6 +11,7 @@
 #include "python/convert.hpp"
 #include "surrogate/plume_network.hpp"
 #include "surrogate/prediction_report.hpp"
+#include "surrogate/shipped_models.hpp"
 
 namespace plumekit::python {
 
@@ -18,7 +19,7 @@ namespace {
 
 // A path or str, or None for the shipped model.
 std::filesystem::path cnn_path(const py::object& cnn) {
-  if (cnn.is_none()) return std::filesystem::path(data_dir()) / "models" / "plume-unet.pkcnn";
+  if (cnn.is_none()) return surrogate::thesis_model(data_dir());
   return py::str(py::module_::import("os").attr("fspath")(cnn)).cast<std::string>();
 }
 
