@@ -192,6 +192,66 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
   return s;
 }
 
+namespace {
+
+// Each method's STE options: the evaluation's, with the method and the evaluation's threads.
+std::vector<SteOptions> method_options(const EvaluationOptions& o,
+                                       const std::vector<MethodKind>& kinds) {
+  std::vector<SteOptions> ste(kinds.size(), o.ste);
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    ste[m].method.kind = kinds[m];
+    ste[m].threads = o.threads;  // the table build uses the evaluation's threads
+    ste[m].validate();
+  }
+  return ste;
+}
+
+// Each method's result before any map: what it is and which part of the pairs it covers.
+std::vector<EvaluationResult> empty_results(const EvaluationOptions& o,
+                                            const std::vector<MethodKind>& kinds,
+                                            const PairRange& pairs) {
+  std::vector<EvaluationResult> results(kinds.size());
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    results[m].method = to_string(kinds[m]);
+    results[m].seeds = o.seeds;
+    results[m].pairs = pairs;
+    results[m].methods_together = static_cast<int>(kinds.size());
+  }
+  return results;
+}
+
+// One scenario per method on `map`; the later ones share the first one's wind and plume.
+std::vector<std::unique_ptr<Scenario>> method_scenarios(const Map& map,
+                                                        const std::vector<SteOptions>& ste) {
+  std::vector<std::unique_ptr<Scenario>> scenarios;
+  for (std::size_t m = 0; m < ste.size(); ++m)
+    scenarios.push_back(m == 0 ? std::make_unique<Scenario>(map, ste[m])
+                               : std::make_unique<Scenario>(map, ste[m], *scenarios[0]));
+  return scenarios;
+}
+
+// Adds one map's report and runs (moved out of `records`) to each method's result.
+void add_map(const MapReport& report, double wall_s,
+             const std::vector<std::unique_ptr<Scenario>>& scenarios,
+             std::vector<std::vector<RunRecord>>& records, const AfterMethodMap& after_map,
+             std::vector<EvaluationResult>& results) {
+  for (std::size_t m = 0; m < results.size(); ++m) {
+    MapReport r = report;
+    r.wind_s = scenarios[m]->wind_s();
+    r.table_build_s = scenarios[m]->model_build_s();
+    r.stats = summarise(pointers(records[m]));
+    r.wall_s = wall_s;
+    results[m].maps.push_back(r);
+    if (after_map) after_map(m, *scenarios[m], records[m]);
+    for (RunRecord& run : records[m]) {
+      results[m].decisions_s += run.result.decisions_s;
+      results[m].runs.push_back(std::move(run));
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
                                                const EvaluationOptions& o,
                                                const std::vector<MethodKind>& kinds,
@@ -203,18 +263,9 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
   for (const Map& m : maps)
     if (m.sources.empty())
       throw InputError("map " + m.name + " has no ground-truth \"sources\" to evaluate on");
-  std::vector<SteOptions> ste(kinds.size(), o.ste);
-  std::vector<EvaluationResult> results(kinds.size());
   const PairRange pairs = part_pairs(maps, o);
-  for (std::size_t m = 0; m < kinds.size(); ++m) {
-    ste[m].method.kind = kinds[m];
-    ste[m].threads = o.threads;  // the table build uses the evaluation's threads
-    ste[m].validate();
-    results[m].method = to_string(kinds[m]);
-    results[m].seeds = o.seeds;
-    results[m].pairs = pairs;
-    results[m].methods_together = static_cast<int>(kinds.size());
-  }
+  const std::vector<SteOptions> ste = method_options(o, kinds);
+  std::vector<EvaluationResult> results = empty_results(o, kinds, pairs);
   const int total = static_cast<int>(pairs.end - pairs.first) * o.runs * o.seeds;
   ThreadPool pool(o.threads);
   int done = 0;
@@ -233,10 +284,7 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
         r.maps.push_back(report);
       continue;
     }
-    std::vector<std::unique_ptr<Scenario>> scenarios;
-    for (std::size_t m = 0; m < kinds.size(); ++m)
-      scenarios.push_back(m == 0 ? std::make_unique<Scenario>(maps[mi], ste[m])
-                                 : std::make_unique<Scenario>(maps[mi], ste[m], *scenarios[0]));
+    const std::vector<std::unique_ptr<Scenario>> scenarios = method_scenarios(maps[mi], ste);
     pool.parallel_for(records.front().size(), [&](std::size_t k) {
       run_one(scenarios, records, k);
       std::lock_guard<std::mutex> g(lock);
@@ -244,19 +292,7 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
       if (progress) progress(done, total);
     });
     const double wall_s = std::chrono::duration<double>(Clock::now() - t_map).count();
-    for (std::size_t m = 0; m < kinds.size(); ++m) {
-      MapReport r = report;
-      r.wind_s = scenarios[m]->wind_s();
-      r.table_build_s = scenarios[m]->model_build_s();
-      r.stats = summarise(pointers(records[m]));
-      r.wall_s = wall_s;
-      results[m].maps.push_back(r);
-      if (after_map) after_map(m, *scenarios[m], records[m]);
-      for (RunRecord& run : records[m]) {
-        results[m].decisions_s += run.result.decisions_s;
-        results[m].runs.push_back(std::move(run));
-      }
-    }
+    add_map(report, wall_s, scenarios, records, after_map, results);
   }
   const double wall_s = std::chrono::duration<double>(Clock::now() - t_all).count();
   for (EvaluationResult& r : results) {

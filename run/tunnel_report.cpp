@@ -171,6 +171,46 @@ std::string tunnel_run_line(const TunnelRun& r) {
          fixed(r.mission_s, 0) + " s, stopped by " + r.stopped_by;
 }
 
+namespace {
+
+// What the run's picture shows, for its legend.
+std::string tunnel_run_legend(const TunnelRun& r) {
+  std::string legend = "red: source, cyan: start, magenta cross: ";
+  legend += is_tracker(r.method)
+                ? "end; path blue: Levy walk, green: surge, orange: " +
+                      std::string(r.method == TunnelMethod::SurgeSpiral ? "spiral" : "cast")
+                : "estimate; dots: samples";
+  return legend;
+}
+
+// One panel of the run's picture in box b, at ppm pixels per metre: the tunnel from above (x, y)
+// or from the side (x, z), with the run's path, its start, the source and the estimate.
+void draw_tunnel_panel(cv::Mat& img, TextPainter& text, const cv::Rect& b, bool above,
+                       const TunnelRun& r, double ppm) {
+  const auto at = [&](Vec3 p) {
+    const double v = above ? p.y : p.z;
+    return cv::Point(b.x + static_cast<int>(std::lround(p.x * ppm)),
+                     b.y + b.height - static_cast<int>(std::lround(v * ppm)));
+  };
+  cv::rectangle(img, b, cv::Scalar(120, 120, 120), 1);
+  text.put(img, above ? "from above (x, y)" : "from the side (x, z)", {b.x, b.y - 20});
+  // The wind's direction: the inlet on the left.
+  cv::line(img, {b.x - 2, b.y}, {b.x - 2, b.y + b.height}, colours::kInlet, 3);
+  for (std::size_t s = 1; s < r.steps.size(); ++s)
+    cv::line(img, at(r.steps[s - 1].position), at(r.steps[s].position),
+             phase_colour(r.steps[s].phase), 2, cv::LINE_AA);
+  if (!is_tracker(r.method))
+    for (const TunnelStep& s : r.steps)
+      cv::circle(img, at(s.position), 3, colours::kPath, cv::FILLED, cv::LINE_AA);
+  cv::circle(img, at(r.start), 6, colours::kStart, cv::FILLED, cv::LINE_AA);
+  cv::circle(img, at(r.source), 6, colours::kSource, cv::FILLED, cv::LINE_AA);
+  const cv::Point e = at(r.estimate);
+  cv::drawMarker(img, e, colours::kEstimate, cv::MARKER_CROSS, 14, 2, cv::LINE_AA);
+  draw_metre_axes(img, text, b, ppm, {0.0, 0.0}, "x [m]", above ? "y [m]" : "z [m]");
+}
+
+}  // namespace
+
 Picture draw_tunnel_run(const TunnelRun& r, const world::Tunnel& t, const std::string& title) {
   // 60 px per metre, two panels: (x, y) above, (x, z) below, y and z upwards, each with axes in
   // metres (the maps' axes, map/map_render.hpp).
@@ -189,44 +229,16 @@ Picture draw_tunnel_run(const TunnelRun& r, const world::Tunnel& t, const std::s
   const int line_h = text.size("Ag").height + 6;
   const int top = 10 + static_cast<int>(lines.size()) * line_h + 30;
   // The legend, wrapped likewise, below the panels.
-  std::string legend = "red: source, cyan: start, magenta cross: ";
-  legend += is_tracker(r.method)
-                ? "end; path blue: Levy walk, green: surge, orange: " +
-                      std::string(r.method == TunnelMethod::SurgeSpiral ? "spiral" : "cast")
-                : "estimate; dots: samples";
   const std::vector<std::string> legend_lines =
-      wrap_words(text, legend, width - left - 10, text.scale());
+      wrap_words(text, tunnel_run_legend(r), width - left - 10, text.scale());
   const int legend_y = top + h1 + gap + h2 + m2.bottom + 10;
   cv::Mat img(legend_y + static_cast<int>(legend_lines.size()) * line_h + 10, width, CV_8UC3,
               cv::Scalar(255, 255, 255));
   for (std::size_t k = 0; k < lines.size(); ++k)
     text.put(img, lines[k], {10, 8 + static_cast<int>(k) * line_h});
   const cv::Rect panels[2] = {{left, top, w, h1}, {left, top + h1 + gap, w, h2}};
-  const char* names[2] = {"from above (x, y)", "from the side (x, z)"};
-  const auto at = [&](int panel, Vec3 p) {
-    const double v = panel == 0 ? p.y : p.z;
-    const cv::Rect& b = panels[panel];
-    return cv::Point(b.x + static_cast<int>(std::lround(p.x * ppm)),
-                     b.y + b.height - static_cast<int>(std::lround(v * ppm)));
-  };
-  for (int k = 0; k < 2; ++k) {
-    cv::rectangle(img, panels[k], cv::Scalar(120, 120, 120), 1);
-    text.put(img, names[k], {panels[k].x, panels[k].y - 20});
-    // The wind's direction: the inlet on the left.
-    cv::line(img, {panels[k].x - 2, panels[k].y}, {panels[k].x - 2, panels[k].y + panels[k].height},
-             colours::kInlet, 3);
-    for (std::size_t s = 1; s < r.steps.size(); ++s)
-      cv::line(img, at(k, r.steps[s - 1].position), at(k, r.steps[s].position),
-               phase_colour(r.steps[s].phase), 2, cv::LINE_AA);
-    if (!is_tracker(r.method))
-      for (const TunnelStep& s : r.steps)
-        cv::circle(img, at(k, s.position), 3, colours::kPath, cv::FILLED, cv::LINE_AA);
-    cv::circle(img, at(k, r.start), 6, colours::kStart, cv::FILLED, cv::LINE_AA);
-    cv::circle(img, at(k, r.source), 6, colours::kSource, cv::FILLED, cv::LINE_AA);
-    const cv::Point e = at(k, r.estimate);
-    cv::drawMarker(img, e, colours::kEstimate, cv::MARKER_CROSS, 14, 2, cv::LINE_AA);
-    draw_metre_axes(img, text, panels[k], ppm, {0.0, 0.0}, "x [m]", k == 0 ? "y [m]" : "z [m]");
-  }
+  for (int k = 0; k < 2; ++k)
+    draw_tunnel_panel(img, text, panels[k], k == 0, r, ppm);
   for (std::size_t k = 0; k < legend_lines.size(); ++k)
     text.put(img, legend_lines[k], {left, legend_y + static_cast<int>(k) * line_h});
   Picture p;

@@ -189,9 +189,7 @@ Vec2 FilamentSimulation::release_point() {
   return source_;
 }
 
-void FilamentSimulation::step() {
-  const double dt = o_.dt;
-  const double walk = o_.sigma_walk * std::sqrt(dt);
+void FilamentSimulation::advance_meander(double dt) {
   if (fluctuation_) {
     fluctuation_->advance(dt);
   } else {
@@ -201,55 +199,68 @@ void FilamentSimulation::step() {
     meander_.x = decay * meander_.x + kick * normal_(rng_);
     meander_.y = decay * meander_.y + kick * normal_(rng_);
   }
+}
 
+void FilamentSimulation::release_filaments(double dt) {
   release_debt_ += o_.release_per_second * dt;
   while (release_debt_ >= 1.0) {
     filaments_.push_back({release_point(), o_.initial_radius * o_.initial_radius});
     release_debt_ -= 1.0;
     ++summary_.released;
   }
+}
 
+bool FilamentSimulation::move_filament(Filament& f, double dt, double walk, double max_r2) {
   const double W = map_.width, H = map_.height;
+  const Vec2 w = wind_at(f.position);
+  Vec2 p = f.position + dt * w;
+  p.x += walk * normal_(rng_);
+  p.y += walk * normal_(rng_);
+  // Through an arena wall: gone if through the outlet, else reflected.
+  bool gone = false;
+  if (p.x < 0.0 || p.x > W) {
+    const Side side = p.x < 0.0 ? Side::Left : Side::Right;
+    if (outlet_on_wall(map_, side, std::clamp(p.y, 0.0, H))) gone = true;
+    p.x = p.x < 0.0 ? -p.x : 2.0 * W - p.x;
+  }
+  if (p.y < 0.0 || p.y > H) {
+    const Side side = p.y < 0.0 ? Side::Bottom : Side::Top;
+    if (outlet_on_wall(map_, side, std::clamp(p.x, 0.0, W))) gone = true;
+    p.y = p.y < 0.0 ? -p.y : 2.0 * H - p.y;
+  }
+  if (gone) {
+    ++summary_.left_through_outlet;
+    return false;
+  }
+  p.x = std::clamp(p.x, 0.0, W);
+  p.y = std::clamp(p.y, 0.0, H);
+  if (free_at(p)) {
+    f.position = p;
+  } else if (through_obstacle_outlet(map_, f.position, p)) {
+    ++summary_.left_through_outlet;  // out through a door or vent in an obstacle's edge
+    return false;
+  } else {
+    ++summary_.rejected_moves;  // into an obstacle: the move is not taken
+  }
+  f.radius2 += o_.growth * dt;
+  if (f.radius2 > max_r2) {
+    ++summary_.dropped_too_wide;
+    return false;
+  }
+  return true;
+}
+
+void FilamentSimulation::step() {
+  const double dt = o_.dt;
+  const double walk = o_.sigma_walk * std::sqrt(dt);
+  advance_meander(dt);
+  release_filaments(dt);
   const double max_r2 = o_.max_radius * o_.max_radius;
+  // The kept filaments close up in place, in their order: the random draws stay in that order.
   std::size_t kept = 0;
   for (std::size_t k = 0; k < filaments_.size(); ++k) {
     Filament f = filaments_[k];
-    const Vec2 w = wind_at(f.position);
-    Vec2 p = f.position + dt * w;
-    p.x += walk * normal_(rng_);
-    p.y += walk * normal_(rng_);
-    // Through an arena wall: gone if through the outlet, else reflected.
-    bool gone = false;
-    if (p.x < 0.0 || p.x > W) {
-      const Side side = p.x < 0.0 ? Side::Left : Side::Right;
-      if (outlet_on_wall(map_, side, std::clamp(p.y, 0.0, H))) gone = true;
-      p.x = p.x < 0.0 ? -p.x : 2.0 * W - p.x;
-    }
-    if (p.y < 0.0 || p.y > H) {
-      const Side side = p.y < 0.0 ? Side::Bottom : Side::Top;
-      if (outlet_on_wall(map_, side, std::clamp(p.x, 0.0, W))) gone = true;
-      p.y = p.y < 0.0 ? -p.y : 2.0 * H - p.y;
-    }
-    if (gone) {
-      ++summary_.left_through_outlet;
-      continue;
-    }
-    p.x = std::clamp(p.x, 0.0, W);
-    p.y = std::clamp(p.y, 0.0, H);
-    if (free_at(p)) {
-      f.position = p;
-    } else if (through_obstacle_outlet(map_, f.position, p)) {
-      ++summary_.left_through_outlet;  // out through a door or vent in an obstacle's edge
-      continue;
-    } else {
-      ++summary_.rejected_moves;  // into an obstacle: the move is not taken
-    }
-    f.radius2 += o_.growth * dt;
-    if (f.radius2 > max_r2) {
-      ++summary_.dropped_too_wide;
-      continue;
-    }
-    filaments_[kept++] = f;
+    if (move_filament(f, dt, walk, max_r2)) filaments_[kept++] = f;
   }
   filaments_.resize(kept);
   time_ += dt;
@@ -332,6 +343,73 @@ double FilamentSimulation::concentration_at(Vec2 p) const {
   return c * mass_ / kPi;
 }
 
+namespace {
+
+// The sensor grid's concentrations, frame after frame of simulate_filaments' record.
+class FrameSampler {
+ public:
+  FrameSampler(FilamentSimulation& sim, const GridShape& sensors, int steps_per_frame)
+      : sim_(sim), sensors_(sensors), steps_per_frame_(steps_per_frame), frame_(sensors.size()) {}
+  // The concentrations of the next frame, one frame's time after the last (the first: now).
+  const std::vector<double>& next() {
+    if (!first_)
+      for (int s = 0; s < steps_per_frame_; ++s)
+        sim_.step();
+    first_ = false;
+    std::fill(frame_.begin(), frame_.end(), 0.0);
+    sim_.concentration(sensors_, frame_);
+    return frame_;
+  }
+
+ private:
+  FilamentSimulation& sim_;
+  const GridShape& sensors_;
+  int steps_per_frame_;
+  std::vector<double> frame_;
+  bool first_ = true;
+};
+
+// One gas sensor per cell, or none when the model reads the concentration as it is. A sensor with
+// memory is settled in the first frame and read through its warm-up before the record starts,
+// whose time goes to summary.sensor_warmup_s.
+std::vector<GasSensor> warmed_up_sensors(FrameSampler& frames, std::size_t cells,
+                                         const GasSensorModel& sensor,
+                                         const FilamentOptions& options, FilamentSummary& summary) {
+  std::vector<GasSensor> readers;
+  if (sensor.ideal() && sensor.baseline == 0.0) return readers;
+  readers.assign(cells, GasSensor(sensor, 1.0 / options.sample_rate));
+  if (sensor.ideal()) return readers;
+  const std::vector<double>& frame = frames.next();
+  for (std::size_t k = 0; k < frame.size(); ++k)
+    readers[k].settle(frame[k]);
+  const int warmup = static_cast<int>(std::lround(sensor_warmup_s(sensor) * options.sample_rate));
+  for (int w = 0; w < warmup; ++w) {
+    frames.next();
+    for (std::size_t k = 0; k < frame.size(); ++k)
+      readers[k].read(frame[k]);
+  }
+  summary.sensor_warmup_s = (warmup + 1) / options.sample_rate;
+  return readers;
+}
+
+// The record's mean and standard deviation from the readings' sums over `frames` frames; zero
+// for a sensor inside an obstacle.
+void set_statistics(const Map& map, const GridShape& sensors, const std::vector<double>& sum,
+                    const std::vector<double>& sum2, int frames, SensorRecord& rec) {
+  rec.mean = Grid<double>(sensors, 0.0);
+  rec.std = Grid<double>(sensors, 0.0);
+  for (int j = 0; j < sensors.ny; ++j)
+    for (int i = 0; i < sensors.nx; ++i) {
+      if (map.obstacle_at(sensors.centre(i, j)) >= 0) continue;  // a sensor inside an obstacle
+      const std::size_t k = sensors.index(i, j);
+      const double m = sum[k] / frames;
+      rec.mean.values[k] = m;
+      rec.std.values[k] = std::sqrt(std::max(0.0, sum2[k] / frames - m * m));
+    }
+}
+
+}  // namespace
+
 SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2 source,
                                 const GridShape& sensors, const FilamentOptions& options,
                                 std::uint64_t seed, const GasSensorModel& sensor) {
@@ -347,52 +425,19 @@ SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2
       std::max(1, static_cast<int>(std::lround(options.record_s * options.sample_rate)));
   const int steps_per_frame =
       std::max(1, static_cast<int>(std::lround(1.0 / (options.sample_rate * options.dt))));
-  std::vector<double> sum(sensors.size(), 0.0), sum2(sensors.size(), 0.0), frame(sensors.size());
-  // The concentrations of the next frame, one frame's time after the last.
-  bool first = true;
-  auto next_frame = [&] {
-    if (!first)
-      for (int s = 0; s < steps_per_frame; ++s)
-        sim.step();
-    first = false;
-    std::fill(frame.begin(), frame.end(), 0.0);
-    sim.concentration(sensors, frame);
-  };
-  std::vector<GasSensor> readers;
-  if (!sensor.ideal() || sensor.baseline != 0.0) {
-    readers.assign(sensors.size(), GasSensor(sensor, 1.0 / options.sample_rate));
-    if (!sensor.ideal()) {
-      next_frame();
-      for (std::size_t k = 0; k < frame.size(); ++k)
-        readers[k].settle(frame[k]);
-      const int warmup =
-          static_cast<int>(std::lround(sensor_warmup_s(sensor) * options.sample_rate));
-      for (int w = 0; w < warmup; ++w) {
-        next_frame();
-        for (std::size_t k = 0; k < frame.size(); ++k)
-          readers[k].read(frame[k]);
-      }
-      rec.summary.sensor_warmup_s = (warmup + 1) / options.sample_rate;
-    }
-  }
+  std::vector<double> sum(sensors.size(), 0.0), sum2(sensors.size(), 0.0);
+  FrameSampler sampler(sim, sensors, steps_per_frame);
+  std::vector<GasSensor> readers =
+      warmed_up_sensors(sampler, sensors.size(), sensor, options, rec.summary);
   for (int f = 0; f < frames; ++f) {
-    next_frame();
+    const std::vector<double>& frame = sampler.next();
     for (std::size_t k = 0; k < frame.size(); ++k) {
       const double c = readers.empty() ? frame[k] : readers[k].read(frame[k]);
       sum[k] += c;
       sum2[k] += c * c;
     }
   }
-  rec.mean = Grid<double>(sensors, 0.0);
-  rec.std = Grid<double>(sensors, 0.0);
-  for (int j = 0; j < sensors.ny; ++j)
-    for (int i = 0; i < sensors.nx; ++i) {
-      if (map.obstacle_at(sensors.centre(i, j)) >= 0) continue;  // a sensor inside an obstacle
-      const std::size_t k = sensors.index(i, j);
-      const double m = sum[k] / frames;
-      rec.mean.values[k] = m;
-      rec.std.values[k] = std::sqrt(std::max(0.0, sum2[k] / frames - m * m));
-    }
+  set_statistics(map, sensors, sum, sum2, frames, rec);
   const FilamentSummary& end = sim.summary();
   rec.summary.released = end.released;
   rec.summary.rejected_moves = end.rejected_moves;

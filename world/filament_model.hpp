@@ -151,6 +151,11 @@ class FilamentSimulation {
  private:
   bool free_at(Vec2 p) const;
   Vec2 release_point();  // the source, or a free point of its disc (options.source_radius)
+  // The parts of step(), in its order (the random draws' order decides the plume).
+  void advance_meander(double dt);    // the meander's or the unsteady wind's next state
+  void release_filaments(double dt);  // the filaments the source released over dt
+  // Moves f over dt; false when it left (an outlet) or grew past max_r2.
+  bool move_filament(Filament& f, double dt, double walk, double max_r2);
 
   const Map& map_;
   const cfd::WindField& wind_;

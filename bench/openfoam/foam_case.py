@@ -268,6 +268,37 @@ def write_case(m, cell, nu, case, settings=None):
        not any(n == "outlet" for v in labels.values() for n in v):
         raise ValueError("the inlet or outlet span covers no boundary face at this cell size")
 
+    n_blocks = _write_block_mesh(case, labels, nx, ny, dx, dy, dz)
+    n_boxes = _write_topo_set(case, removed, dx, dy, dz)
+    _write_control_and_schemes(case, s)
+    _write_fv_solution(case, s)
+
+    # v1912 (openfoam.com) reads constant/turbulenceProperties; momentumTransport is the name
+    # used by openfoam.org v8+, and is not read here.
+    _write(f"{case}/constant/turbulenceProperties",
+           HEADER.format(cls="dictionary", loc="constant", obj="turbulenceProperties") +
+           "\nsimulationType  laminar;\n")
+    _write(f"{case}/constant/transportProperties",
+           HEADER.format(cls="dictionary", loc="constant", obj="transportProperties") +
+           f"\ntransportModel  Newtonian;\nnu              {_fmt(nu)};\n")
+
+    meta = {
+        "map_name": m.get("name", ""),
+        "size": [W, H], "cell": cell, "nx": nx, "ny": ny, "dx": dx, "dy": dy, "dz": dz, "nu": nu,
+        "inlet": m["inlet"], "outlet": m["outlet"],
+        "n_solid": int(solid.sum()), "n_pocket": int(pockets.sum()),
+        "n_fluid": int((~removed).sum()), "n_blocks": n_blocks, "n_boxes": n_boxes,
+        "settings": s,
+    }
+    np.save(f"{case}/removed.npy", removed)
+    with open(f"{case}/plumekit_case.json", "w") as f:
+        json.dump(meta, f, indent=1)
+    return meta
+
+
+def _write_block_mesh(case, labels, nx, ny, dx, dy, dz):
+    """Writes system/blockMeshDict: the arena rectangle in blocks whose wall faces each lie on one
+    patch. Returns the number of blocks."""
     # Block breakpoints: every place along a wall where the patch label changes, so that each
     # block face lies on one patch. x breaks come from the bottom/top walls, y from left/right.
     def breaks(a, b, n):
@@ -327,7 +358,12 @@ def write_case(m, cell, nu, case, settings=None):
            "\n".join("    " + _vec(p) for p in verts) + "\n);\n\nblocks\n(\n" +
            "\n".join(blocks) + "\n);\n\nedges ();\n\nboundary\n(\n" + "\n".join(bnd) +
            "\n);\n\nmergePatchPairs ();\n")
+    return len(blocks)
 
+
+def _write_topo_set(case, removed, dx, dy, dz):
+    """Writes system/topoSetDict, which selects the cells subsetMesh removes. Returns the number
+    of boxes it takes."""
     # topoSet: `solid` = the obstacle cells (boxes around their centres); `fluid` = the rest,
     # which subsetMesh keeps.
     boxes = solid_boxes(removed, dx, dy)
@@ -361,7 +397,11 @@ actions
     }}
 );
 """)
+    return len(boxes)
 
+
+def _write_control_and_schemes(case, s):
+    """Writes system/controlDict and system/fvSchemes from the settings `s`."""
     _write(f"{case}/system/controlDict",
            HEADER.format(cls="dictionary", loc="system", obj="controlDict") + f"""
 application     simpleFoam;
@@ -397,6 +437,9 @@ interpolationSchemes {{ default linear; }}
 snGradSchemes   {{ default corrected; }}
 """)
 
+
+def _write_fv_solution(case, s):
+    """Writes system/fvSolution: the linear solvers, SIMPLEC and its relaxation, from `s`."""
     _write(f"{case}/system/fvSolution",
            HEADER.format(cls="dictionary", loc="system", obj="fvSolution") + f"""
 solvers
@@ -434,28 +477,6 @@ relaxationFactors
     equations   {{ U {s["relax_U"]:g}; }}
 }}
 """)
-
-    # v1912 (openfoam.com) reads constant/turbulenceProperties; momentumTransport is the name
-    # used by openfoam.org v8+, and is not read here.
-    _write(f"{case}/constant/turbulenceProperties",
-           HEADER.format(cls="dictionary", loc="constant", obj="turbulenceProperties") +
-           "\nsimulationType  laminar;\n")
-    _write(f"{case}/constant/transportProperties",
-           HEADER.format(cls="dictionary", loc="constant", obj="transportProperties") +
-           f"\ntransportModel  Newtonian;\nnu              {_fmt(nu)};\n")
-
-    meta = {
-        "map_name": m.get("name", ""),
-        "size": [W, H], "cell": cell, "nx": nx, "ny": ny, "dx": dx, "dy": dy, "dz": dz, "nu": nu,
-        "inlet": m["inlet"], "outlet": m["outlet"],
-        "n_solid": int(solid.sum()), "n_pocket": int(pockets.sum()),
-        "n_fluid": int((~removed).sum()), "n_blocks": len(blocks), "n_boxes": len(boxes),
-        "settings": s,
-    }
-    np.save(f"{case}/removed.npy", removed)
-    with open(f"{case}/plumekit_case.json", "w") as f:
-        json.dump(meta, f, indent=1)
-    return meta
 
 
 # ----------------------------------------------------------------------------------------------

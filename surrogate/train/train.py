@@ -442,6 +442,243 @@ def describe_record(record):
     return ", ".join(f"{r['name']} ({r['samples']} samples, {r['maps']} maps)" for r in record)
 
 
+def trained_on_ranges(dirs, manifests, shards, dataset_of, val_maps_of, say):
+    """The header's trained_on: what the training maps' files say (none without map files), over
+    the training maps of every dataset."""
+    summaries = []
+    for k, d in enumerate(dirs):
+        train_maps = sorted({int(m) for s, o in zip(shards, dataset_of) if o == k
+                             for m in np.unique(s.map_ids)} - set(val_maps_of[k]))
+        try:
+            got = map_summaries(d, manifests[k], train_maps)
+        except (OSError, ValueError, KeyError, TypeError) as e:
+            sys.exit(f"train.py: {d}: a map file cannot be read for trained_on: {e!r}")
+        if got is None:  # ranges over some of the datasets would claim too little
+            if len(dirs) > 1:
+                say(f"no trained_on in the header: {d} has no map files")
+            summaries = None
+            break
+        summaries += got
+    return ranges(summaries) if summaries is not None else None
+
+
+def read_init(args, v2, cell):
+    """The --init model and header (None, None without --init); its features must be the dataset's."""
+    if not args.init:
+        return None, None
+    try:
+        init_model, init_header = read_model(args.init)
+    except (OSError, ValueError) as e:
+        sys.exit(f"train.py: --init: {e}")
+    if is_v2(init_header) != v2 or (
+            v2 and abs(float(init_header["features"]["cell_size"]) - cell) > 1e-9 * cell):
+        sys.exit(f"train.py: --init {args.init}: its features ("
+                 f"{'cell ' + str(init_header['features'].get('cell_size')) if is_v2(init_header) else 'v1 grid'}"
+                 f") are not this dataset's ({'cell ' + str(cell) if v2 else 'v1 grid'})")
+    return init_model, init_header
+
+
+def target_scale(args, init_header, shards, dataset_of, val_maps_of):
+    """What the targets are divided by: --target-scale, else the start's, else the largest
+    training mean."""
+    scale = args.target_scale
+    if scale <= 0 and init_header is not None:  # keep the start's units
+        scale = float(init_header["outputs"][0]["scale"])
+    if scale <= 0:  # the largest training mean, read shard by shard from the memory maps
+        scale = 0.0
+        for s, k in zip(shards, dataset_of):
+            keep = ~np.isin(s.map_ids, val_maps_of[k])
+            if keep.any():
+                scale = max(scale, float(np.max(s.targets[np.flatnonzero(keep), 0])))
+        scale = scale if scale > 0 else 1.0
+    return scale
+
+
+def open_batches(args, shards, device, v2, cell, multiple, say):
+    """The samples' batches, preloaded onto the device or read from the memory maps."""
+    if v2:  # on the CPU too when the padded dataset takes at most a quarter of the free memory
+        need = V2Batches.bytes_needed(shards, multiple)
+        preload = args.preload == "yes" or (args.preload == "auto" and (
+            device.type == "cuda" or need <= available_memory() // 4))
+        batches = V2Batches(shards, device, preload, cell, multiple,
+                            args.batch_cells or args.batch * 64 * 64)
+        say(f"v2 dataset: cell {cell:g} m, {len(set(batches.shapes))} padded shapes "
+            f"(multiple {multiple}), {'preloaded, %.0f MB' % (need / 2**20) if preload else 'memory-mapped'}")
+    else:
+        preload = args.preload == "yes" or (args.preload == "auto" and device.type == "cuda")
+        batches = Batches(shards, device, preload)
+    return batches
+
+
+def new_model(args, in_channels, device, init_model):
+    """The network, seeded by --seed, with the --init model's weights when given."""
+    torch.manual_seed(args.seed)
+    model = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs).to(device)
+    if init_model is not None:
+        try:
+            model.load_state_dict(init_model.state_dict())
+        except RuntimeError as e:  # another architecture than the one trained here
+            sys.exit(f"train.py: --init {args.init}: {str(e).splitlines()[0]}")
+    return model
+
+
+def validate_start(args, team, model, state, validate, best_path, say):
+    """Epoch 0 is the start itself: a fine-tuning that only hurts returns the start. Returns the
+    start's log row."""
+    val = team.share(list(validate(model)))
+    val_loss, val_rmse = val[:2]
+    state["best_val"] = val_loss
+    if team.lead:
+        torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
+    say(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
+    return [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"] + [f"{v:.6g}" for v in val[2:]]
+
+
+def resume(ckpt_path, device, model, opt, several, data_record, say):
+    """Loads the checkpoint's model, optimizer and random state; returns its training state."""
+    ckpt = torch.load(ckpt_path, map_location=device)
+    # A checkpoint from before checkpoints recorded their datasets had one dataset.
+    if ckpt.get("data", None if several else data_record) != data_record:
+        sys.exit(f"train.py: {ckpt_path} was written for --data {describe_record(ckpt.get('data'))}; "
+                 f"this run gives {describe_record(data_record)}. Resume with the same datasets "
+                 "in the same order, or train in another --work folder")
+    model.load_state_dict(ckpt["model"])
+    opt.load_state_dict(ckpt["optimizer"])
+    state = ckpt["state"]
+    torch.set_rng_state(ckpt["torch_rng"].cpu())  # map_location moved it to the device
+    for key, value in (("batch", 0), ("running", 0.0), ("seen", 0)):
+        state.setdefault(key, value)
+    say(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
+    return state
+
+
+def train_steps(args, team, model, opt, state, batches, train_rows, v2, scale, steps_per_epoch,
+                started, last_save, save_checkpoint):
+    """The current epoch's batches from state["batch"] on, until its end, --max-steps or
+    --max-minutes. Returns (out of time, the last checkpoint's time)."""
+    model.train()
+    # Seeded by epoch, so a resumed run draws the same batches as an uninterrupted one.
+    order = np.random.default_rng([args.seed, state["epoch"]]).permutation(len(train_rows))
+    if v2:
+        epoch_batches = batches.batches([train_rows[j] for j in order])
+    while state["batch"] < steps_per_epoch:
+        if args.max_steps and state["step"] >= args.max_steps:
+            break
+        if args.max_minutes and team.share(
+                [time.time() - started > 60.0 * args.max_minutes])[0]:
+            return True, last_save
+        if v2:
+            rows = epoch_batches[state["batch"]]
+        else:
+            i = state["batch"] * args.batch
+            rows = sorted(train_rows[j] for j in order[i:i + args.batch])
+        mine, weight = team.my_rows(rows)
+        if not v2:
+            x, y = batches(mine)
+            y = y / scale
+        for group in opt.param_groups:
+            group["lr"] = learning_rate(args, state["step"], steps_per_epoch)
+        if v2:
+            loss = batches.loss(model, rows, mine, weight, team.world, scale)
+        elif team.world == 1:
+            loss = torch.mean((model(x) - y) ** 2)
+        else:  # this rank's part of the whole batch's mean; DDP averages over ranks
+            per_sample = torch.mean((model(x) - y) ** 2, dim=(1, 2, 3))
+            loss = per_sample.sum() * (weight * team.world / len(rows))
+        opt.zero_grad()
+        loss.backward()
+        opt.step()
+        state["step"] += 1
+        state["batch"] += 1
+        state["running"] += team.mean(loss.item()) * len(rows)
+        state["seen"] += len(rows)
+        if time.time() - last_save > 60.0 * args.checkpoint_minutes:
+            save_checkpoint()
+            last_save = time.time()
+    return False, last_save
+
+
+def end_epoch(team, core, state, validate, log, log_file, t0, v2, best_path, say):
+    """Validates after a finished epoch, logs it and keeps the model if it is the best so far."""
+    state["epoch"] += 1
+    val = team.share(list(validate(core)))
+    val_loss, val_rmse = val[:2]
+    train_loss = state["running"] / max(state["seen"], 1)
+    state["batch"], state["running"], state["seen"] = 0, 0.0, 0
+    log.writerow([state["epoch"], state["step"], f"{train_loss:.6g}", f"{val_loss:.6g}",
+                  f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"] + [f"{v:.6g}" for v in val[2:]])
+    log_file.flush()
+    say(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
+          f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g}"
+          f"{', %.2f %% of the average peak' % (100 * val[2]) if v2 else ''})", flush=True)
+    if val_loss < state["best_val"]:
+        state["best_val"], state["stale"] = val_loss, 0
+        if team.lead:
+            torch.save({"model": core.state_dict(), "state": dict(state)}, best_path + ".tmp")
+            os.replace(best_path + ".tmp", best_path)
+    else:
+        state["stale"] += 1
+
+
+def training_record(args, dirs, manifests, dataset_of, train_rows, val_rows, val_maps_of, v2, cell,
+                    best):
+    """The model header's training section: the data, the run's settings and its best epoch."""
+    if len(dirs) > 1:  # each dataset's own part, and its validation maps (evaluate.py reads them)
+        counts = [[sum(1 for s, _ in rows if dataset_of[s] == k) for k in range(len(dirs))]
+                  for rows in (train_rows, val_rows)]
+        training = {"datasets": [{"dataset": provenance_path(d), "dataset_format": m.get("format"),
+                                  "train_samples": counts[0][k], "val_samples": counts[1][k],
+                                  "val_maps": val_maps_of[k]}
+                                 for k, (d, m) in enumerate(zip(dirs, manifests))],
+                    "train_samples": len(train_rows), "val_samples": len(val_rows),
+                    "val_fraction": args.val_fraction}
+    else:
+        training = {"dataset": provenance_path(dirs[0]), "dataset_format": manifests[0].get("format"),
+                    "train_samples": len(train_rows), "val_samples": len(val_rows),
+                    "val_maps": val_maps_of[0]}
+    training.update({"epochs": best["state"]["epoch"],
+                     "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],
+                     "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
+                     "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay,
+                     "batch": args.batch, "seed": args.seed})
+    if v2:
+        training.update(loss="MSE of target/scale over both channels, on map cells only (padding "
+                        "masked)", batch_cells=args.batch_cells or args.batch * 64 * 64,
+                        feature_cell=cell)
+    if args.init:
+        training["init"] = {"model": os.path.basename(args.init),
+                            "sha256": hashlib.sha256(open(args.init, "rb").read()).hexdigest()}
+    return training
+
+
+def write_final(args, best_path, in_channels, scale, v2, cell, multiple, shards, dataset_of,
+                manifests, train_rows, val_rows, val_maps_of, trained_on):
+    """Writes the best epoch's model to --out, with its golden input/output pair beside it."""
+    dirs = args.data
+    best = torch.load(best_path, map_location="cpu")
+    final = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs)
+    final.load_state_dict(best["model"])
+    final.eval()
+    outputs = [dict(o, scale=scale) for o in DEFAULT_OUTPUTS]
+    if v2:
+        features = v2_features(cell, multiple)
+    else:
+        features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
+    training = training_record(args, dirs, manifests, dataset_of, train_rows, val_rows, val_maps_of,
+                               v2, cell, best)
+    size = write_model(args.out, final, features, outputs, training, trained_on)
+    if v2:
+        x, y = golden_pair_v2(final, V2Batches(shards, torch.device("cpu"), False, cell, multiple, 1),
+                              val_rows + train_rows, args.golden)
+    else:
+        x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
+    y = y * scale
+    stem = os.path.splitext(args.out)[0]
+    np.save(stem + "_input.npy", x)
+    np.save(stem + "_output.npy", y.astype(np.float32))
+    print(f"wrote {args.out} ({size} bytes) from epoch {best['state']['epoch']}")
+
+
 def main(argv=None):
     args = parse_args(argv)
     torch.set_num_threads(max(1, args.threads))
@@ -457,66 +694,17 @@ def main(argv=None):
     val_maps = val_maps_of[0]
     if not train_rows or not val_rows:
         sys.exit("train.py: need at least two maps (one for validation)")
-    # The header's trained_on: what the training maps' files say (none without map files), over
-    # the training maps of every dataset.
-    summaries = []
-    for k, d in enumerate(dirs):
-        train_maps = sorted({int(m) for s, o in zip(shards, dataset_of) if o == k
-                             for m in np.unique(s.map_ids)} - set(val_maps_of[k]))
-        try:
-            got = map_summaries(d, manifests[k], train_maps)
-        except (OSError, ValueError, KeyError, TypeError) as e:
-            sys.exit(f"train.py: {d}: a map file cannot be read for trained_on: {e!r}")
-        if got is None:  # ranges over some of the datasets would claim too little
-            if several:
-                say(f"no trained_on in the header: {d} has no map files")
-            summaries = None
-            break
-        summaries += got
-    trained_on = ranges(summaries) if summaries is not None else None
-    init_model = init_header = None
-    if args.init:
-        try:
-            init_model, init_header = read_model(args.init)
-        except (OSError, ValueError) as e:
-            sys.exit(f"train.py: --init: {e}")
-        if is_v2(init_header) != v2 or (
-                v2 and abs(float(init_header["features"]["cell_size"]) - cell) > 1e-9 * cell):
-            sys.exit(f"train.py: --init {args.init}: its features ("
-                     f"{'cell ' + str(init_header['features'].get('cell_size')) if is_v2(init_header) else 'v1 grid'}"
-                     f") are not this dataset's ({'cell ' + str(cell) if v2 else 'v1 grid'})")
-    scale = args.target_scale
-    if scale <= 0 and init_header is not None:  # keep the start's units
-        scale = float(init_header["outputs"][0]["scale"])
-    if scale <= 0:  # the largest training mean, read shard by shard from the memory maps
-        scale = 0.0
-        for s, k in zip(shards, dataset_of):
-            keep = ~np.isin(s.map_ids, val_maps_of[k])
-            if keep.any():
-                scale = max(scale, float(np.max(s.targets[np.flatnonzero(keep), 0])))
-        scale = scale if scale > 0 else 1.0
-
-    if v2:  # on the CPU too when the padded dataset takes at most a quarter of the free memory
-        need = V2Batches.bytes_needed(shards, multiple)
-        preload = args.preload == "yes" or (args.preload == "auto" and (
-            device.type == "cuda" or need <= available_memory() // 4))
-        batches = V2Batches(shards, device, preload, cell, multiple,
-                            args.batch_cells or args.batch * 64 * 64)
+    trained_on = trained_on_ranges(dirs, manifests, shards, dataset_of, val_maps_of, say)
+    init_model, init_header = read_init(args, v2, cell)
+    scale = target_scale(args, init_header, shards, dataset_of, val_maps_of)
+    batches = open_batches(args, shards, device, v2, cell, multiple, say)
+    # Late bound: a resumed run validates with the checkpoint's scale.
+    if v2:
         validate = lambda m: evaluate_v2(m, batches, val_rows, scale)  # noqa: E731
-        say(f"v2 dataset: cell {cell:g} m, {len(set(batches.shapes))} padded shapes "
-            f"(multiple {multiple}), {'preloaded, %.0f MB' % (need / 2**20) if preload else 'memory-mapped'}")
     else:
-        preload = args.preload == "yes" or (args.preload == "auto" and device.type == "cuda")
-        batches = Batches(shards, device, preload)
         validate = lambda m: evaluate(m, batches, val_rows, scale, args.batch)  # noqa: E731
 
-    torch.manual_seed(args.seed)
-    model = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs).to(device)
-    if init_model is not None:
-        try:
-            model.load_state_dict(init_model.state_dict())
-        except RuntimeError as e:  # another architecture than the one trained here
-            sys.exit(f"train.py: --init {args.init}: {str(e).splitlines()[0]}")
+    model = new_model(args, in_channels, device, init_model)
     opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)
     # batch: the next batch of the current epoch; running, seen: that epoch's loss sums so far.
     state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale,
@@ -529,30 +717,11 @@ def main(argv=None):
         dist.barrier()
     data_record = dataset_record(dirs, shards, dataset_of)
     if resuming:
-        ckpt = torch.load(ckpt_path, map_location=device)
-        # A checkpoint from before checkpoints recorded their datasets had one dataset.
-        if ckpt.get("data", None if several else data_record) != data_record:
-            sys.exit(f"train.py: {ckpt_path} was written for --data {describe_record(ckpt.get('data'))}; "
-                     f"this run gives {describe_record(data_record)}. Resume with the same datasets "
-                     "in the same order, or train in another --work folder")
-        model.load_state_dict(ckpt["model"])
-        opt.load_state_dict(ckpt["optimizer"])
-        state = ckpt["state"]
-        torch.set_rng_state(ckpt["torch_rng"].cpu())  # map_location moved it to the device
+        state = resume(ckpt_path, device, model, opt, several, data_record, say)
         scale = state["scale"]
-        for key, value in (("batch", 0), ("running", 0.0), ("seen", 0)):
-            state.setdefault(key, value)
-        say(f"resumed from {ckpt_path} at epoch {state['epoch']}, step {state['step']}")
     start_row = None
     if init_model is not None and not resuming and fresh:
-        # Epoch 0 is the start itself: a fine-tuning that only hurts returns the start.
-        val = team.share(list(validate(model)))
-        val_loss, val_rmse = val[:2]
-        state["best_val"] = val_loss
-        if team.lead:
-            torch.save({"model": model.state_dict(), "state": dict(state)}, best_path)
-        start_row = [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"] + [f"{v:.6g}" for v in val[2:]]
-        say(f"start {args.init}: val {val_loss:.4g} (mean RMSE {val_rmse:.4g})", flush=True)
+        start_row = validate_start(args, team, model, state, validate, best_path, say)
     shown_val_maps = ("; ".join(f"{r['name']} {v}" for r, v in zip(data_record, val_maps_of))
                       if several else val_maps)
     say(f"{parameter_count(model)} parameters on {device}"
@@ -587,46 +756,9 @@ def main(argv=None):
             if args.max_steps and state["step"] >= args.max_steps:
                 break
             t0 = time.time()
-            model.train()
-            # Seeded by epoch, so a resumed run draws the same batches as an uninterrupted one.
-            order = np.random.default_rng([args.seed, state["epoch"]]).permutation(len(train_rows))
-            if v2:
-                epoch_batches = batches.batches([train_rows[j] for j in order])
-            while state["batch"] < steps_per_epoch:
-                if args.max_steps and state["step"] >= args.max_steps:
-                    break
-                if args.max_minutes and team.share(
-                        [time.time() - started > 60.0 * args.max_minutes])[0]:
-                    out_of_time = True
-                    break
-                if v2:
-                    rows = epoch_batches[state["batch"]]
-                else:
-                    i = state["batch"] * args.batch
-                    rows = sorted(train_rows[j] for j in order[i:i + args.batch])
-                mine, weight = team.my_rows(rows)
-                if not v2:
-                    x, y = batches(mine)
-                    y = y / scale
-                for group in opt.param_groups:
-                    group["lr"] = learning_rate(args, state["step"], steps_per_epoch)
-                if v2:
-                    loss = batches.loss(model, rows, mine, weight, team.world, scale)
-                elif team.world == 1:
-                    loss = torch.mean((model(x) - y) ** 2)
-                else:  # this rank's part of the whole batch's mean; DDP averages over ranks
-                    per_sample = torch.mean((model(x) - y) ** 2, dim=(1, 2, 3))
-                    loss = per_sample.sum() * (weight * team.world / len(rows))
-                opt.zero_grad()
-                loss.backward()
-                opt.step()
-                state["step"] += 1
-                state["batch"] += 1
-                state["running"] += team.mean(loss.item()) * len(rows)
-                state["seen"] += len(rows)
-                if time.time() - last_save > 60.0 * args.checkpoint_minutes:
-                    save_checkpoint()
-                    last_save = time.time()
+            out_of_time, last_save = train_steps(args, team, model, opt, state, batches, train_rows,
+                                                 v2, scale, steps_per_epoch, started, last_save,
+                                                 save_checkpoint)
             if state["batch"] < steps_per_epoch:  # stopped inside the epoch (time or steps)
                 save_checkpoint()
                 if team.lead and not os.path.exists(best_path):  # no finished epoch: keep these
@@ -634,75 +766,15 @@ def main(argv=None):
                     torch.save({"model": core.state_dict(), "state": dict(state, best_val=val_loss)},
                                best_path)
                 break
-            state["epoch"] += 1
-            val = team.share(list(validate(core)))
-            val_loss, val_rmse = val[:2]
-            train_loss = state["running"] / max(state["seen"], 1)
-            state["batch"], state["running"], state["seen"] = 0, 0.0, 0
-            log.writerow([state["epoch"], state["step"], f"{train_loss:.6g}", f"{val_loss:.6g}",
-                          f"{val_rmse:.6g}", f"{time.time() - t0:.2f}"] + [f"{v:.6g}" for v in val[2:]])
-            log_file.flush()
-            say(f"epoch {state['epoch']} step {state['step']}: train {train_loss:.4g} "
-                  f"val {val_loss:.4g} (mean RMSE {val_rmse:.4g}"
-                  f"{', %.2f %% of the average peak' % (100 * val[2]) if v2 else ''})", flush=True)
-            if val_loss < state["best_val"]:
-                state["best_val"], state["stale"] = val_loss, 0
-                if team.lead:
-                    torch.save({"model": core.state_dict(), "state": dict(state)}, best_path + ".tmp")
-                    os.replace(best_path + ".tmp", best_path)
-            else:
-                state["stale"] += 1
+            end_epoch(team, core, state, validate, log, log_file, t0, v2, best_path, say)
             save_checkpoint()
             last_save = time.time()
 
     team.close()
     if not team.lead:
         return
-    best = torch.load(best_path, map_location="cpu")
-    final = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs)
-    final.load_state_dict(best["model"])
-    final.eval()
-    outputs = [dict(o, scale=scale) for o in DEFAULT_OUTPUTS]
-    if v2:
-        features = v2_features(cell, multiple)
-    else:
-        features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
-    if several:  # each dataset's own part, and its validation maps (evaluate.py reads them)
-        counts = [[sum(1 for s, _ in rows if dataset_of[s] == k) for k in range(len(dirs))]
-                  for rows in (train_rows, val_rows)]
-        training = {"datasets": [{"dataset": provenance_path(d), "dataset_format": m.get("format"),
-                                  "train_samples": counts[0][k], "val_samples": counts[1][k],
-                                  "val_maps": val_maps_of[k]}
-                                 for k, (d, m) in enumerate(zip(dirs, manifests))],
-                    "train_samples": len(train_rows), "val_samples": len(val_rows),
-                    "val_fraction": args.val_fraction}
-    else:
-        training = {"dataset": provenance_path(dirs[0]), "dataset_format": manifests[0].get("format"),
-                    "train_samples": len(train_rows), "val_samples": len(val_rows),
-                    "val_maps": val_maps}
-    training.update({"epochs": best["state"]["epoch"],
-                     "steps": best["state"]["step"], "best_val_loss": best["state"]["best_val"],
-                     "loss": "MSE of target/scale over both channels", "optimizer": "AdamW",
-                     "lr": args.lr, "lr_schedule": args.lr_schedule, "weight_decay": args.weight_decay,
-                     "batch": args.batch, "seed": args.seed})
-    if v2:
-        training.update(loss="MSE of target/scale over both channels, on map cells only (padding "
-                        "masked)", batch_cells=args.batch_cells or args.batch * 64 * 64,
-                        feature_cell=cell)
-    if args.init:
-        training["init"] = {"model": os.path.basename(args.init),
-                            "sha256": hashlib.sha256(open(args.init, "rb").read()).hexdigest()}
-    size = write_model(args.out, final, features, outputs, training, trained_on)
-    if v2:
-        x, y = golden_pair_v2(final, V2Batches(shards, torch.device("cpu"), False, cell, multiple, 1),
-                              val_rows + train_rows, args.golden)
-    else:
-        x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
-    y = y * scale
-    stem = os.path.splitext(args.out)[0]
-    np.save(stem + "_input.npy", x)
-    np.save(stem + "_output.npy", y.astype(np.float32))
-    print(f"wrote {args.out} ({size} bytes) from epoch {best['state']['epoch']}")
+    write_final(args, best_path, in_channels, scale, v2, cell, multiple, shards, dataset_of,
+                manifests, train_rows, val_rows, val_maps_of, trained_on)
 
 
 if __name__ == "__main__":
