@@ -165,8 +165,7 @@ void add_plume(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `plume` output")
       ->required();
   add_seed_flag(cmd, a->seed, "Seed of the filament model");
-  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, cfd::kCellHelp), "flow.cell")
-      ->capture_default_str();
+  add_table_flags(cmd, a->flow, cfd::flow_option_table(), {"flow.cell"});
   cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
   add_plume_options(cmd, a->p);
   add_common_flags(cmd);
@@ -221,8 +220,7 @@ void add_generate(CLI::App* group) {
              "dataset.map_dir");
   add_deprecated_alias(cmd, "--from-maps", "--map-dir", a->map_dir);
   add_families_option(cmd, a->o.map);
-  bind_field(cmd, cmd->add_option("--cell", a->o.flow.cell, cfd::kCellHelp), "flow.cell")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o.flow, cfd::flow_option_table(), {"flow.cell"});
   bind_field(cmd,
              cmd->add_option("--feature-cell", a->o.feature_cell,
                              "Feature grid: 0, the thesis's 64 x 64 grid over the arena (3 input "

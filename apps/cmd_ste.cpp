@@ -27,6 +27,7 @@
 #include "run/evaluation_parts.hpp"
 #include "run/report.hpp"
 #include "run/scenario.hpp"
+#include "ste/option_tables.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/plume_network.hpp"
 
@@ -230,49 +231,10 @@ void add_team_options(CLI::App* cmd, run::TeamOptions& t) {
 // The simulated world, the navigation, the stopping rule and the wind.
 void add_run_options(CLI::App* cmd, run::SteOptions& o) {
   add_robot_world_options(cmd, o);
-  bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
-          "ste.navigation.alpha");
-  bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",
-          "ste.navigation.beta");
-  bind_to(cmd, "--step", o.navigation.step, "Candidate lattice spacing, m", "ste.navigation.step");
-  bind_to(cmd, "--lattice", o.navigation.lattice,
-          "Candidates up to this many steps per axis: (2 L + 1)^2 - 1 of them",
-          "ste.navigation.lattice");
-  bind_field(
-      cmd,
-      cmd->add_option_function<std::string>(
-             "--reward", [&o](const std::string& s) { o.navigation.reward = ste::parse_reward(s); },
-             "Candidate score: kl (the thesis's, at the expected source) or expected (the "
-             "expected information gain over the posterior's sources)")
-          ->default_str(to_string(o.navigation.reward)),
-      "ste.navigation.reward");
-  bind_field(
-      cmd,
-      cmd->add_option_function<std::string>(
-             "--candidates",
-             [&o](const std::string& s) { o.navigation.candidates = ste::parse_candidates(s); },
-             "Where the robot may go next: lattice (moves around it, the thesis's), "
-             "floor (also goals over the whole reachable floor, taken when one offers more "
-             "than twice the moves' expected gain per second of travel and sampling), or auto "
-             "(floor on arenas larger than the thesis's 10 x 4 m, lattice on the others)")
-          ->default_str(to_string(o.navigation.candidates)),
-      "ste.navigation.candidates");
-  bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,
-          "Spacing of the floor's goals, m (--candidates floor)", "ste.navigation.floor_spacing");
+  add_table_flags(cmd, o.navigation, ste::navigation_option_table());
   bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
-  bind_to(cmd, "--max-samples", o.stop.max_samples,
-          "Stop after this many samples (0, the default: 50, or on a floor of more than 500 m^2 "
-          "one per 10 m^2 of its reachable free space)",
-          "ste.stop.max_samples");
-  bind_to(cmd, "--entropy-fraction", o.stop.entropy_fraction,
-          "Stop when the posterior's entropy on the thesis's bins falls below this fraction of "
-          "its maximum (the thesis's: 0.02)",
-          "ste.stop.entropy_fraction");
-  bind_to(cmd, "--seen-mass", o.stop.seen_mass,
-          "Stop on entropy only with this share of the posterior on sources the samples could "
-          "tell from no source (0: also declare sources whose plume reached no sample)",
-          "ste.stop.seen_mass");
-  bind_to(cmd, "--cell", o.flow.cell, cfd::kCellHelp, "flow.cell");
+  add_table_flags(cmd, o.stop, ste::stop_option_table());
+  add_table_flags(cmd, o.flow, cfd::flow_option_table(), {"flow.cell"});
   add_team_options(cmd, o.team);
 }
 
