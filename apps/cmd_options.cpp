@@ -13,6 +13,8 @@
 #include "ste/physics_plume.hpp"
 #include "ste/posterior.hpp"
 #include "ste/stop_rule.hpp"
+#include "world/option_tables.hpp"
+#include "world/simulated_world.hpp"
 
 namespace plumekit::cli {
 
@@ -31,8 +33,8 @@ std::string reference() {
        {option_markdown(cfd::flow_option_table()), option_markdown(ste::likelihood_option_table()),
         option_markdown(ste::bin_option_table()), option_markdown(ste::mh_option_table()),
         option_markdown(ste::navigation_option_table()), option_markdown(ste::stop_option_table()),
-        option_markdown(ste::physics_option_table()),
-        option_markdown(ste::gaussian_option_table())})
+        option_markdown(ste::physics_option_table()), option_markdown(ste::gaussian_option_table()),
+        option_markdown(world::world_option_table())})
     md += "\n" + table;
   return md;
 }

@@ -30,6 +30,7 @@
 #include "ste/option_tables.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/plume_network.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::cli {
 
@@ -152,15 +153,9 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
           "End a run as soon as the robot comes this close to the source, on its way too, m "
           "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
           "ste.success_radius");
-  bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per reading (simulated)",
-          "ste.world.noise");
-  bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
-  bind_to(cmd, "--stop-s", o.world.sample_s,
-          "Length of each stop's sampling, s (seed 004 and the thesis: 5; seed 000: 20)",
-          "ste.world.sample_s");
-  bind_to(cmd, "--stop-rate", o.world.sample_rate,
-          "Readings per second during a stop, Hz (seed 004 and the thesis: 10; seed 000: 1)",
-          "ste.world.sample_rate");
+  add_table_flags(
+      cmd, o.world, world::world_option_table(),
+      {"ste.world.noise", "ste.world.speed", "ste.world.sample_s", "ste.world.sample_rate"});
   add_world_options(cmd, o.world.filament);
   add_gas_sensor_options(cmd, o.world.sensor, "The robot's");
   bind_field(cmd,
@@ -175,13 +170,10 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
                     "Anemometer direction error per stop: std in degrees, or table35 (seed 000, "
                     "Table 3.5, at the stop's length: 22.26 for 5 s, 14.02 for 20 s)")
                  ->type_name("DEG|table35")
-                 ->default_str("0"),
+                 ->default_str(default_text(
+                     world::world_option_table().entry("ste.world.wind_direction_noise"))),
              "ste.world.wind_direction_noise");
-  bind_to(cmd, "--wind-variance-noise", o.world.wind_variance_noise_deg,
-          "Direction noise on each single wind reading of a stop, degrees, from which the stop's "
-          "circular variance (the particle filter's) is computed (seed 002: 23.08; 0: the "
-          "world's own wind)",
-          "ste.world.wind_variance_noise");
+  add_table_flags(cmd, o.world, world::world_option_table(), {"ste.world.wind_variance_noise"});
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--position-noise",
@@ -196,17 +188,11 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
                     "gps (seed 000 Eq. 4.3: variance 1.17 m^2, so 1.08 m on each reading's fix; "
                     "the stop records their mean, 0.24 m for 20 readings)")
                  ->type_name("M|gps")
-                 ->default_str("0"),
+                 ->default_str(
+                     default_text(world::world_option_table().entry("ste.world.position_noise"))),
              "ste.world.position_noise");
-  bind_to(cmd, "--odometry-drift", o.world.odometry_drift,
-          "The position a stop records drifts from the true one by a random walk of this std per "
-          "axis per square root of metre travelled, m (odometry without a positioning system, "
-          "for ste-local; 0: the true position)",
-          "ste.world.odometry_drift");
-  bind_to(cmd, "--rotor-disc", o.world.rotor_disc,
-          "Each gas reading averages the concentration over a disc of this radius, m (seed 000's "
-          "rotor disturbance: 0.5; 0: at the sensor's point)",
-          "ste.world.rotor_disc");
+  add_table_flags(cmd, o.world, world::world_option_table(),
+                  {"ste.world.odometry_drift", "ste.world.rotor_disc"});
 }
 
 // A team of robots (seed 004 ch. 13; run/team.hpp).
