@@ -26,6 +26,7 @@
 #include "dataset/reports.hpp"
 #include "map/map_json.hpp"
 #include "map/map_render.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::cli {
 
@@ -68,11 +69,7 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
                     "Release rate per metre of depth (concentration units * m^2/s), both models")
                  ->default_str(CLI::detail::to_string(p.advection_diffusion.release_rate)),
              "plume.release_rate");
-  bind_field(cmd,
-             cmd->add_option("--filaments-per-second", p.filament.release_per_second,
-                             "filament: filaments released per second"),
-             "plume.filaments_per_second")
-      ->capture_default_str();
+  add_table_flags(cmd, p.filament, world::filament_option_table(), {"plume.filaments_per_second"});
   add_world_options(cmd, p.filament);
   add_gas_sensor_options(cmd, p.sensor, "The static sensors'");
 }

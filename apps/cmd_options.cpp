@@ -13,6 +13,7 @@
 #include "ste/physics_plume.hpp"
 #include "ste/posterior.hpp"
 #include "ste/stop_rule.hpp"
+#include "world/filament_model.hpp"
 #include "world/option_tables.hpp"
 #include "world/simulated_world.hpp"
 
@@ -34,7 +35,8 @@ std::string reference() {
         option_markdown(ste::bin_option_table()), option_markdown(ste::mh_option_table()),
         option_markdown(ste::navigation_option_table()), option_markdown(ste::stop_option_table()),
         option_markdown(ste::physics_option_table()), option_markdown(ste::gaussian_option_table()),
-        option_markdown(world::world_option_table())})
+        option_markdown(world::world_option_table()),
+        option_markdown(world::filament_option_table())})
     md += "\n" + table;
   return md;
 }
