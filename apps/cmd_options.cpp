@@ -6,6 +6,9 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/options.hpp"
+#include "run/evaluation.hpp"
+#include "run/option_tables.hpp"
+#include "run/team.hpp"
 #include "ste/gaussian_plume.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/navigation.hpp"
@@ -36,7 +39,8 @@ std::string reference() {
         option_markdown(ste::navigation_option_table()), option_markdown(ste::stop_option_table()),
         option_markdown(ste::physics_option_table()), option_markdown(ste::gaussian_option_table()),
         option_markdown(world::world_option_table()),
-        option_markdown(world::filament_option_table())})
+        option_markdown(world::filament_option_table()), option_markdown(run::team_option_table()),
+        option_markdown(run::evaluation_option_table())})
     md += "\n" + table;
   return md;
 }

@@ -25,6 +25,7 @@
 #include "run/demo.hpp"
 #include "run/evaluation.hpp"
 #include "run/evaluation_parts.hpp"
+#include "run/option_tables.hpp"
 #include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/option_tables.hpp"
@@ -197,21 +198,7 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
 
 // A team of robots (seed 004 ch. 13; run/team.hpp).
 void add_team_options(CLI::App* cmd, run::TeamOptions& t) {
-  bind_to(cmd, "--robots", t.robots,
-          "Robots running STE together in one world (1-64; the thesis's teams: 1-3), started "
-          "side by side --separation apart",
-          "ste.team.robots");
-  bind_field(
-      cmd,
-      cmd->add_option_function<std::string>(
-             "--team", [&t](const std::string& s) { t.strategy = run::parse_team_strategy(s); },
-             "The team's strategy: individualist (each alone; the first declaration ends "
-             "the mission), cooperative (every sample shared), collaborative (shared "
-             "samples, virtual samples at teammates' goals, task swaps)")
-          ->default_str(to_string(t.strategy)),
-      "ste.team.strategy");
-  bind_to(cmd, "--separation", t.separation,
-          "No robot of a team moves closer than this to a teammate, m", "ste.team.separation");
+  add_table_flags(cmd, t, run::team_option_table());
 }
 
 // The simulated world, the navigation, the stopping rule and the wind.
@@ -537,17 +524,7 @@ void add_evaluate(CLI::App& app) {
       cmd->add_option("--map-dir", a->map_dir, "Folder of map files with \"sources\" (*.json)"),
       "evaluation.map_dir");
   add_deprecated_alias(cmd, "--maps", "--map-dir", a->map_dir);
-  bind_to(cmd, "--runs", a->eval.runs, "Runs per source, from seeded random free starts",
-          "evaluation.runs");
-  bind_to(cmd, "--seeds", a->eval.seeds,
-          "Evaluate with seeds SEED, SEED + 1, ... this many, pooled (runs.csv then has a seed "
-          "column)",
-          "evaluation.seeds");
-  add_threads_flag(cmd, a->eval.threads, "evaluation.threads",
-                   "Runs in parallel, and threads of each surrogate table build (0: one per core)");
-  bind_to(cmd, "--sources", a->eval.source_count,
-          "Only the first K sources of each map (0: all; a labelled subset)",
-          "evaluation.source_count");
+  add_table_flags(cmd, a->eval, run::evaluation_option_table());
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                  "--shard",

@@ -5,6 +5,7 @@
 #include "python/convert.hpp"
 #include "python/options.hpp"
 #include "run/evaluation.hpp"
+#include "run/option_tables.hpp"
 #include "ste/option_tables.hpp"
 
 namespace plumekit::python {
@@ -82,15 +83,7 @@ void bind_team(py::module_& m) {
   py::class_<run::TeamOptions> t(m, "TeamOptions",
                                  "A team of robots running STE (seed 004 ch. 13)");
   t.def(py::init<>());
-  PK_FIELD(t, run::TeamOptions, robots, "Robots (1: one alone)");
-  t.def_property(
-      "strategy", [](const run::TeamOptions& o) { return std::string(to_string(o.strategy)); },
-      [](run::TeamOptions& o, const std::string& v) { o.strategy = run::parse_team_strategy(v); },
-      "'individualist', 'cooperative' (shared samples) or 'collaborative' (also virtual samples "
-      "and task swaps)");
-  PK_FIELD(t, run::TeamOptions, separation, "No robot moves closer than this to a teammate, m");
-  PK_FIELD(t, run::TeamOptions, patience_s,
-           "A robot kept waiting this long samples where it stands");
+  bind_table(t, run::team_option_table());
 }
 
 void bind_ste_options_class(py::module_& m) {
