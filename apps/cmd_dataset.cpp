@@ -21,6 +21,7 @@
 #include "dataset/features.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/map_set.hpp"
+#include "dataset/option_tables.hpp"
 #include "dataset/plume.hpp"
 #include "dataset/random_maps.hpp"
 #include "dataset/reports.hpp"
@@ -108,33 +109,11 @@ void add_maps_random(CLI::App& app) {
              "maps.sources")
       ->capture_default_str();
   RandomMapOptions& m = a->o.map;
-  bind_field(cmd, cmd->add_option("--width", m.width, "Arena width, m"), "maps.width")
-      ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--height", m.height, "Arena height, m"), "maps.height")
-      ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--min-gap", m.min_gap, "Narrowest passage, m"), "maps.min_gap")
-      ->capture_default_str();
+  add_table_flags(cmd, m, random_map_option_table(), {"maps.width", "maps.height", "maps.min_gap"});
   add_families_option(cmd, m);
-  bind_field(cmd,
-             cmd->add_option("--building-min-size", m.building_min_size,
-                             "building: smallest side of a floor, m"),
-             "maps.building_min_size")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--building-max-size", m.building_max_size,
-                             "building: largest side of a floor, m"),
-             "maps.building_max_size")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--building-passage", m.building_passage,
-                             "building: narrowest door, corridor or gap by furniture, m"),
-             "maps.building_passage")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--margin", m.robot_margin,
-                             "Robot radius + safety that must pass from inlet to outlet, m"),
-             "maps.robot_margin")
-      ->capture_default_str();
+  add_table_flags(cmd, m, random_map_option_table(),
+                  {"maps.building_min_size", "maps.building_max_size", "maps.building_passage",
+                   "maps.robot_margin"});
   add_common_flags(cmd);
   cmd->callback([a] {
     OutputDirectory out(a->out, "maps random");

@@ -6,6 +6,8 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/options.hpp"
+#include "dataset/option_tables.hpp"
+#include "dataset/random_maps.hpp"
 #include "run/evaluation.hpp"
 #include "run/option_tables.hpp"
 #include "run/team.hpp"
@@ -39,8 +41,9 @@ std::string reference() {
         option_markdown(ste::navigation_option_table()), option_markdown(ste::stop_option_table()),
         option_markdown(ste::physics_option_table()), option_markdown(ste::gaussian_option_table()),
         option_markdown(world::world_option_table()),
-        option_markdown(world::filament_option_table()), option_markdown(run::team_option_table()),
-        option_markdown(run::evaluation_option_table())})
+        option_markdown(world::filament_option_table()),
+        option_markdown(dataset::random_map_option_table()),
+        option_markdown(run::team_option_table()), option_markdown(run::evaluation_option_table())})
     md += "\n" + table;
   return md;
 }
