@@ -177,10 +177,7 @@ void add_generate(CLI::App* group) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--out,-o", a->out, "Dataset directory (created if missing)")->required();
-  bind_field(cmd, cmd->add_option("--maps", a->o.maps, "Number of random maps"), "dataset.maps")
-      ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--sources", a->o.sources, "Sources per map"), "dataset.sources")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, dataset_option_table(), {"dataset.maps", "dataset.sources"});
   add_seed_flag(cmd, a->o.seed, "Seed of everything random");
   add_threads_flag(cmd, a->run.threads, "dataset.threads",
                    "Worker threads, one map each (0: one per core)");
@@ -197,13 +194,7 @@ void add_generate(CLI::App* group) {
   add_deprecated_alias(cmd, "--from-maps", "--map-dir", a->map_dir);
   add_families_option(cmd, a->o.map);
   add_table_flags(cmd, a->o.flow, cfd::flow_option_table(), {"flow.cell"});
-  bind_field(cmd,
-             cmd->add_option("--feature-cell", a->o.feature_cell,
-                             "Feature grid: 0, the thesis's 64 x 64 grid over the arena (3 input "
-                             "channels); else cells of about this size in m over the whole map, "
-                             "with the wind as 2 more channels (the v2 surrogate's data; 0.2)"),
-             "dataset.feature_cell")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, dataset_option_table(), {"dataset.feature_cell"});
   bind_field(cmd,
              cmd->add_option("--inlet-speeds", a->inlet_speeds,
                              "LO,HI: each random map's inlets blow at a speed drawn uniformly "

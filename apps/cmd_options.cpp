@@ -6,6 +6,7 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/options.hpp"
+#include "dataset/manifest.hpp"
 #include "dataset/option_tables.hpp"
 #include "dataset/random_maps.hpp"
 #include "run/evaluation.hpp"
@@ -43,7 +44,8 @@ std::string reference() {
         option_markdown(world::world_option_table()),
         option_markdown(world::filament_option_table()),
         option_markdown(dataset::random_map_option_table()),
-        option_markdown(run::team_option_table()), option_markdown(run::evaluation_option_table())})
+        option_markdown(dataset::dataset_option_table()), option_markdown(run::team_option_table()),
+        option_markdown(run::evaluation_option_table())})
     md += "\n" + table;
   return md;
 }
