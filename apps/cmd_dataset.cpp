@@ -59,11 +59,8 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
              "plume.model");
   for (const char* old : {"--model", "--plume"})
     add_deprecated_alias(cmd, old, "--plume-model", p.model)->transform(names);
-  bind_field(cmd,
-             cmd->add_option("--diffusivity", p.advection_diffusion.diffusivity,
-                             "advection-diffusion: eddy diffusivity, m^2/s"),
-             "plume.diffusivity")
-      ->capture_default_str();
+  add_table_flags(cmd, p.advection_diffusion, cfd::advection_diffusion_option_table(),
+                  {"plume.diffusivity"});
   bind_field(cmd,
              cmd->add_option_function<double>(
                     "--release-rate", [&p](double rate) { p.set_release_rate(rate); },

@@ -5,6 +5,7 @@
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
+#include "cfd/advection_diffusion.hpp"
 #include "cfd/options.hpp"
 #include "dataset/manifest.hpp"
 #include "dataset/option_tables.hpp"
@@ -44,8 +45,9 @@ std::string reference() {
         option_markdown(world::world_option_table()),
         option_markdown(world::filament_option_table()),
         option_markdown(dataset::random_map_option_table()),
-        option_markdown(dataset::dataset_option_table()), option_markdown(run::team_option_table()),
-        option_markdown(run::evaluation_option_table())})
+        option_markdown(dataset::dataset_option_table()),
+        option_markdown(cfd::advection_diffusion_option_table()),
+        option_markdown(run::team_option_table()), option_markdown(run::evaluation_option_table())})
     md += "\n" + table;
   return md;
 }

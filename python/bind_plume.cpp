@@ -81,9 +81,7 @@ void bind_plume_options(py::module_& m) {
   py::class_<cfd::AdvectionDiffusionOptions> ad(m, "AdvectionDiffusionOptions",
                                                 "The steady advection-diffusion plume");
   ad.def(py::init<>());
-  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, diffusivity, "Eddy diffusivity, m^2/s");
-  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, release_rate, "Release rate per metre of depth");
-  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, decay_rate, "First-order decay rate, 1/s");
+  bind_table(ad, cfd::advection_diffusion_option_table());
 
   py::class_<PlumeOptions> c(m, "PlumeOptions", "Options of plume() (`plumekit plume`)");
   c.def(py::init<>());
