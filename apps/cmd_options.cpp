@@ -21,6 +21,7 @@
 #include "ste/posterior.hpp"
 #include "ste/stop_rule.hpp"
 #include "world/filament_model.hpp"
+#include "world/gas_sensor.hpp"
 #include "world/option_tables.hpp"
 #include "world/simulated_world.hpp"
 
@@ -49,6 +50,7 @@ std::string reference() {
         option_markdown(ste::physics_option_table()), option_markdown(ste::gaussian_option_table()),
         option_markdown(world::world_option_table()),
         option_markdown(world::filament_option_table()),
+        option_markdown(world::gas_sensor_option_table()),
         option_markdown(dataset::random_map_option_table()),
         option_markdown(dataset::dataset_option_table()),
         option_markdown(cfd::advection_diffusion_option_table()),
