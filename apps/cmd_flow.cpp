@@ -21,49 +21,7 @@ struct FlowArgs {
   std::string out;
   cfd::FlowOptions options;
   cfd::OpenFoamOptions foam;
-  // The engine's enum fields as their names, read by the library's parsers.
-  std::string engine = cfd::to_string(foam.engine);
-  std::string foam_turbulence = cfd::to_string(foam.turbulence);
 };
-
-void bind_engine_options(CLI::App* cmd, FlowArgs& a) {
-  cfd::OpenFoamOptions& f = a.foam;
-  bind_field(cmd,
-             cmd->add_option("--engine", a.engine,
-                             "Flow solver: " + cfd::engine_names() +
-                                 " (openfoam: OpenFOAM's simpleFoam on the same grid, read back "
-                                 "into the same files)"),
-             "flow.engine")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--ranks", f.ranks,
-                             "OpenFOAM engine: MPI ranks (1: serial; N: decomposePar, mpirun -np "
-                             "N simpleFoam -parallel, reconstructPar)"),
-             "flow.ranks")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--foam-turbulence", a.foam_turbulence,
-                             "OpenFOAM engine: turbulence model, " + cfd::foam_turbulence_names() +
-                                 " (RANS with wall functions; --nu is then the molecular "
-                                 "viscosity)"),
-             "flow.openfoam_turbulence")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--foam-tol", f.tolerance,
-                             "OpenFOAM engine: stop when every initial residual is below this"),
-             "flow.openfoam_tolerance")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--foam-max-iter", f.max_iterations,
-                             "OpenFOAM engine: fail after this many SIMPLE iterations"),
-             "flow.openfoam_max_iterations")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--keep-case", f.keep_case,
-                             "OpenFOAM engine: write the case into this new or empty folder and "
-                             "keep it (default: a temporary, removed)"),
-             "flow.openfoam_case");
-}
 
 // Newton's progress: the fraction of the way from the first residual to the
 // tolerance, in log.
@@ -109,12 +67,10 @@ void add_flow_commands(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `flow` output")
       ->required();
   add_table_flags(cmd, a->options, cfd::flow_option_table());
-  bind_engine_options(cmd, *a);
+  add_table_flags(cmd, a->foam, cfd::openfoam_option_table());
   add_common_flags(cmd);
   cmd->callback([a] {
     cfd::FlowOptions& o = a->options;
-    a->foam.engine = cfd::parse_engine(a->engine);
-    a->foam.turbulence = cfd::parse_foam_turbulence(a->foam_turbulence);
     a->foam.validate();
     const Map map = read_map(a->map);
     OutputDirectory out(a->out, "flow", {a->map});

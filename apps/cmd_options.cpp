@@ -6,6 +6,7 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/advection_diffusion.hpp"
+#include "cfd/openfoam_engine.hpp"
 #include "cfd/options.hpp"
 #include "dataset/manifest.hpp"
 #include "dataset/option_tables.hpp"
@@ -44,11 +45,11 @@ const char* const kPreamble =
 std::string reference() {
   std::string md = kPreamble;
   for (const std::string& table :
-       {option_markdown(cfd::flow_option_table()), option_markdown(ste::likelihood_option_table()),
-        option_markdown(ste::bin_option_table()), option_markdown(ste::mh_option_table()),
-        option_markdown(ste::navigation_option_table()), option_markdown(ste::stop_option_table()),
-        option_markdown(ste::physics_option_table()), option_markdown(ste::gaussian_option_table()),
-        option_markdown(world::world_option_table()),
+       {option_markdown(cfd::flow_option_table()), option_markdown(cfd::openfoam_option_table()),
+        option_markdown(ste::likelihood_option_table()), option_markdown(ste::bin_option_table()),
+        option_markdown(ste::mh_option_table()), option_markdown(ste::navigation_option_table()),
+        option_markdown(ste::stop_option_table()), option_markdown(ste::physics_option_table()),
+        option_markdown(ste::gaussian_option_table()), option_markdown(world::world_option_table()),
         option_markdown(world::filament_option_table()),
         option_markdown(world::gas_sensor_option_table()),
         option_markdown(dataset::random_map_option_table()),
