@@ -20,6 +20,7 @@
 #include "ste/option_tables.hpp"
 #include "ste/physics_plume.hpp"
 #include "ste/posterior.hpp"
+#include "ste/ste_3d.hpp"
 #include "ste/stop_rule.hpp"
 #include "world/filament_model.hpp"
 #include "world/gas_sensor.hpp"
@@ -49,7 +50,8 @@ std::string reference() {
         option_markdown(ste::likelihood_option_table()), option_markdown(ste::bin_option_table()),
         option_markdown(ste::mh_option_table()), option_markdown(ste::navigation_option_table()),
         option_markdown(ste::stop_option_table()), option_markdown(ste::physics_option_table()),
-        option_markdown(ste::gaussian_option_table()), option_markdown(world::world_option_table()),
+        option_markdown(ste::gaussian_option_table()), option_markdown(ste::ste3d_option_table()),
+        option_markdown(world::world_option_table()),
         option_markdown(world::filament_option_table()),
         option_markdown(world::gas_sensor_option_table()),
         option_markdown(dataset::random_map_option_table()),

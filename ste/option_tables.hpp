@@ -13,6 +13,7 @@ struct NavigationOptions;
 struct StopOptions;
 struct PhysicsPlumeOptions;
 struct GaussianPlumeBounds;
+struct Ste3dOptions;
 
 const OptionTable<LikelihoodOptions>& likelihood_option_table();
 const OptionTable<BinOptions>& bin_option_table();
@@ -21,5 +22,7 @@ const OptionTable<NavigationOptions>& navigation_option_table();
 const OptionTable<StopOptions>& stop_option_table();
 const OptionTable<PhysicsPlumeOptions>& physics_option_table();
 const OptionTable<GaussianPlumeBounds>& gaussian_option_table();
+// The tunnel's 3-D STE (ste/ste_3d.cpp); its nested structs use the tables above.
+const OptionTable<Ste3dOptions>& ste3d_option_table();
 
 }  // namespace plumekit::ste
