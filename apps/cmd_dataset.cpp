@@ -96,15 +96,12 @@ void add_maps_random(CLI::App& app) {
     MapSetOptions o;
   };
   auto a = std::make_shared<Args>();
-  bind_field(cmd, cmd->add_option("--count,-n", a->o.count, "Number of maps"), "maps.count")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, map_set_option_table(), {"maps.count"});
   add_seed_flag(cmd, a->o.seed, "Seed; map i is the same whatever --count");
   cmd->add_option("--out,-o", a->out,
                   "Output folder: new, empty, or an earlier `maps random` output")
       ->required();
-  bind_field(cmd, cmd->add_option("--sources", a->o.sources, "Random sources to store in each map"),
-             "maps.sources")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, map_set_option_table(), {"maps.sources"});
   RandomMapOptions& m = a->o.map;
   add_table_flags(cmd, m, random_map_option_table(), {"maps.width", "maps.height", "maps.min_gap"});
   add_families_option(cmd, m);

@@ -9,8 +9,10 @@
 #include "cfd/openfoam_engine.hpp"
 #include "cfd/options.hpp"
 #include "dataset/manifest.hpp"
+#include "dataset/map_set.hpp"
 #include "dataset/option_tables.hpp"
 #include "dataset/random_maps.hpp"
+#include "planner/planner.hpp"
 #include "run/evaluation.hpp"
 #include "run/option_tables.hpp"
 #include "run/team.hpp"
@@ -45,19 +47,27 @@ const char* const kPreamble =
 
 std::string reference() {
   std::string md = kPreamble;
-  for (const std::string& table :
-       {option_markdown(cfd::flow_option_table()), option_markdown(cfd::openfoam_option_table()),
-        option_markdown(ste::likelihood_option_table()), option_markdown(ste::bin_option_table()),
-        option_markdown(ste::mh_option_table()), option_markdown(ste::navigation_option_table()),
-        option_markdown(ste::stop_option_table()), option_markdown(ste::physics_option_table()),
-        option_markdown(ste::gaussian_option_table()), option_markdown(ste::ste3d_option_table()),
-        option_markdown(world::world_option_table()),
-        option_markdown(world::filament_option_table()),
-        option_markdown(world::gas_sensor_option_table()),
-        option_markdown(dataset::random_map_option_table()),
-        option_markdown(dataset::dataset_option_table()),
-        option_markdown(cfd::advection_diffusion_option_table()),
-        option_markdown(run::team_option_table()), option_markdown(run::evaluation_option_table())})
+  // In the data flow's order: flow, world, datasets, planner, STE, runs.
+  for (const std::string& table : {option_markdown(cfd::flow_option_table()),
+                                   option_markdown(cfd::openfoam_option_table()),
+                                   option_markdown(cfd::advection_diffusion_option_table()),
+                                   option_markdown(world::filament_option_table()),
+                                   option_markdown(world::gas_sensor_option_table()),
+                                   option_markdown(world::world_option_table()),
+                                   option_markdown(dataset::random_map_option_table()),
+                                   option_markdown(dataset::map_set_option_table()),
+                                   option_markdown(dataset::dataset_option_table()),
+                                   option_markdown(planner::planner_option_table()),
+                                   option_markdown(ste::likelihood_option_table()),
+                                   option_markdown(ste::bin_option_table()),
+                                   option_markdown(ste::mh_option_table()),
+                                   option_markdown(ste::navigation_option_table()),
+                                   option_markdown(ste::stop_option_table()),
+                                   option_markdown(ste::physics_option_table()),
+                                   option_markdown(ste::gaussian_option_table()),
+                                   option_markdown(ste::ste3d_option_table()),
+                                   option_markdown(run::team_option_table()),
+                                   option_markdown(run::evaluation_option_table())})
     md += "\n" + table;
   return md;
 }
