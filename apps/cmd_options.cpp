@@ -16,6 +16,7 @@
 #include "run/evaluation.hpp"
 #include "run/option_tables.hpp"
 #include "run/team.hpp"
+#include "run/tunnel_run.hpp"
 #include "ste/gaussian_plume.hpp"
 #include "ste/mh_estimator.hpp"
 #include "ste/navigation.hpp"
@@ -67,7 +68,8 @@ std::string reference() {
                                    option_markdown(ste::gaussian_option_table()),
                                    option_markdown(ste::ste3d_option_table()),
                                    option_markdown(run::team_option_table()),
-                                   option_markdown(run::evaluation_option_table())})
+                                   option_markdown(run::evaluation_option_table()),
+                                   option_markdown(run::tunnel_option_table())})
     md += "\n" + table;
   return md;
 }
