@@ -1,16 +1,21 @@
 #pragma once
 // What every plumekit command shares: where the shipped data is, the --json
 // switch, and how results and errors are printed.
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/geometry.hpp"
+#include "core/option_table.hpp"
 #include "world/filament_model.hpp"
 
 namespace plumekit::cli {
@@ -51,6 +56,45 @@ void bind_field_label(CLI::App* command, const std::string& field, const std::st
 // replaced by its flag: library messages name fields ("flow.cell"), a
 // command's user knows flags ("--cell").
 std::string with_flag_names(const CLI::App& command, std::string message);
+
+// Adds the flag of one options-table entry (core/option_table.hpp) to
+// `command`, bound to its field in `options` (which must outlive the parse):
+// a number or a name takes a value and --help shows the struct's default; a
+// bool that is false by default is a switch, one that is true takes true/false.
+template <class T>
+CLI::Option* add_table_flag(CLI::App* command, T& options, const OptionEntry<T>& e) {
+  CLI::Option* option = std::visit(
+      [&](const auto& field) -> CLI::Option* {
+        using F = std::decay_t<decltype(field)>;
+        if constexpr (std::is_same_v<F, EnumField<T>>) {
+          // Parsed at once by the library's parser: an unknown name is an OptionError.
+          return command->add_option_function<std::string>(
+              e.flag, [&options, set = field.set](const std::string& v) { set(options, v); },
+              e.help);
+        } else if constexpr (std::is_same_v<F, bool T::*>) {
+          if (!(options.*field)) return command->add_flag(e.flag, options.*field, e.help);
+          return command->add_option(e.flag, options.*field, e.help);
+        } else {
+          return command->add_option(e.flag, options.*field, e.help);
+        }
+      },
+      e.field);
+  if (!std::holds_alternative<bool T::*>(e.field) || option->get_expected_min() > 0)
+    option->default_str(value_text(e, options));
+  return bind_field(command, option, e.name);
+}
+
+// Adds the flags of every entry of `table` that has one, or only of the entries
+// named in `only` ("flow.cell"), in the table's order.
+template <class T>
+void add_table_flags(CLI::App* command, T& options, const OptionTable<T>& table,
+                     const std::vector<std::string>& only = {}) {
+  for (const OptionEntry<T>& e : table.entries) {
+    const bool wanted =
+        only.empty() ? !e.flag.empty() : std::find(only.begin(), only.end(), e.name) != only.end();
+    if (wanted) add_table_flag(command, options, e);
+  }
+}
 
 // The flags that mean the same on every command (README, "Flags"). Each binds
 // to a library field, so the --help default is the library's.

@@ -20,12 +20,14 @@
 #include "dataset/dataset_reader.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/map_set.hpp"
+#include "dataset/option_tables.hpp"
 #include "dataset/plume.hpp"
 #include "dataset/random_maps.hpp"
 #include "dataset/reports.hpp"
 #include "map/map_json.hpp"
 #include "map/map_render.hpp"
 #include "surrogate/features.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::cli {
 
@@ -57,22 +59,15 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
              "plume.model");
   for (const char* old : {"--model", "--plume"})
     add_deprecated_alias(cmd, old, "--plume-model", p.model)->transform(names);
-  bind_field(cmd,
-             cmd->add_option("--diffusivity", p.advection_diffusion.diffusivity,
-                             "advection-diffusion: eddy diffusivity, m^2/s"),
-             "plume.diffusivity")
-      ->capture_default_str();
+  add_table_flags(cmd, p.advection_diffusion, cfd::advection_diffusion_option_table(),
+                  {"plume.diffusivity"});
   bind_field(cmd,
              cmd->add_option_function<double>(
                     "--release-rate", [&p](double rate) { p.set_release_rate(rate); },
                     "Release rate per metre of depth (concentration units * m^2/s), both models")
                  ->default_str(CLI::detail::to_string(p.advection_diffusion.release_rate)),
              "plume.release_rate");
-  bind_field(cmd,
-             cmd->add_option("--filaments-per-second", p.filament.release_per_second,
-                             "filament: filaments released per second"),
-             "plume.filaments_per_second")
-      ->capture_default_str();
+  add_table_flags(cmd, p.filament, world::filament_option_table(), {"plume.filaments_per_second"});
   add_world_options(cmd, p.filament);
   add_gas_sensor_options(cmd, p.sensor, "The static sensors'");
 }
@@ -101,43 +96,18 @@ void add_maps_random(CLI::App& app) {
     MapSetOptions o;
   };
   auto a = std::make_shared<Args>();
-  bind_field(cmd, cmd->add_option("--count,-n", a->o.count, "Number of maps"), "maps.count")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, map_set_option_table(), {"maps.count"});
   add_seed_flag(cmd, a->o.seed, "Seed; map i is the same whatever --count");
   cmd->add_option("--out,-o", a->out,
                   "Output folder: new, empty, or an earlier `maps random` output")
       ->required();
-  bind_field(cmd, cmd->add_option("--sources", a->o.sources, "Random sources to store in each map"),
-             "maps.sources")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, map_set_option_table(), {"maps.sources"});
   RandomMapOptions& m = a->o.map;
-  bind_field(cmd, cmd->add_option("--width", m.width, "Arena width, m"), "maps.width")
-      ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--height", m.height, "Arena height, m"), "maps.height")
-      ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--min-gap", m.min_gap, "Narrowest passage, m"), "maps.min_gap")
-      ->capture_default_str();
+  add_table_flags(cmd, m, random_map_option_table(), {"maps.width", "maps.height", "maps.min_gap"});
   add_families_option(cmd, m);
-  bind_field(cmd,
-             cmd->add_option("--building-min-size", m.building_min_size,
-                             "building: smallest side of a floor, m"),
-             "maps.building_min_size")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--building-max-size", m.building_max_size,
-                             "building: largest side of a floor, m"),
-             "maps.building_max_size")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--building-passage", m.building_passage,
-                             "building: narrowest door, corridor or gap by furniture, m"),
-             "maps.building_passage")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--margin", m.robot_margin,
-                             "Robot radius + safety that must pass from inlet to outlet, m"),
-             "maps.robot_margin")
-      ->capture_default_str();
+  add_table_flags(cmd, m, random_map_option_table(),
+                  {"maps.building_min_size", "maps.building_max_size", "maps.building_passage",
+                   "maps.robot_margin"});
   add_common_flags(cmd);
   cmd->callback([a] {
     OutputDirectory out(a->out, "maps random");
@@ -165,8 +135,7 @@ void add_plume(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `plume` output")
       ->required();
   add_seed_flag(cmd, a->seed, "Seed of the filament model");
-  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, cfd::kCellHelp), "flow.cell")
-      ->capture_default_str();
+  add_table_flags(cmd, a->flow, cfd::flow_option_table(), {"flow.cell"});
   cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
   add_plume_options(cmd, a->p);
   add_common_flags(cmd);
@@ -202,10 +171,7 @@ void add_generate(CLI::App* group) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("--out,-o", a->out, "Dataset directory (created if missing)")->required();
-  bind_field(cmd, cmd->add_option("--maps", a->o.maps, "Number of random maps"), "dataset.maps")
-      ->capture_default_str();
-  bind_field(cmd, cmd->add_option("--sources", a->o.sources, "Sources per map"), "dataset.sources")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o, dataset_option_table(), {"dataset.maps", "dataset.sources"});
   add_seed_flag(cmd, a->o.seed, "Seed of everything random");
   add_threads_flag(cmd, a->run.threads, "dataset.threads",
                    "Worker threads, one map each (0: one per core)");
@@ -221,15 +187,8 @@ void add_generate(CLI::App* group) {
              "dataset.map_dir");
   add_deprecated_alias(cmd, "--from-maps", "--map-dir", a->map_dir);
   add_families_option(cmd, a->o.map);
-  bind_field(cmd, cmd->add_option("--cell", a->o.flow.cell, cfd::kCellHelp), "flow.cell")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--feature-cell", a->o.feature_cell,
-                             "Feature grid: 0, the thesis's 64 x 64 grid over the arena (3 input "
-                             "channels); else cells of about this size in m over the whole map, "
-                             "with the wind as 2 more channels (the v2 surrogate's data; 0.2)"),
-             "dataset.feature_cell")
-      ->capture_default_str();
+  add_table_flags(cmd, a->o.flow, cfd::flow_option_table(), {"flow.cell"});
+  add_table_flags(cmd, a->o, dataset_option_table(), {"dataset.feature_cell"});
   bind_field(cmd,
              cmd->add_option("--inlet-speeds", a->inlet_speeds,
                              "LO,HI: each random map's inlets blow at a speed drawn uniformly "

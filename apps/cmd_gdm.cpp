@@ -126,8 +126,7 @@ void add_gdm_commands(CLI::App& app) {
   csv->excludes(run);
   cmd->add_option("--source", a->source, "The true source X,Y: score the maps against its plume");
   cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
-  bind_field(cmd, cmd->add_option("--cell", a->flow.cell, cfd::kCellHelp), "flow.cell")
-      ->capture_default_str();
+  add_table_flags(cmd, a->flow, cfd::flow_option_table(), {"flow.cell"});
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `gdm` output")
       ->required();
   bind_gdm_options(cmd, *a);

@@ -25,10 +25,13 @@
 #include "run/demo.hpp"
 #include "run/evaluation.hpp"
 #include "run/evaluation_parts.hpp"
+#include "run/option_tables.hpp"
 #include "run/report.hpp"
 #include "run/scenario.hpp"
+#include "ste/option_tables.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "surrogate/plume_network.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::cli {
 
@@ -147,15 +150,9 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
           "End a run as soon as the robot comes this close to the source, on its way too, m "
           "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
           "ste.success_radius");
-  bind_to(cmd, "--noise", o.world.noise, "Sensor noise std per reading (simulated)",
-          "ste.world.noise");
-  bind_to(cmd, "--speed", o.world.speed, "Robot speed, m/s", "ste.world.speed");
-  bind_to(cmd, "--stop-s", o.world.sample_s,
-          "Length of each stop's sampling, s (seed 004 and the thesis: 5; seed 000: 20)",
-          "ste.world.sample_s");
-  bind_to(cmd, "--stop-rate", o.world.sample_rate,
-          "Readings per second during a stop, Hz (seed 004 and the thesis: 10; seed 000: 1)",
-          "ste.world.sample_rate");
+  add_table_flags(
+      cmd, o.world, world::world_option_table(),
+      {"ste.world.noise", "ste.world.speed", "ste.world.sample_s", "ste.world.sample_rate"});
   add_world_options(cmd, o.world.filament);
   add_gas_sensor_options(cmd, o.world.sensor, "The robot's");
   bind_field(cmd,
@@ -170,13 +167,10 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
                     "Anemometer direction error per stop: std in degrees, or table35 (seed 000, "
                     "Table 3.5, at the stop's length: 22.26 for 5 s, 14.02 for 20 s)")
                  ->type_name("DEG|table35")
-                 ->default_str("0"),
+                 ->default_str(default_text(
+                     world::world_option_table().entry("ste.world.wind_direction_noise"))),
              "ste.world.wind_direction_noise");
-  bind_to(cmd, "--wind-variance-noise", o.world.wind_variance_noise_deg,
-          "Direction noise on each single wind reading of a stop, degrees, from which the stop's "
-          "circular variance (the particle filter's) is computed (seed 002: 23.08; 0: the "
-          "world's own wind)",
-          "ste.world.wind_variance_noise");
+  add_table_flags(cmd, o.world, world::world_option_table(), {"ste.world.wind_variance_noise"});
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                     "--position-noise",
@@ -191,84 +185,25 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
                     "gps (seed 000 Eq. 4.3: variance 1.17 m^2, so 1.08 m on each reading's fix; "
                     "the stop records their mean, 0.24 m for 20 readings)")
                  ->type_name("M|gps")
-                 ->default_str("0"),
+                 ->default_str(
+                     default_text(world::world_option_table().entry("ste.world.position_noise"))),
              "ste.world.position_noise");
-  bind_to(cmd, "--odometry-drift", o.world.odometry_drift,
-          "The position a stop records drifts from the true one by a random walk of this std per "
-          "axis per square root of metre travelled, m (odometry without a positioning system, "
-          "for ste-local; 0: the true position)",
-          "ste.world.odometry_drift");
-  bind_to(cmd, "--rotor-disc", o.world.rotor_disc,
-          "Each gas reading averages the concentration over a disc of this radius, m (seed 000's "
-          "rotor disturbance: 0.5; 0: at the sensor's point)",
-          "ste.world.rotor_disc");
+  add_table_flags(cmd, o.world, world::world_option_table(),
+                  {"ste.world.odometry_drift", "ste.world.rotor_disc"});
 }
 
 // A team of robots (seed 004 ch. 13; run/team.hpp).
 void add_team_options(CLI::App* cmd, run::TeamOptions& t) {
-  bind_to(cmd, "--robots", t.robots,
-          "Robots running STE together in one world (1-64; the thesis's teams: 1-3), started "
-          "side by side --separation apart",
-          "ste.team.robots");
-  bind_field(
-      cmd,
-      cmd->add_option_function<std::string>(
-             "--team", [&t](const std::string& s) { t.strategy = run::parse_team_strategy(s); },
-             "The team's strategy: individualist (each alone; the first declaration ends "
-             "the mission), cooperative (every sample shared), collaborative (shared "
-             "samples, virtual samples at teammates' goals, task swaps)")
-          ->default_str(to_string(t.strategy)),
-      "ste.team.strategy");
-  bind_to(cmd, "--separation", t.separation,
-          "No robot of a team moves closer than this to a teammate, m", "ste.team.separation");
+  add_table_flags(cmd, t, run::team_option_table());
 }
 
 // The simulated world, the navigation, the stopping rule and the wind.
 void add_run_options(CLI::App* cmd, run::SteOptions& o) {
   add_robot_world_options(cmd, o);
-  bind_to(cmd, "--alpha", o.navigation.alpha, "Weight of the KL move against the source move",
-          "ste.navigation.alpha");
-  bind_to(cmd, "--beta", o.navigation.beta, "Weight of the posterior against the inverse distance",
-          "ste.navigation.beta");
-  bind_to(cmd, "--step", o.navigation.step, "Candidate lattice spacing, m", "ste.navigation.step");
-  bind_to(cmd, "--lattice", o.navigation.lattice,
-          "Candidates up to this many steps per axis: (2 L + 1)^2 - 1 of them",
-          "ste.navigation.lattice");
-  bind_field(
-      cmd,
-      cmd->add_option_function<std::string>(
-             "--reward", [&o](const std::string& s) { o.navigation.reward = ste::parse_reward(s); },
-             "Candidate score: kl (the thesis's, at the expected source) or expected (the "
-             "expected information gain over the posterior's sources)")
-          ->default_str(to_string(o.navigation.reward)),
-      "ste.navigation.reward");
-  bind_field(
-      cmd,
-      cmd->add_option_function<std::string>(
-             "--candidates",
-             [&o](const std::string& s) { o.navigation.candidates = ste::parse_candidates(s); },
-             "Where the robot may go next: lattice (moves around it, the thesis's), "
-             "floor (also goals over the whole reachable floor, taken when one offers more "
-             "than twice the moves' expected gain per second of travel and sampling), or auto "
-             "(floor on arenas larger than the thesis's 10 x 4 m, lattice on the others)")
-          ->default_str(to_string(o.navigation.candidates)),
-      "ste.navigation.candidates");
-  bind_to(cmd, "--floor-spacing", o.navigation.floor_spacing,
-          "Spacing of the floor's goals, m (--candidates floor)", "ste.navigation.floor_spacing");
+  add_table_flags(cmd, o.navigation, ste::navigation_option_table());
   bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
-  bind_to(cmd, "--max-samples", o.stop.max_samples,
-          "Stop after this many samples (0, the default: 50, or on a floor of more than 500 m^2 "
-          "one per 10 m^2 of its reachable free space)",
-          "ste.stop.max_samples");
-  bind_to(cmd, "--entropy-fraction", o.stop.entropy_fraction,
-          "Stop when the posterior's entropy on the thesis's bins falls below this fraction of "
-          "its maximum (the thesis's: 0.02)",
-          "ste.stop.entropy_fraction");
-  bind_to(cmd, "--seen-mass", o.stop.seen_mass,
-          "Stop on entropy only with this share of the posterior on sources the samples could "
-          "tell from no source (0: also declare sources whose plume reached no sample)",
-          "ste.stop.seen_mass");
-  bind_to(cmd, "--cell", o.flow.cell, cfd::kCellHelp, "flow.cell");
+  add_table_flags(cmd, o.stop, ste::stop_option_table());
+  add_table_flags(cmd, o.flow, cfd::flow_option_table(), {"flow.cell"});
   add_team_options(cmd, o.team);
 }
 
@@ -585,17 +520,7 @@ void add_evaluate(CLI::App& app) {
       cmd->add_option("--map-dir", a->map_dir, "Folder of map files with \"sources\" (*.json)"),
       "evaluation.map_dir");
   add_deprecated_alias(cmd, "--maps", "--map-dir", a->map_dir);
-  bind_to(cmd, "--runs", a->eval.runs, "Runs per source, from seeded random free starts",
-          "evaluation.runs");
-  bind_to(cmd, "--seeds", a->eval.seeds,
-          "Evaluate with seeds SEED, SEED + 1, ... this many, pooled (runs.csv then has a seed "
-          "column)",
-          "evaluation.seeds");
-  add_threads_flag(cmd, a->eval.threads, "evaluation.threads",
-                   "Runs in parallel, and threads of each surrogate table build (0: one per core)");
-  bind_to(cmd, "--sources", a->eval.source_count,
-          "Only the first K sources of each map (0: all; a labelled subset)",
-          "evaluation.source_count");
+  add_table_flags(cmd, a->eval, run::evaluation_option_table());
   bind_field(cmd,
              cmd->add_option_function<std::string>(
                  "--shard",

@@ -18,6 +18,7 @@
 #include "map/map_render.hpp"
 #include "run/tunnel_report.hpp"
 #include "run/tunnel_run.hpp"
+#include "ste/option_tables.hpp"
 
 namespace plumekit::cli {
 
@@ -80,22 +81,9 @@ void add_tunnel_options(CLI::App* cmd, run::TunnelOptions& o) {
                              "(Table 17.1: 0.7 or 0.9)"),
              "tunnel.search.threshold")
       ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--time-limit", o.time_limit_s,
-                             "Trackers: seconds before a run fails (thesis: 720)"),
-             "tunnel.time_limit_s")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--start-downwind", o.start_downwind,
-                             "Trackers: random starts this far downwind of the source, m "
-                             "(thesis: 10; cut to the tunnel)"),
-             "tunnel.start_downwind")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--max-samples", o.ste.max_samples,
-                             "ste-3d: samples before it declares without certainty"),
-             "tunnel.ste.max_samples")
-      ->capture_default_str();
+  add_table_flags(cmd, o, run::tunnel_option_table(),
+                  {"tunnel.time_limit_s", "tunnel.start_downwind"});
+  add_table_flags(cmd, o.ste, ste::ste3d_option_table(), {"tunnel.ste.max_samples"});
   bind_field(cmd,
              cmd->add_option("--sigma-m", o.ste.likelihood.sigma_m,
                              "ste-3d: the model error sigma_M (thesis: 30)"),

@@ -13,5 +13,7 @@ void add_ste_commands(CLI::App& app);  // localize, evaluate, demo
 // `localize tunnel`, `evaluate tunnel` (after add_ste_commands)
 void add_tunnel_commands(CLI::App& app);
 void add_gdm_commands(CLI::App& app);
+// `options --markdown`: the option reference, docs/options.md
+void add_options_commands(CLI::App& app);
 
 }  // namespace plumekit::cli

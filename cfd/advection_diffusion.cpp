@@ -48,11 +48,22 @@ double hybrid(double F, double D) {
 
 }  // namespace
 
+const OptionTable<AdvectionDiffusionOptions>& advection_diffusion_option_table() {
+  using O = AdvectionDiffusionOptions;
+  static const OptionTable<O> table{
+      "Advection-diffusion plume (cfd::AdvectionDiffusionOptions)",
+      {{"plume.diffusivity", "--diffusivity", &O::diffusivity, positive(100.0, "m^2/s"),
+        "advection-diffusion: eddy diffusivity, m^2/s"},
+       {"plume.release_rate", "", &O::release_rate, positive(1e9, "concentration units * m^2/s"),
+        "Release rate per metre of depth (concentration units * m^2/s)",
+        "the default is {default}"},
+       {"plume.decay_rate", "", &O::decay_rate, non_negative(100.0, "1/s"),
+        "First-order decay rate, 1/s (0: no decay)", "the default is {default} (no decay)"}}};
+  return table;
+}
+
 void AdvectionDiffusionOptions::validate() const {
-  check_positive("plume.diffusivity", diffusivity, 100.0, "m^2/s", "the default is 0.05 m^2/s");
-  check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
-                 "the default is 1000");
-  check_non_negative("plume.decay_rate", decay_rate, 100.0, "1/s", "the default is 0 (no decay)");
+  plumekit::validate(advection_diffusion_option_table(), *this);
 }
 
 AdvectionDiffusion::AdvectionDiffusion(const cfd::WindField& wind,

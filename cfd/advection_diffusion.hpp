@@ -17,6 +17,7 @@
 
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
+#include "core/option_table.hpp"
 
 namespace plumekit::cfd {
 
@@ -42,6 +43,10 @@ struct AdvectionDiffusionOptions {
   // "plume.decay_rate" and the allowed range. AdvectionDiffusion's constructor calls it.
   void validate() const;
 };
+
+// Its options table (core/option_table.hpp): validate(), the dataset commands' --diffusivity,
+// the Python properties and docs/options.md.
+const OptionTable<AdvectionDiffusionOptions>& advection_diffusion_option_table();
 
 // What the factorization did.
 struct AdvectionDiffusionSummary {

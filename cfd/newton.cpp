@@ -48,9 +48,9 @@ double since(Newton::Clock::time_point t) {
 // or a looser tolerance help).
 std::string convergence_advice(double reynolds, const FlowOptions& o) {
   if (reynolds < 1.0)
-    return "The flow is dominated by viscosity: try a smaller flow.nu (the default is 0.01 m^2/s) "
-           "or a larger flow.tolerance (now " +
-           compact(o.tolerance) + ").";
+    return "The flow is dominated by viscosity: try a smaller flow.nu (the default is " +
+           default_text(flow_option_table().entry("flow.nu")) +
+           " m^2/s) or a larger flow.tolerance (now " + compact(o.tolerance) + ").";
   std::string advice = "Try a larger flow.nu, a finer flow.cell";
   if (o.convection != Convection::Upwind) advice += ", or upwind convection (flow.convection)";
   return advice + ".";

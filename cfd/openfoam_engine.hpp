@@ -50,6 +50,10 @@ struct OpenFoamOptions {
   void validate() const;
 };
 
+// Its options table (core/option_table.hpp): validate()'s ranges, `flow`'s engine flags and
+// docs/options.md. cfd/openfoam_options.cpp.
+const OptionTable<OpenFoamOptions>& openfoam_option_table();
+
 // What the OpenFOAM run did.
 struct OpenFoamRun {
   int ranks = 1;

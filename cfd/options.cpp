@@ -99,19 +99,77 @@ double resolved_cell(const Map& map, const FlowOptions& options) {
 
 // The upper bounds are far beyond any useful setting; they catch unit
 // mistakes and typos (a cell of 50 m, a viscosity of 1e9) before a solve that
-// cannot succeed. cfd/README.md lists them.
+// cannot succeed.
+const OptionTable<FlowOptions>& flow_option_table() {
+  using O = FlowOptions;
+  static const OptionTable<O> table{
+      "Flow (cfd::FlowOptions)",
+      {{"flow.cell", "--cell", &O::cell, zero_or(positive(kMaxCell, "m")),
+        "Flow cell size, m; 0: " + compact(kDefaultCell) + " m, or on arenas whose " +
+            option_number(kDefaultCell * 100) + " cm grid would exceed " +
+            option_number(kAutoCellMaxCells) +
+            " cells, the round size that gives at most that many",
+        "{default} (the default) is " + compact(kDefaultCell) + " m, or coarser on arenas over " +
+            option_number(kAutoCellMaxCells) + " such cells"},
+       {"flow.strict_gaps",
+        "--strict-gaps",
+        &O::strict_gaps,
+        {},
+        "Refuse a map with gaps open in it but narrower than a cell, instead of closing them "
+        "with a warning"},
+       {"flow.nu", "--nu", &O::nu, positive(10.0, "m^2/s"),
+        "Kinematic (effective) viscosity, m^2/s",
+        "the default is {default} m^2/s (air's molecular value is 1.5e-05)"},
+       {"flow.turbulence",
+        "--turbulence",
+        enum_field(&O::turbulence, &to_string, &parse_turbulence, turbulence_names()),
+        {},
+        "Turbulence closure: " + turbulence_names()},
+       {"flow.convection",
+        "--convection",
+        enum_field(&O::convection, &to_string, &parse_convection, convection_names()),
+        {},
+        "Convection scheme: " + convection_names() +
+            " (vanleer: bounded, 2nd order; central: 2nd order; upwind: 1st order)"},
+       {"flow.upwind_fallback",
+        "--upwind-fallback",
+        &O::upwind_fallback,
+        {},
+        "When central or vanleer convection does not converge, solve again with upwind (the "
+        "report says so); false: fail instead"},
+       {"flow.tolerance", "--tol", &O::tolerance, real_range(1e-14, 0.1, ""),
+        "Stop when both normalised residuals are below this"},
+       {"flow.max_iterations", "--max-iter", &O::max_iterations, count_range(0, 100000),
+        "Give up after this many Newton iterations (0: 100, or 300 with mixing-length)",
+        "0 means the default (100, or 300 with the mixing-length closure)"},
+       {"flow.linear_solver",
+        "--linear-solver",
+        enum_field(&O::linear_solver, &to_string, &parse_linear_solver, linear_solver_names()),
+        {},
+        "Newton systems: " + linear_solver_names() +
+            " (nullspace: divergence-free subspace, one unknown per grid node; coupled: u, v, "
+            "p; same steps, coupled is slower)"},
+       {"flow.verbose",
+        "--verbose",
+        &O::verbose,
+        {},
+        "Print the residuals of every iteration on stderr"},
+       {"flow.kappa", "", &O::kappa, positive(1.0, ""), "Mixing-length (von Karman's) constant",
+        "von Karman's constant is {default}"},
+       {"flow.lm_max", "", &O::lm_max, real_range(-1e3, 1e3, "m"),
+        "Mixing-length cap, m (0 or less: 0.09 times half the arena's smaller side)",
+        "0 or less means 0.09 times half the arena's smaller side"},
+       {"flow.closed", "", &O::closed, {}, "Openings are walls (a closed cavity)"},
+       {"flow.sequencing",
+        "",
+        &O::sequencing,
+        {},
+        "Start Newton from the flow on a grid twice as coarse"}}};
+  return table;
+}
+
 void FlowOptions::validate() const {
-  if (cell != 0.0)  // 0: the default, chosen from the arena's size
-    check_positive("flow.cell", cell, kMaxCell, "m",
-                   "0 (the default) is 0.05 m, or coarser on arenas over 640000 such cells");
-  check_positive("flow.nu", nu, 10.0, "m^2/s",
-                 "the default is 0.01 m^2/s (air's molecular value is 1.5e-05)");
-  check_range("flow.tolerance", tolerance, 1e-14, 0.1, "", "the default is 1e-08");
-  check_count("flow.max_iterations", max_iterations, 0, 100000,
-              "0 means the default (100, or 300 with the mixing-length closure)");
-  check_positive("flow.kappa", kappa, 1.0, "", "von Karman's constant is 0.41");
-  check_range("flow.lm_max", lm_max, -1e3, 1e3, "m",
-              "0 or less means 0.09 times half the arena's smaller side");
+  plumekit::validate(flow_option_table(), *this);
   const char* walls[] = {"left", "right", "bottom", "top"};
   for (int k = 0; k < 4; ++k)
     check_range(std::string("flow.wall_speed.") + walls[k], wall_speed[k], -100.0, 100.0, "m/s",

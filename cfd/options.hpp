@@ -5,6 +5,8 @@
 #include <functional>
 #include <string>
 
+#include "core/option_table.hpp"
+
 namespace plumekit {
 struct Map;
 }
@@ -46,11 +48,6 @@ LinearSolverKind parse_linear_solver(const std::string& name);
 // that many cells. It depends on the arena's size only, never on the machine.
 inline constexpr double kDefaultCell = 0.05;
 inline constexpr double kAutoCellMaxCells = 640000;
-// The help text of every --cell that sets FlowOptions::cell.
-inline constexpr const char* kCellHelp =
-    "Flow cell size, m; 0 (the default): 0.05 m, or on arenas whose 5 cm grid would exceed "
-    "640000 cells, the round size that gives at most that many";
-
 struct FlowOptions {
   // m; cells per side = round(extent / cell). 0 (the default) chooses from the
   // arena's size: resolved_cell() below.
@@ -98,9 +95,14 @@ struct FlowOptions {
   std::function<void(int, double, double)> on_iteration;
 
   // Throws OptionError naming the field ("flow.cell", "flow.nu", ...) and its
-  // allowed range (cfd/README.md, "Options"). cfd::solve calls it.
+  // allowed range (flow_option_table(); docs/options.md). cfd::solve calls it.
   void validate() const;
 };
+
+// Every option of FlowOptions but wall_speed and on_iteration: names, flags,
+// ranges and help (core/option_table.hpp). The commands that take --cell bind
+// its "flow.cell" entry.
+const OptionTable<FlowOptions>& flow_option_table();
 
 // The cell a grid is made with: options.cell, or the default rule above when
 // it is 0. Every grid of a flow solve is made from this.

@@ -29,20 +29,20 @@ std::string join(const std::vector<std::string>& names) {
 
 }  // namespace
 
+std::string range_text(double lo, double hi, const std::string& unit, bool lo_open, bool hi_open) {
+  if (std::isinf(hi)) return (lo_open ? "more than " : "at least ") + with_unit(lo, unit);
+  if (!lo_open && !hi_open) return "from " + compact(lo) + " to " + with_unit(hi, unit);
+  return std::string(lo_open ? "more than " : "at least ") + compact(lo) + " and " +
+         (hi_open ? "less than " : "at most ") + with_unit(hi, unit);
+}
+
 void check_range(const std::string& field, double value, double lo, double hi,
                  const std::string& unit, const std::string& advice, bool lo_open, bool hi_open) {
   const bool above_lo = lo_open ? value > lo : value >= lo;
   const bool below_hi = hi_open ? value < hi : value <= hi;
   if (std::isfinite(value) && above_lo && below_hi) return;
-  std::string range;
-  if (std::isinf(hi))
-    range = (lo_open ? "more than " : "at least ") + with_unit(lo, unit);
-  else if (!lo_open && !hi_open)
-    range = "from " + compact(lo) + " to " + with_unit(hi, unit);
-  else
-    range = std::string(lo_open ? "more than " : "at least ") + compact(lo) + " and " +
-            (hi_open ? "less than " : "at most ") + with_unit(hi, unit);
-  std::string message = "must be a finite number " + range + ", got " + compact(value);
+  std::string message = "must be a finite number " + range_text(lo, hi, unit, lo_open, hi_open) +
+                        ", got " + compact(value);
   if (!advice.empty()) message += "; " + advice;
   throw OptionError(field, message);
 }

@@ -12,6 +12,11 @@ namespace plumekit {
 // "nan", "inf"), so that DBL_MAX and the like never print as 300 digits.
 std::string compact(double value);
 
+// The allowed range in words, as check_range's messages say it: "more than 0
+// and at most 10 m", "from 1e-14 to 0.1", "at least 1 m".
+std::string range_text(double lo, double hi, const std::string& unit, bool lo_open = false,
+                       bool hi_open = false);
+
 // `value` must be finite and lo <= value <= hi (lo_open / hi_open: strictly).
 // `unit` follows the numbers in the message ("m", "m^2/s", "" for none).
 // `advice` ends the message (what to do), e.g. "the default is 0.05 m".

@@ -1,24 +1,42 @@
-// DatasetOptions::validate (declared in manifest.hpp, where the struct lives).
+// DatasetOptions' table and validate (declared in manifest.hpp, where the struct lives).
 #include "cfd/grid_check.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "dataset/manifest.hpp"
+#include "dataset/option_tables.hpp"
 
 namespace plumekit::dataset {
 
+const OptionTable<DatasetOptions>& dataset_option_table() {
+  using O = DatasetOptions;
+  static const OptionTable<O> table{
+      "Dataset (dataset::DatasetOptions)",
+      {{"dataset.maps", "--maps", &O::maps, count_range(1, 1'000'000), "Number of random maps",
+        "the thesis's dataset has 180"},
+       {"dataset.sources", "--sources", &O::sources, count_range(1, 1'000'000), "Sources per map",
+        "the thesis's dataset has 100 per map"},
+       {"dataset.source_clearance", "", &O::source_clearance, non_negative(10.0, "m"),
+        "Sources keep this far from obstacles, m"},
+       {"dataset.feature_cell", "--feature-cell", &O::feature_cell,
+        zero_or(real_range(0.02, 2.0, "m")),
+        "Feature grid: 0, the thesis's 64 x 64 grid over the arena (3 input channels); else "
+        "cells of about this size in m over the whole map, with the wind as 2 more channels "
+        "(the v2 surrogate's data; 0.2)",
+        "0 (the thesis's 64 x 64 grid) or a cell size; the v2 model uses 0.2 m"}}};
+  return table;
+}
+
 void DatasetOptions::validate() const {
-  if (given_maps.empty()) {
-    check_count("dataset.maps", maps, 1, 1'000'000, "the thesis's dataset has 180");
-    check_count("dataset.sources", sources, 1, 1'000'000, "the thesis's dataset has 100 per map");
+  const OptionTable<DatasetOptions>& table = dataset_option_table();
+  if (given_maps.empty()) {  // given maps bring their own sources
+    validate_entry(table.entry("dataset.maps"), *this);
+    validate_entry(table.entry("dataset.sources"), *this);
     map.validate();
   }
   if (given_maps.size() != map_files.size())
     throw std::logic_error("DatasetOptions: given_maps and map_files differ in length");
-  check_non_negative("dataset.source_clearance", source_clearance, 10.0, "m",
-                     "the default is 0.1 m");
-  if (feature_cell != 0.0)
-    check_range("dataset.feature_cell", feature_cell, 0.02, 2.0, "m",
-                "0 (the thesis's 64 x 64 grid) or a cell size; the v2 model uses 0.2 m");
+  validate_entry(table.entry("dataset.source_clearance"), *this);
+  validate_entry(table.entry("dataset.feature_cell"), *this);
   if (inlet_speed_hi != 0.0 || inlet_speed_lo != 0.0) {
     const std::string advice = "LO,HI with 0 < LO <= HI, each " + std::string(kInletSpeedBound) +
                                "; unset, maps.inlet_speed";

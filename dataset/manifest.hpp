@@ -24,7 +24,7 @@ struct DatasetOptions {
   std::uint64_t seed = kDefaultSeed;
   PlumeOptions plume;
   RandomMapOptions map;
-  cfd::FlowOptions flow;  // cell 0 (0.05 m up to building scale), nu 0.01 m^2/s, central
+  cfd::FlowOptions flow;  // the flow solver's own defaults (docs/options.md)
   // Sources lie at least this far from every obstacle and wall.
   double source_clearance = 0.1;
   // dataset.feature_cell: 0, the thesis's 64 x 64 grid over the arena and three input channels;

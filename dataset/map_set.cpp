@@ -5,13 +5,23 @@
 #include <sstream>
 
 #include "core/option_check.hpp"
+#include "dataset/option_tables.hpp"
 #include "map/map_json.hpp"
 
 namespace plumekit::dataset {
 
+const OptionTable<MapSetOptions>& map_set_option_table() {
+  using O = MapSetOptions;
+  static const OptionTable<O> table{
+      "Map sets (dataset::MapSetOptions, `maps random`)",
+      {{"maps.count", "--count,-n", &O::count, count_range(1, 1'000'000), "Number of maps"},
+       {"maps.sources", "--sources", &O::sources, count_range(0, 1'000'000),
+        "Random sources to store in each map"}}};
+  return table;
+}
+
 void MapSetOptions::validate() const {
-  check_count("maps.count", count, 1, 1'000'000, "the default is 10");
-  check_count("maps.sources", sources, 0, 1'000'000, "the default is 0");
+  plumekit::validate(map_set_option_table(), *this);
   map.validate();
 }
 

@@ -12,6 +12,7 @@
 #include "core/option_check.hpp"
 #include "core/seed.hpp"
 #include "dataset/building_maps.hpp"
+#include "dataset/option_tables.hpp"
 #include "map/map_json.hpp"
 #include "map/rasterize.hpp"
 #include "surrogate/features.hpp"
@@ -176,16 +177,43 @@ std::string family_of(const std::string& name) {
   return "";
 }
 
+const OptionTable<RandomMapOptions>& random_map_option_table() {
+  using O = RandomMapOptions;
+  // At most 100 m: the robot check and the building's checks rasterize the arena at 5 cm.
+  static const OptionTable<O> table{
+      "Random maps (dataset::RandomMapOptions)",
+      {{"maps.width", "--width", &O::width, positive(100.0, "m"), "Arena width, m"},
+       {"maps.height", "--height", &O::height, positive(100.0, "m"), "Arena height, m"},
+       {"maps.min_gap", "--min-gap", &O::min_gap, positive(100.0, "m"), "Narrowest passage, m"},
+       {"maps.building_min_size", "--building-min-size", &O::building_min_size,
+        real_range(4.0, 100.0, "m"), "building: smallest side of a floor, m",
+        "the default is {default} m; a floor needs outer walls, a room and a door"},
+       {"maps.building_max_size", "--building-max-size", &O::building_max_size,
+        real_range(4.0, 100.0, "m"), "building: largest side of a floor, m"},
+       {"maps.building_passage", "--building-passage", &O::building_passage,
+        real_range(0.3, 1.5, "m"), "building: narrowest door, corridor or gap by furniture, m",
+        "the default is {default} m: a door a robot passes"},
+       {"maps.robot_margin", "--margin", &O::robot_margin, non_negative(10.0, "m"),
+        "Robot radius + safety that must pass from inlet to outlet, m"},
+       {"maps.inlet_speed", "", &O::inlet_speed, positive(kMaxInletSpeed, "m/s"),
+        "Inlet speed, uniform over the whole left wall, m/s",
+        std::string("the default is {default} m/s; ") + kInletSpeedBound},
+       {"maps.end_clearance", "", &O::end_clearance, non_negative(100.0, "m"),
+        "Obstacle-free length at each end of the arena, m"},
+       {"maps.max_attempts", "", &O::max_attempts, count_range(1, 10'000'000),
+        "Draws before giving up on a map"}}};
+  return table;
+}
+
+namespace {
+bool is_building_option(const std::string& name) {
+  return name.rfind("maps.building_", 0) == 0;
+}
+}  // namespace
+
 void RandomMapOptions::validate() const {
-  // At most 100 m: the robot check rasterizes the arena at 5 cm.
-  check_positive("maps.width", width, 100.0, "m", "the default is 10 m");
-  check_positive("maps.height", height, 100.0, "m", "the default is 4 m");
-  check_positive("maps.inlet_speed", inlet_speed, kMaxInletSpeed, "m/s",
-                 std::string("the default is 1 m/s; ") + kInletSpeedBound);
-  check_non_negative("maps.end_clearance", end_clearance, 100.0, "m", "the default is 1 m");
-  check_non_negative("maps.robot_margin", robot_margin, 10.0, "m", "the default is 0.15 m");
-  check_positive("maps.min_gap", min_gap, 100.0, "m", "the default is 0.4 m");
-  check_count("maps.max_attempts", max_attempts, 1, 10'000'000, "the default is 10000");
+  for (const auto& e : random_map_option_table().entries)
+    if (!is_building_option(e.name)) validate_entry(e, *this);
   if (!(width > 2 * end_clearance + 0.5))
     throw OptionError(
         "maps.width",
@@ -194,26 +222,27 @@ void RandomMapOptions::validate() const {
             compact(end_clearance) + " m) plus 0.5 m");
   if (!(height > 1.0))
     throw OptionError("maps.height", "must be more than 1 m, got " + compact(height));
-  if (families.empty())
+  if (families.empty()) {
+    std::string thesis;
+    for (const std::string& f : thesis_families())
+      thesis += (thesis.empty() ? "" : ", ") + f;
     throw OptionError("maps.families",
-                      "the list is empty; give one or more families (the default is the "
-                      "thesis's rectangle, two-rectangles, l-shape, u-shape)");
+                      "the list is empty; give one or more families (the "
+                      "default is the thesis's " +
+                          thesis + ")");
+  }
   for (const std::string& f : families)
     check_name("maps.families", f, known_families());
   validate_building();
 }
 
 void RandomMapOptions::validate_building() const {
-  // At most 100 m: the building's checks rasterize it at 5 cm.
-  check_range("maps.building_min_size", building_min_size, 4.0, 100.0, "m",
-              "the default is 6 m; a floor needs outer walls, a room and a door");
-  check_range("maps.building_max_size", building_max_size, 4.0, 100.0, "m", "the default is 30 m");
+  for (const auto& e : random_map_option_table().entries)
+    if (is_building_option(e.name)) validate_entry(e, *this);
   if (building_max_size < building_min_size)
     throw OptionError("maps.building_max_size", compact(building_max_size) +
                                                     " m is less than maps.building_min_size (" +
                                                     compact(building_min_size) + " m)");
-  check_range("maps.building_passage", building_passage, 0.3, 1.5, "m",
-              "the default is 0.8 m: a door a robot passes");
 }
 
 RandomMap random_map(const RandomMapOptions& o, std::uint64_t seed, std::uint64_t index,

@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "planner/planner.hpp"
 
 namespace plumekit::planner {
 
@@ -90,9 +91,11 @@ double inflation_error_bound(double margin, int n) {
 }
 
 std::vector<Region> inflate_free_space(const Map& map, double margin, int arc_segments) {
-  check_non_negative("planner.margin", margin, 10.0, "m",
-                     "the robot's radius plus a safety distance; the thesis used 0.15 m");
-  check_count("planner.arc_segments", arc_segments, 4, 1024, "the default is 16");
+  PlannerOptions checked;  // the planner's own checks of the two numbers
+  checked.margin = margin;
+  checked.arc_segments = arc_segments;
+  validate_entry(planner_option_table().entry("planner.margin"), checked);
+  validate_entry(planner_option_table().entry("planner.arc_segments"), checked);
   std::vector<Region> regions;
   const double x0 = margin, y0 = margin, x1 = map.width - margin, y1 = map.height - margin;
   if (!(x1 > x0) || !(y1 > y0)) return regions;  // the arena is narrower than two margins

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/option_table.hpp"
 #include "map/map.hpp"
 
 namespace plumekit::planner {
@@ -47,6 +48,9 @@ struct PlannerOptions {
   // (planner/README.md); make_planner() calls it.
   void validate() const;
 };
+
+// Its options table (core/option_table.hpp): validate() and docs/options.md.
+const OptionTable<PlannerOptions>& planner_option_table();
 
 struct PlanResult {
   std::vector<Vec2> path;  // from `start` to `goal`; at least two points

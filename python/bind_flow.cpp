@@ -11,22 +11,12 @@
 #include "core/output_target.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/options.hpp"
 #include "python/wind.hpp"
 
 namespace plumekit::python {
 
 namespace {
-
-// An enum option as its name, read and written through the library's own parsers.
-template <class Options, class Enum>
-void enum_option(py::class_<Options>& c, const char* name, Enum Options::*field,
-                 const char* (*to_name)(Enum), Enum (*parse)(const std::string&),
-                 const std::string& doc) {
-  c.def_property(
-      name, [field, to_name](const Options& o) { return std::string(to_name(o.*field)); },
-      [field, parse](Options& o, const std::string& value) { o.*field = parse(value); },
-      doc.c_str());
-}
 
 void bind_flow_options(py::module_& m) {
   using cfd::FlowOptions;
@@ -34,32 +24,9 @@ void bind_flow_options(py::module_& m) {
                             "Options of the steady flow solver (cfd/README.md, \"Options\"); the "
                             "defaults are the dataset generator's");
   c.def(py::init<>())
-      .def_readwrite("cell", &FlowOptions::cell,
-                     "Cell size, m; 0: 0.05 m, or coarser on arenas whose 5 cm grid exceeds "
-                     "640000 cells")
-      .def_readwrite("nu", &FlowOptions::nu, "Kinematic (effective) viscosity, m^2/s")
-      .def_readwrite("kappa", &FlowOptions::kappa, "Mixing-length constant")
-      .def_readwrite("lm_max", &FlowOptions::lm_max, "Mixing-length cap, m (<= 0: automatic)")
-      .def_readwrite("tolerance", &FlowOptions::tolerance,
-                     "Stop when both normalised residuals are below this")
-      .def_readwrite("max_iterations", &FlowOptions::max_iterations,
-                     "Newton iterations before giving up (0: 100, or 300 with mixing-length)")
       .def_readwrite("wall_speed", &FlowOptions::wall_speed,
-                     "Tangential speed of the left, right, bottom, top walls, m/s (a moving lid)")
-      .def_readwrite("closed", &FlowOptions::closed, "Openings are walls (a closed cavity)")
-      .def_readwrite("sequencing", &FlowOptions::sequencing,
-                     "Start Newton from the flow on a grid twice as coarse")
-      .def_readwrite("upwind_fallback", &FlowOptions::upwind_fallback,
-                     "Solve again with upwind when central or vanleer does not converge")
-      .def_readwrite("strict_gaps", &FlowOptions::strict_gaps,
-                     "Refuse gaps narrower than a cell instead of closing them")
-      .def_readwrite("verbose", &FlowOptions::verbose, "A line per iteration on stderr");
-  enum_option(c, "turbulence", &FlowOptions::turbulence, &cfd::to_string, &cfd::parse_turbulence,
-              "Turbulence closure: " + cfd::turbulence_names());
-  enum_option(c, "convection", &FlowOptions::convection, &cfd::to_string, &cfd::parse_convection,
-              "Convection scheme: " + cfd::convection_names());
-  enum_option(c, "linear_solver", &FlowOptions::linear_solver, &cfd::to_string,
-              &cfd::parse_linear_solver, "Newton systems: " + cfd::linear_solver_names());
+                     "Tangential speed of the left, right, bottom, top walls, m/s (a moving lid)");
+  bind_table(c, cfd::flow_option_table());
 }
 
 using WindClass = py::class_<Wind, std::shared_ptr<Wind>>;

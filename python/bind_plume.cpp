@@ -8,6 +8,7 @@
 #include "python/options.hpp"
 #include "python/wind.hpp"
 #include "surrogate/features.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::python {
 
@@ -60,13 +61,7 @@ void bind_sensor(py::module_& m) {
   py::class_<world::GasSensorModel> c(
       m, "GasSensorModel", "A gas sensor's response (dataset/README.md, \"Gas sensors\")");
   c.def(py::init<>());
-  PK_FIELD(c, world::GasSensorModel, rise_s, "Rise time constant, s");
-  PK_FIELD(c, world::GasSensorModel, rise_slow_s, "Slow rise time constant (infrared), s");
-  PK_FIELD(c, world::GasSensorModel, fast_share, "Share of the rise with rise_s");
-  PK_FIELD(c, world::GasSensorModel, decay_s, "Decay time constant, s");
-  PK_FIELD(c, world::GasSensorModel, dead_rise_s, "Dead time before a rise, s");
-  PK_FIELD(c, world::GasSensorModel, dead_decay_s, "Dead time before a decay, s");
-  PK_FIELD(c, world::GasSensorModel, baseline, "Added to every reading");
+  bind_table(c, world::gas_sensor_option_table());
   PK_FIELD(c, world::GasSensorModel, name, "The preset it came from");
   static const std::string doc = [] {
     std::string names;
@@ -81,9 +76,7 @@ void bind_plume_options(py::module_& m) {
   py::class_<cfd::AdvectionDiffusionOptions> ad(m, "AdvectionDiffusionOptions",
                                                 "The steady advection-diffusion plume");
   ad.def(py::init<>());
-  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, diffusivity, "Eddy diffusivity, m^2/s");
-  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, release_rate, "Release rate per metre of depth");
-  PK_FIELD(ad, cfd::AdvectionDiffusionOptions, decay_rate, "First-order decay rate, 1/s");
+  bind_table(ad, cfd::advection_diffusion_option_table());
 
   py::class_<PlumeOptions> c(m, "PlumeOptions", "Options of plume() (`plumekit plume`)");
   c.def(py::init<>());

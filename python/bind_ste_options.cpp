@@ -5,6 +5,8 @@
 #include "python/convert.hpp"
 #include "python/options.hpp"
 #include "run/evaluation.hpp"
+#include "run/option_tables.hpp"
+#include "ste/option_tables.hpp"
 
 namespace plumekit::python {
 
@@ -26,38 +28,19 @@ void bind_estimation(py::module_& m) {
 
   py::class_<BinOptions> b(m, "BinOptions", "Entropy bins, m");
   b.def(py::init<>());
-  PK_FIELD(b, BinOptions, x, "Bin width in x, m");
-  PK_FIELD(b, BinOptions, y, "Bin height in y, m");
+  bind_table(b, bin_option_table());
 
   py::class_<MhOptions> mh(m, "MhOptions", "Metropolis-Hastings (Gaussian plume model)");
   mh.def(py::init<>());
-  PK_FIELD(mh, MhOptions, iterations, "Iterations per decision step");
-  PK_FIELD(mh, MhOptions, burn_in, "Of those, not summarised");
-  PK_FIELD(mh, MhOptions, proposal, "Proposal scale, a share of each parameter's range");
+  bind_table(mh, mh_option_table());
 
   py::class_<StopOptions> s(m, "StopOptions", "When a localization stops");
   s.def(py::init<>());
-  PK_FIELD(s, StopOptions, entropy_fraction, "Stop below this share of the maximum entropy");
-  PK_FIELD(s, StopOptions, seen_mass, "... with at least this posterior mass on seen sources");
-  PK_FIELD(s, StopOptions, max_samples, "Sample budget (0: 50, or one per 10 m^2 on large floors)");
+  bind_table(s, stop_option_table());
 
   py::class_<NavigationOptions> n(m, "NavigationOptions", "Where the robot goes next");
   n.def(py::init<>());
-  PK_FIELD(n, NavigationOptions, step, "Lattice spacing, m");
-  PK_FIELD(n, NavigationOptions, lattice, "Moves of up to this many steps per axis");
-  PK_FIELD(n, NavigationOptions, alpha, "Weight of the KL move against the source move");
-  PK_FIELD(n, NavigationOptions, beta, "Weight of the marginal against the inverse distance");
-  PK_FIELD(n, NavigationOptions, enhanced, "The thesis's combined target (False: the MAP)");
-  PK_FIELD(n, NavigationOptions, floor_spacing, "Floor goals' spacing, m");
-  PK_FIELD(n, NavigationOptions, floor_gain_cells, "Posterior cells per floor goal's gain");
-  n.def_property(
-      "reward", [](const NavigationOptions& o) { return std::string(to_string(o.reward)); },
-      [](NavigationOptions& o, const std::string& v) { o.reward = parse_reward(v); },
-      "'kl' or 'expected'");
-  n.def_property(
-      "candidates", [](const NavigationOptions& o) { return std::string(to_string(o.candidates)); },
-      [](NavigationOptions& o, const std::string& v) { o.candidates = parse_candidates(v); },
-      "'lattice', 'floor' or 'auto'");
+  bind_table(n, navigation_option_table());
 }
 
 void bind_world(py::module_& m) {
@@ -88,33 +71,19 @@ void bind_world(py::module_& m) {
 void bind_models(py::module_& m) {
   py::class_<PhysicsPlumeOptions> p(m, "PhysicsPlumeOptions", "The physics plume model");
   p.def(py::init<>());
-  PK_FIELD(p, PhysicsPlumeOptions, source_cell, "Candidate source grid, m");
   PK_FIELD(p, PhysicsPlumeOptions, advection_diffusion, "Its AdvectionDiffusionOptions");
-  PK_FIELD(p, PhysicsPlumeOptions, scale_lo, "Release-scale prior, low");
-  PK_FIELD(p, PhysicsPlumeOptions, scale_hi, "Release-scale prior, high");
+  bind_table(p, physics_option_table());
 
   py::class_<GaussianPlumeBounds> g(m, "GaussianPlumeBounds", "The Gaussian plume's prior box");
   g.def(py::init<>());
-  PK_FIELD(g, GaussianPlumeBounds, q_max, "Largest release rate");
-  PK_FIELD(g, GaussianPlumeBounds, a_min, "sigma_y growth per metre, low");
-  PK_FIELD(g, GaussianPlumeBounds, a_max, "sigma_y growth per metre, high");
-  PK_FIELD(g, GaussianPlumeBounds, b_min, "sigma_y at the source, low, m");
-  PK_FIELD(g, GaussianPlumeBounds, b_max, "sigma_y at the source, high, m");
+  bind_table(g, gaussian_option_table());
 }
 
 void bind_team(py::module_& m) {
   py::class_<run::TeamOptions> t(m, "TeamOptions",
                                  "A team of robots running STE (seed 004 ch. 13)");
   t.def(py::init<>());
-  PK_FIELD(t, run::TeamOptions, robots, "Robots (1: one alone)");
-  t.def_property(
-      "strategy", [](const run::TeamOptions& o) { return std::string(to_string(o.strategy)); },
-      [](run::TeamOptions& o, const std::string& v) { o.strategy = run::parse_team_strategy(v); },
-      "'individualist', 'cooperative' (shared samples) or 'collaborative' (also virtual samples "
-      "and task swaps)");
-  PK_FIELD(t, run::TeamOptions, separation, "No robot moves closer than this to a teammate, m");
-  PK_FIELD(t, run::TeamOptions, patience_s,
-           "A robot kept waiting this long samples where it stands");
+  bind_table(t, run::team_option_table());
 }
 
 void bind_ste_options_class(py::module_& m) {

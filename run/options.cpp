@@ -7,14 +7,54 @@
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "run/evaluation.hpp"
+#include "run/option_tables.hpp"
 #include "run/scenario.hpp"
 #include "ste/surrogate_plume.hpp"
 
 namespace plumekit::run {
+const OptionTable<TeamOptions>& team_option_table() {
+  using O = TeamOptions;
+  static const OptionTable<O> table{
+      "Team (run::TeamOptions)",
+      {{"ste.team.robots", "--robots", &O::robots, count_range(1, 64),
+        "Robots running STE together in one world (the thesis's teams: 1-3), started side by "
+        "side --separation apart",
+        "the thesis's teams have 1 to 3 robots"},
+       {"ste.team.strategy",
+        "--team",
+        enum_field(&O::strategy, &to_string, &parse_team_strategy,
+                   "individualist, cooperative, collaborative"),
+        {},
+        "The team's strategy: individualist (each alone; the first declaration ends the "
+        "mission), cooperative (every sample shared), collaborative (shared samples, virtual "
+        "samples at teammates' goals, task swaps)"},
+       {"ste.team.separation", "--separation", &O::separation, non_negative(10.0, "m"),
+        "No robot of a team moves closer than this to a teammate, m"},
+       {"ste.team.patience_s", "", &O::patience_s, positive(3600.0, "s"),
+        "A robot kept waiting this long on one way samples where it stands, s"}}};
+  return table;
+}
+
 void TeamOptions::validate() const {
-  check_count("ste.team.robots", robots, 1, 64, "the thesis's teams have 1 to 3 robots");
-  check_non_negative("ste.team.separation", separation, 10.0, "m", "the default is 0.3 m");
-  check_positive("ste.team.patience_s", patience_s, 3600.0, "s", "the default is 10 s");
+  plumekit::validate(team_option_table(), *this);
+}
+
+const OptionTable<EvaluationOptions>& evaluation_option_table() {
+  using O = EvaluationOptions;
+  static const OptionTable<O> table{
+      "Evaluation (run::EvaluationOptions)",
+      {{"evaluation.runs", "--runs", &O::runs, count_range(1, 1'000'000),
+        "Runs per source, from seeded random free starts"},
+       {"evaluation.seeds", "--seeds", &O::seeds, count_range(1, 1000),
+        "Evaluate with seeds SEED, SEED + 1, ... this many, pooled (runs.csv then has a seed "
+        "column)"},
+       {"evaluation.threads", "--threads,-j", &O::threads, count_range(0, 1024),
+        "Runs in parallel, and threads of each surrogate table build (0: one per core)",
+        "0 means one per core"},
+       {"evaluation.source_count", "--sources", &O::source_count, count_range(0, 1'000'000),
+        "Only the first K sources of each map (0: all; a labelled subset)",
+        "0 means all of each map's sources"}}};
+  return table;
 }
 
 ste::LikelihoodOptions SteOptions::likelihood_options() const {
@@ -116,11 +156,7 @@ void SteOptions::check_model_file() const {
 }
 
 void EvaluationOptions::validate() const {
-  check_count("evaluation.runs", runs, 1, 1'000'000, "the default is 3");
-  check_count("evaluation.seeds", seeds, 1, 1000, "the default is 1");
-  check_count("evaluation.threads", threads, 0, 1024, "0 means one per core");
-  check_count("evaluation.source_count", source_count, 0, 1'000'000,
-              "0 means all of each map's sources");
+  plumekit::validate(evaluation_option_table(), *this);
   if (part_n < 1 || part_k < 0 || part_k >= part_n)
     throw OptionError("evaluation.shard", "expected K/N with 0 <= K < N, got " +
                                               std::to_string(part_k) + "/" +

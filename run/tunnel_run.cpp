@@ -154,22 +154,62 @@ world::WorldOptions TunnelOptions::default_world() {
   return w;
 }
 
+const OptionTable<TunnelOptions>& tunnel_option_table() {
+  using O = TunnelOptions;
+  static const OptionTable<O> table{
+      "Tunnel runs (run::TunnelOptions; its tunnel, world, STE and search apart)",
+      {{"tunnel.tracker_speed", "", &O::tracker_speed, positive(10.0, "m/s"),
+        "Trackers' speed, m/s", "ch. 17: 0.05 m/s"},
+       {"tunnel.decision_s", "", &O::decision_s, positive(60.0, "s"),
+        "Seconds between a tracker's decisions"},
+       {"tunnel.time_limit_s", "--time-limit", &O::time_limit_s, positive(1e6, "s"),
+        "Trackers: seconds before a run fails (thesis: 720)", "ch. 17: 720 s"},
+       {"tunnel.box", "", &O::box, positive(10.0, "m"), "Side of the trackers' success box, m",
+        "ch. 17: 0.2 m"},
+       {"tunnel.margin",
+        "",
+        &O::margin,
+        {},
+        "Goals and starts stay this far inside the walls, m",
+        "",
+        "from 0 to a quarter of the tunnel's smaller side, m"},
+       {"tunnel.source_x",
+        "",
+        &O::source_x,
+        {},
+        "The source's distance from the upwind wall, m",
+        "",
+        "from tunnel.margin to the tunnel's length less tunnel.margin, m"},
+       {"tunnel.min_start_distance",
+        "",
+        &O::min_start_distance,
+        {},
+        "Random starts at least this far from the source, m",
+        "",
+        "from 0 to half the tunnel's length, m"},
+       {"tunnel.start_downwind", "--start-downwind", &O::start_downwind, positive(1000.0, "m"),
+        "Trackers: random starts this far downwind of the source, m (thesis: 10; cut to the "
+        "tunnel)",
+        "ch. 17: 10 m"}}};
+  return table;
+}
+
 void TunnelOptions::validate() const {
   tunnel.validate();
   world::validate_tunnel_world(world);
   ste.validate();
   search.validate();
-  check_positive("tunnel.tracker_speed", tracker_speed, 10.0, "m/s", "ch. 17: 0.05 m/s");
-  check_positive("tunnel.decision_s", decision_s, 60.0, "s", "the default is 1 s");
-  check_positive("tunnel.time_limit_s", time_limit_s, 1e6, "s", "ch. 17: 720 s");
-  check_positive("tunnel.box", box, 10.0, "m", "ch. 17: 0.2 m");
+  plumekit::validate(tunnel_option_table(), *this);
+  // The ranges that depend on the tunnel's size.
+  const auto defaults = [](const char* name) {
+    return "the default is " + default_text(tunnel_option_table().entry(name)) + " m";
+  };
   const double smallest = std::min(tunnel.width, tunnel.height);
-  check_non_negative("tunnel.margin", margin, 0.25 * smallest, "m", "the default is 0.1 m");
+  check_non_negative("tunnel.margin", margin, 0.25 * smallest, "m", defaults("tunnel.margin"));
   check_range("tunnel.source_x", source_x, margin, tunnel.length - margin, "m",
               "ch. 5.1: 1 m from the upwind wall");
   check_non_negative("tunnel.min_start_distance", min_start_distance, 0.5 * tunnel.length, "m",
-                     "the default is 1 m");
-  check_positive("tunnel.start_downwind", start_downwind, 1000.0, "m", "ch. 17: 10 m");
+                     defaults("tunnel.min_start_distance"));
 }
 
 Vec3 TunnelRun::error() const {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/option_table.hpp"
 #include "methods/crosswind_search.hpp"
 #include "ste/ste_3d.hpp"
 #include "world/simulated_world.hpp"
@@ -57,6 +58,10 @@ struct TunnelOptions {
   // OptionError naming the field ("tunnel.box", "tunnel.ste.step", ...).
   void validate() const;
 };
+
+// Its options table (core/option_table.hpp): validate()'s fixed ranges (the ones that depend on
+// the tunnel's size are checked by hand), the tunnel commands' tracker flags, docs/options.md.
+const OptionTable<TunnelOptions>& tunnel_option_table();
 
 struct TunnelStep {
   Vec3 position;        // where the robot read (a stop, or the end of a tracker's interval)

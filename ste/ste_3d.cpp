@@ -8,6 +8,7 @@
 #include "core/option_check.hpp"
 #include "core/random.hpp"
 #include "ste/mh_chain.hpp"
+#include "ste/option_tables.hpp"
 
 namespace plumekit::ste {
 
@@ -20,18 +21,28 @@ int bins_along(double extent, double bin) {
 
 }  // namespace
 
+const OptionTable<Ste3dOptions>& ste3d_option_table() {
+  using O = Ste3dOptions;
+  static const OptionTable<O> table{
+      "Tunnel STE, 3-D (ste::Ste3dOptions; its likelihood, MH and bounds as above)",
+      {{"tunnel.ste.bin_x", "", &O::bin_x, positive(10.0, "m"), "Entropy bin length in x, m"},
+       {"tunnel.ste.bin_y", "", &O::bin_y, positive(10.0, "m"), "Entropy bin length in y, m"},
+       {"tunnel.ste.bin_z", "", &O::bin_z, positive(10.0, "m"), "Entropy bin length in z, m"},
+       {"tunnel.ste.step", "", &O::step, positive(10.0, "m"), "The candidate moves' length, m"},
+       {"tunnel.ste.alpha", "", &O::alpha, real_range(0.0, 1.0, ""),
+        "Weight of the KL move against the MAP move"},
+       {"tunnel.ste.entropy_fraction", "", &O::entropy_fraction, non_negative(1.0, ""),
+        "Stop below this share of the maximum entropy"},
+       {"tunnel.ste.max_samples", "--max-samples", &O::max_samples, count_range(1, 100'000),
+        "ste-3d: samples before it declares without certainty"}}};
+  return table;
+}
+
 void Ste3dOptions::validate() const {
   likelihood.validate();
   mh.validate();
   bounds.validate();
-  check_positive("tunnel.ste.bin_x", bin_x, 10.0, "m", "the default is 0.5 m");
-  check_positive("tunnel.ste.bin_y", bin_y, 10.0, "m", "the default is 0.2 m");
-  check_positive("tunnel.ste.bin_z", bin_z, 10.0, "m", "the default is 0.2 m");
-  check_positive("tunnel.ste.step", step, 10.0, "m", "the default is 0.5 m");
-  check_range("tunnel.ste.alpha", alpha, 0.0, 1.0, "", "the default is 0.5");
-  check_non_negative("tunnel.ste.entropy_fraction", entropy_fraction, 1.0, "",
-                     "the default is 0.02");
-  check_count("tunnel.ste.max_samples", max_samples, 1, 100'000, "the default is 80");
+  plumekit::validate(ste3d_option_table(), *this);
 }
 
 double gaussian_plume_3d(const double* m, Vec3 p, double speed) {

@@ -8,6 +8,7 @@
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
 #include "core/seed.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::world {
 
@@ -62,32 +63,100 @@ void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
 
 // Bounds well beyond any useful setting: they catch NaN, signs and unit
 // mistakes (dataset/README.md, "Options").
+namespace {
+
+using Entries = std::vector<OptionEntry<FilamentOptions>>;
+
+// The release and the filaments' motion.
+Entries filament_motion_entries() {
+  using O = FilamentOptions;
+  return {
+      {"plume.filaments_per_second", "--filaments-per-second", &O::release_per_second,
+       positive(1e5, "per second"), "filament: filaments released per second",
+       "the default is {default} (more only lowers the sampling noise)"},
+      {"plume.release_rate", "", &O::release_rate, positive(1e9, "concentration units * m^2/s"),
+       "Release rate per metre of depth (concentration units * m^2/s)", "the default is {default}"},
+      {"plume.initial_radius", "", &O::initial_radius, positive(10.0, "m"),
+       "Filament radius at release, m"},
+      {"plume.source_radius", "", &O::source_radius, non_negative(100.0, "m"),
+       "Radius of the source disc the filaments leave from, m (0: its point)",
+       "0 releases at the source's point; seed 002's source is 0.2 m"},
+      {"plume.growth", "", &O::growth, non_negative(100.0, "m^2/s"), "dR^2/dt, m^2/s"},
+      {"plume.sigma_walk", "", &O::sigma_walk, non_negative(100.0, "m/sqrt(s)"),
+       "Random walk of each filament, m/sqrt(s)"},
+      {"plume.meander_speed", "", &O::meander_speed, non_negative(100.0, "m/s"),
+       "Meander std per axis, m/s"},
+      {"plume.meander_time", "", &O::meander_time, positive(1e4, "s"),
+       "Meander correlation time, s"},
+      {"plume.meander_length", "", &O::meander_length, positive(1e4, "m"),
+       "Unsteady wind: meander wavelength, m"},
+      {"plume.meander_wall_layer", "", &O::meander_wall_layer, positive(1e4, "m"),
+       "Unsteady wind: meander fade distance at walls, m"},
+      {"plume.dt", "", &O::dt, positive(10.0, "s"), "Integration step, s"},
+      {"plume.max_radius",
+       "",
+       &O::max_radius,
+       {},
+       "Filaments wider than this are dropped, m",
+       "",
+       "more than plume.initial_radius and at most 1000 m"},
+      {"plume.occlusion",
+       "",
+       &O::occlusion,
+       {},
+       "Gas stops at walls (line of sight; --world, --occlusion)"},
+      {"plume.unsteady_wind",
+       "",
+       &O::unsteady_wind,
+       {},
+       "Meander as a field fading at walls (--world, --wind-model)"}};
+}
+
+// The spin-up to a statistically steady plume and the recording.
+Entries filament_time_entries() {
+  using O = FilamentOptions;
+  return {{"plume.steady_window", "", &O::steady_window, positive(1e4, "s"),
+           "Spin-up steadiness window, s"},
+          {"plume.steady_tolerance", "", &O::steady_tolerance, positive(1.0, ""),
+           "Spin-up steadiness tolerance"},
+          {"plume.min_spinup", "", &O::min_spinup, non_negative(1e5, "s"), "Shortest spin-up, s"},
+          {"plume.max_spinup",
+           "",
+           &O::max_spinup,
+           {},
+           "Longest spin-up, s",
+           "",
+           "from plume.min_spinup to 100000 s"},
+          {"plume.record_s", "", &O::record_s, positive(1e5, "s"), "Recording length, s"},
+          {"plume.sample_rate", "", &O::sample_rate, positive(1e3, "Hz"),
+           "Sensor reads per second, Hz"},
+          {"plume.cutoff", "", &O::cutoff, positive(10.0, "filament radii"),
+           "Kernels are summed out to this many radii", "the default is {default}"}};
+}
+
+}  // namespace
+
+const OptionTable<FilamentOptions>& filament_option_table() {
+  static const OptionTable<FilamentOptions> table = [] {
+    OptionTable<FilamentOptions> t{"Filament plume (world::FilamentOptions)",
+                                   filament_motion_entries()};
+    for (auto& e : filament_time_entries())
+      t.entries.push_back(e);
+    return t;
+  }();
+  return table;
+}
+
 void FilamentOptions::validate() const {
-  check_positive("plume.filaments_per_second", release_per_second, 1e5, "per second",
-                 "the default is 200 (more only lowers the sampling noise)");
-  check_positive("plume.release_rate", release_rate, 1e9, "concentration units * m^2/s",
-                 "the default is 1000");
-  check_positive("plume.initial_radius", initial_radius, 10.0, "m", "the default is 0.1 m");
-  check_non_negative("plume.source_radius", source_radius, 100.0, "m",
-                     "0 releases at the source's point; seed 002's source is 0.2 m");
-  check_non_negative("plume.growth", growth, 100.0, "m^2/s", "the default is 0.08 m^2/s");
-  check_non_negative("plume.sigma_walk", sigma_walk, 100.0, "m/sqrt(s)",
-                     "the default is 0.245 m/sqrt(s)");
-  check_non_negative("plume.meander_speed", meander_speed, 100.0, "m/s", "the default is 0.15 m/s");
-  check_positive("plume.meander_time", meander_time, 1e4, "s", "the default is 1 s");
-  check_positive("plume.meander_length", meander_length, 1e4, "m", "the default is 2 m");
-  check_positive("plume.meander_wall_layer", meander_wall_layer, 1e4, "m", "the default is 1 m");
-  check_positive("plume.dt", dt, 10.0, "s", "the default is 0.05 s");
+  const OptionTable<FilamentOptions>& table = filament_option_table();
+  plumekit::validate(table, *this);
   check_range("plume.max_radius", max_radius, initial_radius, 1e3, "m",
-              "it must exceed plume.initial_radius; the default is 1.5 m", true);
-  check_positive("plume.steady_window", steady_window, 1e4, "s", "the default is 2 s");
-  check_positive("plume.steady_tolerance", steady_tolerance, 1.0, "", "the default is 0.02");
-  check_non_negative("plume.min_spinup", min_spinup, 1e5, "s", "the default is 4 s");
+              "it must exceed plume.initial_radius; the default is " +
+                  default_text(table.entry("plume.max_radius")) + " m",
+              true);
   check_range("plume.max_spinup", max_spinup, min_spinup, 1e5, "s",
-              "it must be at least plume.min_spinup; the default is 60 s");
-  check_positive("plume.record_s", record_s, 1e5, "s", "the default is 5 s");
-  check_positive("plume.sample_rate", sample_rate, 1e3, "Hz", "the default is 10 Hz");
-  check_positive("plume.cutoff", cutoff, 10.0, "filament radii", "the default is 3");
+              "it must be at least plume.min_spinup; the default is " +
+                  default_text(table.entry("plume.max_spinup")) + " s");
   // The step count bounds the run time: a tiny dt over a long spin-up never ends.
   const double steps = (max_spinup + record_s) / dt;
   if (steps > 1e8)

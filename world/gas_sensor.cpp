@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::world {
 
@@ -33,14 +34,29 @@ double relax(double x, double u, double tau, double dt) {
 
 }  // namespace
 
+const OptionTable<GasSensorModel>& gas_sensor_option_table() {
+  using O = GasSensorModel;
+  static const OptionTable<O> table{
+      "Gas sensor (world::GasSensorModel; --gas-sensor picks a preset)",
+      {{"sensor.rise_s", "", &O::rise_s, non_negative(1e4, "s"),
+        "Rise time constant (tau_r; tau_IR1 for infrared), s", "0 is an instantaneous rise"},
+       {"sensor.rise_slow_s", "", &O::rise_slow_s, non_negative(1e4, "s"),
+        "Slow part of an infrared rise (tau_IR2), s", "0 when the rise has one part"},
+       {"sensor.fast_share", "", &O::fast_share, real_range(0.0, 1.0, ""),
+        "Share of the rise with rise_s (eta)", "1 when the rise has one part"},
+       {"sensor.decay_s", "", &O::decay_s, non_negative(1e4, "s"), "Decay time constant, s",
+        "0 is an instantaneous decay"},
+       {"sensor.dead_rise_s", "", &O::dead_rise_s, non_negative(1e4, "s"),
+        "The reading starts to rise this long after the gas, s"},
+       {"sensor.dead_decay_s", "", &O::dead_decay_s, non_negative(1e4, "s"),
+        "The reading starts to fall this long after the gas goes, s"},
+       {"sensor.baseline", "", &O::baseline, real_range(-1e9, 1e9, "concentration units"),
+        "Added to every reading, concentration units (--baseline)"}}};
+  return table;
+}
+
 void GasSensorModel::validate() const {
-  check_non_negative("sensor.rise_s", rise_s, 1e4, "s", "0 is an instantaneous rise");
-  check_non_negative("sensor.rise_slow_s", rise_slow_s, 1e4, "s", "0 when the rise has one part");
-  check_range("sensor.fast_share", fast_share, 0.0, 1.0, "", "1 when the rise has one part");
-  check_non_negative("sensor.decay_s", decay_s, 1e4, "s", "0 is an instantaneous decay");
-  check_non_negative("sensor.dead_rise_s", dead_rise_s, 1e4, "s", "the default is 0");
-  check_non_negative("sensor.dead_decay_s", dead_decay_s, 1e4, "s", "the default is 0");
-  check_range("sensor.baseline", baseline, -1e9, 1e9, "concentration units", "the default is 0");
+  plumekit::validate(gas_sensor_option_table(), *this);
 }
 
 GasSensorModel gas_sensor_preset(const std::string& name) {
