@@ -96,8 +96,8 @@ void add_table_flags(CLI::App* command, T& options, const OptionTable<T>& table,
   }
 }
 
-// The flags that mean the same on every command (README, "Flags"). Each binds
-// to a library field, so the --help default is the library's.
+// The flags that mean the same on every command (docs/commands.md, "Flags that mean the same on
+// every command"). Each binds to a library field, so the --help default is the library's.
 
 // The positional MAP of every command that takes one map (default: the shipped
 // map, filled in when `map` is empty).
@@ -111,11 +111,11 @@ CLI::Option* add_threads_flag(CLI::App* command, int& threads, const std::string
 
 // --world faithful|thesis, then --occlusion on|off and --wind-model
 // steady|unsteady (plume.world, plume.occlusion, plume.wind_model;
-// dataset/README.md, "Worlds"): the preset is applied first, so either flag
+// docs/world.md, "Worlds"): the preset is applied first, so either flag
 // overrides its half of it. For the dataset's plumes and the robot's world alike.
 void add_world_options(CLI::App* command, world::FilamentOptions& filament);
 // --gas-sensor NAME and --baseline B (sensor.gas, sensor.baseline): a gas
-// sensor preset (dataset/README.md, "Gas sensors"); `whose` starts the help
+// sensor preset (docs/world.md, "Gas sensors"); `whose` starts the help
 // ("The robot's", "The static sensors'").
 void add_gas_sensor_options(CLI::App* command, world::GasSensorModel& sensor,
                             const std::string& whose);

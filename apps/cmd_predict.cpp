@@ -66,7 +66,7 @@ void add_predict_commands(CLI::App& app) {
       throw InputError(a->cnn + ": no such model file" +
                        std::string(a->cnn == shipped_cnn().string()
                                        ? " (the shipped model is not there yet: train one as "
-                                         "surrogate/README.md says, or give --cnn)"
+                                         "docs/design/surrogate.md says, or give --cnn)"
                                        : ""));
     }
     const Map map = read_map(a->map);

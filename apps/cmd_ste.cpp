@@ -108,7 +108,7 @@ void add_model_options(CLI::App* cmd, run::SteOptions& o) {
   bind_to(cmd, "--decay-rate", o.physics.advection_diffusion.decay_rate,
           "First-order decay rate of the physics model's gas, 1/s (default: 1/28, the filament "
           "world's, whose filaments are dropped 28 s after release; 0: none, the model before "
-          "issue 17; ste/README.md, \"Floors\")",
+          "issue 17; docs/design/ste.md, \"Floors\")",
           "plume.decay_rate");
   bind_field(cmd,
              bind_field(cmd,
@@ -209,7 +209,7 @@ void add_run_options(CLI::App* cmd, run::SteOptions& o) {
 
 void add_walk_options(CLI::App* cmd, run::MethodOptions& m);
 
-// The localization method and the options of the seeds' methods (methods/README.md).
+// The localization method and the options of the seeds' methods (docs/methods.md).
 // With `several` (evaluate), --method also takes a list or "all", which goes there.
 void add_method_options(CLI::App* cmd, run::MethodOptions& m,
                         std::vector<run::MethodKind>* several = nullptr) {
@@ -218,7 +218,7 @@ void add_method_options(CLI::App* cmd, run::MethodOptions& m,
     names += (names.empty() ? "" : ", ") + n;
   const std::string what =
       " (ste: plumekit's source term estimation; the others are the seeds' plume trackers and "
-      "particle filters, methods/README.md)";
+      "particle filters, docs/methods.md)";
   auto one = [&m](const std::string& s) { m.kind = run::parse_method_kind(s); };
   auto list = [&m, several](const std::string& s) {
     *several = run::parse_method_list(s);
@@ -227,7 +227,7 @@ void add_method_options(CLI::App* cmd, run::MethodOptions& m,
   const std::string help =
       several ? "Localization method: " + names + what +
                     "; or several, NAME,NAME,... or all, sampling one world per run, each into "
-                    "OUT/NAME/ (ste/README.md, \"Several methods in one world\")"
+                    "OUT/NAME/ (docs/design/ste.md, \"Several methods in one world\")"
               : "Localization method: " + names + what;
   CLI::Option* option = several ? cmd->add_option_function<std::string>("--method", list, help)
                                 : cmd->add_option_function<std::string>("--method", one, help);
@@ -312,7 +312,7 @@ void add_walk_options(CLI::App* cmd, run::MethodOptions& m) {
   bind_to(cmd, "--levy-threshold", m.levy.gradient_threshold,
           "Lévy taxis: a change of the reading between stops from which the walk is all "
           "exploitation (longest, straightest moves), concentration units (theta of seed 004 "
-          "Eq. 16.3, which it does not give; methods/README.md)",
+          "Eq. 16.3, which it does not give; docs/methods.md)",
           "levy.gradient_threshold");
   bind_to(cmd, "--budget", m.local.budget,
           "ste-local: samples per local map when nothing is learnt, B_0 of seed 004 Eq. 12.1",

@@ -46,7 +46,7 @@ void set_tunnel_size(world::Tunnel& t, const std::string& text) {
 }
 
 // The flags both commands share: the tunnel, its wind and plume, the sensor, the methods' main
-// settings (ste/README.md, "The 3-D tunnel").
+// settings (docs/methods.md, "The 3-D tunnel").
 void add_tunnel_options(CLI::App* cmd, run::TunnelOptions& o) {
   CLI::Option* size =
       cmd->add_option_function<std::string>(

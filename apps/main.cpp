@@ -1,7 +1,7 @@
 // plumekit: gas source localization with mobile robots in cluttered maps.
-// Exit codes (README, "Exit codes"): 0 success; 2 anything the user can fix
-// (the message names the path or flag, and nothing was written); 1 only a
-// plumekit bug. With --json every failure also prints the JSON error object.
+// Exit codes (docs/commands.md, "Exit codes are a contract"): 0 success; 2 anything the user can
+// fix (the message names the path or flag, and nothing was written); 1 only a plumekit bug. With
+// --json every failure also prints the JSON error object.
 #include <cstring>
 #include <filesystem>
 #include <iostream>

@@ -36,7 +36,7 @@ struct AdvectionDiffusionOptions {
   // default): gas leaves only through outlets. The filament world drops a
   // filament once it is max_radius wide, (R^2 - R0^2) / growth = 28 s after
   // its release, so its gas has a finite life that the physics model of
-  // ste/ can mirror (ste/README.md, "Floors").
+  // ste/ can mirror (docs/validation.md, "Floors").
   double decay_rate = 0.0;
 
   // Throws OptionError naming "plume.diffusivity", "plume.release_rate" or

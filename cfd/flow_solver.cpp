@@ -96,7 +96,7 @@ std::optional<WindField> coarse_start(const Map& map, const FlowOptions& options
   }
   // No steady flow with this scheme on the coarse grid, whose cell Peclet
   // number is twice the fine grid's: an upwind flow is still a far better
-  // start than rest (depot at 5 cm, cfd/README.md "Building scale").
+  // start than rest (depot at 5 cm, docs/design/flow-solver.md "Building scale").
   coarse.convection = Convection::Upwind;
   try {
     return solve(map, coarse).wind;

@@ -11,7 +11,7 @@
 //
 // The search runs on a grid of buckets (one cell wide) holding the obstacles'
 // edges, so it takes time in proportion to the edges and the cells near them,
-// not to the square of the obstacle count (cfd/README.md, "Narrow gaps").
+// not to the square of the obstacle count (docs/design/flow-solver.md, "Narrow gaps").
 #include <cstdint>
 #include <optional>
 #include <string>

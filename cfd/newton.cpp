@@ -211,7 +211,7 @@ bool Newton::factor() {
 bool Newton::switch_to_coupled() {
   // A reduced matrix K that is singular at the grid's first Newton matrix, whose
   // coupled matrix is not, means the nullspace basis is short for this
-  // geometry (depot at 5 cm, cfd/README.md "Building scale"); the coupled
+  // geometry (depot at 5 cm, docs/design/flow-solver.md "Building scale"); the coupled
   // solver gives the same steps there.
   if (std::string(linear_solver_->name()) != "nullspace") return false;
   auto coupled = make_linear_solver(LinearSolverKind::Coupled, grid_, equations_.jacobian());

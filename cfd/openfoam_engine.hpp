@@ -10,7 +10,7 @@
 // The mesh is the built-in solver's grid (StaggeredGrid) minus its solid
 // cells, and each boundary face's condition is the grid's: a fixed non-zero
 // velocity is an inlet face, an outflow face an outlet, any other a no-slip
-// wall (cfd/README.md, "OpenFOAM engine").
+// wall (docs/design/flow-solver.md, "OpenFOAM engine").
 #include <filesystem>
 #include <map>
 #include <string>

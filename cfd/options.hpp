@@ -1,6 +1,6 @@
 #pragma once
 // Options of the steady flow solver, with the defaults the dataset generator
-// uses. See cfd/README.md for why these defaults give converged steady flows.
+// uses. See docs/design/flow-solver.md for why these defaults give converged steady flows.
 #include <array>
 #include <functional>
 #include <string>

@@ -12,7 +12,7 @@
 //   maps) and calls check_memory(), which throws MemoryLimitError (an
 //   InputError: exit 2) naming what, the estimate, the limit and a setting
 //   that would fit. The estimates are upper bounds calibrated on measured peak
-//   RSS (cfd/README.md, dataset/README.md); they exist to refuse runs that
+//   RSS (docs/design/flow-solver.md, docs/design/dataset.md); they exist to refuse runs that
 //   would take many gigabytes in seconds, not to account for every byte.
 // - Options: every options struct has validate(), which checks each field
 //   (core/option_check.hpp) and throws OptionError naming the field's dotted

@@ -1,5 +1,5 @@
 #pragma once
-// The one output rule of every plumekit command that writes (README, "Where
+// The one output rule of every plumekit command that writes (docs/commands.md, "Where
 // output goes"): a command writes into a path only if it does not exist, is
 // empty, or holds this command's own earlier output. Anything else is an
 // InputError (exit 2) naming the path and what is in it, raised before any

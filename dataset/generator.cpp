@@ -335,7 +335,7 @@ std::string part_manifest_name(int k, int n) {
 DatasetSummary generate_dataset(const fs::path& out, const DatasetOptions& o,
                                 const RunOptions& run) {
   const auto t0 = Clock::now();
-  // Every option is checked before anything is written (dataset/README.md).
+  // Every option is checked before anything is written (docs/design/dataset.md).
   o.validate();
   check_run_options(o, run);
   const nlohmann::ordered_json params = parameters_json(o);

@@ -1,5 +1,5 @@
 #pragma once
-// The plumekit-map/2 JSON format, and /1 before it (see core/README.md).
+// The plumekit-map/2 JSON format, and /1 before it (docs/map-format.md).
 // Reading validates everything; a fault throws InputError naming the file,
 // the key (e.g. "obstacles[2][1]") and what is wrong.
 #include <filesystem>

@@ -66,7 +66,7 @@ struct SampleFault {
 SampleFault sample_fault(const Map& map, const Sample& sample);
 
 // Bytes per cell of the maps: kernel_dmv's six grids of doubles and the gdm command's copies as
-// it writes them (measured 34-44 B per cell of peak RSS; gdm/README.md).
+// it writes them (measured 34-44 B per cell of peak RSS; docs/methods.md).
 inline constexpr double kGdmBytesPerCell = 64.0;
 
 // MemoryLimitError naming gdm.cell and a cell that fits, unless `bytes_per_cell` on the maps' grid

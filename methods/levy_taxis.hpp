@@ -25,7 +25,7 @@ struct LevyTaxisOptions {
   double gamma_min = 0.0, gamma_max = 1.0;
   // theta of Eqs. 16.3: a change of the stop's mean reading (concentration units) from which the
   // walk is all exploitation. Not in the thesis; 50, the trackers' detection threshold: on the
-  // benchmark's open-field maps (methods/README.md) 10 to 60 reached the source about equally
+  // benchmark's open-field maps (docs/methods.md) 10 to 60 reached the source about equally
   // often and 150 half as often, its short exploring moves using up the budget.
   double gradient_threshold = 50.0;
   int max_steps = 300;  // stops before stopped_by() says "max_samples"

@@ -21,7 +21,7 @@ namespace {
 void bind_flow_options(py::module_& m) {
   using cfd::FlowOptions;
   py::class_<FlowOptions> c(m, "FlowOptions",
-                            "Options of the steady flow solver (cfd/README.md, \"Options\"); the "
+                            "Options of the steady flow solver (docs/options.md); the "
                             "defaults are the dataset generator's");
   c.def(py::init<>())
       .def_readwrite("wall_speed", &FlowOptions::wall_speed,

@@ -72,7 +72,7 @@ std::vector<methods::Sample> samples_from(const Map& map, const py::handle& rows
 }  // namespace
 
 void bind_gdm(py::module_& m) {
-  py::class_<methods::GdmOptions> c(m, "GdmOptions", "Options of gas_map() (gdm/README.md)");
+  py::class_<methods::GdmOptions> c(m, "GdmOptions", "Options of gas_map() (docs/methods.md)");
   c.def(py::init<>());
   PK_FIELD(c, methods::GdmOptions, cell, "The map's cell, m");
   PK_FIELD(c, methods::GdmOptions, kernel_width, "The kernel's sigma, m");

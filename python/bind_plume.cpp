@@ -27,7 +27,7 @@ std::string world_name(const world::FilamentOptions& o) {
 
 void bind_filament_options(py::module_& m) {
   py::class_<world::FilamentOptions> c(m, "FilamentOptions",
-                                       "The filament plume (dataset/README.md, \"Options\")");
+                                       "The filament plume (docs/options.md)");
   c.def(py::init<>());
   PK_FIELD(c, world::FilamentOptions, release_per_second, "Filaments released per second");
   PK_FIELD(c, world::FilamentOptions, release_rate, "Release rate per metre of depth");
@@ -58,8 +58,8 @@ void bind_filament_options(py::module_& m) {
 }
 
 void bind_sensor(py::module_& m) {
-  py::class_<world::GasSensorModel> c(
-      m, "GasSensorModel", "A gas sensor's response (dataset/README.md, \"Gas sensors\")");
+  py::class_<world::GasSensorModel> c(m, "GasSensorModel",
+                                      "A gas sensor's response (docs/world.md, \"Gas sensors\")");
   c.def(py::init<>());
   bind_table(c, world::gas_sensor_option_table());
   PK_FIELD(c, world::GasSensorModel, name, "The preset it came from");

@@ -210,8 +210,8 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   } else {
     list = maps.cast<std::vector<Map>>();
   }
-  // method=[...] (a list): several methods in one plume per run (ste/README.md, "Several methods
-  // in one world"), a summary each.
+  // method=[...] (a list): several methods in one plume per run (docs/design/evaluation.md,
+  // "Several methods in one world"), a summary each.
   std::vector<run::MethodKind> kinds;
   py::dict rest;
   for (const auto& item : kw) {

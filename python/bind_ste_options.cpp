@@ -1,4 +1,4 @@
-// SteOptions and the options it nests (ste/README.md, "Options"), field by field.
+// SteOptions and the options it nests (docs/methods.md, "Options"), field by field.
 #include <pybind11/stl.h>
 
 #include "python/bindings.hpp"
@@ -98,8 +98,8 @@ void bind_ste_options_class(py::module_& m) {
       [](run::SteOptions& s, const std::string& v) { s.method.kind = run::parse_method_kind(v); },
       "'ste' (the default), or one of the seeds' methods: 'sweeping', 'surge-cast', 'zigzag', "
       "'pseudo-gradient', 'pf-gradient', 'pf-sweep', 'apf', 'levy-taxis', 'ste-local' "
-      "(methods/README.md, "
-      "ste/README.md)");
+      "(docs/methods.md, "
+      "docs/design/ste.md)");
   o.def_property(
       "plume_model", [](const run::SteOptions& s) { return std::string(to_string(s.model)); },
       [](run::SteOptions& s, const std::string& v) { s.model = run::parse_plume_model_kind(v); },

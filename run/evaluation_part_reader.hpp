@@ -1,8 +1,8 @@
 #pragma once
 // The reader of `plumekit evaluate --shard K/N` part folders, which `evaluate merge` joins
-// (ste/README.md, "Scale-out"): part.json with its own checksum and its files', runs.csv and
-// timings.csv, and the checks that parts belong together. It needs only core, so that its fuzz
-// target (fuzz/fuzz_evaluate_part.cpp) links without the rest of ste.
+// (docs/design/evaluation.md, "Scale-out"): part.json with its own checksum and its files',
+// runs.csv and timings.csv, and the checks that parts belong together. It needs only core, so that
+// its fuzz target (fuzz/fuzz_evaluate_part.cpp) links without the rest of ste.
 #include <filesystem>
 #include <string>
 #include <vector>

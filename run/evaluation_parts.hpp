@@ -1,7 +1,7 @@
 #pragma once
-// `plumekit evaluate --shard K/N` and `evaluate merge` (ste/README.md, "Scale-out"): a part
-// folder records which part it is, everything every part must share (the options that shape the
-// results, the maps' files and checksums) and each run's exact figures; the merge verifies the
+// `plumekit evaluate --shard K/N` and `evaluate merge` (docs/design/evaluation.md, "Scale-out"): a
+// part folder records which part it is, everything every part must share (the options that shape
+// the results, the maps' files and checksums) and each run's exact figures; the merge verifies the
 // parts and rebuilds the files of a single run, byte for byte.
 #include <filesystem>
 #include <string>

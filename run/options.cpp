@@ -151,7 +151,7 @@ void SteOptions::check_model_file() const {
   if (!std::filesystem::is_regular_file(model_path, ec))
     throw OptionError("ste.model_path",
                       model_path +
-                          " not found (train one, see surrogate/README.md, or use "
+                          " not found (train one, see docs/design/surrogate.md, or use "
                           "ste.model physics or gaussian)");
 }
 

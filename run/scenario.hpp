@@ -33,12 +33,13 @@ PlumeModelKind parse_plume_model_kind(const std::string& name);
 // The sample error each model runs with unless told otherwise: the thesis's sigma_M = 30 for the
 // Gaussian baseline. For the physics model, sigma_M = 150: a 5 s mean of the filament world
 // scatters about its steady mean by about 100 near a plume's axis; chosen on held-out random maps
-// in the faithful world (ste/README.md). Plus 15 % of the prediction (sigma_rel): near a source
-// the 5 s means scatter by thousands, and a fixed 150 let a few of them lock the posterior onto a
-// cell next to the source's; chosen on held-out buildings (ste/README.md, "Floors"). For the
-// surrogate, sigma_M = 200 (about the shipped model's RMSE on the test maps) plus twice the CNN's
-// own predicted std of the readings (sigma_std), since a 5 s sample departs from the mean, and the
-// CNN errs, most where the plume is intermittent; chosen on held-out random maps (ste/README.md).
+// in the faithful world (docs/design/ste.md). Plus 15 % of the prediction (sigma_rel): near a
+// source the 5 s means scatter by thousands, and a fixed 150 let a few of them lock the posterior
+// onto a cell next to the source's; chosen on held-out buildings (docs/validation.md, "Floors").
+// For the surrogate, sigma_M = 200 (about the shipped model's RMSE on the test maps) plus twice the
+// CNN's own predicted std of the readings (sigma_std), since a 5 s sample departs from the mean,
+// and the CNN errs, most where the plume is intermittent; chosen on held-out random maps
+// (docs/design/ste.md).
 ste::LikelihoodOptions default_likelihood(PlumeModelKind kind);
 
 // The likelihood's settings in SteOptions. sigma_m, sigma_rel and sigma_std follow the plume model
@@ -50,7 +51,7 @@ struct SteLikelihood {
   std::optional<double> sigma_std;  // unset: 2 for the surrogate, 0 otherwise (surrogate only)
 };
 
-// Every option of a localization, with its default (ste/README.md, "Options"). The default plume
+// Every option of a localization, with its default (docs/methods.md, "Options"). The default plume
 // model is the surrogate; its CNN file (model_path) has no default here, since where the shipped
 // model lies is the CLI's to say (it fills in data/models/plume-unet.pkcnn).
 struct SteOptions {
@@ -107,7 +108,7 @@ struct SteOptions {
 // The surrogate's default table cell on `map` for candidates of `source_cell`: the source cell
 // itself, or on maps with over kSurrogateTableArea of free space the cell (rounded up to 5 cm,
 // at least source_cell) that gives about kSurrogateTableCells free cells, so that the table (one
-// plume per cell) stays within a minute to build and its memory bounded (ste/README.md, "The
+// plume per cell) stays within a minute to build and its memory bounded (docs/validation.md, "The
 // learned model at building scale").
 inline constexpr double kSurrogateTableArea = 100.0;  // m^2
 inline constexpr double kSurrogateTableCells = 2500;

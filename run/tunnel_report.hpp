@@ -17,7 +17,7 @@ nlohmann::ordered_json tunnel_settings(const TunnelOptions& options);
 // One run: source, start, estimate, errors, distance, time, samples, stopped_by, and with
 // `steps` every step.
 nlohmann::ordered_json tunnel_run_json(const TunnelRun& run, bool steps);
-// Header and one line per run (column names in ste/README.md, "The 3-D tunnel").
+// Header and one line per run (column names in docs/methods.md, "The 3-D tunnel").
 std::string tunnel_runs_csv(const std::vector<TunnelRun>& runs);
 // Medians and rates over the runs: errors per axis, success (found, or within 0.5 m for STE),
 // distance, mission time, samples, entropy stops, the median compute per STE step.

@@ -3,7 +3,7 @@
 # in the faithful world with the fast MOX sensor (as results/ste-faithful), one `evaluate` folder
 # per method and map set under OUT (default out/compare). All the methods run in one `evaluate`
 # (--method a,b,...): each run's plume is simulated once and sampled by every method's robot, which
-# reads what it would read alone (ste/README.md, "Several methods in one world"). The test maps
+# reads what it would read alone (docs/design/evaluation.md, "Several methods in one world"). The test maps
 # come first, so that their wall time (the 30 minutes on 2 cores) is measured without the
 # buildings.
 #

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Second stage of the shipped surrogate: fine-tunes the base model (data/models/plume-unet-base.pkcnn,
 # made by scripts/train-model.sh on the thesis's four map families) on more cluttered layouts, which
-# gives data/models/plume-unet.pkcnn and its evaluation (surrogate/README.md):
+# gives data/models/plume-unet.pkcnn and its evaluation (docs/design/surrogate.md):
 #   1. MAPS random maps x 50 sources, filament model, seed 2, drawn from all six families (the
-#      thesis's four, three-rectangles, shape-and-rectangle; dataset/README.md);
+#      thesis's four, three-rectangles, shape-and-rectangle; docs/design/dataset.md);
 #   2. the ground-truth plumes of the nine test maps;
 #   3. train.py --init BASE: EPOCHS epochs, lr 3e-4 with a cosine decay, batch 32;
 #   4. the evaluation on this dataset's validation maps and on the test maps.

@@ -2,7 +2,7 @@
 # The real floors of issue 17's evaluation, data/floors/*.json, from the ROS maps in REAL_MAPS
 # (default data/real-maps; their README has the attribution): each map_server map imported in
 # its own ROS map frame with the openings of docs/real-maps.md, and ground-truth sources and robot
-# starts placed by hand in free space (ste/README.md, "Floors"). Every coordinate is in the map
+# starts placed by hand in free space (docs/validation.md, "Floors"). Every coordinate is in the map
 # frame. Run it to rebuild the committed files; it writes only data/floors/ (files plumekit wrote).
 set -euo pipefail
 cd "$(dirname "$0")/.."

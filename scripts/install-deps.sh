@@ -17,11 +17,11 @@ packages=(
   clang-14 libclang-rt-14-dev
   # numerics and geometry
   libeigen3-dev libsuitesparse-dev libcgal-dev libgmp-dev libmpfr-dev
-  # MUMPS's sequential library: the single-precision LU of large flow systems (cfd/README.md,
+  # MUMPS's sequential library: the single-precision LU of large flow systems (docs/design/flow-solver.md,
   # "Building scale"); without it the build uses UMFPACK for them
   libmumps-seq-dev
   # an optimised BLAS: UMFPACK's dense kernels run ~2.4x faster than with netlib BLAS. The pthread
-  # build, which plumekit pins to one thread: the serial build is not reentrant (cfd/README.md).
+  # build, which plumekit pins to one thread: the serial build is not reentrant (docs/design/flow-solver.md).
   libopenblas0-pthread
   # planning: OMPL links only with these boost components present
   libompl-dev libboost-filesystem-dev libboost-serialization-dev libboost-system-dev

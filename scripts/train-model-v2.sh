@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The v2 surrogate (issue 19; surrogate/README.md, "v2"): one model for any map, on a physical grid
+# The v2 surrogate (issue 19; docs/design/surrogate.md, "v2"): one model for any map, on a physical grid
 # of 0.2 m cells with the map's wind as input, from nothing:
 #   1. training data in the faithful world: the thesis's six random families on the 10 x 4 m arena
 #      and random buildings of 6-30 m, every map's inlets at a speed drawn from 0.3-2 m/s;
@@ -11,7 +11,7 @@
 # datasets, checkpoints and the evaluation; the model and its log go to data/models/.
 # Settings (environment): FAMILY_MAPS (60), BUILDING_MAPS (65), SOURCES (16 per map), EPOCHS (10),
 # BATCH (8), THREADS (nproc), MAX_MINUTES (no limit), PYTHON (/usr/bin/python3; CUDA is used when
-# present). The shipped model's settings and timings are in surrogate/README.md.
+# present). The shipped model's settings and timings are in docs/design/surrogate.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=${1:-out/train-v2}

@@ -4,14 +4,14 @@
 #   1. the training dataset (MAPS random maps x 100 sources, filament model, seed 1, in the
 #      thesis-style world: --world thesis);
 #   2. the ground-truth plumes of the nine test maps;
-#   3. training (AdamW, batch 32, cosine learning rate over EPOCHS epochs; surrogate/README.md);
+#   3. training (AdamW, batch 32, cosine learning rate over EPOCHS epochs; docs/design/surrogate.md);
 #   4. the evaluation on the held-out maps and the test maps.
 # Every step resumes where it stopped when run again. WORK (default out/train) holds the datasets,
 # the checkpoints and the evaluation (WORK/evaluation); the model and its log go to data/models/.
 # Settings (environment): MAPS (default 180, the thesis's scale), EPOCHS (5), THREADS (nproc),
 # MAX_MINUTES (no limit: stop training after this many minutes; rerun to go on), PYTHON
 # (/usr/bin/python3, Debian's torch; any python3 with torch and numpy works, CUDA is used when
-# present). The shipped base model came from two runs on a GPU machine (surrogate/README.md):
+# present). The shipped base model came from two runs on a GPU machine (docs/design/surrogate.md):
 #   MAPS=360 EPOCHS=8 bash scripts/train-model.sh; MAPS=360 EPOCHS=22 bash scripts/train-model.sh
 # (the second resumes the first and carries the cosine on as planned for 22 epochs).
 # On the 2-core build machine the 180-map dataset takes about 20 min and an epoch 7 to 8 min.

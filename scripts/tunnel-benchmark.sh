@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 004's 3-D systems in its wind tunnel (`plumekit evaluate tunnel`; ste/README.md, "The 3-D
+# Seed 004's 3-D systems in its wind tunnel (`plumekit evaluate tunnel`; docs/methods.md, "The 3-D
 # tunnel"):
 #   - Fig. 11.3: the 3-D STE in the thesis's simulation conditions A-D (Table 8.1: wind 0.2 / 0.9
 #     m/s, release 5 / 10 %, here 500 / 1000 units m^3/s) in the 10 x 4 x 2 m tunnel, RUNS runs
@@ -11,7 +11,7 @@
 #     (the thesis ran 20).
 #
 #   scripts/tunnel-benchmark.sh [RUNS] [OUT]    # RUNS default 20; OUT default out/tunnel
-#   scripts/tunnel_table.py OUT [PNG_DIR]       # the tables and box plots of ste/README.md
+#   scripts/tunnel_table.py OUT [PNG_DIR]       # the tables and box plots of docs/design/ste.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-20}

@@ -12,12 +12,12 @@
 namespace plumekit::ste {
 
 struct GaussianPlumeBounds {
-  // Q spans the dataset's units: a release of 1000 (dataset/README.md) gives
+  // Q spans the dataset's units: a release of 1000 (docs/design/dataset.md) gives
   // peaks of 1000-6000 near the source, i.e. Q of a few thousand here.
   double q_max = 10000.0;
   double a_min = 0.01, a_max = 1.0;  // sigma_y growth per metre downwind
   double b_min = 0.02, b_max = 1.0;  // sigma_y at the source, m
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 

@@ -19,7 +19,7 @@ struct MhOptions {
   int burn_in = 1000;     // of those, not summarised
   // Proposal std per parameter, as a fraction of its prior range.
   double proposal = 0.05;
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 

@@ -24,7 +24,7 @@
 // lattice of `floor_spacing` metres, on a roadmap of the free space) by expected
 // information per second of mission, gain / (travel time + sampling time), and
 // leaves the lattice's decision for the best goal when it offers clearly more
-// than the best move (ste/README.md, "Floors"). There the lattice's moves lie on
+// than the best move (docs/validation.md, "Floors"). There the lattice's moves lie on
 // a fixed grid (around its point nearest the robot), so that a plume model can
 // remember their readings from one decision to the next.
 #include <memory>
@@ -39,7 +39,8 @@ namespace plumekit::ste {
 struct NavigationOptions {
   double step = 0.5;  // m, lattice spacing
   // Moves of up to `lattice` steps per axis: (2 lattice + 1)^2 - 1 candidates. The thesis code's
-  // is 1 (3 x 3); 2 (5 x 5) lets the robot leave a region where nothing is read (ste/README.md).
+  // is 1 (3 x 3); 2 (5 x 5) lets the robot leave a region where nothing is read
+  // (docs/design/ste.md).
   int lattice = 2;
   double alpha = 0.5;    // weight of the KL move against the source move
   double beta = 0.75;    // weight of the marginal against the inverse distance
@@ -57,7 +58,7 @@ struct NavigationOptions {
   // Floor: each goal's expected gain sums over at most this many of the posterior's cells (drawn
   // from it), so that a decision over hundreds of goals stays within 0.1 s.
   int floor_gain_cells = 512;
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 
@@ -118,7 +119,7 @@ NavigationOptions::Candidates parse_candidates(const std::string& name);
 // `candidates` with Auto resolved for `map`: Floor when either side of the arena exceeds the
 // thesis's 10 x 4 m (in either orientation), Lattice otherwise. On the thesis's arenas the
 // lattice's 0.5 m moves and the pull to the posterior's peak do best; on a larger floor, goals
-// over the whole floor (ste/README.md, "Floors").
+// over the whole floor (docs/validation.md, "Floors").
 NavigationOptions::Candidates resolve_candidates(NavigationOptions::Candidates candidates,
                                                  const Map& map);
 

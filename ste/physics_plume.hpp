@@ -20,12 +20,12 @@ struct PhysicsPlumeOptions {
   // defaults (D = 0.05 m^2/s equals the filament model's equivalent
   // diffusivity without its meander; release 1000). Its decay rate is the
   // filament world's: 1 / lifetime_s() = 1/28 s, the rate at which the world
-  // loses its gas (ste/README.md, "Floors"); without it the model fills
+  // loses its gas (docs/validation.md, "Floors"); without it the model fills
   // dead-end rooms the world never fills.
   cfd::AdvectionDiffusionOptions advection_diffusion = world_matched();
   // Prior bounds of the release scale (1 = the dataset's release rate).
   double scale_lo = 1.0, scale_hi = 1.0;
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
   // The world's decay as a number, not an include: the estimator never reads the world. A test
   // ties it to the world's filament lifetime (dataset::filament_world_mean()).

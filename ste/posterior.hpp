@@ -54,7 +54,7 @@ struct LikelihoodOptions {
 // resolution, so the 2 % threshold means the same for every plume model.
 struct BinOptions {
   double x = 0.5, y = 0.2;
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 GridShape make_bins(const Map& map, const BinOptions& bins);

@@ -28,7 +28,7 @@ struct Ste3dOptions {
   // sigma_M 30 and sigma_D 0 (the thesis in simulation), plus a model error of half the predicted
   // concentration (sigma_rel 0.5; not the thesis's): the tunnel's 5 s means 4 m behind the source
   // read thousands and scatter in proportion, and with the constant error alone the chain
-  // freezes on its first good state and declares after a few samples, metres off (ste/README.md,
+  // freezes on its first good state and declares after a few samples, metres off (docs/methods.md,
   // "The 3-D tunnel": median error 2.9 m against 0.2 m).
   LikelihoodOptions likelihood{30.0, 0.0, 0.5, 0.0};
   MhOptions mh;

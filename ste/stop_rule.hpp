@@ -22,7 +22,7 @@ struct StopOptions {
   int max_samples_in_use() const {
     return max_samples == kAutoMaxSamples ? kThesisMaxSamples : max_samples;
   }
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 
@@ -32,7 +32,7 @@ std::string stop_reason(const Posterior& posterior, int samples, const StopOptio
 
 // `max_samples` with auto (0) resolved: the thesis's 50, or on a floor whose `floor_goals` goals
 // `floor_spacing` apart cover more than 500 m² (one goal per spacing²), one sample per 10 m² of
-// it. 50 samples do not cover a 30 x 50 m warehouse when the gas lives 28 s (ste/README.md,
+// it. 50 samples do not cover a 30 x 50 m warehouse when the gas lives 28 s (docs/validation.md,
 // "Floors").
 int resolve_max_samples(int max_samples, std::size_t floor_goals, double floor_spacing);
 

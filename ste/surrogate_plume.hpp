@@ -7,7 +7,7 @@
 // table is coarser than the candidate sources (table_cell > source_cell): a
 // candidate then reads the plumes of the table cells around it, each shifted
 // by the offset from that cell to the candidate and blended bilinearly (a
-// plume moves with its source over a fraction of a metre; ste/README.md,
+// plume moves with its source over a fraction of a metre; docs/design/ste.md,
 // "Candidates finer than the table"). The table can be cached on disk,
 // keyed by the SHA-256 of the map's geometry, of the model file and of the
 // table grid, and carries a SHA-256 of its own bytes: a damaged or stale
@@ -51,7 +51,7 @@ struct SurrogatePlumeOptions {
   std::function<void(const std::string&)> on_note;
 };
 
-// A table cache file's contents (format in ste/README.md, "Table cache").
+// A table cache file's contents (format in docs/design/ste.md, "Table cache").
 struct SurrogateTable {
   std::string key;               // 64 hex digits: map geometry, model file, table grid
   std::uint32_t rows = 0;        // allowed source cells
@@ -73,7 +73,7 @@ class SurrogatePlume final : public SourceTableModel {
   const GridShape& candidates() const override { return candidates_; }
   const std::vector<std::uint8_t>& allowed() const override { return allowed_; }
   std::vector<double> readings_at(Vec2 p) const override;
-  // False for a mean-only model (a DeepCFD network of one output; surrogate/README.md).
+  // False for a mean-only model (a DeepCFD network of one output; docs/design/surrogate.md).
   bool has_spreads() const override { return has_spreads_; }
   std::vector<double> spreads_at(Vec2 p) const override;
 

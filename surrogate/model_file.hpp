@@ -1,7 +1,8 @@
 #pragma once
-// plumekit-cnn/1 model files: the one place that reads them (the format is in README.md; the
-// writer is train/model_file.py). Reading either returns a complete, checked model or throws
-// InputError naming the file and the fault, so no caller ever sees a half-loaded model.
+// plumekit-cnn/1 model files: the one place that reads them (the format is in
+// docs/design/surrogate.md; the writer is train/model_file.py). Reading either returns a complete,
+// checked model or throws InputError naming the file and the fault, so no caller ever sees a
+// half-loaded model.
 #include <cstddef>
 #include <filesystem>
 #include <optional>

@@ -39,11 +39,11 @@ class Network {
   // kMaxInputSide. std::invalid_argument otherwise.
   Tensor predict(const Tensor& input) const;
 
-  // For tests against PyTorch that must not hinge on max-pool near-ties (surrogate/README.md): the
-  // same forward pass, one thread, with every 2x2 max-pool's argmax taken from `indices` instead
-  // of computed. indices[b] holds level b's, [n][filters[b]][h_b/2][w_b/2], each the flat y*w+x in
-  // that level's input plane (PyTorch's return_indices convention). std::invalid_argument when a
-  // size is wrong or an index lies outside its 2x2 window.
+  // For tests against PyTorch that must not hinge on max-pool near-ties (docs/design/surrogate.md):
+  // the same forward pass, one thread, with every 2x2 max-pool's argmax taken from `indices`
+  // instead of computed. indices[b] holds level b's, [n][filters[b]][h_b/2][w_b/2], each the flat
+  // y*w+x in that level's input plane (PyTorch's return_indices convention). std::invalid_argument
+  // when a size is wrong or an index lies outside its 2x2 window.
   using PoolIndices = std::vector<std::vector<std::int32_t>>;
   Tensor predict_with_pool_indices(const Tensor& input, const PoolIndices& indices) const;
 

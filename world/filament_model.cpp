@@ -62,7 +62,7 @@ void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
 }  // namespace
 
 // Bounds well beyond any useful setting: they catch NaN, signs and unit
-// mistakes (dataset/README.md, "Options").
+// mistakes (docs/design/dataset.md, "Options").
 namespace {
 
 using Entries = std::vector<OptionEntry<FilamentOptions>>;

@@ -90,14 +90,14 @@ struct FilamentOptions {
 
   // Throws OptionError naming the field ("plume.release_rate",
   // "plume.filaments_per_second", "plume.dt", ...) and its allowed range
-  // (dataset/README.md, "Options"). FilamentSimulation calls it.
+  // (docs/design/dataset.md, "Options"). FilamentSimulation calls it.
   void validate() const;
   // Upper bound of the filaments alive at once (all released during the
   // longest spin-up and the recording, none dropped), for the memory guard.
   double max_filaments() const;
 };
 
-// The world presets (--world, dataset/README.md, "Worlds"): "faithful" (the
+// The world presets (--world, docs/world.md, "Worlds"): "faithful" (the
 // defaults: occlusion and the unsteady wind) or "thesis" (neither), which set only
 // those two fields; or "neumann", seed 000 §4.1's filaments in a laminar wind (no
 // meander, 500 filaments/s of 0.2 m, sigma_p 0.1 m per 0.1 s step (dt 0.1 s), almost no growth,

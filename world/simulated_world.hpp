@@ -37,7 +37,7 @@ struct WorldOptions {
   double direction_noise_deg() const;
   // Std of a direction noise on each of a stop's single wind readings, degrees: the stop's
   // circular variance S0 (Reading::wind_variance) is then that of the noisy directions, as seed
-  // 002 synthesised it (σ_S0 = 23.08, read as a standard deviation; methods/README.md). 0: S0 of
+  // 002 synthesised it (σ_S0 = 23.08, read as a standard deviation; docs/methods.md). 0: S0 of
   // the world's own wind.
   double wind_variance_noise_deg = 0.0;
   // Std per axis of the position the robot records for a stop, m
@@ -55,7 +55,7 @@ struct WorldOptions {
   // §4.4's rotor disturbance (0.5 m, the drone's downwash mixing the air under it before the
   // sensor model). 0: the concentration at the sensor's point.
   double rotor_disc = 0.0;
-  // OptionError naming the field (ste/README.md, "Options"); ste/options.cpp.
+  // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
 

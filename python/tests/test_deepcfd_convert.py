@@ -111,7 +111,7 @@ def test_engine_matches_pytorch_with_weight_norm_folded(tmp_path, checkpoint, da
         p = model.predict(source)
         assert p["std"] is None
         # Within 1e-4 of the peak, but where a max-pool window is a near-tie on the map's flat
-        # features (margins of 1e-8 here; surrogate/README.md, "Golden files"): float32 engines
+        # features (margins of 1e-8 here; docs/design/surrogate.md, "Golden files"): float32 engines
         # summing in different orders may pick another cell, which moves one value locally. A
         # wrong conversion (weight norm not folded, levels swapped) errs everywhere.
         err = np.abs(p["mean"] - y) / np.abs(y).max()

@@ -118,7 +118,7 @@ def header_for(model, features=None, outputs=None, training=None, trained_on=Non
             raise ValueError(f"provenance holds absolute paths ({', '.join(bad)}): "
                              "name them with provenance_path()")
         header["training"] = training
-    if trained_on is not None:  # the ranges plumekit warns outside (surrogate/README.md)
+    if trained_on is not None:  # the ranges plumekit warns outside (docs/design/surrogate.md)
         header["trained_on"] = trained_on
     return header
 

@@ -1,4 +1,4 @@
-"""Reads plumekit-dataset/1 directories (dataset/README.md) memory-mapped, and splits them by map.
+"""Reads plumekit-dataset/1 directories (docs/design/dataset.md) memory-mapped, and splits them by map.
 
 DIR/manifest.json lists `shards` (each with `name`, else `map_index`); DIR/shards/NAME/ holds
 inputs.npy float32 [n,3,64,64], targets.npy float32 [n,2,64,64], sources.npy float32 [n,2] and
@@ -199,7 +199,7 @@ def ranges(maps):
 
 
 def map_ranges(directory, manifest, map_ids):
-    """A model header's `trained_on` (surrogate/README.md) over the maps map_ids: map_width_m,
+    """A model header's `trained_on` (docs/design/surrogate.md) over the maps map_ids: map_width_m,
     map_height_m, inlet_speed_m_s, openings as [lo, hi], inlet_walls (sorted; an inlet not on an
     arena wall, a window on an obstacle's edge, counts as "interior"). None when the dataset holds no map files (the synthetic smoke datasets)."""
     maps = map_summaries(directory, manifest, map_ids)

@@ -35,7 +35,8 @@ TEST_F(FlowCli, WritesAllOutputsAndASummary) {
 }
 
 TEST_F(FlowCli, ReportsTheSchemeUsedAndFallsBackOnlyWhenAllowed) {
-  // Central convection stalls at nu = 0.001 on 20 cm cells (cfd/README.md, "Flow policy").
+  // Central convection stalls at nu = 0.001 on 20 cm cells (docs/design/flow-solver.md, "Flow
+  // policy").
   const std::string args = "flow " + (kMaps / "cluttered-1.json").string() +
                            " --cell 0.2 --nu 0.001 --out " + (dir / "wind").string();
   auto r = run(args + " --json");

@@ -79,7 +79,7 @@ TEST(FlowMaps, MixingLengthAddsEddyViscosityAndConverges) {
 
 TEST(FlowMaps, MixingLengthSettlesWithinTheLaminarIterationBudget) {
   // cluttered-1: the plainly relaxed eddy viscosity took 120 iterations to
-  // settle; Anderson-mixed updates take 71 (cfd/README.md).
+  // settle; Anderson-mixed updates take 71 (docs/design/flow-solver.md).
   EXPECT_LT(mixing_length_flow("cluttered-1.json").summary.iterations, 100);
 }
 

@@ -137,7 +137,7 @@ TEST_F(OpenFoamEngine, AgreesWithTheBuiltInSolver) {
   const OpenFoamResult foam = solve(kObstacle, flow, foam_options(1));
   const FlowResult builtin = cfd::solve(parse_map(kObstacle, "test"), flow);
   // Measured 1.8 %: collocated linearUpwind vs the staggered central scheme,
-  // largest at the outlet's end (cfd/README.md, "OpenFOAM engine").
+  // largest at the outlet's end (docs/design/flow-solver.md, "OpenFOAM engine").
   EXPECT_LT(relative_l2(foam.flow.wind, builtin.wind), 0.03);
   const FlowResult channel_builtin = cfd::solve(parse_map(kChannel, "test"), flow_options(0.1));
   const OpenFoamResult channel = solve(kChannel, flow_options(0.1), foam_options(1));

@@ -115,7 +115,7 @@ TEST(FilamentOcclusion, ASensorBehindASealedWallReadsExactlyZero) {
 }
 
 TEST(FilamentOcclusion, GasBehindABlockIsNotReadUpwindOfIt) {
-  // ste/README's case: a 0.5 m block, the source 1.5 m behind it, a sensor
+  // docs/design/ste.md's case: a 0.5 m block, the source 1.5 m behind it, a sensor
   // on its upwind side.
   Map map = default_arena(10.0, 4.0);
   map.obstacles = {rectangle(4.0, 1.75, 4.5, 2.25)};

@@ -254,7 +254,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   const run::Scenario sc(map, o);
   // Below the block's wake: directly behind it the filament plume's widest
   // filaments pile up against the block and their kernels reach through it
-  // (see ste/README.md), which no mean-plume model predicts.
+  // (see docs/design/ste.md), which no mean-plume model predicts.
   const Vec2 source{4.5, 0.5};
   const run::LocalizationResult r = sc.run(source, {1.0, 2.5}, world::run_seed(3, 0, 0, 0));
   EXPECT_LT(norm(r.estimate - source), 0.5) << "estimate " << to_string(r.estimate);

@@ -35,8 +35,8 @@ Tensor to_tensor(const NpyArray& a) {
 // The engine reproduces the golden pair train.py wrote beside `model` (STEM_input/output.npy).
 // The strict 1e-4 criterion is the golden tests' (fixed files). Here the model and its pair depend
 // on this machine's PyTorch kernels, and a max-pool near-tie may send one decoder value to another
-// pixel in one engine and not the other (surrogate/README.md, "Max-pool near-ties"); so all but
-// 1 % of the values must agree within 1e-4 of the largest, and the rest stay bounded.
+// pixel in one engine and not the other (docs/design/surrogate.md, "Max-pool near-ties"); so all
+// but 1 % of the values must agree within 1e-4 of the largest, and the rest stay bounded.
 void expect_engine_reproduces_golden_pair(const fs::path& model) {
   const Network net = Network::load(model.string());
   EXPECT_EQ(net.parameter_count(), 600130u);
@@ -185,7 +185,7 @@ TEST(TrainSmoke, TorchrunDataParallelLearnsWhatOneProcessDoes) {
                             .c_str()),
             0);
   // --redirects/--tee 1: Debian's torch 1.13 reads the default 0 as None on Python 3.11
-  // (surrogate/README.md, "Several GPUs").
+  // (docs/design/surrogate.md, "Several GPUs").
   const std::string torchrun = std::string(PLUMEKIT_PYTHON) +
                                " -m torch.distributed.run --standalone --nproc_per_node 2 "
                                "--redirects 1 --tee 1 " +
