@@ -211,7 +211,7 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   }
   // method=[...] (a list): several methods in one plume per run (ste/README.md, "Several methods
   // in one world"), a summary each.
-  std::vector<run::MethodKind> kinds;
+  std::vector<std::string> kinds;
   py::dict rest;
   for (const auto& item : kw) {
     const std::string key = py::str(item.first);
@@ -238,7 +238,7 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
       progress(done, total);
     };
   const bool several = !kinds.empty();
-  if (!several) kinds = {eo.ste.method.kind};
+  if (!several) kinds = {eo.ste.method.name};
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   {
     ReleasedGil release;
@@ -246,13 +246,13 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
         run::evaluate_methods(list, eo, kinds, report);
     for (std::size_t m = 0; m < kinds.size(); ++m) {
       run::EvaluationOptions each = eo;
-      each.ste.method.kind = kinds[m];
+      each.ste.method.name = kinds[m];
       nlohmann::ordered_json one = run::evaluation_report(results[m], each, dir, "").json;
       one["timings"] = run::evaluation_timings(results[m]);
       if (!several)
         j = one;
       else
-        j[to_string(kinds[m])] = one;
+        j[kinds[m]] = one;
     }
   }
   return from_json(j);

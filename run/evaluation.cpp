@@ -76,7 +76,7 @@ void fill_record(const Scenario& scenario, RunRecord& rec) {
   rec.median_step_s = r.median_step_s;
   rec.stopped_by = r.stopped_by;
   rec.reached = r.reached;
-  if (ends_on_arrival(scenario.options().method.kind))
+  if (ends_on_arrival(scenario.options().method.name))
     rec.distance_overhead =
         tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
 }
@@ -194,7 +194,7 @@ Stats summarise(const std::vector<const RunRecord*>& runs) {
 
 std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
                                                const EvaluationOptions& o,
-                                               const std::vector<MethodKind>& kinds,
+                                               const std::vector<std::string>& kinds,
                                                const std::function<void(int, int)>& progress,
                                                const AfterMethodMap& after_map) {
   o.validate();
@@ -207,10 +207,10 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
   std::vector<EvaluationResult> results(kinds.size());
   const PairRange pairs = part_pairs(maps, o);
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    ste[m].method.kind = kinds[m];
+    ste[m].method.name = kinds[m];
     ste[m].threads = o.threads;  // the table build uses the evaluation's threads
     ste[m].validate();
-    results[m].method = to_string(kinds[m]);
+    results[m].method = kinds[m];
     results[m].seeds = o.seeds;
     results[m].pairs = pairs;
     results[m].methods_together = static_cast<int>(kinds.size());
@@ -275,7 +275,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
     each = [&](std::size_t, const Scenario& sc, const std::vector<RunRecord>& records) {
       after_map(sc, records);
     };
-  return std::move(evaluate_methods(maps, o, {o.ste.method.kind}, progress, each).front());
+  return std::move(evaluate_methods(maps, o, {o.ste.method.name}, progress, each).front());
 }
 
 std::string runs_csv(const EvaluationResult& result) {
