@@ -160,6 +160,17 @@ std::unique_ptr<LocalizationMethod> make_pf_sweep(const SearchArea& area,
       area, std::make_unique<PredefinedSweep>(area, sweep), options, "pf-sweep");
 }
 
+std::optional<Grid<double>> ParticleFilterMethod::belief_map(const Map& map) const {
+  Grid<double> g(GridShape::with_cell(map.width, map.height, 0.1), 0.0);
+  const auto& p = filter_.particles();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const int i = std::clamp(static_cast<int>(p[k].x / g.shape.dx()), 0, g.shape.nx - 1);
+    const int j = std::clamp(static_cast<int>(p[k].y / g.shape.dy()), 0, g.shape.ny - 1);
+    g(i, j) += filter_.weights()[k];
+  }
+  return g;
+}
+
 // The particle filter's registry entries: the filter declares the source itself (its own stop
 // rule), explored by the pseudo-gradient tracker or the predefined sweep.
 MethodSpec pf_gradient_spec() {

@@ -103,6 +103,22 @@ bool ends_on_arrival(const std::string& name) {
   return find_method(name).traits.ends_on_arrival();
 }
 
+std::string registry_markdown() {
+  std::string md =
+      "# Localization methods\n\n"
+      "Generated from the method registry (`methods/registry.cpp`); "
+      "`MethodRegistry.DocsTableIsTheRegistry` checks it\n"
+      "(rewrite it with `PLUMEKIT_WRITE_DOCS=1 build/tests/methods/methods_tests "
+      "--gtest_filter=MethodRegistry.*`).\n\n"
+      "| `--method` | what | from | plume model | a run ends |\n"
+      "|---|---|---|---|---|\n";
+  for (const MethodSpec& s : registry())
+    md += "| `" + s.name + "` | " + s.description + " | " + s.source + " | " +
+          (s.traits.uses_plume_model ? "yes" : "no") + " | " + to_string(s.traits.ends) +
+          ", budget |\n";
+  return md;
+}
+
 std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& given, const SearchArea& area,
                                                 std::uint64_t seed) {
   const MethodSpec& spec = find_method(given.name);

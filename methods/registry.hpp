@@ -70,6 +70,10 @@ bool ends_on_arrival(const std::string& name);
 std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& options,
                                                 const SearchArea& area, std::uint64_t seed);
 
+// The registry as a Markdown table (name, description, source, plume model, how a run ends):
+// docs/methods-registry.md, which MethodRegistry.DocsTableIsTheRegistry keeps equal to it.
+std::string registry_markdown();
+
 // Each method's spec, defined in the method's own file.
 MethodSpec ste_spec();
 MethodSpec sweeping_spec();
