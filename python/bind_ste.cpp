@@ -284,6 +284,19 @@ void bind_ste(py::module_& m) {
         "after each run. With method=[names], every method samples one plume per run and the "
         "result is a dict of their summaries by name.");
   m.def(
+      "methods",
+      [] {
+        py::list out;
+        for (const methods::MethodSpec& s : methods::method_registry())
+          out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
+                              py::arg("source") = s.source,
+                              py::arg("uses_plume_model") = s.traits.uses_plume_model,
+                              py::arg("ends") = methods::to_string(s.traits.ends)));
+        return out;
+      },
+      "The localization methods (the registry, methods/registry.hpp), in --method's order: a "
+      "dict each with 'name', 'description', 'source', 'uses_plume_model', 'ends'.");
+  m.def(
       "data_dir", [] { return data_dir(); },
       "The shipped data folder ($PLUMEKIT_DATA, else the source tree's data/)");
 }
