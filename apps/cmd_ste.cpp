@@ -212,17 +212,17 @@ void add_walk_options(CLI::App* cmd, run::MethodOptions& m);
 // The localization method and the options of the seeds' methods (docs/methods.md).
 // With `several` (evaluate), --method also takes a list or "all", which goes there.
 void add_method_options(CLI::App* cmd, run::MethodOptions& m,
-                        std::vector<run::MethodKind>* several = nullptr) {
+                        std::vector<std::string>* several = nullptr) {
   std::string names;
   for (const std::string& n : run::method_names())
     names += (names.empty() ? "" : ", ") + n;
   const std::string what =
       " (ste: plumekit's source term estimation; the others are the seeds' plume trackers and "
       "particle filters, docs/methods.md)";
-  auto one = [&m](const std::string& s) { m.kind = run::parse_method_kind(s); };
+  auto one = [&m](const std::string& s) { m.name = run::find_method(s).name; };
   auto list = [&m, several](const std::string& s) {
     *several = run::parse_method_list(s);
-    m.kind = several->front();
+    m.name = several->front();
   };
   const std::string help =
       several ? "Localization method: " + names + what +
@@ -231,7 +231,7 @@ void add_method_options(CLI::App* cmd, run::MethodOptions& m,
               : "Localization method: " + names + what;
   CLI::Option* option = several ? cmd->add_option_function<std::string>("--method", list, help)
                                 : cmd->add_option_function<std::string>("--method", one, help);
-  bind_field(cmd, option->default_str(to_string(m.kind)), "ste.method");
+  bind_field(cmd, option->default_str(m.name), "ste.method");
   methods::TrackingOptions& t = m.tracking;
   bind_to(cmd, "--track-step", t.step,
           "Step of the trackers and the particle filter's exploration, m (the seeds': 1)",
@@ -322,7 +322,7 @@ void add_walk_options(CLI::App* cmd, run::MethodOptions& m) {
 }
 
 void add_ste_options(CLI::App* cmd, run::SteOptions& o,
-                     std::vector<run::MethodKind>* several_methods = nullptr) {
+                     std::vector<std::string>* several_methods = nullptr) {
   add_method_options(cmd, o.method, several_methods);
   add_model_options(cmd, o);
   add_run_options(cmd, o);
@@ -506,7 +506,7 @@ struct EvaluateArgs {
   std::string map_dir, out = "out/evaluate";
   bool part = false;
   run::EvaluationOptions eval;
-  std::vector<run::MethodKind> methods;  // --method with several: one world per run
+  std::vector<std::string> methods;  // --method with several: one world per run
 };
 
 void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd);
@@ -556,8 +556,8 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   const run::MapFolder maps = run::read_map_folder(args.map_dir);
   const run::EvaluationOptions& eo = args.eval;
   // Several methods: each into OUT/NAME/, exactly what `--method NAME --out OUT/NAME` writes.
-  const std::vector<run::MethodKind> kinds =
-      args.methods.size() > 1 ? args.methods : std::vector<run::MethodKind>{eo.ste.method.kind};
+  const std::vector<std::string> kinds =
+      args.methods.size() > 1 ? args.methods : std::vector<std::string>{eo.ste.method.name};
   const bool several = kinds.size() > 1;
   std::vector<run::EvaluationOptions> each(kinds.size(), eo);
   const std::vector<fs::path> inputs{args.map_dir, eo.ste.table_cache, eo.ste.model_path};
@@ -569,8 +569,8 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   std::vector<fs::path> outs;
   std::vector<std::unique_ptr<OutputDirectory>> dirs;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    each[m].ste.method.kind = kinds[m];
-    const std::string name = to_string(kinds[m]);
+    each[m].ste.method.name = kinds[m];
+    const std::string name = kinds[m];
     outs.push_back(several ? fs::path(args.out) / name : fs::path(args.out));
     dirs.push_back(std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m],
                                                      "evaluate", inputs));
@@ -597,7 +597,7 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
     const ordered_json settings = run::evaluation_settings(each[m], args.map_dir);
     if (args.part) {
       ordered_json options = result_options(cmd, each[m]);
-      options["--method"] = to_string(kinds[m]);  // as the part of a single method
+      options["--method"] = kinds[m];  // as the part of a single method
       const run::PartIdentity id{settings, options, run::map_files_json(maps)};
       reports.push_back(write_part(*dirs[m], res, each[m], id, outs[m]));
       continue;
@@ -620,11 +620,11 @@ void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
   std::string text;
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    j["methods"].push_back({{"method", to_string(kinds[m])},
+    j["methods"].push_back({{"method", kinds[m]},
                             {"model_build_s", results[m].model_build_s()},
                             {"decisions_s", results[m].decisions_s},
                             {"result", reports[m].json}});
-    text += std::string(m ? "\n\n" : "") + "== " + to_string(kinds[m]) + " ==\n" + reports[m].text;
+    text += std::string(m ? "\n\n" : "") + "== " + kinds[m] + " ==\n" + reports[m].text;
   }
   j["wall_s"] = results.front().wall_s;
   j["wind_s"] = wind_s;

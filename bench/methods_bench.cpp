@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
   for (const std::string& name : run::method_names()) {
     if (name == "ste") continue;
     run::SteOptions o = base;
-    o.method.kind = run::parse_method_kind(name);
+    o.method.name = name;
     const double t = step_median(map, o, runs, stops);
     std::printf("%-16s %8.3f ms  %7.4fx the baseline (%zu steps)\n", name.c_str(), 1000 * t,
                 t / ste, stops);

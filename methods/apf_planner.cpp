@@ -1,5 +1,8 @@
 #include "methods/apf_planner.hpp"
 
+#include "methods/method_options.hpp"
+#include "methods/registry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -271,6 +274,16 @@ std::string ApfMapping::stopped_by() const {
 std::unique_ptr<methods::LocalizationMethod> make_apf_mapping(const methods::SearchArea& area,
                                                               const ApfOptions& options) {
   return std::make_unique<ApfMapping>(area, options);
+}
+
+MethodSpec apf_spec() {
+  return {"apf", "adaptive sampling for gas distribution mapping (artificial potential field)",
+          "seed 000 ch. 8", MethodTraits{false, RunEnd::OwnStopRule},
+          [](const MethodOptions& o, const SearchArea& area, std::uint64_t) {
+            ApfOptions apf = o.apf;
+            apf.max_steps = o.tracking.max_steps;
+            return make_apf_mapping(area, apf);
+          }};
 }
 
 }  // namespace plumekit::methods

@@ -1,5 +1,8 @@
 #include "methods/levy_taxis.hpp"
 
+#include "methods/method_options.hpp"
+#include "methods/registry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -76,6 +79,16 @@ Move AdaptiveLevyTaxis::next(Vec2 robot) {
 
 std::string AdaptiveLevyTaxis::stopped_by() const {
   return stops_ >= options_.max_steps ? "max_samples" : "";
+}
+
+MethodSpec levy_taxis_spec() {
+  return {"levy-taxis", "adaptive Levy taxis: a random walk whose steps adapt to the gas",
+          "seed 004 ch. 16", MethodTraits{false, RunEnd::SourceDisc},
+          [](const MethodOptions& o, const SearchArea&, std::uint64_t seed) {
+            LevyTaxisOptions levy = o.levy;
+            levy.max_steps = o.tracking.max_steps;
+            return std::make_unique<AdaptiveLevyTaxis>(levy, seed);
+          }};
 }
 
 }  // namespace plumekit::methods

@@ -1,5 +1,8 @@
 #include "methods/local_framework.hpp"
 
+#include "methods/method_options.hpp"
+#include "methods/registry.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -166,6 +169,16 @@ methods::Move LocalFrameworkSte::next(Vec2 robot) {
   m.goal = robot + (goal - odometry_);  // the same move from where the robot truly is
   m.straight = true;
   return m;
+}
+
+MethodSpec ste_local_spec() {
+  return {"ste-local", "STE in the local framework: no map, odometry, a moving local map",
+          "seed 004 ch. 12", MethodTraits{false, RunEnd::OwnStopRule},
+          [](const MethodOptions& o, const SearchArea&, std::uint64_t seed) {
+            LocalFrameworkOptions local = o.local;
+            local.max_samples = o.tracking.max_steps;
+            return std::make_unique<LocalFrameworkSte>(local, seed);
+          }};
 }
 
 }  // namespace plumekit::methods

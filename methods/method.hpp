@@ -13,7 +13,12 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/grid.hpp"
 #include "map/map.hpp"
+
+namespace plumekit::ste {
+struct Posterior;  // ste/posterior.hpp
+}
 
 namespace plumekit::methods {
 
@@ -78,6 +83,17 @@ class LocalizationMethod {
   // goes on.
   virtual std::string stopped_by() const = 0;
   bool stopped() const { return !stopped_by().empty(); }
+
+  // The method's picture of its belief, for the run's record and pictures, so that the runner
+  // needs no knowledge of any method. Its posterior after the last observe() (STE's), or null
+  // for a method that holds none.
+  virtual const ste::Posterior* posterior() const { return nullptr; }
+  // Its belief over `map`'s arena at the run's end (the particle filter's weights binned on
+  // 0.1 m cells), or nullopt.
+  virtual std::optional<Grid<double>> belief_map(const Map& map) const {
+    (void)map;
+    return std::nullopt;
+  }
 };
 
 }  // namespace plumekit::methods

@@ -1,5 +1,9 @@
 #include "methods/pf_method.hpp"
 
+#include "methods/method_options.hpp"
+#include "methods/plume_tracking.hpp"
+#include "methods/registry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -154,6 +158,42 @@ std::unique_ptr<LocalizationMethod> make_pf_sweep(const SearchArea& area,
                                                   const SweepPatternOptions& sweep) {
   return std::make_unique<ParticleFilterMethod>(
       area, std::make_unique<PredefinedSweep>(area, sweep), options, "pf-sweep");
+}
+
+std::optional<Grid<double>> ParticleFilterMethod::belief_map(const Map& map) const {
+  Grid<double> g(GridShape::with_cell(map.width, map.height, 0.1), 0.0);
+  const auto& p = filter_.particles();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const int i = std::clamp(static_cast<int>(p[k].x / g.shape.dx()), 0, g.shape.nx - 1);
+    const int j = std::clamp(static_cast<int>(p[k].y / g.shape.dy()), 0, g.shape.ny - 1);
+    g(i, j) += filter_.weights()[k];
+  }
+  return g;
+}
+
+// The particle filter's registry entries: the filter declares the source itself (its own stop
+// rule), explored by the pseudo-gradient tracker or the predefined sweep.
+MethodSpec pf_gradient_spec() {
+  return {"pf-gradient", "particle filter explored by the pseudo-gradient tracker",
+          "seed 001 Sec. III, seed 002", MethodTraits{false, RunEnd::OwnStopRule},
+          [](const MethodOptions& o, const SearchArea& area, std::uint64_t seed) {
+            PfMethodOptions pf = o.pf_in_use(PfExploration::Gradient);
+            pf.seed = seed;
+            return std::make_unique<ParticleFilterMethod>(
+                area, make_pseudo_gradient(area, o.tracking), pf, "pf-gradient");
+          }};
+}
+
+MethodSpec pf_sweep_spec() {
+  return {"pf-sweep", "particle filter explored by a predefined sweep",
+          "seed 001 Sec. III, seed 000 Sec. 6.2.1", MethodTraits{false, RunEnd::OwnStopRule},
+          [](const MethodOptions& o, const SearchArea& area, std::uint64_t seed) {
+            PfMethodOptions pf = o.pf_in_use(PfExploration::Sweep);
+            pf.seed = seed;
+            auto sweep = std::make_unique<PredefinedSweep>(
+                area, SweepPatternOptions{o.tracking.step, o.tracking.max_steps});
+            return std::make_unique<ParticleFilterMethod>(area, std::move(sweep), pf, "pf-sweep");
+          }};
 }
 
 }  // namespace plumekit::methods

@@ -99,6 +99,8 @@ class ParticleFilterMethod : public LocalizationMethod {
   std::string stopped_by() const override;
 
   const ParticleFilter& filter() const { return filter_; }
+  // The final weights binned on 0.1 m cells: the run picture's "posterior".
+  std::optional<Grid<double>> belief_map(const Map& map) const override;
   const LocalizationMethod& explorer() const { return *explorer_; }
   int steps() const { return steps_; }
 

@@ -1,5 +1,8 @@
 #include "methods/plume_tracking.hpp"
 
+#include "methods/method_options.hpp"
+#include "methods/registry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -344,6 +347,41 @@ std::optional<double> distance_overhead(const std::vector<Vec2>& path, Vec2 sour
   const double progress = norm(path.front() - source) - norm(path.back() - source);
   if (!(progress > 0.0)) return std::nullopt;
   return travelled / progress;
+}
+
+// The trackers' registry entries: each ends in the success box downwind of the source.
+namespace {
+
+MethodSpec tracker_spec(std::string name, std::string description, std::string source,
+                        std::unique_ptr<LocalizationMethod> (*make)(const SearchArea&,
+                                                                    const TrackingOptions&)) {
+  return {std::move(name), std::move(description), std::move(source),
+          MethodTraits{false, RunEnd::SourceBox},
+          [make](const MethodOptions& o, const SearchArea& area, std::uint64_t) {
+            return make(area, o.tracking);
+          }};
+}
+
+}  // namespace
+
+MethodSpec sweeping_spec() {
+  return tracker_spec("sweeping", "crosswind sweeps upwind until the plume is found",
+                      "seed 000 Sec. 5.1.1", make_sweeping);
+}
+
+MethodSpec surge_cast_spec() {
+  return tracker_spec("surge-cast", "surge upwind in the plume, cast crosswind when it is lost",
+                      "seed 000 Sec. 5.1.2.1", make_surge_cast);
+}
+
+MethodSpec zigzag_spec() {
+  return tracker_spec("zigzag", "zigzag (dung beetle) legs upwind across the plume",
+                      "seed 002 Sec. 3.2.2, seed 000 Sec. 5.1.2.2", make_zigzag);
+}
+
+MethodSpec pseudo_gradient_spec() {
+  return tracker_spec("pseudo-gradient", "two-position pseudo-gradient tracking upwind",
+                      "seed 002 Sec. 3.2.3", make_pseudo_gradient);
 }
 
 }  // namespace plumekit::methods

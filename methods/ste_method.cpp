@@ -1,5 +1,7 @@
 #include "methods/ste_method.hpp"
 
+#include "methods/registry.hpp"
+
 namespace plumekit::methods {
 
 methods::Move SteMethod::next(Vec2 robot) {
@@ -14,6 +16,15 @@ methods::Move SteMethod::next(Vec2 robot) {
 std::optional<Vec2> SteMethod::estimate() const {
   if (mission_.samples() == 0) return std::nullopt;
   return mission_.posterior().expected_source();
+}
+
+// No factory: STE needs the Scenario's plume model, estimator and navigator (run/scenario.cpp).
+MethodSpec ste_spec() {
+  return {"ste",
+          "source term estimation: Bayesian posterior over the source, infotaxis moves",
+          "plumekit (ste/)",
+          MethodTraits{true, RunEnd::OwnStopRule},
+          {}};
 }
 
 }  // namespace plumekit::methods

@@ -22,6 +22,7 @@ class SteMethod : public methods::LocalizationMethod {
   std::string stopped_by() const override { return mission_.stopped_by(); }
 
   const ste::Mission& mission() const { return mission_; }
+  const ste::Posterior* posterior() const override { return &mission_.posterior(); }
 
  private:
   ste::Mission mission_;

@@ -212,7 +212,7 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
   }
   // method=[...] (a list): several methods in one plume per run (docs/design/evaluation.md,
   // "Several methods in one world"), a summary each.
-  std::vector<run::MethodKind> kinds;
+  std::vector<std::string> kinds;
   py::dict rest;
   for (const auto& item : kw) {
     const std::string key = py::str(item.first);
@@ -239,7 +239,7 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
       progress(done, total);
     };
   const bool several = !kinds.empty();
-  if (!several) kinds = {eo.ste.method.kind};
+  if (!several) kinds = {eo.ste.method.name};
   nlohmann::ordered_json j = nlohmann::ordered_json::object();
   {
     ReleasedGil release;
@@ -247,13 +247,13 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
         run::evaluate_methods(list, eo, kinds, report);
     for (std::size_t m = 0; m < kinds.size(); ++m) {
       run::EvaluationOptions each = eo;
-      each.ste.method.kind = kinds[m];
+      each.ste.method.name = kinds[m];
       nlohmann::ordered_json one = run::evaluation_report(results[m], each, dir, "").json;
       one["timings"] = run::evaluation_timings(results[m]);
       if (!several)
         j = one;
       else
-        j[to_string(kinds[m])] = one;
+        j[kinds[m]] = one;
     }
   }
   return from_json(j);
@@ -284,6 +284,19 @@ void bind_ste(py::module_& m) {
         "content, with the measured times under 'timings'. `progress(done, total)` is called "
         "after each run. With method=[names], every method samples one plume per run and the "
         "result is a dict of their summaries by name.");
+  m.def(
+      "methods",
+      [] {
+        py::list out;
+        for (const methods::MethodSpec& s : methods::method_registry())
+          out.append(py::dict(py::arg("name") = s.name, py::arg("description") = s.description,
+                              py::arg("source") = s.source,
+                              py::arg("uses_plume_model") = s.traits.uses_plume_model,
+                              py::arg("ends") = methods::to_string(s.traits.ends)));
+        return out;
+      },
+      "The localization methods (the registry, methods/registry.hpp), in --method's order: a "
+      "dict each with 'name', 'description', 'source', 'uses_plume_model', 'ends'.");
   m.def(
       "data_dir", [] { return data_dir(); },
       "The shipped data folder ($PLUMEKIT_DATA, else the source tree's data/)");

@@ -94,8 +94,8 @@ void bind_ste_options_class(py::module_& m) {
       "plume_model='physics', stop={'max_samples': 30}).");
   o.def(py::init<>());
   o.def_property(
-      "method", [](const run::SteOptions& s) { return std::string(to_string(s.method.kind)); },
-      [](run::SteOptions& s, const std::string& v) { s.method.kind = run::parse_method_kind(v); },
+      "method", [](const run::SteOptions& s) { return s.method.name; },
+      [](run::SteOptions& s, const std::string& v) { s.method.name = run::find_method(v).name; },
       "'ste' (the default), or one of the seeds' methods: 'sweeping', 'surge-cast', 'zigzag', "
       "'pseudo-gradient', 'pf-gradient', 'pf-sweep', 'apf', 'levy-taxis', 'ste-local' "
       "(docs/methods.md, "

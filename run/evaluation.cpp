@@ -76,7 +76,7 @@ void fill_record(const Scenario& scenario, RunRecord& rec) {
   rec.median_step_s = r.median_step_s;
   rec.stopped_by = r.stopped_by;
   rec.reached = r.reached;
-  if (ends_on_arrival(scenario.options().method.kind))
+  if (ends_on_arrival(scenario.options().method.name))
     rec.distance_overhead =
         tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
 }
@@ -196,10 +196,10 @@ namespace {
 
 // Each method's STE options: the evaluation's, with the method and the evaluation's threads.
 std::vector<SteOptions> method_options(const EvaluationOptions& o,
-                                       const std::vector<MethodKind>& kinds) {
+                                       const std::vector<std::string>& kinds) {
   std::vector<SteOptions> ste(kinds.size(), o.ste);
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    ste[m].method.kind = kinds[m];
+    ste[m].method.name = kinds[m];
     ste[m].threads = o.threads;  // the table build uses the evaluation's threads
     ste[m].validate();
   }
@@ -208,11 +208,11 @@ std::vector<SteOptions> method_options(const EvaluationOptions& o,
 
 // Each method's result before any map: what it is and which part of the pairs it covers.
 std::vector<EvaluationResult> empty_results(const EvaluationOptions& o,
-                                            const std::vector<MethodKind>& kinds,
+                                            const std::vector<std::string>& kinds,
                                             const PairRange& pairs) {
   std::vector<EvaluationResult> results(kinds.size());
   for (std::size_t m = 0; m < kinds.size(); ++m) {
-    results[m].method = to_string(kinds[m]);
+    results[m].method = kinds[m];
     results[m].seeds = o.seeds;
     results[m].pairs = pairs;
     results[m].methods_together = static_cast<int>(kinds.size());
@@ -254,7 +254,7 @@ void add_map(const MapReport& report, double wall_s,
 
 std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
                                                const EvaluationOptions& o,
-                                               const std::vector<MethodKind>& kinds,
+                                               const std::vector<std::string>& kinds,
                                                const std::function<void(int, int)>& progress,
                                                const AfterMethodMap& after_map) {
   o.validate();
@@ -311,7 +311,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
     each = [&](std::size_t, const Scenario& sc, const std::vector<RunRecord>& records) {
       after_map(sc, records);
     };
-  return std::move(evaluate_methods(maps, o, {o.ste.method.kind}, progress, each).front());
+  return std::move(evaluate_methods(maps, o, {o.ste.method.name}, progress, each).front());
 }
 
 std::string runs_csv(const EvaluationResult& result) {

@@ -85,10 +85,10 @@ struct MapReport {
 };
 
 struct EvaluationResult {
-  std::string method = "ste";  // MethodKind's name
+  std::string method = "ste";  // the registry's name
   // A plume tracker's evaluation: runs.csv and the summaries add the source box and the distance
   // overhead.
-  bool tracking() const { return ends_on_arrival(parse_method_kind(method)); }
+  bool tracking() const { return ends_on_arrival(method); }
   std::vector<RunRecord> runs;
   std::vector<MapReport> maps;
   Stats overall;
@@ -117,7 +117,7 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
                           const std::function<void(int, int)>& progress = {},
                           const AfterMap& after_map = {});
 
-// Every method of `kinds` (options.ste.method.kind replaced by each) on the same runs, one
+// Every method of `kinds` (options.ste.method.name replaced by each) on the same runs, one
 // result per method, each byte for byte (but its wall times) the result of evaluate() with that
 // method alone. Each run's plume is simulated once and all the methods' robots sample it at once
 // (world/shared_plume.hpp): the plume, most of a run's cost, is paid for the longest mission
@@ -128,7 +128,7 @@ using AfterMethodMap =
     std::function<void(std::size_t method, const Scenario&, const std::vector<RunRecord>&)>;
 std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
                                                const EvaluationOptions& options,
-                                               const std::vector<MethodKind>& kinds,
+                                               const std::vector<std::string>& kinds,
                                                const std::function<void(int, int)>& progress = {},
                                                const AfterMethodMap& after_map = {});
 

@@ -8,7 +8,6 @@
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
 #include "core/statistics.hpp"
-#include "methods/pf_method.hpp"
 #include "methods/ste_method.hpp"
 
 namespace plumekit::run {
@@ -117,10 +116,10 @@ void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
 
 namespace {
 
-// The method's state after a stop, into the step's record (STE adds its posterior's).
+// The method's state after a stop, into the step's record (a method with a posterior adds its).
 void record_state(const methods::LocalizationMethod& method, Step& s, LocalizationResult& r) {
-  if (const auto* ste = dynamic_cast<const methods::SteMethod*>(&method)) {
-    r.posterior = ste->mission().posterior();
+  if (const ste::Posterior* posterior = method.posterior()) {
+    r.posterior = *posterior;
     s.estimate = r.posterior.expected_source();
     s.map = r.posterior.map;
     s.entropy = r.posterior.entropy;
@@ -128,18 +127,6 @@ void record_state(const methods::LocalizationMethod& method, Step& s, Localizati
   }
   s.estimate = method.estimate().value_or(s.position);
   s.map = s.estimate;
-}
-
-// The particle filter's final weights binned on 0.1 m cells: its picture's "posterior".
-Grid<double> particle_histogram(const methods::ParticleFilter& f, const Map& map) {
-  Grid<double> g(GridShape::with_cell(map.width, map.height, 0.1), 0.0);
-  const auto& p = f.particles();
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const int i = std::clamp(static_cast<int>(p[k].x / g.shape.dx()), 0, g.shape.nx - 1);
-    const int j = std::clamp(static_cast<int>(p[k].y / g.shape.dy()), 0, g.shape.ny - 1);
-    g(i, j) += f.weights()[k];
-  }
-  return g;
 }
 
 }  // namespace
@@ -199,8 +186,8 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
     path_in = std::move(path.path);
   }
   r.reached = r.stopped_by == "reached";
-  if (const auto* pf = dynamic_cast<const methods::ParticleFilterMethod*>(&method))
-    r.posterior.marginal = particle_histogram(pf->filter(), world.map());
+  if (std::optional<Grid<double>> belief = method.belief_map(world.map()))
+    r.posterior.marginal = std::move(*belief);
   r.expected = r.posterior.expected;
   r.estimate = method.estimate().value_or(pos);
   r.map = r.steps.back().map;

@@ -112,10 +112,9 @@ void SteOptions::validate() const {
   if (team.robots > 1 && world.odometry_drift > 0.0)
     throw OptionError("ste.team.robots",
                       "teams run in the global framework (a map and positions): no odometry drift");
-  if (team.robots > 1 && method.kind != MethodKind::Ste)
+  if (team.robots > 1 && method.name != "ste")
     throw OptionError("ste.team.robots", "teams run plumekit's STE (seed 004 ch. 13); the " +
-                                             std::string(to_string(method.kind)) +
-                                             " method runs one robot");
+                                             method.name + " method runs one robot");
   flow.validate();
   physics.validate();
   gaussian.validate();
@@ -139,7 +138,7 @@ void SteOptions::validate() const {
                      "the default is 1 m");
   check_non_negative("ste.success_radius", success_radius, 100.0, "m",
                      "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m");
-  if (model == PlumeModelKind::Surrogate && uses_plume_model(method.kind)) check_model_file();
+  if (model == PlumeModelKind::Surrogate && uses_plume_model(method.name)) check_model_file();
 }
 
 void SteOptions::check_model_file() const {

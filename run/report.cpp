@@ -215,23 +215,15 @@ std::string summary_label(const ordered_json& settings) {
 ordered_json method_options_json(const MethodOptions& m) {
   const methods::TrackingOptions& t = m.tracking;
   ordered_json j{{"step_m", t.step}, {"detection_threshold", t.detection_threshold}};
-  switch (m.kind) {
-    case MethodKind::SurgeCast:
-      j["max_casts"] = t.max_casts;
-      break;
-    case MethodKind::Zigzag:
-      j["zigzag_alpha_deg"] = t.zigzag_alpha_deg;
-      j["zigzag_flip"] = t.zigzag_flip == methods::ZigzagFlip::OnLoss ? "loss" : "detection";
-      j["max_misses"] = t.max_misses;
-      break;
-    case MethodKind::PseudoGradient:
-    case MethodKind::PfGradient:
-      j["gradient_beta_deg"] = t.gradient_beta_deg;
-      break;
-    default:
-      break;
+  if (m.name == "surge-cast") j["max_casts"] = t.max_casts;
+  if (m.name == "zigzag") {
+    j["zigzag_alpha_deg"] = t.zigzag_alpha_deg;
+    j["zigzag_flip"] = t.zigzag_flip == methods::ZigzagFlip::OnLoss ? "loss" : "detection";
+    j["max_misses"] = t.max_misses;
   }
-  if (m.kind == MethodKind::PfGradient || m.kind == MethodKind::PfSweep) {
+  if (m.name == "pseudo-gradient" || m.name == "pf-gradient")
+    j["gradient_beta_deg"] = t.gradient_beta_deg;
+  if (m.name == "pf-gradient" || m.name == "pf-sweep") {
     const methods::PfMethodOptions pf = m.pf_in_use();
     j["particles"] = pf.filter.particles;
     j["pf_alpha"] = pf.filter.alpha;
@@ -239,12 +231,12 @@ ordered_json method_options_json(const MethodOptions& m) {
     j["declare_radius_m"] = pf.declare_radius;
     j["declare_iterations"] = pf.declare_iterations;
   }
-  if (m.kind == MethodKind::SteLocal) {
+  if (m.name == "ste-local") {
     j["map_size_m"] = m.local.map_size;
     j["budget"] = m.local.budget;
     j["sigma_m"] = m.local.sigma_m;  // its sample guard is max_steps below
   }
-  if (m.kind == MethodKind::LevyTaxis) {
+  if (m.name == "levy-taxis") {
     const methods::LevyTaxisOptions& l = m.levy;
     j["min_move_m"] = l.min_move;
     j["max_move_m"] = l.max_move;
@@ -385,7 +377,7 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
   const ste::LikelihoodOptions l = eo.ste.likelihood_options();
   ordered_json j{{"ok", true},
                  {"map_dir", provenance_path(map_dir)},
-                 {"method", to_string(eo.ste.method.kind)},
+                 {"method", eo.ste.method.name},
                  {"plume_model", to_string(eo.ste.model)},
                  {"runs_per_source", eo.runs},
                  {"sources_per_map",
@@ -410,7 +402,7 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
                  {"strategy", to_string(eo.ste.team.strategy)},
                  {"separation_m", eo.ste.team.separation},
                  {"patience_s", eo.ste.team.patience_s}};
-  if (!uses_plume_model(eo.ste.method.kind)) {
+  if (!uses_plume_model(eo.ste.method.name)) {
     // The plume model's settings mean nothing to a method without one.
     for (const char* key : {"plume_model", "sigma_m", "sigma_rel", "sigma_std", "source_cell"})
       j.erase(key);

@@ -121,8 +121,8 @@ PlumeModelKind parse_plume_model_kind(const std::string& name) {
 }
 
 std::string run_label(const SteOptions& options) {
-  return uses_plume_model(options.method.kind) ? to_string(options.model)
-                                               : to_string(options.method.kind);
+  return uses_plume_model(options.method.name) ? std::string(to_string(options.model))
+                                               : options.method.name;
 }
 
 Scenario::Scenario(const Map& map, const SteOptions& options) : Scenario(map, options, nullptr) {}
@@ -134,7 +134,7 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
     : map_(map), options_(options) {
   options.validate();
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
-  const bool model = uses_plume_model(options.method.kind);
+  const bool model = uses_plume_model(options.method.name);
   if (model && options.model == PlumeModelKind::Physics)
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kPhysicsBytesPerSourceCell);
@@ -260,7 +260,7 @@ Vec2 Scenario::run_start(Vec2 source, int run, std::uint64_t seed) const {
 
 std::unique_ptr<ste::Estimator> Scenario::make_estimator(std::uint64_t seed) const {
   if (!model_)
-    throw InputError("the " + std::string(to_string(options_.method.kind)) +
+    throw InputError("the " + options_.method.name +
                      " method has no plume model to estimate with: STE's estimator and Mission "
                      "need --method ste");
   ste::LikelihoodOptions likelihood = options_.likelihood_options();
@@ -276,9 +276,7 @@ std::unique_ptr<ste::Estimator> Scenario::make_estimator(std::uint64_t seed) con
 }
 
 const ste::ForwardModel& Scenario::model() const {
-  if (!model_)
-    throw std::logic_error("the " + std::string(to_string(options_.method.kind)) +
-                           " method has no plume model");
+  if (!model_) throw std::logic_error("the " + options_.method.name + " method has no plume model");
   return *model_;
 }
 
@@ -379,16 +377,16 @@ LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start,
   MethodRunOptions o;
   if (options_.success_radius > 0.0)
     o.disc = SourceDisc{source, options_.success_radius};
-  else if (options_.method.kind == MethodKind::LevyTaxis)
+  else if (find_method(options_.method.name).traits.ends == methods::RunEnd::SourceDisc)
     o.disc = SourceDisc{source};
-  if (uses_plume_model(options_.method.kind)) {
+  if (uses_plume_model(options_.method.name)) {
     const std::unique_ptr<ste::Estimator> estimator = make_estimator(seed);
     return localize(start, *estimator, world, *planner_, *navigator_, options_.stop, o);
   }
   const std::unique_ptr<methods::LocalizationMethod> method =
       make_method(options_.method, {&map_}, world::stream_seed(seed, world::SteStream::Method));
   o.space = space_.get();
-  if (stops_in_source_box(options_.method.kind)) o.box = source_box(source);
+  if (stops_in_source_box(options_.method.name)) o.box = source_box(source);
   return run_method(start, *method, world, *planner_, o);
 }
 

@@ -11,9 +11,10 @@
 #include "cfd/wind_field.hpp"
 #include "core/thread_pool.hpp"
 #include "map/map.hpp"
+#include "methods/method_options.hpp"
+#include "methods/registry.hpp"
 #include "planner/free_space.hpp"
 #include "planner/planner.hpp"
-#include "run/method_choice.hpp"
 #include "run/method_run.hpp"
 #include "run/team.hpp"
 #include "ste/forward_model.hpp"
@@ -24,6 +25,16 @@
 #include "world/simulated_world.hpp"
 
 namespace plumekit::run {
+
+// The methods' options and the registry's lookups, as the run layer names them.
+using methods::ends_on_arrival;
+using methods::find_method;
+using methods::make_method;
+using methods::method_names;
+using methods::MethodOptions;
+using methods::parse_method_list;
+using methods::stops_in_source_box;
+using methods::uses_plume_model;
 
 enum class PlumeModelKind { Surrogate, Gaussian, Physics };
 const char* to_string(PlumeModelKind kind);

@@ -174,3 +174,11 @@ def test_a_mission_takes_teammates_samples_and_goals(block):
     assert post["entropy"] < alone.posterior["entropy"]
     goal = alone.next((8.0, 2.0))["goal"]
     assert alone.next((8.0, 2.0), teammate_goals=[goal])["goal"] != goal
+
+
+def test_methods_come_from_the_registry():
+    names = [m["name"] for m in plumekit.methods()]
+    assert names[0] == "ste" and len(names) == len(set(names))
+    assert {"surge-cast", "pf-gradient", "levy-taxis"} <= set(names)
+    assert all(m["description"] and m["source"] for m in plumekit.methods())
+    assert [m["name"] for m in plumekit.methods() if m["uses_plume_model"]] == ["ste"]

@@ -120,7 +120,7 @@ TEST(LocalFramework, AStraightMoveStopsAtTheFirstObstacle) {
   Map map = default_arena(6.0, 3.0);
   map.obstacles = {{{2.5, 1.0}, {3.0, 1.0}, {3.0, 2.0}, {2.5, 2.0}}};
   run::SteOptions o;
-  o.method.kind = run::MethodKind::SteLocal;
+  o.method.name = "ste-local";
   const run::Scenario sc(map, o);
   world::SimulatedWorld world(map, sc.wind(), {0.5, 0.5}, o.world, 3);
   StraightAhead method;
@@ -138,7 +138,7 @@ TEST(LocalFramework, AStraightMoveStopsAtTheFirstObstacle) {
 TEST(LocalFramework, OdometryDriftsWithDistanceAndNotWithout) {
   const Map map = default_arena();
   run::SteOptions o;
-  o.method.kind = run::MethodKind::SteLocal;
+  o.method.name = "ste-local";
   const run::Scenario sc(map, o);
   world::WorldOptions w = o.world;
   w.filament.min_spinup = 2.0;
@@ -161,7 +161,7 @@ TEST(LocalFramework, OdometryDriftsWithDistanceAndNotWithout) {
 
 TEST(LocalFramework, ARunWithoutAMapFindsTheSourceAndRepeatsItself) {
   run::SteOptions o;
-  o.method.kind = run::MethodKind::SteLocal;
+  o.method.name = "ste-local";
   world::set_world(o.world.filament, "thesis");
   o.world.filament.min_spinup = 5.0;
   o.world.filament.max_spinup = 20.0;

@@ -37,7 +37,7 @@ class ScriptedMethod : public methods::LocalizationMethod {
 TEST(MethodRun, GoalsInObstaclesOrOutsideAreMovedToTheNearestFreePoint) {
   const Map map = block_map();
   run::SteOptions o;
-  o.method.kind = run::MethodKind::SurgeCast;  // no plume model: the scenario builds none
+  o.method.name = "surge-cast";  // no plume model: the scenario builds none
   const run::Scenario sc(map, o);
   EXPECT_FALSE(sc.has_model());
   world::SimulatedWorld world(map, sc.wind(), {4.5, 0.5}, o.world, 3);
@@ -81,7 +81,7 @@ TEST(MethodRun, TheSourceBoxLiesDownwindOfTheSource) {
 TEST(MethodRun, AMoveThroughTheSourceDiscEndsTheRunWhereItEnters) {
   const Map map = block_map();
   run::SteOptions o;
-  o.method.kind = run::MethodKind::LevyTaxis;
+  o.method.name = "levy-taxis";
   const run::Scenario sc(map, o);
   world::SimulatedWorld world(map, sc.wind(), {4.5, 2.0}, o.world, 3);
   ScriptedMethod method({{5.5, 2.0}, {5.5, 2.5}});  // straight through the source
@@ -104,7 +104,7 @@ TEST(MethodRun, EveryMethodRunsOnAMapWithAnObstacleAndRepeatsItself) {
   for (const std::string& name : run::method_names()) {
     if (name == "ste") continue;
     run::SteOptions o;
-    o.method.kind = run::parse_method_kind(name);
+    o.method.name = run::find_method(name).name;
     o.method.max_steps = 40;
     const run::Scenario sc(map, o);
     const run::LocalizationResult a = sc.run({4.5, 0.5}, {1.0, 2.5}, 7);
@@ -124,7 +124,7 @@ TEST(MethodRun, EveryMethodRunsOnAMapWithAnObstacleAndRepeatsItself) {
 
 TEST(MethodRun, UnknownMethodNamesTheFieldAndTheChoices) {
   try {
-    run::parse_method_kind("infotaxis");
+    run::find_method("infotaxis");
     FAIL();
   } catch (const OptionError& e) {
     EXPECT_EQ(e.field(), "ste.method");

@@ -93,7 +93,7 @@ TEST(Team, StrategiesParseAndBadOptionsNameTheirField) {
     EXPECT_EQ(e.field(), "ste.team.robots");
   }
   o = team_options(2, run::TeamStrategy::Individualist);
-  o.method.kind = run::MethodKind::SurgeCast;  // teams run STE
+  o.method.name = "surge-cast";  // teams run STE
   try {
     o.validate();
     FAIL();

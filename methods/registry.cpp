@@ -1,0 +1,133 @@
+#include "methods/registry.hpp"
+
+#include <stdexcept>
+
+#include "core/error.hpp"
+#include "methods/method_options.hpp"
+
+namespace plumekit::methods {
+
+namespace {
+
+// One line per method. An explicit list rather than self-registering static objects: the methods
+// live in a static library, and the linker drops an object file nobody references, with its
+// registration. The order is the --method order (and `--method all`'s, the docs' table's).
+std::vector<MethodSpec> builtin_methods() {
+  return {
+      ste_spec(),
+      sweeping_spec(),
+      surge_cast_spec(),
+      zigzag_spec(),
+      pseudo_gradient_spec(),
+      pf_gradient_spec(),
+      pf_sweep_spec(),
+      apf_spec(),
+      levy_taxis_spec(),
+      ste_local_spec(),
+  };
+}
+
+std::vector<MethodSpec>& registry() {
+  static std::vector<MethodSpec> methods = builtin_methods();
+  return methods;
+}
+
+}  // namespace
+
+const char* to_string(RunEnd end) {
+  switch (end) {
+    case RunEnd::OwnStopRule:
+      return "own stop rule";
+    case RunEnd::SourceBox:
+      return "source box";
+    case RunEnd::SourceDisc:
+      return "0.5 m disc";
+  }
+  return "?";
+}
+
+const std::vector<MethodSpec>& method_registry() {
+  return registry();
+}
+
+void add_method(MethodSpec spec) {
+  if (spec.name.empty()) throw std::invalid_argument("add_method: a method needs a name");
+  if (!spec.factory)
+    throw std::invalid_argument("add_method: method '" + spec.name + "' has no factory");
+  for (const MethodSpec& s : registry())
+    if (s.name == spec.name)
+      throw std::invalid_argument("add_method: method '" + spec.name + "' is registered already");
+  registry().push_back(std::move(spec));
+}
+
+const MethodSpec& find_method(const std::string& name) {
+  for (const MethodSpec& s : registry())
+    if (s.name == name) return s;
+  std::string all;
+  for (const MethodSpec& s : registry())
+    all += (all.empty() ? "" : ", ") + s.name;
+  throw OptionError("ste.method", "unknown method '" + name + "'; use one of " + all);
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const MethodSpec& s : registry())
+    names.push_back(s.name);
+  return names;
+}
+
+std::vector<std::string> parse_method_list(const std::string& text) {
+  if (text == "all") return method_names();
+  std::vector<std::string> names;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    const std::string name = find_method(text.substr(from, comma - from)).name;
+    for (const std::string& n : names)
+      if (n == name) throw OptionError("ste.method", name + " is named twice in '" + text + "'");
+    names.push_back(name);
+    if (comma == std::string::npos) return names;
+    from = comma + 1;
+  }
+}
+
+bool uses_plume_model(const std::string& name) {
+  return find_method(name).traits.uses_plume_model;
+}
+
+bool stops_in_source_box(const std::string& name) {
+  return find_method(name).traits.ends == RunEnd::SourceBox;
+}
+
+bool ends_on_arrival(const std::string& name) {
+  return find_method(name).traits.ends_on_arrival();
+}
+
+std::string registry_markdown() {
+  std::string md =
+      "# Localization methods\n\n"
+      "Generated from the method registry (`methods/registry.cpp`); "
+      "`MethodRegistry.DocsTableIsTheRegistry` checks it\n"
+      "(rewrite it with `PLUMEKIT_WRITE_DOCS=1 build/tests/methods/methods_tests "
+      "--gtest_filter=MethodRegistry.*`).\n\n"
+      "| `--method` | what | from | plume model | a run ends |\n"
+      "|---|---|---|---|---|\n";
+  for (const MethodSpec& s : registry())
+    md += "| `" + s.name + "` | " + s.description + " | " + s.source + " | " +
+          (s.traits.uses_plume_model ? "yes" : "no") + " | " + to_string(s.traits.ends) +
+          ", budget |\n";
+  return md;
+}
+
+std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& given, const SearchArea& area,
+                                                std::uint64_t seed) {
+  const MethodSpec& spec = find_method(given.name);
+  if (!spec.factory)
+    throw std::logic_error("make_method: " + spec.name + " is built by its Scenario");
+  MethodOptions options = given;
+  options.validate();
+  options.tracking.max_steps = given.max_steps_in_use(area.width() * area.height());
+  return spec.factory(options, area, seed);
+}
+
+}  // namespace plumekit::methods

@@ -1,0 +1,89 @@
+#pragma once
+// The registry of localization methods, as OMPL's planners and Ceres's cost functions are listed:
+// each method says, in its own file, its name, a one-line description, the seed it comes from,
+// its traits and a factory (a MethodSpec); registry.cpp lists them, one line each. The CLI's
+// --method choices and help, `evaluate --method all`, the Python binding and
+// docs/methods-registry.md all read this list.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "methods/method.hpp"
+
+namespace plumekit::methods {
+
+struct MethodOptions;  // method_options.hpp
+
+// How a run of a method ends, besides its step budget.
+enum class RunEnd {
+  OwnStopRule,  // its own stop rule (STE's entropy, the filter's declaration, ...)
+  SourceBox,    // in the plume trackers' success box around the source (SourceBox)
+  SourceDisc,   // within adaptive Lévy taxis' 0.5 m of the source (seed 004 ch. 15; SourceDisc)
+};
+const char* to_string(RunEnd end);
+
+struct MethodTraits {
+  // STE needs a plume model; the others read only the gas, the wind and the pose.
+  bool uses_plume_model = false;
+  RunEnd ends = RunEnd::OwnStopRule;
+  // Runs that end when the robot arrives near the source report whether it reached it and the
+  // distance overhead.
+  bool ends_on_arrival() const { return ends != RunEnd::OwnStopRule; }
+};
+
+// A fresh method searching `area` with `options` (max_steps already resolved into
+// tracking.max_steps); `seed` drives its randomness.
+using MethodFactory = std::function<std::unique_ptr<LocalizationMethod>(
+    const MethodOptions& options, const SearchArea& area, std::uint64_t seed)>;
+
+struct MethodSpec {
+  std::string name;         // the --method name
+  std::string description;  // one line, for --help and the docs
+  std::string source;       // the seed and section it comes from
+  MethodTraits traits;
+  // Empty for STE: it needs the Scenario's plume model, estimator and navigator, so
+  // run::Scenario builds it (run/scenario.cpp).
+  MethodFactory factory;
+};
+
+// Every method, in registry.cpp's order then the order add_method() was called.
+const std::vector<MethodSpec>& method_registry();
+// Adds a method (a user's or a test's own). std::invalid_argument for an empty name, a name
+// already taken or a spec without a factory.
+void add_method(MethodSpec spec);
+// The spec named `name`; OptionError on ste.method listing the names otherwise.
+const MethodSpec& find_method(const std::string& name);
+std::vector<std::string> method_names();
+// "NAME[,NAME...]" (each once) or "all" (every method, in method_names()'s order): the methods
+// `evaluate --method` runs in one world. OptionError on ste.method otherwise.
+std::vector<std::string> parse_method_list(const std::string& text);
+
+// Shorthands for find_method(name).traits.
+bool uses_plume_model(const std::string& name);
+bool stops_in_source_box(const std::string& name);
+bool ends_on_arrival(const std::string& name);
+
+// A fresh method other than STE: options.name's factory, after options.validate() and with the
+// step budget resolved for the area.
+std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& options,
+                                                const SearchArea& area, std::uint64_t seed);
+
+// The registry as a Markdown table (name, description, source, plume model, how a run ends):
+// docs/methods-registry.md, which MethodRegistry.DocsTableIsTheRegistry keeps equal to it.
+std::string registry_markdown();
+
+// Each method's spec, defined in the method's own file.
+MethodSpec ste_spec();
+MethodSpec sweeping_spec();
+MethodSpec surge_cast_spec();
+MethodSpec zigzag_spec();
+MethodSpec pseudo_gradient_spec();
+MethodSpec pf_gradient_spec();
+MethodSpec pf_sweep_spec();
+MethodSpec apf_spec();
+MethodSpec levy_taxis_spec();
+MethodSpec ste_local_spec();
+
+}  // namespace plumekit::methods
