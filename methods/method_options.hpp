@@ -31,7 +31,7 @@ struct MethodOptions {
   // Unset: the seeds' best for the exploration (seed 001: (0.2, 0.8) with the pseudo-gradient,
   // (0.4, 0.9) with the predefined sweep).
   std::optional<double> pf_alpha, pf_beta;
-  // Adaptive sampling for gas distribution mapping (seed 000 ch. 8; gdm/README.md); its
+  // Adaptive sampling for gas distribution mapping (seed 000 ch. 8; docs/methods.md); its
   // max_steps is replaced by the one above.
   ApfOptions apf;
   // Adaptive Lévy taxis (seed 004 ch. 16); its max_steps is replaced by the one above.
