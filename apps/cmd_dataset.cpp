@@ -36,8 +36,9 @@ using namespace plumekit::dataset;
 
 namespace {
 
-// --plume-model (old spellings --model and --plume kept as deprecated aliases) and the plume
-// options, bound to the library's fields.
+// --simulator, the simulation that makes the plume (old spellings --plume-model, --model and
+// --plume kept as deprecated aliases: `localize`'s --plume-model is the estimator's model, a
+// different thing), and the plume options, bound to the library's fields.
 void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
   // A kind's name becomes the enum's number for CLI11; the library parses the name and words
   // the error.
@@ -52,13 +53,15 @@ void add_plume_options(CLI::App* cmd, PlumeOptions& p) {
       },
       "", "plume model kind");
   bind_field(cmd,
-             cmd->add_option("--plume-model", p.model, "Plume model: filament, advection-diffusion")
+             cmd->add_option("--simulator", p.model,
+                             "What simulates the plume: filament (the world's filaments), "
+                             "advection-diffusion (their steady mean)")
                  ->transform(names)
                  ->type_name("KIND")
                  ->default_str(to_string(p.model)),
              "plume.model");
-  for (const char* old : {"--model", "--plume"})
-    add_deprecated_alias(cmd, old, "--plume-model", p.model)->transform(names);
+  for (const char* old : {"--plume-model", "--model", "--plume"})
+    add_deprecated_alias(cmd, old, "--simulator", p.model)->transform(names);
   add_table_flags(cmd, p.advection_diffusion, cfd::advection_diffusion_option_table(),
                   {"plume.diffusivity"});
   bind_field(cmd,

@@ -33,7 +33,7 @@ void PlumeOptions::validate() const {
     throw OptionError("sensor.gas", "the " + sensor.name +
                                         " sensor needs the filament model: a sensor's response "
                                         "follows a time series, and advection-diffusion gives "
-                                        "the steady mean only (use --plume-model filament)");
+                                        "the steady mean only (use --simulator filament)");
 }
 
 void check_source(const Map& map, Vec2 source) {

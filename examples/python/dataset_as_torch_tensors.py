@@ -22,7 +22,7 @@ else:
     folder = Path("out/python/dataset")
     exe = os.environ.get("PLUMEKIT_EXE", "build/plumekit")
     subprocess.run([exe, "dataset", "generate", "--maps", "2", "--sources", "4", "--seed", "7",
-                    "--plume-model", "advection-diffusion", "--out", str(folder)], check=True)
+                    "--simulator", "advection-diffusion", "--out", str(folder)], check=True)
 
 data = plumekit.read_dataset(folder)
 inputs = torch.from_numpy(data["inputs"])  # [n, 3, 64, 64]: labels, signed distance, source

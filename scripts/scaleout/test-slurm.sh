@@ -133,7 +133,7 @@ same() {  # same FILE_A FILE_B WHAT
 }
 
 # --- the tiny runs, each made whole once and split -------------------------------------------
-dataset_flags=(--maps 3 --sources 2 --plume-model advection-diffusion --seed 1)
+dataset_flags=(--maps 3 --sources 2 --simulator advection-diffusion --seed 1)
 mkdir -p "$tmp/maps"
 cp "$repo/data/test-maps/test-0-empty.json" "$repo/data/test-maps/test-4-l-shape.json" "$tmp/maps/"
 evaluate_flags=(--map-dir "$tmp/maps" --sources 2 --runs 1 --plume-model gaussian --max-samples 6)

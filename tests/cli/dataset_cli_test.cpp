@@ -1,5 +1,5 @@
 // `plume`, `maps random`, `dataset generate|show` and `predict` as issue 15 wants them: the
-// shared flags (positional MAP, --plume-model, --cnn, --map-dir, --seed 1, --threads 0), the old
+// shared flags (positional MAP, --simulator, --cnn, --map-dir, --seed 1, --threads 0), the old
 // spellings as deprecated aliases that do the same and warn, and errors that name the flag.
 #include <gtest/gtest.h>
 
@@ -39,7 +39,7 @@ TEST_F(DatasetCli, HelpShowsTheSharedDefaults) {
   const Result generate = run("dataset generate --help");
   EXPECT_TRUE(has(generate.out, "--seed UINT=1")) << generate.out;
   EXPECT_TRUE(has(generate.out, "-j,--threads INT=0")) << generate.out;
-  EXPECT_TRUE(has(generate.out, "--plume-model")) << generate.out;
+  EXPECT_TRUE(has(generate.out, "--simulator")) << generate.out;
   EXPECT_TRUE(has(generate.out, "--map-dir")) << generate.out;
   EXPECT_FALSE(has(generate.out, "--from-maps")) << "a deprecated alias is hidden";
   const Result plume = run("plume --help");
@@ -161,7 +161,7 @@ TEST_F(DatasetCli, TheStaticSensorsGasSensorIsASettingTheDatasetRecords) {
   ASSERT_EQ(mox.code, 0) << mox.err;
   EXPECT_FALSE(same_file(at("ideal/mean.npy"), at("mox/mean.npy")));
   const Result ad =
-      run("plume --plume-model advection-diffusion --gas-sensor catalytic" + common + at("ad"));
+      run("plume --simulator advection-diffusion --gas-sensor catalytic" + common + at("ad"));
   EXPECT_EQ(ad.code, 2);
   EXPECT_TRUE(has(ad.err, "--gas-sensor")) << ad.err;
   EXPECT_TRUE(has(ad.err, "needs the filament model")) << ad.err;
@@ -178,33 +178,35 @@ TEST_F(DatasetCli, TheStaticSensorsGasSensorIsASettingTheDatasetRecords) {
   EXPECT_TRUE(has(dump, "\"baseline\":3.0")) << dump;
 }
 
-TEST_F(DatasetCli, OldPlumeModelSpellingsWarnAndDoTheSame) {
+// The simulator was --plume-model, a name `localize` gives the estimator's model: the old
+// spellings still work, with a warning naming --simulator.
+TEST_F(DatasetCli, OldSimulatorSpellingsWarnAndDoTheSame) {
   const std::string common = " --source 1,1 --cell 0.1 --json --out ";
-  const Result now = run("plume " + kMap + " --plume-model advection-diffusion" + common + at("a"));
+  const Result now = run("plume " + kMap + " --simulator advection-diffusion" + common + at("a"));
   ASSERT_EQ(now.code, 0) << now.err;
   EXPECT_EQ(nlohmann::json::parse(now.out)["model"], "advection-diffusion");
   EXPECT_TRUE(now.err.empty()) << now.err;
-  for (const std::string old : {"--model", "--plume"}) {
+  for (const std::string old : {"--plume-model", "--model", "--plume"}) {
     const std::string out = at("old" + old);
     const Result r = run("plume " + kMap + " " + old + " advection-diffusion" + common + out);
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(has(r.err, old + " is deprecated")) << r.err;
-    EXPECT_TRUE(has(r.err, "--plume-model")) << r.err;
+    EXPECT_TRUE(has(r.err, "--simulator")) << r.err;
     EXPECT_TRUE(same_file(at("a/mean.npy"), out + "/mean.npy")) << old;
   }
-  const Result both = run("plume --model filament --plume-model filament" + common + at("b"));
+  const Result both = run("plume --model filament --simulator filament" + common + at("b"));
   EXPECT_EQ(both.code, 2);
-  const Result bad = run("plume --plume-model gaussian" + common + at("c"));
+  const Result bad = run("plume --simulator gaussian" + common + at("c"));
   EXPECT_EQ(bad.code, 2);
-  EXPECT_TRUE(has(bad.err, "--plume-model")) << bad.err;
-  const Result number = run("plume --plume-model 1" + common + at("d"));
+  EXPECT_TRUE(has(bad.err, "--simulator")) << bad.err;
+  const Result number = run("plume --simulator 1" + common + at("d"));
   EXPECT_EQ(number.code, 2) << "the enum's number is no kind";
   EXPECT_TRUE(has(number.err, "use filament or advection-diffusion")) << number.err;
 }
 
 TEST_F(DatasetCli, MapDirAndItsOldSpellingMakeTheSameDataset) {
   ASSERT_EQ(run("maps random --count 1 --sources 2 --out " + at("maps")).code, 0);
-  const std::string common = " --cell 0.1 --plume-model advection-diffusion --out ";
+  const std::string common = " --cell 0.1 --simulator advection-diffusion --out ";
   const Result now = run("dataset generate --map-dir " + at("maps") + common + at("new"));
   ASSERT_EQ(now.code, 0) << now.err;
   const Result old = run("dataset generate --from-maps " + at("maps") + common + at("old"));
@@ -237,7 +239,7 @@ TEST_F(DatasetCli, ErrorsNameTheFlags) {
 // shard's arrays), and a part folder given twice is named as such, not as a missing part.
 TEST_F(DatasetCli, MergeRefusesAWrongSampleCountAndAPartGivenTwice) {
   const std::string common =
-      "dataset generate --maps 2 --sources 1 --cell 0.1 --plume-model advection-diffusion ";
+      "dataset generate --maps 2 --sources 1 --cell 0.1 --simulator advection-diffusion ";
   for (const char* k : {"0", "1"}) {
     const Result r = run(common + "--shard " + k + "/2 --out " + at(std::string("p") + k));
     ASSERT_EQ(r.code, 0) << r.err;
@@ -270,7 +272,7 @@ TEST_F(DatasetCli, MergeRefusesAWrongSampleCountAndAPartGivenTwice) {
 }
 
 TEST_F(DatasetCli, ShowReportsTheSampleAndRefusesAnIndexBeyondTheDataset) {
-  ASSERT_EQ(run("dataset generate --maps 1 --sources 2 --cell 0.1 --plume-model "
+  ASSERT_EQ(run("dataset generate --maps 1 --sources 2 --cell 0.1 --simulator "
                 "advection-diffusion --out " +
                 at("d"))
                 .code,

@@ -282,7 +282,7 @@ TEST_F(Safety, AStaleTemporaryOfAKilledRunIsRemovedByTheNextRun) {
 TEST_F(Safety, AResumedDatasetRemovesOnlyMarkedTemporaries) {
   const fs::path ds = dir / "ds";
   const std::string args =
-      "dataset generate --maps 1 --sources 1 --plume-model "
+      "dataset generate --maps 1 --sources 1 --simulator "
       "advection-diffusion --out " +
       ds.string();
   ASSERT_EQ(run(args).code, 0);
@@ -322,7 +322,7 @@ TEST_F(Safety, EveryWritingCommandRefusesAFolderItDidNotWrite) {
   const fs::path part = dir / "part";
   for (const char* k : {"0/2", "1/2"})
     ASSERT_EQ(
-        run(std::string("dataset generate --maps 2 --sources 1 --plume-model advection-diffusion "
+        run(std::string("dataset generate --maps 2 --sources 1 --simulator advection-diffusion "
                         "--shard ") +
             k + " --out " + part.string())
             .code,

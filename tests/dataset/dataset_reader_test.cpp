@@ -38,7 +38,7 @@ void overwrite(const fs::path& file, const std::string& bytes) {
 }
 
 const std::string kGenerate =
-    "dataset generate --maps 1 --sources 2 --seed 7 --cell 0.1 --plume-model advection-diffusion ";
+    "dataset generate --maps 1 --sources 2 --seed 7 --cell 0.1 --simulator advection-diffusion ";
 
 class DatasetReader : public test::CliTest {
  protected:
@@ -223,13 +223,13 @@ TEST_F(DatasetReader, ShowVerifiesTheShardItDraws) {
 
 TEST_F(DatasetReader, ResumeWithOtherParametersNamesEachWithBothValues) {
   std::string err = expect_refused(
-      "dataset generate --maps 1 --sources 2 --seed 7 --cell 0.1 --plume-model advection-diffusion "
+      "dataset generate --maps 1 --sources 2 --seed 7 --cell 0.1 --simulator advection-diffusion "
       "--release-rate 500 --out " +
           data.string(),
       "advection_diffusion.release_rate: this run 500.0, the dataset 1000.0");
   EXPECT_EQ(err.find("seed:"), std::string::npos) << err;  // only what differs
   err = expect_refused(
-      "dataset generate --maps 1 --sources 3 --seed 8 --cell 0.1 --plume-model advection-diffusion "
+      "dataset generate --maps 1 --sources 3 --seed 8 --cell 0.1 --simulator advection-diffusion "
       "--out " +
           data.string(),
       "seed: this run 8, the dataset 7");
@@ -287,9 +287,8 @@ TEST_F(DatasetReader, ProvenanceHoldsNoAbsolutePaths) {
   "obstacles": [[[4.0, 1.0], [5.0, 1.0], [5.0, 2.0], [4.0, 2.0]]],
   "sources": [[7.0, 2.5]]})";
   const fs::path out = dir / "given";
-  const CliResult r =
-      run("dataset generate --cell 0.1 --plume-model advection-diffusion --map-dir " +
-          fs::absolute(maps).string() + " --out " + fs::absolute(out).string());
+  const CliResult r = run("dataset generate --cell 0.1 --simulator advection-diffusion --map-dir " +
+                          fs::absolute(maps).string() + " --out " + fs::absolute(out).string());
   ASSERT_EQ(r.code, 0) << r.err;
   for (const fs::path& f :
        {out / "manifest.json", out / "parameters.json", out / "wind" / "map-00000" / "wind.json",

@@ -205,7 +205,7 @@ TEST(Generate, LoadsInNumpyWithTheManifestShapesDtypesAndChecksums) {
   const fs::path d = scratch("numpy");
   ASSERT_EQ(run(kExe +
                 " dataset generate --maps 2 --sources 3 --seed 4 --cell 0.1 "
-                "--plume-model advection-diffusion --out " +
+                "--simulator advection-diffusion --out " +
                 d.string() + " > /dev/null"),
             0);
   const fs::path script = d / "check.py";
@@ -256,7 +256,7 @@ TEST(Generate, BadInputExitsTwoAndWritesNothing) {
   EXPECT_EQ(
       run(kExe + " dataset generate --maps 2 --threads -1 --out " + d.string() + " 2>/dev/null"),
       2);
-  EXPECT_EQ(run(kExe + " dataset generate --maps 2 --plume-model gaussian --out " + d.string() +
+  EXPECT_EQ(run(kExe + " dataset generate --maps 2 --simulator gaussian --out " + d.string() +
                 " 2>/dev/null"),
             2);
   EXPECT_EQ(run(kExe + " plume --source 3.2,1.0 --out " + d.string() + " 2>/dev/null"), 2);

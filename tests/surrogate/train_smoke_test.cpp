@@ -142,7 +142,7 @@ TEST(TrainSmoke, TrainsOnADatasetTheGeneratorMade) {
   const fs::path model = dir / "model.pkcnn";
   ASSERT_EQ(std::system((std::string(PLUMEKIT_EXE) +
                          " dataset generate --maps 2 --sources 3 --seed 1 --cell 0.1"
-                         " --plume-model advection-diffusion --out " +
+                         " --simulator advection-diffusion --out " +
                          data + " > /dev/null")
                             .c_str()),
             0);
