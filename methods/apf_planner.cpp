@@ -277,13 +277,16 @@ std::unique_ptr<methods::LocalizationMethod> make_apf_mapping(const methods::Sea
 }
 
 MethodSpec apf_spec() {
-  return {"apf", "adaptive sampling for gas distribution mapping (artificial potential field)",
-          "seed 000 ch. 8", MethodTraits{false, RunEnd::OwnStopRule},
+  return {"apf",
+          "adaptive sampling for gas distribution mapping (artificial potential field)",
+          "seed 000 ch. 8",
+          MethodTraits{false, RunEnd::OwnStopRule},
           [](const MethodOptions& o, const SearchArea& area, std::uint64_t) {
             ApfOptions apf = o.apf;
             apf.max_steps = o.tracking.max_steps;
             return make_apf_mapping(area, apf);
-          }};
+          },
+          {}};
 }
 
 }  // namespace plumekit::methods

@@ -82,12 +82,22 @@ std::string AdaptiveLevyTaxis::stopped_by() const {
 }
 
 MethodSpec levy_taxis_spec() {
-  return {"levy-taxis", "adaptive Levy taxis: a random walk whose steps adapt to the gas",
-          "seed 004 ch. 16", MethodTraits{false, RunEnd::SourceDisc},
+  return {"levy-taxis",
+          "adaptive Levy taxis: a random walk whose steps adapt to the gas",
+          "seed 004 ch. 16",
+          MethodTraits{false, RunEnd::SourceDisc},
           [](const MethodOptions& o, const SearchArea&, std::uint64_t seed) {
             LevyTaxisOptions levy = o.levy;
             levy.max_steps = o.tracking.max_steps;
             return std::make_unique<AdaptiveLevyTaxis>(levy, seed);
+          },
+          [](const MethodOptions& m, nlohmann::ordered_json& j) {
+            const LevyTaxisOptions& l = m.levy;
+            j["min_move_m"] = l.min_move;
+            j["max_move_m"] = l.max_move;
+            j["mu"] = {l.mu_min, l.mu_max};
+            j["gamma"] = {l.gamma_min, l.gamma_max};
+            j["gradient_threshold"] = l.gradient_threshold;
           }};
 }
 

@@ -172,12 +172,19 @@ methods::Move LocalFrameworkSte::next(Vec2 robot) {
 }
 
 MethodSpec ste_local_spec() {
-  return {"ste-local", "STE in the local framework: no map, odometry, a moving local map",
-          "seed 004 ch. 12", MethodTraits{false, RunEnd::OwnStopRule},
+  return {"ste-local",
+          "STE in the local framework: no map, odometry, a moving local map",
+          "seed 004 ch. 12",
+          MethodTraits{false, RunEnd::OwnStopRule},
           [](const MethodOptions& o, const SearchArea&, std::uint64_t seed) {
             LocalFrameworkOptions local = o.local;
             local.max_samples = o.tracking.max_steps;
             return std::make_unique<LocalFrameworkSte>(local, seed);
+          },
+          [](const MethodOptions& m, nlohmann::ordered_json& j) {
+            j["map_size_m"] = m.local.map_size;
+            j["budget"] = m.local.budget;
+            j["sigma_m"] = m.local.sigma_m;  // its sample guard is max_steps
           }};
 }
 

@@ -171,28 +171,52 @@ std::optional<Grid<double>> ParticleFilterMethod::belief_map(const Map& map) con
   return g;
 }
 
+namespace {
+
+// The filter's options a run records (after the explorer's).
+void pf_options_json(const PfMethodOptions& pf, nlohmann::ordered_json& j) {
+  j["particles"] = pf.filter.particles;
+  j["pf_alpha"] = pf.filter.alpha;
+  j["pf_beta"] = pf.filter.beta;
+  j["declare_radius_m"] = pf.declare_radius;
+  j["declare_iterations"] = pf.declare_iterations;
+}
+
+}  // namespace
+
 // The particle filter's registry entries: the filter declares the source itself (its own stop
 // rule), explored by the pseudo-gradient tracker or the predefined sweep.
 MethodSpec pf_gradient_spec() {
-  return {"pf-gradient", "particle filter explored by the pseudo-gradient tracker",
-          "seed 001 Sec. III, seed 002", MethodTraits{false, RunEnd::OwnStopRule},
+  return {"pf-gradient",
+          "particle filter explored by the pseudo-gradient tracker",
+          "seed 001 Sec. III, seed 002",
+          MethodTraits{false, RunEnd::OwnStopRule},
           [](const MethodOptions& o, const SearchArea& area, std::uint64_t seed) {
             PfMethodOptions pf = o.pf_in_use(PfExploration::Gradient);
             pf.seed = seed;
             return std::make_unique<ParticleFilterMethod>(
                 area, make_pseudo_gradient(area, o.tracking), pf, "pf-gradient");
+          },
+          [](const MethodOptions& m, nlohmann::ordered_json& j) {
+            j["gradient_beta_deg"] = m.tracking.gradient_beta_deg;
+            pf_options_json(m.pf_in_use(PfExploration::Gradient), j);
           }};
 }
 
 MethodSpec pf_sweep_spec() {
-  return {"pf-sweep", "particle filter explored by a predefined sweep",
-          "seed 001 Sec. III, seed 000 Sec. 6.2.1", MethodTraits{false, RunEnd::OwnStopRule},
+  return {"pf-sweep",
+          "particle filter explored by a predefined sweep",
+          "seed 001 Sec. III, seed 000 Sec. 6.2.1",
+          MethodTraits{false, RunEnd::OwnStopRule},
           [](const MethodOptions& o, const SearchArea& area, std::uint64_t seed) {
             PfMethodOptions pf = o.pf_in_use(PfExploration::Sweep);
             pf.seed = seed;
             auto sweep = std::make_unique<PredefinedSweep>(
                 area, SweepPatternOptions{o.tracking.step, o.tracking.max_steps});
             return std::make_unique<ParticleFilterMethod>(area, std::move(sweep), pf, "pf-sweep");
+          },
+          [](const MethodOptions& m, nlohmann::ordered_json& j) {
+            pf_options_json(m.pf_in_use(PfExploration::Sweep), j);
           }};
 }
 

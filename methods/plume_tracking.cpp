@@ -354,12 +354,16 @@ namespace {
 
 MethodSpec tracker_spec(std::string name, std::string description, std::string source,
                         std::unique_ptr<LocalizationMethod> (*make)(const SearchArea&,
-                                                                    const TrackingOptions&)) {
-  return {std::move(name), std::move(description), std::move(source),
+                                                                    const TrackingOptions&),
+                        MethodOptionsJson options_json = {}) {
+  return {std::move(name),
+          std::move(description),
+          std::move(source),
           MethodTraits{false, RunEnd::SourceBox},
           [make](const MethodOptions& o, const SearchArea& area, std::uint64_t) {
             return make(area, o.tracking);
-          }};
+          },
+          std::move(options_json)};
 }
 
 }  // namespace
@@ -371,17 +375,30 @@ MethodSpec sweeping_spec() {
 
 MethodSpec surge_cast_spec() {
   return tracker_spec("surge-cast", "surge upwind in the plume, cast crosswind when it is lost",
-                      "seed 000 Sec. 5.1.2.1", make_surge_cast);
+                      "seed 000 Sec. 5.1.2.1", make_surge_cast,
+                      [](const MethodOptions& m, nlohmann::ordered_json& j) {
+                        j["max_casts"] = m.tracking.max_casts;
+                      });
 }
 
 MethodSpec zigzag_spec() {
   return tracker_spec("zigzag", "zigzag (dung beetle) legs upwind across the plume",
-                      "seed 002 Sec. 3.2.2, seed 000 Sec. 5.1.2.2", make_zigzag);
+                      "seed 002 Sec. 3.2.2, seed 000 Sec. 5.1.2.2", make_zigzag,
+                      [](const MethodOptions& m, nlohmann::ordered_json& j) {
+                        const TrackingOptions& t = m.tracking;
+                        j["zigzag_alpha_deg"] = t.zigzag_alpha_deg;
+                        j["zigzag_flip"] =
+                            t.zigzag_flip == ZigzagFlip::OnLoss ? "loss" : "detection";
+                        j["max_misses"] = t.max_misses;
+                      });
 }
 
 MethodSpec pseudo_gradient_spec() {
   return tracker_spec("pseudo-gradient", "two-position pseudo-gradient tracking upwind",
-                      "seed 002 Sec. 3.2.3", make_pseudo_gradient);
+                      "seed 002 Sec. 3.2.3", make_pseudo_gradient,
+                      [](const MethodOptions& m, nlohmann::ordered_json& j) {
+                        j["gradient_beta_deg"] = m.tracking.gradient_beta_deg;
+                      });
 }
 
 }  // namespace plumekit::methods

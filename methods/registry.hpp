@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "methods/method.hpp"
 
 namespace plumekit::methods {
@@ -38,6 +40,12 @@ struct MethodTraits {
 using MethodFactory = std::function<std::unique_ptr<LocalizationMethod>(
     const MethodOptions& options, const SearchArea& area, std::uint64_t seed)>;
 
+// Adds the method's own options to what a run records of them (summary.json's method_options),
+// after the step and detection threshold every method shares and before its step budget: the
+// report never names a method.
+using MethodOptionsJson =
+    std::function<void(const MethodOptions& options, nlohmann::ordered_json& into)>;
+
 struct MethodSpec {
   std::string name;         // the --method name
   std::string description;  // one line, for --help and the docs
@@ -46,6 +54,7 @@ struct MethodSpec {
   // Empty for STE: it needs the Scenario's plume model, estimator and navigator, so
   // run::Scenario builds it (run/scenario.cpp).
   MethodFactory factory;
+  MethodOptionsJson options_json;  // empty: none of its own
 };
 
 // Every method, in registry.cpp's order then the order add_method() was called.

@@ -24,6 +24,7 @@ MethodSpec ste_spec() {
           "source term estimation: Bayesian posterior over the source, infotaxis moves",
           "plumekit (ste/)",
           MethodTraits{true, RunEnd::OwnStopRule},
+          {},
           {}};
 }
 

@@ -211,39 +211,13 @@ std::string summary_label(const ordered_json& settings) {
   return method == "ste" ? "STE (" + settings.at("plume_model").get<std::string>() + ")" : method;
 }
 
-// The options of a method other than STE, for its summary.
+// The options of a method other than STE, for its summary: the step and detection threshold
+// they share, the method's own (its registry entry's options_json), the step budget.
 ordered_json method_options_json(const MethodOptions& m) {
   const methods::TrackingOptions& t = m.tracking;
   ordered_json j{{"step_m", t.step}, {"detection_threshold", t.detection_threshold}};
-  if (m.name == "surge-cast") j["max_casts"] = t.max_casts;
-  if (m.name == "zigzag") {
-    j["zigzag_alpha_deg"] = t.zigzag_alpha_deg;
-    j["zigzag_flip"] = t.zigzag_flip == methods::ZigzagFlip::OnLoss ? "loss" : "detection";
-    j["max_misses"] = t.max_misses;
-  }
-  if (m.name == "pseudo-gradient" || m.name == "pf-gradient")
-    j["gradient_beta_deg"] = t.gradient_beta_deg;
-  if (m.name == "pf-gradient" || m.name == "pf-sweep") {
-    const methods::PfMethodOptions pf = m.pf_in_use();
-    j["particles"] = pf.filter.particles;
-    j["pf_alpha"] = pf.filter.alpha;
-    j["pf_beta"] = pf.filter.beta;
-    j["declare_radius_m"] = pf.declare_radius;
-    j["declare_iterations"] = pf.declare_iterations;
-  }
-  if (m.name == "ste-local") {
-    j["map_size_m"] = m.local.map_size;
-    j["budget"] = m.local.budget;
-    j["sigma_m"] = m.local.sigma_m;  // its sample guard is max_steps below
-  }
-  if (m.name == "levy-taxis") {
-    const methods::LevyTaxisOptions& l = m.levy;
-    j["min_move_m"] = l.min_move;
-    j["max_move_m"] = l.max_move;
-    j["mu"] = {l.mu_min, l.mu_max};
-    j["gamma"] = {l.gamma_min, l.gamma_max};
-    j["gradient_threshold"] = l.gradient_threshold;
-  }
+  const methods::MethodSpec& spec = methods::find_method(m.name);
+  if (spec.options_json) spec.options_json(m, j);
   j["max_steps"] = m.max_steps;  // 0: auto (MethodOptions::max_steps_in_use)
   return j;
 }

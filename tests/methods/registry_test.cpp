@@ -49,7 +49,8 @@ MethodSpec upwind_walk_spec() {
           MethodTraits{false, RunEnd::OwnStopRule},
           [](const MethodOptions& o, const SearchArea&, std::uint64_t) {
             return std::make_unique<UpwindWalk>(o.tracking);
-          }};
+          },
+          {}};
 }
 
 // The one registry line, once per test binary.
@@ -83,7 +84,7 @@ TEST(MethodRegistry, TraitsSayHowARunEnds) {
 
 TEST(MethodRegistry, RefusesDuplicatesAndMethodsWithoutFactories) {
   EXPECT_THROW(add_method(sweeping_spec()), std::invalid_argument);
-  MethodSpec empty{"no-factory", "d", "s", {}, {}};
+  MethodSpec empty{"no-factory", "d", "s", {}, {}, {}};
   EXPECT_THROW(add_method(empty), std::invalid_argument);
   EXPECT_THROW(find_method("no-factory"), OptionError);
 }
