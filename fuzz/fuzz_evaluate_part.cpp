@@ -25,7 +25,7 @@
 #include "run/evaluation_part_reader.hpp"
 
 namespace fs = std::filesystem;
-namespace ste = plumekit::ste;
+namespace run = plumekit::run;
 
 namespace {
 

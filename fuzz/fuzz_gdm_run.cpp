@@ -1,4 +1,4 @@
-// Fuzzes the reader of a localize run.json as `plumekit gdm --run` reads it (gdm/samples:
+// Fuzzes the reader of a localize run.json as `plumekit gdm --run` reads it (run/gdm_samples:
 // parse_run_json, find_run_map, run_samples) with arbitrary text. Bad input must end in
 // InputError. A found map is a regular file; accepted samples are at least one, each within
 // sample_fault's rules, and their maps (kernel_dmv) are finite in every cell.
@@ -29,26 +29,27 @@ void check_maps(const plumekit::Map& map, const std::vector<plumekit::methods::S
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  namespace gdm = plumekit::gdm;
+  namespace run = plumekit::run;
+  namespace methods = plumekit::methods;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   plumekit::Map map = plumekit::default_arena(10.0, 4.0);
   map.frame.origin = {-1.0, 2.0};
-  nlohmann::json run;
+  nlohmann::json record;
   try {
-    run = run::parse_run_json(text, "run.json");
+    record = run::parse_run_json(text, "run.json");
   } catch (const plumekit::InputError&) {
     return 0;
   }
   try {
     // A folder that does not exist: only a recorded absolute path can be found.
     const std::filesystem::path found =
-        run::find_run_map(run, "/nonexistent-plumekit-fuzz/run/run.json", {});
+        run::find_run_map(record, "/nonexistent-plumekit-fuzz/run/run.json", {});
     if (!std::filesystem::is_regular_file(found)) std::abort();
   } catch (const plumekit::InputError&) {
   }
   std::vector<methods::Sample> samples;
   try {
-    samples = run::run_samples(run, "run.json", map);
+    samples = run::run_samples(record, "run.json", map);
   } catch (const plumekit::InputError&) {
     return 0;
   }
