@@ -102,6 +102,7 @@ void CrosswindSearch::observe(const Observation3& o) {
   check_finite(o.wind.x, "wind.x");
   check_finite(o.wind.y, "wind.y");
   check_finite(o.wind.z, "wind.z");
+  check_finite(o.wind_variance, "wind_variance");
   check_finite(o.time_s, "time_s");
   if (o.gas < 0.0)
     throw InputError("crosswind search: observation.gas is negative (" + compact(o.gas) + ")");
@@ -172,11 +173,15 @@ void CrosswindSearch::advance_spiral() {
       {loss_.x, loss_.y + r * std::cos(2.0 * kPi * t_), loss_.z + r * std::sin(2.0 * kPi * t_)});
 }
 
-Vec3 CrosswindSearch::next(Vec3 robot) {
+std::string CrosswindSearch::name() const {
+  return options_.mode == CrosswindMode::Spiral3d ? "surge-spiral" : "surge-cast-2d";
+}
+
+Move3 CrosswindSearch::next(Vec3 robot) {
   if (!is_finite(robot)) throw InputError("crosswind search: the robot's position is not finite");
   switch (phase_) {
     case Phase::Surge:
-      return toward(robot, robot + options_.step * upwind_);
+      return Move3::to(toward(robot, robot + options_.step * upwind_));
     case Phase::Levy:
       if (!has_waypoint_ || arrived(robot)) draw_levy_target(robot);
       break;
@@ -191,10 +196,10 @@ Vec3 CrosswindSearch::next(Vec3 robot) {
       }
       break;
   }
-  return toward(robot, waypoint_);
+  return Move3::to(toward(robot, waypoint_));
 }
 
-const char* CrosswindSearch::phase() const {
+std::string CrosswindSearch::phase() const {
   switch (phase_) {
     case Phase::Levy:
       return "levy";

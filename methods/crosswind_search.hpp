@@ -34,16 +34,9 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "methods/method.hpp"
 
 namespace plumekit::methods {
-
-// What the robot sensed over its last decision interval while moving.
-struct Observation3 {
-  Vec3 position;     // where the robot is now
-  double gas = 0.0;  // mean gas reading over the interval, concentration units (>= 0)
-  Vec3 wind;         // mean wind over the interval, m/s, pointing downwind
-  double time_s = 0.0;
-};
 
 enum class CrosswindMode { Spiral3d, Cast2d };
 
@@ -64,19 +57,28 @@ struct CrosswindSearchOptions {
   void validate() const;
 };
 
-class CrosswindSearch {
+// The tracker reads while it flies: each observation (Observation3) is the mean over its last
+// decision interval, taken where the robot is at its end.
+class CrosswindSearch : public LocalizationMethod3 {
  public:
   // OptionError for bad options or a Cast2d altitude outside the tunnel; InputError for a tunnel
   // that is not finite or has hi < lo.
   CrosswindSearch(const Box3& tunnel, const CrosswindSearchOptions& options, std::uint64_t seed);
 
   // InputError naming the field when a number is not finite or the gas reading is negative.
-  void observe(const Observation3& o);
+  void observe(const Observation3& o) override;
   // The next goal: at most `step` from `robot` and inside the tunnel (robot inside it).
-  Vec3 next(Vec3 robot);
-
-  const char* phase() const;                       // "levy", "surge", "spiral" or "cast"
+  Move3 next(Vec3 robot) override;
+  // "surge-spiral" or "surge-cast-2d" (the tunnel's --method names).
+  std::string name() const override;
+  // None: the run scores where it ends.
+  std::optional<Vec3> estimate() const override { return std::nullopt; }
+  // Never gives up: the runner's time limit ends a run that does not reach the source.
+  std::string stopped_by() const override { return ""; }
+  bool reads_while_moving() const override { return true; }
+  std::string phase() const override;              // "levy", "surge", "spiral" or "cast"
   double threshold() const { return threshold_; }  // the in-plume threshold in use
+  std::optional<double> plume_threshold() const override { return threshold_; }
   // Where the current leg leads (Lévy target, spiral point or cast end), for tests and pictures.
   Vec3 waypoint() const { return waypoint_; }
   Vec3 loss_point() const { return loss_; }  // the last loss point

@@ -6,7 +6,6 @@
 #include <ctime>
 
 #include "core/error.hpp"
-#include "core/interrupt.hpp"
 #include "core/statistics.hpp"
 #include "methods/ste_method.hpp"
 
@@ -137,63 +136,105 @@ bool SourceBox::contains(Vec2 p) const {
   return a >= 0.0 && a <= along && std::abs(c) <= 0.5 * across;
 }
 
+namespace {
+
+// A robot alone on a floor, for run_loop: a whole stop, decision or move per call.
+class FloorRobot {
+ public:
+  FloorRobot(Vec2 start, methods::LocalizationMethod& method, world::SimulatedWorld& world,
+             const planner::Planner& planner, const MethodRunOptions& options)
+      : method_(method), world_(world), planner_(planner), options_(options), pos_(start) {
+    r_.method = method.name();
+    r_.start = start;
+    t_start_ = world.time();
+  }
+
+  bool sense() {
+    step_ = Step{};
+    step_.position = pos_;
+    step_.distance_m = r_.distance_m;
+    step_.path_in = std::move(path_in_);
+    reading_ = world_.stop(pos_);
+    step_.value = reading_.gas;
+    step_.wind = reading_.wind;
+    step_.recorded = reading_.position;
+    step_.time_s = world_.time() - t_start_;
+    return true;
+  }
+
+  bool decide() {
+    const double t0 = thread_cpu_s(), w0 = wall_clock_s();
+    method_.observe({reading_.position, reading_.gas, reading_.wind, reading_.wind_variance,
+                     step_.time_s, blocked_});
+    record_state(method_, step_, r_);
+    r_.stopped_by = stop_rule();
+    path_ = {};
+    if (r_.stopped_by.empty())
+      path_ = path_to(method_.next(pos_), pos_, planner_, options_, blocked_);
+    if (r_.stopped_by.empty() && options_.disc) cut_at_entry(*options_.disc, path_);
+    step_.compute_s = thread_cpu_s() - t0;
+    r_.decisions_s += wall_clock_s() - w0;
+    step_times_.push_back(step_.compute_s);
+    r_.compute_s += step_.compute_s;
+    r_.steps.push_back(std::move(step_));
+    ++r_.samples;
+    return !r_.stopped_by.empty();
+  }
+
+  bool move() {
+    world_.travel(path_.path, path_.length);
+    r_.distance_m += path_.length;
+    pos_ = path_.goal;
+    path_in_ = std::move(path_.path);
+    return true;
+  }
+
+  LocalizationResult finish() {
+    r_.reached = r_.stopped_by == "reached";
+    if (std::optional<Grid<double>> belief = method_.belief_map(world_.map()))
+      r_.posterior.marginal = std::move(*belief);
+    r_.expected = r_.posterior.expected;
+    r_.estimate = method_.estimate().value_or(pos_);
+    r_.map = r_.steps.back().map;
+    r_.time_s = world_.time() - t_start_;
+    r_.median_step_s = median(step_times_);
+    return std::move(r_);
+  }
+
+ private:
+  // The method's own reason, or the runner's: the source's box or disc, the stop budget.
+  std::string stop_rule() const {
+    std::string why = method_.stopped_by();
+    if (why.empty() && options_.box && options_.box->contains(pos_)) why = "reached";
+    if (why.empty() && options_.disc && options_.disc->contains(pos_)) why = "reached";
+    if (why.empty() && static_cast<int>(r_.steps.size()) + 1 >= options_.max_stops)
+      why = "max_samples";
+    return why;
+  }
+
+  methods::LocalizationMethod& method_;
+  world::SimulatedWorld& world_;
+  const planner::Planner& planner_;
+  const MethodRunOptions& options_;
+  LocalizationResult r_;
+  double t_start_ = 0.0;
+  Vec2 pos_;
+  world::Reading reading_;
+  Step step_;
+  planner::PlanResult path_;
+  std::vector<Vec2> path_in_;
+  bool blocked_ = false;  // the last move stopped short at an obstacle
+  std::vector<double> step_times_;
+};
+
+}  // namespace
+
 LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
                               world::SimulatedWorld& world, const planner::Planner& planner,
                               const MethodRunOptions& options) {
-  LocalizationResult r;
-  r.method = method.name();
-  r.start = start;
-  const double t_start = world.time();
-  Vec2 pos = start;
-  std::vector<Vec2> path_in;
-  bool blocked = false;  // the last move stopped short at an obstacle
-  std::vector<double> step_times;
-  for (int stop = 1;; ++stop) {
-    check_interrupt();  // a caller's Ctrl-C (core/interrupt.hpp)
-    Step s;
-    s.position = pos;
-    s.distance_m = r.distance_m;
-    s.path_in = std::move(path_in);
-    const world::Reading reading = world.stop(pos);
-    s.value = reading.gas;
-    s.wind = reading.wind;
-    s.recorded = reading.position;
-    s.time_s = world.time() - t_start;
-
-    const double t0 = thread_cpu_s(), w0 = wall_clock_s();
-    method.observe(
-        {reading.position, reading.gas, reading.wind, reading.wind_variance, s.time_s, blocked});
-    record_state(method, s, r);
-    r.stopped_by = method.stopped_by();
-    if (r.stopped_by.empty() && options.box && options.box->contains(pos)) r.stopped_by = "reached";
-    if (r.stopped_by.empty() && options.disc && options.disc->contains(pos))
-      r.stopped_by = "reached";
-    if (r.stopped_by.empty() && stop >= options.max_stops) r.stopped_by = "max_samples";
-    planner::PlanResult path;
-    if (r.stopped_by.empty()) path = path_to(method.next(pos), pos, planner, options, blocked);
-    if (r.stopped_by.empty() && options.disc) cut_at_entry(*options.disc, path);
-    s.compute_s = thread_cpu_s() - t0;
-    r.decisions_s += wall_clock_s() - w0;
-    step_times.push_back(s.compute_s);
-    r.compute_s += s.compute_s;
-    r.steps.push_back(std::move(s));
-    ++r.samples;
-    if (!r.stopped_by.empty()) break;
-
-    world.travel(path.path, path.length);
-    r.distance_m += path.length;
-    pos = path.goal;
-    path_in = std::move(path.path);
-  }
-  r.reached = r.stopped_by == "reached";
-  if (std::optional<Grid<double>> belief = method.belief_map(world.map()))
-    r.posterior.marginal = std::move(*belief);
-  r.expected = r.posterior.expected;
-  r.estimate = method.estimate().value_or(pos);
-  r.map = r.steps.back().map;
-  r.time_s = world.time() - t_start;
-  r.median_step_s = median(step_times);
-  return r;
+  FloorRobot robot(start, method, world, planner, options);
+  run_loop(robot);
+  return robot.finish();
 }
 
 LocalizationResult localize(Vec2 start, ste::Estimator& estimator, world::SimulatedWorld& world,

@@ -1,9 +1,13 @@
 #pragma once
-// Runs any localization method (methods/method.hpp) against the simulated world: stop and read
-// the sensors, let the method observe and decide, drive to its goal along a planner path around
-// the obstacles, and record every stop. localize() is this loop with plumekit's STE.
+// The run loop: sense, decide, move. Every run in plumekit goes through act() below: one robot
+// with any floor method (run_method: stop and read the sensors, let the method observe and
+// decide, drive to its goal along a planner path around the obstacles, record every stop), each
+// robot of a team (team.hpp: the same phases, interleaved in the world's time), and the tunnel's
+// 3-D methods (tunnel_run.hpp). What differs between them is what a phase does, not their order.
+// localize() is run_method with plumekit's STE.
 #include <optional>
 
+#include "core/interrupt.hpp"
 #include "methods/method.hpp"
 #include "planner/free_space.hpp"
 #include "planner/planner.hpp"
@@ -13,6 +17,39 @@
 #include "world/simulated_world.hpp"
 
 namespace plumekit::run {
+
+// Where a robot is in its loop.
+enum class Phase { Sense, Decide, Move, Done };
+
+// One action of `robot` in `phase`, and the phase it is in after it. A Robot has
+//   bool sense():  reads (part of) a stop; true once the stop's reading is complete;
+//   bool decide(): the method observes the reading, the stop rules apply, a move is chosen;
+//                  true when the robot's run ends there;
+//   bool move():   moves (part of) the way; true once the move is over.
+// A robot alone may do a whole phase per call; a team's robots do a reading interval each, so
+// that the one thread that steps them keeps them in time order (team.cpp).
+template <class Robot>
+Phase act(Robot& robot, Phase phase) {
+  switch (phase) {
+    case Phase::Sense:
+      check_interrupt();  // a caller's Ctrl-C (core/interrupt.hpp)
+      return robot.sense() ? Phase::Decide : Phase::Sense;
+    case Phase::Decide:
+      return robot.decide() ? Phase::Done : Phase::Move;
+    case Phase::Move:
+      return robot.move() ? Phase::Sense : Phase::Move;
+    case Phase::Done:
+      break;
+  }
+  return Phase::Done;
+}
+
+// A robot alone: its phases in turn until its run ends.
+template <class Robot>
+void run_loop(Robot& robot) {
+  for (Phase phase = Phase::Sense; phase != Phase::Done;)
+    phase = act(robot, phase);
+}
 
 // The plume trackers' success area (seed 002 §5.1): 1.5 m along the wind by 2 m across it,
 // right downwind of the source. A tracker cannot know the source; the runner ends its run when a

@@ -74,17 +74,15 @@ int best_swap(const Heading& robot, const std::vector<Heading>& moving,
 
 namespace {
 
-enum class Phase { Sample, Decide, Travel, Done };
-
 struct Robot {
   int index = 0;
   std::unique_ptr<world::SimulatedWorld> world;
   std::unique_ptr<ste::Mission> mission;
-  Phase phase = Phase::Sample;
+  Phase phase = Phase::Sense;  // where it is in the run loop (method_run.hpp)
   Vec2 pos;
   bool stopping = false;   // its stop's readings have begun
-  world::Reading reading;  // the stop just ended (Decide)
-  // Travel: the path, its duration and whole reading intervals, those moved so far, metres done.
+  world::Reading reading;  // the stop just ended (to decide on)
+  // Moving: the path, its duration and whole reading intervals, those moved so far, metres done.
   planner::PlanResult path;
   double seconds = 0.0;
   int ticks = 0, tick = 0;
@@ -147,37 +145,41 @@ class TeamRun {
   // way, at the end of the reading interval (SimulatedWorld::pass). The plume is promised it, so
   // that no robot waits for another on this one thread.
   static long long read_step(const Robot& r) {
-    if (r.phase == Phase::Travel && r.tick < r.ticks && r.world->reads_while_travelling())
+    if (r.phase == Phase::Move && r.tick < r.ticks && r.world->reads_while_travelling())
       return r.world->steps_after(r.world->reading_interval());
     return r.world->steps();
   }
 
+  // A robot of the team in the run loop (method_run.hpp's act): a reading of its stop, its
+  // decision, or a reading interval of its move per action.
+  struct Member {
+    TeamRun& team;
+    Robot& r;
+    bool sense() { return team.sense(r); }
+    bool decide() { return team.decide(r); }
+    bool move() { return team.travel(r); }
+  };
+
   void act(Robot& r) {
-    switch (r.phase) {
-      case Phase::Sample:
-        if (!r.stopping) {
-          r.world->begin_stop(r.pos);
-          r.stopping = true;
-        }
-        if (r.world->stop_reading()) {
-          r.reading = r.world->end_stop();
-          r.stopping = false;
-          r.phase = Phase::Decide;
-        }
-        return;
-      case Phase::Decide:
-        decide(r);
-        return;
-      case Phase::Travel:
-        travel(r);
-        return;
-      case Phase::Done:
-        return;
-    }
+    Member member{*this, r};
+    r.phase = run::act(member, r.phase);
   }
 
-  // The stop's sample (and the teammates' since the last), the stop rules, the next goal.
-  void decide(Robot& r) {
+  // One reading of the robot's stop; true once the stop is over.
+  bool sense(Robot& r) {
+    if (!r.stopping) {
+      r.world->begin_stop(r.pos);
+      r.stopping = true;
+    }
+    if (!r.world->stop_reading()) return false;
+    r.reading = r.world->end_stop();
+    r.stopping = false;
+    return true;
+  }
+
+  // The stop's sample (and the teammates' since the last), the stop rules, the next goal; true
+  // when the robot's run (or the team's) ends here.
+  bool decide(Robot& r) {
     const double t0 = thread_cpu_s(), w0 = wall_clock_s();
     Step s;
     s.position = r.pos;
@@ -210,7 +212,6 @@ class TeamRun {
       r.out.stopped_by = stopped;
     } else if (!stopped.empty()) {
       r.out.stopped_by = stopped;
-      r.phase = Phase::Done;
       plume_.leave(r.index);
     } else {
       plan(r);
@@ -220,10 +221,11 @@ class TeamRun {
     r.step_times.push_back(s.compute_s);
     r.compute_s += s.compute_s;
     r.out.steps.push_back(std::move(s));
+    return !stopped.empty();
   }
 
   // Where a teammate is headed: its goal while it travels, else where it stands.
-  static Vec2 heading_of(const Robot& o) { return o.phase == Phase::Travel ? o.path.goal : o.pos; }
+  static Vec2 heading_of(const Robot& o) { return o.phase == Phase::Move ? o.path.goal : o.pos; }
 
   void plan(Robot& r) {
     std::vector<Vec2> virtual_points;
@@ -236,7 +238,7 @@ class TeamRun {
       std::vector<Heading> moving;
       std::vector<Robot*> who;
       for (Robot& o : robots_)
-        if (o.index != r.index && o.phase == Phase::Travel) {
+        if (o.index != r.index && o.phase == Phase::Move) {
           moving.push_back({o.pos, o.path.goal});
           who.push_back(&o);
         }
@@ -278,7 +280,7 @@ class TeamRun {
     for (const Robot& o : robots_)
       if (o.index != r.index && o.phase != Phase::Done) {
         taken.push_back(o.pos);
-        if (o.phase == Phase::Travel) taken.push_back(o.path.goal);
+        if (o.phase == Phase::Move) taken.push_back(o.path.goal);
       }
     const int region = setup_.space->region_of(setup_.space->nearest_free(r.pos));
     const auto usable = [&](Vec2 g) {
@@ -298,7 +300,6 @@ class TeamRun {
     r.along = 0.0;
     r.halted = false;
     r.obstructed = 0.0;
-    r.phase = Phase::Travel;
   }
 
   // The robot leaves its path where it is: the part covered is travelled.
@@ -322,7 +323,7 @@ class TeamRun {
       if (o.index == r.index || o.phase == Phase::Done ||
           may_move(r.pos, q, o.pos, team_.separation))
         continue;
-      const bool standing = o.phase != Phase::Travel || o.halted;
+      const bool standing = o.phase != Phase::Move || o.halted;
       if (standing && norm(o.pos - r.path.goal) < team_.separation) return Block::GoalTaken;
       b = Block::Wait;
     }
@@ -379,8 +380,9 @@ class TeamRun {
     return false;
   }
 
-  // One reading interval of travel, or the last part of one; or a wait or a side step.
-  void travel(Robot& r) {
+  // One reading interval of travel, or the last part of one; or a wait or a side step. True
+  // once the move is over (arrived, or given up to sample where it is).
+  bool travel(Robot& r) {
     const double interval = r.world->reading_interval();
     const bool last = r.tick >= r.ticks;
     const double to = last ? r.path.length : (r.tick + 1) * interval * setup_.world->speed;
@@ -390,8 +392,7 @@ class TeamRun {
       // The interval it stops in; a sensor with memory reads it as promised (read_step).
       if (!last) r.world->pass(r.path.path, r.along);
       leave_path(r);
-      r.phase = Phase::Sample;
-      return;
+      return true;
     }
     if (block == Block::Wait) {
       r.obstructed += interval;
@@ -400,10 +401,9 @@ class TeamRun {
         if (read_step(r) > r.world->steps()) r.world->pass(r.path.path, r.along);
         leave_path(r);
         r.halted = false;
-        r.phase = Phase::Sample;
-        return;
+        return true;
       }
-      if (sidestep(r, q, last)) return;
+      if (sidestep(r, q, last)) return false;
       // A sensor with memory reads where it waits, but not in place of the last part of a
       // path, which reads nothing (read_step).
       if (last)
@@ -412,7 +412,7 @@ class TeamRun {
         r.world->pass(r.path.path, r.along);
       r.halted = true;
       r.out.waited_s += interval;
-      return;
+      return false;
     }
     r.halted = false;
     if (!last) {
@@ -420,14 +420,14 @@ class TeamRun {
       r.along = to;
       r.pos = q;
       ++r.tick;
-      return;
+      return false;
     }
     // As SimulatedWorld::travel: whole intervals, then the rest.
     r.world->wait(r.seconds - r.ticks * interval);
     append(r.travelled, r.path.path);
     r.out.distance_m += r.path.length;
     r.pos = r.path.goal;
-    r.phase = Phase::Sample;
+    return true;
   }
 
   LocalizationResult result() {

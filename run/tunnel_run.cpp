@@ -10,6 +10,7 @@
 #include "core/random.hpp"
 #include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
+#include "methods/ste_3d_method.hpp"
 #include "run/method_run.hpp"
 #include "world/random_streams.hpp"
 #include "world/tunnel_world.hpp"
@@ -34,79 +35,96 @@ double cast_altitude(const TunnelOptions& o, Vec3 source) {
   return std::clamp(source.z - 0.1, o.margin, o.tunnel.height - o.margin);
 }
 
-TunnelRun run_ste(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed) {
-  world::TunnelWorld world(o.tunnel, source, o.world, seed);
-  const Box3 box = o.tunnel.box();
-  ste::Ste3dEstimator estimator(box, o.ste,
-                                splitmix64(world::stream_seed(seed, world::SteStream::Mh)));
-  TunnelRun run;
-  run.spinup_s = world.spinup_s();
-  Vec3 robot = start;
-  for (;;) {
-    const world::Reading3 r = world.stop(robot);
-    estimator.add(r.position, r.gas, norm(r.wind));
-    const double cpu = thread_cpu_s();
-    const ste::Posterior3 post = estimator.posterior();
-    TunnelStep step{robot,          r.gas,    world.time(),
-                    run.distance_m, "sample", post.expected_source(),
-                    post.entropy,   0.0};
-    run.estimate = post.expected_source();
-    run.max_entropy = post.max_entropy;
-    if (post.entropy < o.ste.entropy_fraction * post.max_entropy)
-      run.stopped_by = "entropy";
-    else if (estimator.samples() >= o.ste.max_samples)
-      run.stopped_by = "max_samples";
-    Vec3 goal = robot;
-    if (run.stopped_by.empty())
-      goal = ste::decide_3d(robot, estimator, post, box, o.ste, o.margin).goal;
-    step.compute_s = thread_cpu_s() - cpu;
-    run.steps.push_back(step);
-    if (!run.stopped_by.empty()) break;
-    world.travel(robot, goal);
-    run.distance_m += norm(goal - robot);
-    robot = goal;
-  }
-  run.mission_s = world.time();
-  return run;
-}
-
-TunnelRun run_tracker(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed) {
-  world::TunnelWorld world(o.tunnel, source, o.world, seed);
+// The method of o.method: STE's chain and a tracker's draws come from `seed`'s own streams.
+std::unique_ptr<methods::LocalizationMethod3> tunnel_method(const TunnelOptions& o, Vec3 source,
+                                                            std::uint64_t seed) {
+  if (!is_tracker(o.method))
+    return std::make_unique<methods::Ste3dMethod>(
+        o.tunnel.box(), o.ste, o.margin,
+        splitmix64(world::stream_seed(seed, world::SteStream::Mh)));
   methods::CrosswindSearchOptions so = o.search;
   so.mode = o.method == TunnelMethod::SurgeSpiral ? methods::CrosswindMode::Spiral3d
                                                   : methods::CrosswindMode::Cast2d;
   so.step = o.tracker_speed * o.decision_s;
   so.altitude = cast_altitude(o, source);
-  methods::CrosswindSearch search(o.tunnel.box(), so,
-                                  world::stream_seed(seed, world::SteStream::Method));
-  TunnelRun run;
-  run.spinup_s = world.spinup_s();
-  const double half = 0.5 * o.box;
-  Vec3 robot = start;
-  // The first reading: a moment at the start.
-  world::Reading3 r = world.move(robot, robot, o.tracker_speed);
-  for (;;) {
-    search.observe({r.position, r.gas, r.wind, world.time()});
-    run.steps.push_back({robot, r.gas, world.time(), run.distance_m, search.phase(), {}, 0.0, 0.0});
-    const Vec3 d = robot - source;
-    if (std::abs(d.x) <= half && std::abs(d.y) <= half && std::abs(d.z) <= half &&
-        r.gas >= search.threshold()) {
-      run.stopped_by = "found";
-      break;
-    }
-    if (world.time() >= o.time_limit_s) {
-      run.stopped_by = "time_limit";
-      break;
-    }
-    const Vec3 goal = search.next(robot);
-    r = world.move(robot, goal, o.tracker_speed);
-    run.distance_m += norm(goal - robot);
-    robot = goal;
-  }
-  run.estimate = robot;
-  run.mission_s = world.time();
-  return run;
+  return std::make_unique<methods::CrosswindSearch>(
+      o.tunnel.box(), so, world::stream_seed(seed, world::SteStream::Method));
 }
+
+// A robot in the tunnel, for run_loop. STE stops to sample and flies straight to its goal at the
+// world's speed; a tracker reads on the move at tracker_speed (its first reading: a moment at the
+// start), succeeds inside the box about the source while in the plume ("found") and fails at the
+// time limit.
+class TunnelRobot {
+ public:
+  TunnelRobot(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed)
+      : o_(o), world_(o.tunnel, source, o.world, seed), robot_(start) {
+    method_ = tunnel_method(o, source, seed);
+    run_.spinup_s = world_.spinup_s();
+  }
+
+  bool sense() {
+    if (!method_->reads_while_moving())
+      reading_ = world_.stop(robot_);
+    else if (run_.steps.empty())
+      reading_ = world_.move(robot_, robot_, o_.tracker_speed);
+    return true;  // a tracker's later readings come with its moves
+  }
+
+  bool decide() {
+    const double cpu = thread_cpu_s();
+    method_->observe({reading_.position, reading_.gas, reading_.wind, 0.0, world_.time()});
+    TunnelStep step{robot_,           reading_.gas, world_.time(), run_.distance_m,
+                    method_->phase(), {},           0.0,           0.0};
+    if (const ste::Posterior3* post = method_->posterior()) {
+      step.estimate = post->expected_source();
+      step.entropy = post->entropy;
+      run_.max_entropy = post->max_entropy;
+    }
+    run_.stopped_by = stop_rule();
+    if (run_.stopped_by.empty()) goal_ = method_->next(robot_).goal;
+    step.compute_s = thread_cpu_s() - cpu;
+    run_.steps.push_back(step);
+    return !run_.stopped_by.empty();
+  }
+
+  bool move() {
+    if (method_->reads_while_moving())
+      reading_ = world_.move(robot_, goal_, o_.tracker_speed);
+    else
+      world_.travel(robot_, goal_);
+    run_.distance_m += norm(goal_ - robot_);
+    robot_ = goal_;
+    return true;
+  }
+
+  TunnelRun finish() {
+    run_.estimate = method_->estimate().value_or(robot_);
+    run_.mission_s = world_.time();
+    return std::move(run_);
+  }
+
+ private:
+  std::string stop_rule() const {
+    std::string why = method_->stopped_by();
+    const std::optional<double> threshold = method_->plume_threshold();
+    if (!why.empty() || !threshold) return why;
+    const Vec3 d = robot_ - world_.source();
+    const double half = 0.5 * o_.box;
+    if (std::abs(d.x) <= half && std::abs(d.y) <= half && std::abs(d.z) <= half &&
+        reading_.gas >= *threshold)
+      return "found";
+    if (world_.time() >= o_.time_limit_s) return "time_limit";
+    return "";
+  }
+
+  const TunnelOptions& o_;
+  world::TunnelWorld world_;
+  std::unique_ptr<methods::LocalizationMethod3> method_;
+  TunnelRun run_;
+  Vec3 robot_, goal_;
+  world::Reading3 reading_;
+};
 
 }  // namespace
 
@@ -276,8 +294,9 @@ TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint6
   o.validate();
   check_tunnel_point(o, source, "source");
   check_tunnel_point(o, start, "start");
-  TunnelRun run =
-      is_tracker(o.method) ? run_tracker(o, source, start, seed) : run_ste(o, source, start, seed);
+  TunnelRobot robot(o, source, start, seed);
+  run_loop(robot);
+  TunnelRun run = robot.finish();
   run.method = o.method;
   run.source = source;
   run.start = start;

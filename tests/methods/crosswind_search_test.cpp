@@ -27,9 +27,9 @@ CrosswindSearchOptions options_for(CrosswindMode mode) {
 
 // Surges once, then loses the plume where the robot stands: the loss point.
 Vec3 lose_plume_at(CrosswindSearch& search, Vec3 robot) {
-  search.observe({robot, 100.0, {1.0, 0.0, 0.0}, 1.0});
-  EXPECT_STREQ(search.phase(), "surge");
-  search.observe({robot, 0.0, {1.0, 0.0, 0.0}, 2.0});
+  search.observe({robot, 100.0, {1.0, 0.0, 0.0}, 0.0, 1.0});
+  EXPECT_EQ(search.phase(), "surge");
+  search.observe({robot, 0.0, {1.0, 0.0, 0.0}, 0.0, 2.0});
   return robot;
 }
 
@@ -39,13 +39,13 @@ Vec3 lose_plume_at(CrosswindSearch& search, Vec3 robot) {
 TEST(CrosswindSearchSpiral, GoalsFollowTheArchimedeanSpiralAStepApart) {
   CrosswindSearch search(kTunnel, options_for(CrosswindMode::Spiral3d), 3);
   const Vec3 c = lose_plume_at(search, {8.0, 0.3, 1.1});
-  EXPECT_STREQ(search.phase(), "spiral");
+  EXPECT_EQ(search.phase(), "spiral");
   Vec3 robot = c;
   double unwrapped = 0.0, last_angle = 0.0;
   double path = 0.0;
   const int decisions = 120;
   for (int k = 0; k < decisions; ++k) {
-    const Vec3 g = search.next(robot);
+    const Vec3 g = search.next(robot).goal;
     ASSERT_EQ(g.x, c.x);
     const double dy = g.y - c.y, dz = g.z - c.z;
     const double angle = std::atan2(dz, dy);
@@ -75,13 +75,13 @@ TEST(CrosswindSearchSpiral, GoalsFollowTheArchimedeanSpiralAStepApart) {
   EXPECT_NEAR(norm(robot - c), 0.43571, 1e-5);
   EXPECT_GT(path, 0.99 * decisions * 0.05);
   // The plume again: surge; the next loss starts a fresh spiral from its own point.
-  search.observe({robot, 100.0, {1.0, 0.0, 0.0}, 3.0});
-  EXPECT_STREQ(search.phase(), "surge");
-  robot = search.next(robot);
-  search.observe({robot, 0.0, {1.0, 0.0, 0.0}, 4.0});
-  EXPECT_STREQ(search.phase(), "spiral");
+  search.observe({robot, 100.0, {1.0, 0.0, 0.0}, 0.0, 3.0});
+  EXPECT_EQ(search.phase(), "surge");
+  robot = search.next(robot).goal;
+  search.observe({robot, 0.0, {1.0, 0.0, 0.0}, 0.0, 4.0});
+  EXPECT_EQ(search.phase(), "spiral");
   EXPECT_EQ(search.loss_point().x, robot.x);
-  const Vec3 g = search.next(robot);
+  const Vec3 g = search.next(robot).goal;
   EXPECT_EQ(g.x, robot.x);
   EXPECT_NEAR(search.spiral_t(), 0.33118, 1e-5);  // the first 0.05 m of arc
 }
@@ -94,11 +94,11 @@ TEST(CrosswindSearchCast, LegsAlternateAndWidenAtTheAltitude) {
   const Box3 wide{{0.0, -10.0, 0.0}, {16.0, 10.0, 2.0}};
   CrosswindSearch search(wide, o, 3);
   const Vec3 c = lose_plume_at(search, {8.0, 0.2, 0.8});
-  EXPECT_STREQ(search.phase(), "cast");
+  EXPECT_EQ(search.phase(), "cast");
   std::vector<double> ends;
   Vec3 robot = c;
   for (int k = 0; k < 400 && ends.size() < 6; ++k) {
-    const Vec3 g = search.next(robot);
+    const Vec3 g = search.next(robot).goal;
     ASSERT_EQ(g.x, 8.0);
     ASSERT_EQ(g.z, 0.8);
     ASSERT_LE(norm(g - robot), 0.05 + 1e-12);
@@ -117,9 +117,9 @@ TEST(CrosswindSearchSurge, StepsUpwindAgainstAnObliqueWind) {
   const Vec3 robot{8.0, 0.5, 1.2};
   const Vec3 wind{1.0, 0.5, -0.2};  // |wind| = sqrt(1.29)
   CrosswindSearch spiral(kTunnel, options_for(CrosswindMode::Spiral3d), 1);
-  spiral.observe({robot, 50.0, wind, 1.0});
-  EXPECT_STREQ(spiral.phase(), "surge");
-  Vec3 g = spiral.next(robot);
+  spiral.observe({robot, 50.0, wind, 0.0, 1.0});
+  EXPECT_EQ(spiral.phase(), "surge");
+  Vec3 g = spiral.next(robot).goal;
   const double s = 0.05 / std::sqrt(1.29);
   EXPECT_NEAR(g.x, 8.0 - s, 1e-12);
   EXPECT_NEAR(g.y, 0.5 - 0.5 * s, 1e-12);
@@ -127,15 +127,15 @@ TEST(CrosswindSearchSurge, StepsUpwindAgainstAnObliqueWind) {
   EXPECT_NEAR(g.x, 7.9559775, 1e-7);
 
   CrosswindSearch cast(kTunnel, options_for(CrosswindMode::Cast2d), 1);
-  cast.observe({{8.0, 0.5, 1.0}, 50.0, wind, 1.0});
-  g = cast.next({8.0, 0.5, 1.0});
+  cast.observe({{8.0, 0.5, 1.0}, 50.0, wind, 0.0, 1.0});
+  g = cast.next({8.0, 0.5, 1.0}).goal;
   const double h = 0.05 / std::sqrt(1.25);
   EXPECT_NEAR(g.x, 8.0 - h, 1e-12);
   EXPECT_NEAR(g.y, 0.5 - 0.5 * h, 1e-12);
   EXPECT_EQ(g.z, 1.0);
 
-  spiral.observe({robot, 50.0, {0.0, 0.0, 0.0}, 2.0});
-  g = spiral.next(robot);
+  spiral.observe({robot, 50.0, {0.0, 0.0, 0.0}, 0.0, 2.0});
+  g = spiral.next(robot).goal;
   EXPECT_NEAR(g.x, 7.95, 1e-12);
   EXPECT_EQ(g.y, 0.5);
   EXPECT_EQ(g.z, 1.2);
@@ -156,8 +156,8 @@ TEST(CrosswindSearchLevy, MoveLengthsHaveThePowerLawsMedian) {
     int up = 0, right = 0;
     const int n = 4001;
     for (int k = 0; k < n; ++k) {
-      const Vec3 g = search.next(robot);
-      ASSERT_STREQ(search.phase(), "levy");
+      const Vec3 g = search.next(robot).goal;
+      ASSERT_EQ(search.phase(), "levy");
       ASSERT_EQ(g.x, 50.0);
       const Vec3 d = g - robot;
       lengths.push_back(norm(d));
@@ -194,10 +194,10 @@ TEST(CrosswindSearch, GoalsStayInsideTheTunnel) {
     for (int k = 0; k < 3000; ++k) {
       // Bursts of gas and long gaps, as in an intermittent plume.
       const double gas = (k / 37) % 3 == 0 ? 20.0 + (k % 7) * 10.0 : (k % 5);
-      search.observe({robot, gas, {1.0, 0.3 * std::sin(0.1 * k), 0.1}, double(k)});
+      search.observe({robot, gas, {1.0, 0.3 * std::sin(0.1 * k), 0.1}, 0.0, double(k)});
       const std::string p = search.phase();
       phases[p == "levy" ? 0 : p == "surge" ? 1 : p == "spiral" ? 2 : 3]++;
-      const Vec3 g = search.next(robot);
+      const Vec3 g = search.next(robot).goal;
       ASSERT_TRUE(small.contains(g)) << k;
       ASSERT_LE(norm(g - robot), o.step + 1e-12) << k;
       if (mode == CrosswindMode::Cast2d) {
@@ -222,19 +222,19 @@ TEST(CrosswindSearchThreshold, TheQuantileRuleOnHandComputedReadings) {
     CrosswindSearch search(kTunnel, o, 1);
     const Vec3 at{8.0, 0.0, 1.0};
     for (double low : {1.0, 4.9, 0.0})
-      search.observe({at, low, {1.0, 0.0, 0.0}, 0.0});
+      search.observe({at, low, {1.0, 0.0, 0.0}, 0.0, 0.0});
     EXPECT_DOUBLE_EQ(search.threshold(), 5.0);
     for (int k = 0; k < 20; ++k) {
       EXPECT_FALSE(search.calibrated());
-      search.observe({at, 10.0 * ((k * 7) % 20 + 1), {1.0, 0.0, 0.0}, 0.0});  // shuffled
+      search.observe({at, 10.0 * ((k * 7) % 20 + 1), {1.0, 0.0, 0.0}, 0.0, 0.0});  // shuffled
     }
     EXPECT_TRUE(search.calibrated());
     thresholds[m] = search.threshold();
-    search.observe({at, 1000.0, {1.0, 0.0, 0.0}, 0.0});
-    search.observe({at, 5.0, {1.0, 0.0, 0.0}, 0.0});
+    search.observe({at, 1000.0, {1.0, 0.0, 0.0}, 0.0, 0.0});
+    search.observe({at, 5.0, {1.0, 0.0, 0.0}, 0.0, 0.0});
     EXPECT_DOUBLE_EQ(search.threshold(), thresholds[m]);  // fixed
-    search.observe({at, 50.0, {1.0, 0.0, 0.0}, 0.0});
-    EXPECT_STREQ(search.phase(), m == 0 ? "spiral" : "surge");
+    search.observe({at, 50.0, {1.0, 0.0, 0.0}, 0.0, 0.0});
+    EXPECT_EQ(search.phase(), m == 0 ? "spiral" : "surge");
   }
   EXPECT_NEAR(thresholds[0], 67.0, 1e-12);
   EXPECT_NEAR(thresholds[1], 29.0, 1e-12);
@@ -247,8 +247,8 @@ TEST(CrosswindSearch, SameSeedSameGoals) {
     Vec3 robot{8.0, 0.0, 1.0};
     std::vector<double> coordinates;
     for (int k = 0; k < 200; ++k) {
-      search.observe({robot, k % 60 >= 50 ? 40.0 : 0.0, {1.0, 0.0, 0.0}, double(k)});
-      robot = search.next(robot);
+      search.observe({robot, k % 60 >= 50 ? 40.0 : 0.0, {1.0, 0.0, 0.0}, 0.0, double(k)});
+      robot = search.next(robot).goal;
       coordinates.insert(coordinates.end(), {robot.x, robot.y, robot.z});
     }
     return coordinates;
@@ -302,17 +302,17 @@ TEST(CrosswindSearch, RefusesNanOptionsAndObservationsNamingTheField) {
     }
     return "";
   };
-  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, nan, {1.0, 0.0, 0.0}, 0.0}).find("gas"),
+  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, nan, {1.0, 0.0, 0.0}, 0.0, 0.0}).find("gas"),
             std::string::npos);
-  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, -1.0, {1.0, 0.0, 0.0}, 0.0}).find("gas is negative"),
+  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, -1.0, {1.0, 0.0, 0.0}, 0.0, 0.0}).find("gas is negative"),
             std::string::npos);
-  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, 1.0, {1.0, nan, 0.0}, 0.0}).find("wind.y"),
+  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, 1.0, {1.0, nan, 0.0}, 0.0, 0.0}).find("wind.y"),
             std::string::npos);
-  EXPECT_NE(message_of({{8.0, nan, 1.0}, 1.0, {1.0, 0.0, 0.0}, 0.0}).find("position.y"),
+  EXPECT_NE(message_of({{8.0, nan, 1.0}, 1.0, {1.0, 0.0, 0.0}, 0.0, 0.0}).find("position.y"),
             std::string::npos);
-  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, 1.0, {1.0, 0.0, 0.0}, nan}).find("time_s"),
+  EXPECT_NE(message_of({{8.0, 0.0, 1.0}, 1.0, {1.0, 0.0, 0.0}, 0.0, nan}).find("time_s"),
             std::string::npos);
-  EXPECT_EQ(message_of({{8.0, 0.0, 1.0}, 1.0, {1.0, 0.0, 0.0}, 0.0}), "");
+  EXPECT_EQ(message_of({{8.0, 0.0, 1.0}, 1.0, {1.0, 0.0, 0.0}, 0.0, 0.0}), "");
 }
 
 }  // namespace
