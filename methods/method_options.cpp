@@ -17,10 +17,6 @@ PfMethodOptions MethodOptions::pf_in_use(PfExploration exploration) const {
   return o;
 }
 
-PfMethodOptions MethodOptions::pf_in_use() const {
-  return pf_in_use(name == "pf-sweep" ? PfExploration::Sweep : PfExploration::Gradient);
-}
-
 int MethodOptions::max_steps_in_use(double area) const {
   if (max_steps > 0) return max_steps;
   return std::max(50, static_cast<int>(std::ceil(2.0 * area / (tracking.step * tracking.step))));
@@ -29,7 +25,9 @@ int MethodOptions::max_steps_in_use(double area) const {
 void MethodOptions::validate() const {
   check_count("tracking.max_steps", max_steps, 0, 10000000, "0 means auto");
   tracking.validate();
-  pf_in_use().validate();
+  // Either exploration's filter (the method chooses its own: pf_method.cpp).
+  pf_in_use(PfExploration::Gradient).validate();
+  pf_in_use(PfExploration::Sweep).validate();
   apf.validate();
   levy.validate();
   local.validate();

@@ -41,8 +41,6 @@ struct MethodOptions {
   // The filter's options for `exploration`: alpha and beta resolved, the detection limit the
   // trackers' detection threshold, the step budget tracking.max_steps.
   PfMethodOptions pf_in_use(PfExploration exploration) const;
-  // pf_in_use for the method `name` ("pf-sweep" explores by the sweep, every other the gradient).
-  PfMethodOptions pf_in_use() const;
   // OptionError naming the field ("ste.method.tracking.step", ...).
   void validate() const;
 };

@@ -52,7 +52,7 @@ const std::vector<MethodSpec>& method_registry() {
 
 void add_method(MethodSpec spec) {
   if (spec.name.empty()) throw std::invalid_argument("add_method: a method needs a name");
-  if (!spec.factory)
+  if (spec.traits.uses_plume_model ? !spec.model_factory : !spec.factory)
     throw std::invalid_argument("add_method: method '" + spec.name + "' has no factory");
   for (const MethodSpec& s : registry())
     if (s.name == spec.name)
@@ -120,10 +120,13 @@ std::string registry_markdown() {
 }
 
 std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& given, const SearchArea& area,
-                                                std::uint64_t seed) {
+                                                std::uint64_t seed, const PlumeModelParts* model) {
   const MethodSpec& spec = find_method(given.name);
-  if (!spec.factory)
-    throw std::logic_error("make_method: " + spec.name + " is built by its Scenario");
+  if (spec.traits.uses_plume_model) {
+    if (model == nullptr)
+      throw std::logic_error("make_method: " + spec.name + " needs its scenario's plume model");
+    return spec.model_factory(*model);
+  }
   MethodOptions options = given;
   options.validate();
   options.tracking.max_steps = given.max_steps_in_use(area.width() * area.height());

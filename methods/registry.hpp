@@ -13,6 +13,10 @@
 #include <nlohmann/json.hpp>
 
 #include "methods/method.hpp"
+#include "planner/planner.hpp"
+#include "ste/navigation.hpp"
+#include "ste/posterior.hpp"
+#include "ste/stop_rule.hpp"
 
 namespace plumekit::methods {
 
@@ -46,21 +50,35 @@ using MethodFactory = std::function<std::unique_ptr<LocalizationMethod>(
 using MethodOptionsJson =
     std::function<void(const MethodOptions& options, nlohmann::ordered_json& into)>;
 
+// What a method with a plume model (STE) takes from the run's scenario, which builds the model
+// for the map: a fresh estimator for the run, the planner, the navigator and the stop rule. They
+// must outlive the method.
+struct PlumeModelParts {
+  std::function<std::unique_ptr<ste::Estimator>()> estimator;
+  const planner::Planner* planner = nullptr;
+  const ste::Navigator* navigator = nullptr;
+  const ste::StopOptions* stop = nullptr;
+};
+// A fresh method with a plume model, from the scenario's parts.
+using PlumeModelFactory =
+    std::function<std::unique_ptr<LocalizationMethod>(const PlumeModelParts& parts)>;
+
 struct MethodSpec {
   std::string name;         // the --method name
   std::string description;  // one line, for --help and the docs
   std::string source;       // the seed and section it comes from
   MethodTraits traits;
-  // Empty for STE: it needs the Scenario's plume model, estimator and navigator, so
-  // run::Scenario builds it (run/scenario.cpp).
+  // One of the two: a method of readings alone is made from its options and area; a method with
+  // a plume model (traits.uses_plume_model) from the parts the run's scenario built.
   MethodFactory factory;
   MethodOptionsJson options_json;  // empty: none of its own
+  PlumeModelFactory model_factory = nullptr;
 };
 
 // Every method, in registry.cpp's order then the order add_method() was called.
 const std::vector<MethodSpec>& method_registry();
 // Adds a method (a user's or a test's own). std::invalid_argument for an empty name, a name
-// already taken or a spec without a factory.
+// already taken, or a spec without the factory its traits need.
 void add_method(MethodSpec spec);
 // The spec named `name`; OptionError on ste.method listing the names otherwise.
 const MethodSpec& find_method(const std::string& name);
@@ -74,10 +92,11 @@ bool uses_plume_model(const std::string& name);
 bool stops_in_source_box(const std::string& name);
 bool ends_on_arrival(const std::string& name);
 
-// A fresh method other than STE: options.name's factory, after options.validate() and with the
-// step budget resolved for the area.
+// A fresh method: options.name's factory, after options.validate() and with the step budget
+// resolved for the area; a method with a plume model from `model` (std::logic_error without).
 std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& options,
-                                                const SearchArea& area, std::uint64_t seed);
+                                                const SearchArea& area, std::uint64_t seed,
+                                                const PlumeModelParts* model = nullptr);
 
 // The registry as a Markdown table (name, description, source, plume model, how a run ends):
 // docs/methods-registry.md, which MethodRegistry.DocsTableIsTheRegistry keeps equal to it.

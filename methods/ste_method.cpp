@@ -18,14 +18,18 @@ std::optional<Vec2> SteMethod::estimate() const {
   return mission_.posterior().expected_source();
 }
 
-// No factory: STE needs the Scenario's plume model, estimator and navigator (run/scenario.cpp).
+// Built from the scenario's plume model, estimator and navigator (run/scenario.cpp).
 MethodSpec ste_spec() {
   return {"ste",
           "source term estimation: Bayesian posterior over the source, infotaxis moves",
           "plumekit (ste/)",
           MethodTraits{true, RunEnd::OwnStopRule},
           {},
-          {}};
+          {},
+          [](const PlumeModelParts& parts) {
+            return std::make_unique<SteMethod>(parts.estimator(), *parts.planner, *parts.navigator,
+                                               *parts.stop);
+          }};
 }
 
 }  // namespace plumekit::methods

@@ -2,6 +2,8 @@
 // plumekit's Bayesian source term estimation as one localization method among the others
 // (methods/method.hpp): a Mission (the estimator, the information-driven navigator and the stop
 // rule) behind the common interface. It plans its own paths while it decides.
+#include <memory>
+
 #include "methods/method.hpp"
 #include "ste/mission.hpp"
 
@@ -13,6 +15,10 @@ class SteMethod : public methods::LocalizationMethod {
   SteMethod(ste::Estimator& estimator, const planner::Planner& planner,
             const ste::Navigator& navigator, const ste::StopOptions& stop)
       : mission_(estimator, planner, navigator, stop) {}
+  // Owns its estimator (the registry's way: run/scenario.cpp builds it for the map).
+  SteMethod(std::unique_ptr<ste::Estimator> estimator, const planner::Planner& planner,
+            const ste::Navigator& navigator, const ste::StopOptions& stop)
+      : owned_(std::move(estimator)), mission_(*owned_, planner, navigator, stop) {}
 
   std::string name() const override { return "ste"; }
   void observe(const methods::Observation& o) override { mission_.add(o.position, o.gas); }
@@ -25,6 +31,7 @@ class SteMethod : public methods::LocalizationMethod {
   const ste::Posterior* posterior() const override { return &mission_.posterior(); }
 
  private:
+  std::unique_ptr<ste::Estimator> owned_;  // declared before mission_, which refers to it
   ste::Mission mission_;
 };
 

@@ -7,7 +7,6 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
-#include "methods/ste_method.hpp"
 
 namespace plumekit::run {
 
@@ -235,13 +234,6 @@ LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
   FloorRobot robot(start, method, world, planner, options);
   run_loop(robot);
   return robot.finish();
-}
-
-LocalizationResult localize(Vec2 start, ste::Estimator& estimator, world::SimulatedWorld& world,
-                            const planner::Planner& planner, const ste::Navigator& navigator,
-                            const ste::StopOptions& stop, const MethodRunOptions& options) {
-  methods::SteMethod method(estimator, planner, navigator, stop);
-  return run_method(start, method, world, planner, options);
 }
 
 }  // namespace plumekit::run

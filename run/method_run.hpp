@@ -4,7 +4,6 @@
 // decide, drive to its goal along a planner path around the obstacles, record every stop), each
 // robot of a team (team.hpp: the same phases, interleaved in the world's time), and the tunnel's
 // 3-D methods (tunnel_run.hpp). What differs between them is what a phase does, not their order.
-// localize() is run_method with plumekit's STE.
 #include <optional>
 
 #include "core/interrupt.hpp"
@@ -12,8 +11,6 @@
 #include "planner/free_space.hpp"
 #include "planner/planner.hpp"
 #include "run/run_record.hpp"
-#include "ste/mission.hpp"
-#include "ste/stop_rule.hpp"
 #include "world/simulated_world.hpp"
 
 namespace plumekit::run {
@@ -95,11 +92,5 @@ struct MethodRunOptions {
 LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
                               world::SimulatedWorld& world, const planner::Planner& planner,
                               const MethodRunOptions& options);
-
-// run_method with STE (methods::SteMethod) on `estimator`, which plans its own paths; `options`
-// may end the run on arrival (its disc).
-LocalizationResult localize(Vec2 start, ste::Estimator& estimator, world::SimulatedWorld& world,
-                            const planner::Planner& planner, const ste::Navigator& navigator,
-                            const ste::StopOptions& stop, const MethodRunOptions& options);
 
 }  // namespace plumekit::run

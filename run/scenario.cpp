@@ -379,12 +379,10 @@ LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start,
     o.disc = SourceDisc{source, options_.success_radius};
   else if (find_method(options_.method.name).traits.ends == methods::RunEnd::SourceDisc)
     o.disc = SourceDisc{source};
-  if (uses_plume_model(options_.method.name)) {
-    const std::unique_ptr<ste::Estimator> estimator = make_estimator(seed);
-    return localize(start, *estimator, world, *planner_, *navigator_, options_.stop, o);
-  }
-  const std::unique_ptr<methods::LocalizationMethod> method =
-      make_method(options_.method, {&map_}, world::stream_seed(seed, world::SteStream::Method));
+  const methods::PlumeModelParts model{[this, seed] { return make_estimator(seed); },
+                                       planner_.get(), navigator_.get(), &options_.stop};
+  const std::unique_ptr<methods::LocalizationMethod> method = make_method(
+      options_.method, {&map_}, world::stream_seed(seed, world::SteStream::Method), &model);
   o.space = space_.get();
   if (stops_in_source_box(options_.method.name)) o.box = source_box(source);
   return run_method(start, *method, world, *planner_, o);

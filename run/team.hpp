@@ -37,6 +37,7 @@
 #include "run/run_record.hpp"
 #include "ste/navigation.hpp"
 #include "ste/posterior.hpp"
+#include "ste/stop_rule.hpp"
 #include "world/shared_plume.hpp"
 #include "world/simulated_world.hpp"
 

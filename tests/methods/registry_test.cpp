@@ -45,7 +45,9 @@ class UpwindWalk : public LocalizationMethod {
 };
 
 MethodSpec upwind_walk_spec() {
-  return {"upwind-walk", "one step upwind per stop (a test's own method)", "registry_test",
+  return {"upwind-walk",
+          "one step upwind per stop (a test's own method)",
+          "registry_test",
           MethodTraits{false, RunEnd::OwnStopRule},
           [](const MethodOptions& o, const SearchArea&, std::uint64_t) {
             return std::make_unique<UpwindWalk>(o.tracking);
@@ -59,14 +61,16 @@ void register_upwind_walk() {
   (void)added;
 }
 
-TEST(MethodRegistry, NamesAreUniqueAndEveryMethodButSteHasAFactory) {
+TEST(MethodRegistry, NamesAreUniqueAndEveryMethodHasTheFactoryItsTraitsNeed) {
   std::set<std::string> names;
   for (const MethodSpec& s : method_registry()) {
     EXPECT_TRUE(names.insert(s.name).second) << s.name;
     EXPECT_FALSE(s.description.empty()) << s.name;
     EXPECT_FALSE(s.source.empty()) << s.name;
-    EXPECT_EQ(static_cast<bool>(s.factory), s.name != "ste") << s.name;
+    // STE is made from the scenario's plume model; every other from its options and area.
     EXPECT_EQ(s.traits.uses_plume_model, s.name == "ste") << s.name;
+    EXPECT_EQ(static_cast<bool>(s.factory), !s.traits.uses_plume_model) << s.name;
+    EXPECT_EQ(static_cast<bool>(s.model_factory), s.traits.uses_plume_model) << s.name;
   }
   EXPECT_EQ(method_names().front(), "ste");
 }
@@ -86,6 +90,15 @@ TEST(MethodRegistry, RefusesDuplicatesAndMethodsWithoutFactories) {
   EXPECT_THROW(add_method(sweeping_spec()), std::invalid_argument);
   MethodSpec empty{"no-factory", "d", "s", {}, {}, {}};
   EXPECT_THROW(add_method(empty), std::invalid_argument);
+  MethodSpec model_without_its_factory = sweeping_spec();
+  model_without_its_factory.name = "no-model-factory";
+  model_without_its_factory.traits.uses_plume_model = true;
+  EXPECT_THROW(add_method(model_without_its_factory), std::invalid_argument);
+  // STE is made only with its scenario's plume model.
+  MethodOptions ste;
+  ste.name = "ste";
+  const Map map = default_arena();
+  EXPECT_THROW(make_method(ste, {&map}, 1), std::logic_error);
   EXPECT_THROW(find_method("no-factory"), OptionError);
 }
 
