@@ -138,19 +138,6 @@ void merge(Closest& best, const Closest& c) {
   best.d = std::min(best.d, c.d);
 }
 
-// A map-frame coordinate to the millimetre, without trailing zeros:
-// "103.006", "-19.6" (compact's significant digits would drop the
-// millimetres far from the origin).
-std::string coordinate(double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  std::string s = buf;
-  while (s.back() == '0')
-    s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
-}
-
 // Features closer than h * kGapTolerance touch: imported outlines that share
 // an edge can come out 1e-15 m apart.
 bool narrow(double d, double h) {
@@ -295,6 +282,16 @@ void features_near(const Map& map, const SegmentBuckets& buckets, const std::vec
 
 }  // namespace
 
+std::string millimetre_coordinate(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  std::string s = buf;
+  while (s.back() == '0')
+    s.pop_back();
+  if (s.back() == '.') s.pop_back();
+  return s == "-0" ? "0" : s;
+}
+
 std::vector<GapReport> find_narrow_gaps(const Map& map, const GridShape& shape) {
   const double h = cell_size(shape);
   return narrow_gaps(map, SegmentBuckets(map, h), h);
@@ -367,8 +364,8 @@ std::string describe_gap(const Map& map, const GapReport& gap) {
     s << "the " << to_string(*gap.wall) << " wall";
   else
     s << "obstacles[" << gap.b << "]";
-  s << ", " << compact(gap.width) << " m apart at (" << coordinate(at.x) << ", " << coordinate(at.y)
-    << ")";
+  s << ", " << compact(gap.width) << " m apart at (" << millimetre_coordinate(at.x) << ", "
+    << millimetre_coordinate(at.y) << ")";
   return s.str();
 }
 
@@ -407,7 +404,7 @@ std::string closed_gaps_text(const ClosedGaps& gaps, double cell) {
   for (std::size_t k = 0; k < gaps.narrowest.size(); ++k) {
     const ClosedGap& g = gaps.narrowest[k];
     s << (k == 0 ? ": " : "; ") << g.between << ", " << compact(g.width) << " m apart at ("
-      << coordinate(g.at.x) << ", " << coordinate(g.at.y) << ")";
+      << millimetre_coordinate(g.at.x) << ", " << millimetre_coordinate(g.at.y) << ")";
   }
   if (static_cast<std::size_t>(gaps.count) > gaps.narrowest.size())
     s << "; and " << gaps.count - static_cast<int>(gaps.narrowest.size()) << " wider";

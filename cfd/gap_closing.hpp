@@ -80,4 +80,9 @@ ClosedGaps summarize_gaps(const Map& map, const std::vector<GapReport>& gaps);
 // them open". Empty when none was closed.
 std::string closed_gaps_text(const ClosedGaps& gaps, double cell);
 
+// A map-frame coordinate to the millimetre, without trailing zeros: "103.006", "-19.6"
+// (compact's significant digits would drop the millimetres far from the origin). The gap and
+// thin-wall reports both place what they name with it.
+std::string millimetre_coordinate(double v);
+
 }  // namespace plumekit::cfd

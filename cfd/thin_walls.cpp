@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 #include <unordered_set>
@@ -79,16 +78,6 @@ void edge_leaks(const Map& map, const GridShape& s, const std::vector<std::uint8
   }
 }
 
-std::string coordinate(double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.3f", v);
-  std::string s = buf;
-  while (s.back() == '0')
-    s.pop_back();
-  if (s.back() == '.') s.pop_back();
-  return s == "-0" ? "0" : s;
-}
-
 }  // namespace
 
 std::vector<ThinWall> find_thin_walls(const Map& map, const GridShape& shape,
@@ -128,8 +117,9 @@ std::string thin_walls_text(const ThinWalls& thin, double cell) {
     << " where the planner sees a wall";
   for (std::size_t k = 0; k < n && k < kReportedGaps; ++k) {
     const ThinWall& w = thin.walls[k];
-    s << (k == 0 ? ": " : "; ") << "obstacles[" << w.obstacle << "] at (" << coordinate(w.at.x)
-      << ", " << coordinate(w.at.y) << "), " << compact(w.thickness) << " m thick (" << w.leaks
+    s << (k == 0 ? ": " : "; ") << "obstacles[" << w.obstacle << "] at ("
+      << millimetre_coordinate(w.at.x) << ", " << millimetre_coordinate(w.at.y) << "), "
+      << compact(w.thickness) << " m thick (" << w.leaks
       << (w.leaks == 1 ? " cell face" : " cell faces") << " through it)";
   }
   if (n > kReportedGaps) s << "; and " << n - kReportedGaps << " more";

@@ -7,13 +7,10 @@
 // behind them. Bad input must end in InputError; anything else escaping is a bug, and libFuzzer
 // reports it as a crash. An accepted part must be consistent: K of N in range, one runs.csv and
 // one timings.csv record per run, each run on one of the part's maps.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -22,37 +19,15 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
+#include "fuzz/scratch_folder.hpp"
 #include "run/evaluation_part_reader.hpp"
 
 namespace fs = std::filesystem;
+using plumekit::fuzz::scratch_folder;
+using plumekit::fuzz::write_file;
 namespace run = plumekit::run;
 
 namespace {
-
-// One folder per process, removed at exit; /dev/shm when there is one, to keep the disk out of it.
-const fs::path& scratch_dir() {
-  static const fs::path dir = [] {
-    std::string pattern = (fs::is_directory("/dev/shm") ? std::string("/dev/shm")
-                                                        : fs::temp_directory_path().string()) +
-                          "/plumekit-fuzz-part-XXXXXX";
-    if (!mkdtemp(pattern.data())) std::abort();
-    return fs::path(pattern);
-  }();
-  static const bool cleanup_registered = [] {
-    return std::atexit([] {
-             std::error_code ec;
-             fs::remove_all(scratch_dir(), ec);
-           }) == 0;
-  }();
-  (void)cleanup_registered;
-  return dir;
-}
-
-void write_file(const fs::path& path, std::string_view bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) std::abort();
-}
 
 // The next NUL-separated piece of `rest` (all of it when there is no NUL), taken off it.
 std::string_view next_piece(std::string_view& rest) {
@@ -67,7 +42,7 @@ std::size_t records(const std::string& csv) {
 }
 
 void read_folder(std::string_view part, std::string_view runs, std::string_view timings) {
-  const fs::path& dir = scratch_dir();
+  const fs::path& dir = scratch_folder("part");
   write_file(dir / run::kPartFile, part);
   write_file(dir / "runs.csv", runs);
   write_file(dir / "timings.csv", timings);

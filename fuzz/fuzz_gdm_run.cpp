@@ -2,7 +2,6 @@
 // parse_run_json, find_run_map, run_samples) with arbitrary text. Bad input must end in
 // InputError. A found map is a regular file; accepted samples are at least one, each within
 // sample_fault's rules, and their maps (kernel_dmv) are finite in every cell.
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -10,30 +9,14 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "map/map.hpp"
-#include "methods/kernel_dmv.hpp"
+#include "fuzz/gdm_maps.hpp"
 #include "run/gdm_samples.hpp"
-
-namespace {
-
-void check_maps(const plumekit::Map& map, const std::vector<plumekit::methods::Sample>& samples) {
-  plumekit::methods::GdmOptions o;
-  o.cell = 0.5;  // 20 x 8 cells: quick
-  o.wind_stretch = 0.6;
-  const plumekit::methods::GdmMaps m = plumekit::methods::kernel_dmv(map, samples, o);
-  for (const auto* g : {&m.mean, &m.variance, &m.confidence, &m.weight})
-    for (double v : g->values)
-      if (!std::isfinite(v)) std::abort();
-}
-
-}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace run = plumekit::run;
   namespace methods = plumekit::methods;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  plumekit::Map map = plumekit::default_arena(10.0, 4.0);
-  map.frame.origin = {-1.0, 2.0};
+  const plumekit::Map map = plumekit::fuzz::gdm_arena();
   nlohmann::json record;
   try {
     record = run::parse_run_json(text, "run.json");
@@ -56,6 +39,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (samples.empty()) std::abort();
   for (const auto& s : samples)
     if (!methods::sample_fault(map, s).column.empty() || !s.wind) std::abort();
-  check_maps(map, samples);
+  plumekit::fuzz::check_finite_gdm_maps(map, samples);
   return 0;
 }

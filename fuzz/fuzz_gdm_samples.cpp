@@ -8,14 +8,12 @@
 #include <string_view>
 
 #include "core/error.hpp"
-#include "map/map.hpp"
-#include "methods/kernel_dmv.hpp"
+#include "fuzz/gdm_maps.hpp"
 #include "run/gdm_samples.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
-  plumekit::Map map = plumekit::default_arena(10.0, 4.0);
-  map.frame.origin = {-1.0, 2.0};
+  const plumekit::Map map = plumekit::fuzz::gdm_arena();
   std::vector<plumekit::methods::Sample> samples;
   try {
     samples = plumekit::run::parse_samples_csv(text, "fuzz.csv", map);
@@ -30,12 +28,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (s.wind && (!std::isfinite(s.wind->x) || !std::isfinite(s.wind->y))) std::abort();
     if (!plumekit::methods::sample_fault(map, s).column.empty()) std::abort();
   }
-  plumekit::methods::GdmOptions o;
-  o.cell = 0.5;  // 20 x 8 cells: quick
-  o.wind_stretch = 0.6;
-  const plumekit::methods::GdmMaps m = plumekit::methods::kernel_dmv(map, samples, o);
-  for (const auto* g : {&m.mean, &m.variance, &m.confidence, &m.weight})
-    for (double v : g->values)
-      if (!std::isfinite(v)) std::abort();
+  plumekit::fuzz::check_finite_gdm_maps(map, samples);
   return 0;
 }

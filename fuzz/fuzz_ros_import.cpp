@@ -4,58 +4,28 @@
 // the image as image.pgm, the name the seed YAMLs give. Bad input must end in InputError;
 // anything else escaping is a bug, and libFuzzer reports it as a crash. An accepted import must
 // be a valid map of the image's size.
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <string_view>
 
 #include "core/error.hpp"
+#include "fuzz/scratch_folder.hpp"
 #include "map/map_json.hpp"
 #include "map/ros_import.hpp"
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// One folder per process, removed at exit; /dev/shm when there is one, to keep the disk out of it.
-const fs::path& scratch_dir() {
-  static const fs::path dir = [] {
-    std::string pattern = (fs::is_directory("/dev/shm") ? std::string("/dev/shm")
-                                                        : fs::temp_directory_path().string()) +
-                          "/plumekit-fuzz-ros-XXXXXX";
-    if (!mkdtemp(pattern.data())) std::abort();
-    return fs::path(pattern);
-  }();
-  static const bool cleanup_registered = [] {
-    return std::atexit([] {
-             std::error_code ec;
-             fs::remove_all(scratch_dir(), ec);
-           }) == 0;
-  }();
-  (void)cleanup_registered;
-  return dir;
-}
-
-void write_file(const fs::path& path, std::string_view bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) std::abort();
-}
-
-}  // namespace
+using plumekit::fuzz::scratch_folder;
+using plumekit::fuzz::write_file;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
   const std::size_t nul = input.find('\0');
   const std::string_view yaml = input.substr(0, nul);
   const std::string_view image = nul == std::string_view::npos ? "" : input.substr(nul + 1);
-  const fs::path& dir = scratch_dir();
+  const fs::path& dir = scratch_folder("ros");
   write_file(dir / "map.yaml", yaml);
   write_file(dir / "image.pgm", image);
   try {

@@ -8,8 +8,6 @@
 // JSON and arrays get past the checksums to the parsers and shape checks behind them. Bad input
 // must end in InputError; anything else escaping is a bug. An accepted wind must hold finite face
 // velocities of the grid's shape.
-#include <unistd.h>
-
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -26,39 +24,17 @@
 #include "core/error.hpp"
 #include "core/npy.hpp"
 #include "core/sha256.hpp"
+#include "fuzz/scratch_folder.hpp"
 
 namespace fs = std::filesystem;
 using plumekit::Map;
+using plumekit::fuzz::scratch_folder;
+using plumekit::fuzz::write_file;
 
 namespace {
 
 constexpr const char* kArrays[] = {"face_u.npy", "face_v.npy", "p.npy",
                                    "solid.npy",  "u.npy",      "v.npy"};
-
-// One folder per process, removed at exit; /dev/shm when there is one, to keep the disk out of it.
-const fs::path& scratch_dir() {
-  static const fs::path dir = [] {
-    std::string pattern = (fs::is_directory("/dev/shm") ? std::string("/dev/shm")
-                                                        : fs::temp_directory_path().string()) +
-                          "/plumekit-fuzz-wind-XXXXXX";
-    if (!mkdtemp(pattern.data())) std::abort();
-    return fs::path(pattern);
-  }();
-  static const bool cleanup_registered = [] {
-    return std::atexit([] {
-             std::error_code ec;
-             fs::remove_all(scratch_dir(), ec);
-           }) == 0;
-  }();
-  (void)cleanup_registered;
-  return dir;
-}
-
-void write_file(const fs::path& path, std::string_view bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) std::abort();
-}
 
 // The fixed grid's arrays, as `plumekit flow` lays them out (zeros).
 std::string array_bytes(std::size_t k) {
@@ -112,7 +88,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view input(reinterpret_cast<const char*>(data), size);
   const std::size_t nul = input.find('\0');
   const std::string_view json_text = input.substr(0, nul);
-  const fs::path& dir = scratch_dir();
+  const fs::path& dir = scratch_folder("wind");
   for (std::size_t k = 0; k < std::size(kArrays); ++k)
     write_file(dir / kArrays[k], array_bytes(k));
   if (nul != std::string_view::npos && nul + 1 < input.size()) {

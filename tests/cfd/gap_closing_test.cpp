@@ -114,6 +114,17 @@ TEST(GapClosing, TheSolverClosesTheGapAndReportsItInTheMapFrame) {
              "obstacles[3], 0.012 m apart at (103.006, -19.3)");
 }
 
+// The gap and thin-wall reports place what they name to the millimetre, however far from the
+// origin, without trailing zeros and without a "-0".
+TEST(GapClosing, CoordinatesAreWrittenToTheMillimetre) {
+  EXPECT_EQ(millimetre_coordinate(103.006), "103.006");
+  EXPECT_EQ(millimetre_coordinate(-19.6), "-19.6");
+  EXPECT_EQ(millimetre_coordinate(2.0), "2");
+  EXPECT_EQ(millimetre_coordinate(12345.67849), "12345.678");
+  EXPECT_EQ(millimetre_coordinate(-0.0004), "0");
+  EXPECT_EQ(millimetre_coordinate(0.0), "0");
+}
+
 TEST(GapClosing, AGapOfExactlyOneCellIsNotNarrower) {
   Map map = default_arena(4.0, 2.0);
   // 1.95 - 1.9 is 0.04999999999999982 in floating point.

@@ -84,8 +84,8 @@ class Safety : public plumekit::test::CliTest {
     posix_spawnattr_destroy(&attr);
     return rc == 0 ? pid : -1;
   }
-  // Waits (up to 30 s) until an entry whose name holds `part` appears under `folder`.
-  // Waits up to 2 minutes: a loaded CI machine can take a while to start a run.
+  // Waits until an entry whose name holds `part` appears under `folder`: up to 2 minutes, as a
+  // loaded CI machine can take a while to start a run.
   static bool appears(const fs::path& folder, const std::string& part) {
     for (int i = 0; i < 2400; ++i) {
       std::error_code ec;
@@ -101,12 +101,24 @@ class Safety : public plumekit::test::CliTest {
     if (::kill(pid, sig) != 0 || ::waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
     return WEXITSTATUS(status);
   }
-  // A slow evaluation (the physics plume) that is still running when the test acts.
-  std::vector<std::string> slow_evaluate(const fs::path& maps, const fs::path& out,
-                                         const std::string& method = "ste") {
-    return {"evaluate", "--map-dir", maps.string(), "--out",     out.string(), "--plume-model",
-            "physics",  "--runs",    "3",           "--threads", "1",          "--method",
-            method};
+  // Starts a slow evaluation (the physics plume, still running when the test acts) into `out`
+  // and waits until it writes its temporary output. Its pid, or -1 with the failure recorded
+  // (and the run killed) when it did not start or never wrote.
+  pid_t start_slow_evaluate(const fs::path& maps, const fs::path& out,
+                            const std::string& method = "ste") {
+    const pid_t pid =
+        start({"evaluate", "--map-dir", maps.string(), "--out", out.string(), "--plume-model",
+               "physics", "--runs", "3", "--threads", "1", "--method", method});
+    if (pid <= 0) {
+      ADD_FAILURE() << "plumekit did not start";
+      return -1;
+    }
+    if (!appears(dir, ".plumekit-tmp-")) {
+      ADD_FAILURE() << "the run never started writing";
+      stop(pid, SIGKILL);
+      return -1;
+    }
+    return pid;
   }
 };
 
@@ -165,10 +177,9 @@ TEST_F(Safety, EvaluateNamesPicturesAfterFilesNotMapNamesAndReplacesItsOwnOutput
 TEST_F(Safety, InterruptedEvaluateLeavesNoTemporary) {
   const fs::path maps = one_map_dir();
   const fs::path out = dir / "eval";
-  const pid_t pid = start(slow_evaluate(maps, out));
+  // Once the temporary output folder is there, press Ctrl-C.
+  const pid_t pid = start_slow_evaluate(maps, out);
   ASSERT_GT(pid, 0);
-  // Wait for the temporary output folder to appear, then press Ctrl-C.
-  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
   EXPECT_EQ(stop(pid, SIGINT), 130);
   for (const auto& e : fs::directory_iterator(dir))
     EXPECT_EQ(e.path().filename().string().find("plumekit-"), std::string::npos) << e.path();
@@ -180,9 +191,8 @@ TEST_F(Safety, InterruptedEvaluateLeavesNoTemporary) {
 TEST_F(Safety, StoppedEvaluateOfSeveralMethodsLeavesNothing) {
   const fs::path maps = one_map_dir();
   const auto before = snapshot(dir);
-  const pid_t pid = start(slow_evaluate(maps, dir / "new" / "eval", "all"));
+  const pid_t pid = start_slow_evaluate(maps, dir / "new" / "eval", "all");
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
   EXPECT_EQ(stop(pid, SIGTERM), 143);
   EXPECT_EQ(snapshot(dir), before);
 }
@@ -191,9 +201,8 @@ TEST_F(Safety, StoppedEvaluateOfSeveralMethodsLeavesNothing) {
 TEST_F(Safety, ASecondRunIntoTheSameOutputIsRefusedAtOnce) {
   const fs::path maps = one_map_dir();
   const fs::path out = dir / "eval";
-  const pid_t pid = start(slow_evaluate(maps, out));
+  const pid_t pid = start_slow_evaluate(maps, out);
   ASSERT_GT(pid, 0);
-  ASSERT_TRUE(appears(dir, ".plumekit-tmp-")) << "the run never started writing";
   const Result r =
       run("evaluate --map-dir " + maps.string() + " --out " + out.string() + quick_ste());
   EXPECT_EQ(r.code, 2) << r.err;
