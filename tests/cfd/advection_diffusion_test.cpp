@@ -9,7 +9,7 @@
 #include "cfd/advection_diffusion.hpp"
 #include "cfd/flow_solver.hpp"
 #include "map/map_json.hpp"
-#include "uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 
 namespace plumekit::dataset {
 namespace {

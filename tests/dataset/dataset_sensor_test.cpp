@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "dataset/plume.hpp"
-#include "uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "world/filament_model.hpp"
 
 namespace plumekit::dataset {

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <random>
 
-#include "../dataset/uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/thread_pool.hpp"

@@ -6,7 +6,7 @@
 #include <memory>
 #include <utility>
 
-#include "../dataset/uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "core/error.hpp"
 #include "dataset/plume.hpp"
 #include "map/map.hpp"

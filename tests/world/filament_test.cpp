@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "core/resample.hpp"
 #include "map/map_json.hpp"
-#include "uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "world/filament_model.hpp"
 
 namespace plumekit::dataset {

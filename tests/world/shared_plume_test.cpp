@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "dataset/uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "world/shared_plume.hpp"
 #include "world/simulated_world.hpp"
 

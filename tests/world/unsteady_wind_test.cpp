@@ -8,7 +8,7 @@
 
 #include "cfd/flow_solver.hpp"
 #include "map/map_json.hpp"
-#include "uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "world/filament_model.hpp"
 
 namespace plumekit::dataset {

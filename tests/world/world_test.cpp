@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "core/error.hpp"
-#include "dataset/uniform_wind.hpp"
+#include "support/uniform_wind.hpp"
 #include "world/simulated_world.hpp"
 
 namespace plumekit::ste {
