@@ -3,9 +3,7 @@
 // Each flag is bound to a field of the library's options (run::SteOptions,
 // run::EvaluationOptions, run::DemoOptions), whose defaults and checks are
 // the only ones; this file binds and prints.
-#include <chrono>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -16,12 +14,9 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/wind_file.hpp"
-#include "core/atomic_file.hpp"
 #include "core/option_check.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
-#include "core/sha256.hpp"
-#include "map/map_json.hpp"
 #include "run/demo.hpp"
 #include "run/evaluate_job.hpp"
 #include "run/evaluation.hpp"
@@ -330,10 +325,6 @@ void add_ste_options(CLI::App* cmd, run::SteOptions& o,
   add_run_options(cmd, o);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 // The JSON and text of a run, with the start's move when it was moved off an
 // obstacle (points in the map's frame).
 void report_run(Report r, const std::optional<Vec2>& requested, Vec2 used, bool moved) {
@@ -516,38 +507,12 @@ void add_demo(CLI::App& app) {
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
-    const auto t_start = std::chrono::steady_clock::now();  // the summary accounts for all of it
     run::DemoOptions& d = a->demo;
     const std::string note =
         cmd->get_option("--plume-model")->count() == 0 ? run::choose_demo_model(d.ste) : "";
     if (!note.empty() && !output().json) std::cerr << note << "\n";
-    d.ste.validate();
-    const fs::path map_file = data_dir() / "test-maps" / d.map_file;
-    const Map map = read_map(map_file);
-    OutputDirectory out(a->out, "demo", {map_file});
-    const run::Scenario sc(map, d.ste);
-    const Vec2 source = map.sources.at(d.source_index);
-    const Vec2 requested = map.from_frame(d.start);
-    const Vec2 start = sc.check_start(requested);
-    const run::LocalizationResult r = sc.run(source, start, world::run_seed(d.seed, 0, 0, 0));
-    const bool posterior = !run::write_run_pictures(sc, source, r, out.open()).posterior.empty();
-    out.commit();
-    const fs::path traj = fs::path(a->out) / "trajectory.png",
-                   post = fs::path(a->out) / "posterior.png";
-    Report rep = run::run_report(sc, source, r, seconds_since(t_start));
-    ordered_json j{
-        {"ok", true}, {"map", provenance_path(map_file)}, {"plume_model", to_string(d.ste.model)}};
-    if (!note.empty()) j["note"] = note;
-    j.update(rep.json);
-    j["out"] = {{"trajectory", traj.string()}};
-    rep.text += "\npictures: " + traj.string() + " (trajectory)";
-    if (posterior) {
-      j["out"]["posterior"] = post.string();
-      rep.text += ", " + post.string() + " (posterior)";
-    }
-    rep.json = j;
-    report_run(rep, map.to_frame(requested), map.to_frame(start),
-               requested.x != start.x || requested.y != start.y);
+    const run::LocalizeReport r = run::demo_job(d, data_dir() / "test-maps", a->out, note);
+    report_run(r.report, r.requested_start, r.start, r.start_moved);
   });
 }
 
