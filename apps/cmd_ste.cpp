@@ -15,15 +15,12 @@
 #include "apps/commands.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/option_check.hpp"
-#include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "run/demo.hpp"
 #include "run/evaluate_job.hpp"
 #include "run/evaluation.hpp"
-#include "run/evaluation_parts.hpp"
 #include "run/localize_job.hpp"
 #include "run/option_tables.hpp"
-#include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/option_tables.hpp"
 #include "ste/surrogate_plume.hpp"
@@ -418,16 +415,9 @@ void add_evaluate_merge(CLI::App* evaluate) {
       ->required();
   add_common_flags(cmd);
   cmd->callback([a] {
-    // Every part is verified before the output folder is touched.
-    const std::vector<fs::path> parts(a->parts.begin(), a->parts.end());
-    const run::MergedEvaluation m = run::merge_evaluation_parts(parts);
-    OutputDirectory dir(a->out, "evaluate", parts);
-    run::write_evaluation_files(dir.open(), m.result, m.files);
-    dir.commit();
-    Report rep = run::evaluation_report(m.result, m.settings, a->out, false);
-    rep.json["parts"] = m.parts;
-    rep.json["timings"] = m.files.timings;
-    report(rep.json, "joined " + std::to_string(m.parts) + " parts\n" + rep.text);
+    const Report rep =
+        run::merge_job(std::vector<fs::path>(a->parts.begin(), a->parts.end()), a->out);
+    report(rep.json, rep.text);
   });
 }
 

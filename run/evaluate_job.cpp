@@ -159,4 +159,16 @@ Report evaluate_job(const EvaluateRequest& q, const JobProgress& progress) {
   return methods_total(kinds, results, reports);
 }
 
+Report merge_job(const std::vector<fs::path>& parts, const fs::path& out) {
+  const MergedEvaluation m = merge_evaluation_parts(parts);
+  OutputDirectory dir(out, "evaluate", parts);
+  write_evaluation_files(dir.open(), m.result, m.files);
+  dir.commit();
+  Report rep = evaluation_report(m.result, m.settings, out, false);
+  rep.json["parts"] = m.parts;
+  rep.json["timings"] = m.files.timings;
+  rep.text = "joined " + std::to_string(m.parts) + " parts\n" + rep.text;
+  return rep;
+}
+
 }  // namespace plumekit::run

@@ -35,6 +35,11 @@ using JobProgress = std::function<void(double fraction, const std::string& note)
 // several methods each one's result and the totals of their shared runs.
 Report evaluate_job(const EvaluateRequest& request, const JobProgress& progress = {});
 
+// `evaluate merge`: the part folders verified (merge_evaluation_parts) before `out` is touched,
+// then the files of a single evaluation written there whole; returns its summary, with the parts'
+// count and the timings.
+Report merge_job(const std::vector<std::filesystem::path>& parts, const std::filesystem::path& out);
+
 // The methods an evaluation runs: `several` when it names more than one, else options' method.
 std::vector<std::string> evaluated_methods(const EvaluationOptions& options,
                                            const std::vector<std::string>& several);
