@@ -3,9 +3,7 @@
 // Each flag is bound to a field of the library's options (run::SteOptions,
 // run::EvaluationOptions, run::DemoOptions), whose defaults and checks are
 // the only ones; this file binds and prints.
-#include <chrono>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -16,17 +14,13 @@
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
 #include "cfd/wind_file.hpp"
-#include "core/atomic_file.hpp"
 #include "core/option_check.hpp"
-#include "core/output_target.hpp"
 #include "core/progress.hpp"
-#include "core/sha256.hpp"
-#include "map/map_json.hpp"
 #include "run/demo.hpp"
+#include "run/evaluate_job.hpp"
 #include "run/evaluation.hpp"
-#include "run/evaluation_parts.hpp"
+#include "run/localize_job.hpp"
 #include "run/option_tables.hpp"
-#include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/option_tables.hpp"
 #include "ste/surrogate_plume.hpp"
@@ -328,24 +322,20 @@ void add_ste_options(CLI::App* cmd, run::SteOptions& o,
   add_run_options(cmd, o);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
 // The JSON and text of a run, with the start's move when it was moved off an
-// obstacle (arena coordinates in, the map's frame out).
-void report_run(Report r, const Map& map, const std::optional<Vec2>& requested, Vec2 used) {
-  if (requested && (requested->x != used.x || requested->y != used.y)) {
-    add_moved_start(r.json, map.to_frame(*requested), map.to_frame(used));
-    r.text += "\n" + moved_start_text(map.to_frame(*requested), map.to_frame(used));
+// obstacle (points in the map's frame).
+void report_run(Report r, const std::optional<Vec2>& requested, Vec2 used, bool moved) {
+  if (requested && moved) {
+    add_moved_start(r.json, *requested, used);
+    r.text += "\n" + moved_start_text(*requested, used);
   }
   report(r.json, r.text);
 }
 
-// The scenario of `localize`, saying what to type when the surrogate does not fit the map.
-run::Scenario scenario(const Map& map, const run::SteOptions& options) {
+// `localize`'s job, saying what to type when the surrogate does not fit the map.
+run::LocalizeReport localize(const run::LocalizeRequest& request) {
   try {
-    return run::Scenario(map, options);
+    return run::localize_job(request);
   } catch (const surrogate::MapSizeError& e) {
     throw InputError(with_map_size_advice(e.what(), true));
   }
@@ -381,61 +371,22 @@ void add_localize(CLI::App& app) {
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
-    if (cmd->got_subcommand("tunnel")) return;              // `localize tunnel` did the work
-    const auto t_start = std::chrono::steady_clock::now();  // the summary accounts for all of it
+    if (cmd->got_subcommand("tunnel")) return;  // `localize tunnel` did the work
     if (a->source.empty()) throw CLI::RequiredError("--source");
     // Points are typed in the map's frame (its file's coordinates).
-    const Vec2 source_typed = parse_point(a->source, "--source");
-    std::optional<Vec2> requested;
-    if (!a->start.empty()) requested = parse_point(a->start, "--start");
-    a->ste.validate();
-    const Map map = read_map(a->map);
-    const Vec2 source = map.from_frame(source_typed);
-    if (requested) requested = map.from_frame(*requested);
-    std::optional<OutputDirectory> out;
-    if (!a->out.empty())
-      out.emplace(a->out, "localize",
-                  std::vector<fs::path>{a->map, a->ste.table_cache, a->ste.wind_dir});
-    const run::Scenario sc = scenario(map, a->ste);
-    sc.check_source(source);
-    const std::uint64_t seed = world::run_seed(a->seed, 0, 0, 0);
-    const Vec2 start =
-        requested ? sc.check_start(*requested)
-                  : sc.random_start(source, world::stream_seed(seed, world::SteStream::Start));
-    const run::LocalizationResult r = sc.run(source, start, seed);
-    // The pictures first, so that the time they take is in the summary's total.
-    run::RunPictures pictures;
-    if (out) pictures = run::write_run_pictures(sc, source, r, out->open());
-    Report rep = run::run_report(sc, source, r, seconds_since(t_start));
-    ordered_json j{{"ok", true},
-                   {"map", provenance_path(a->map)},
-                   {"plume_model", to_string(a->ste.model)},
-                   {"seed", a->seed}};
-    j.update(rep.json);
-    rep.json = j;
-    if (out) {
-      const fs::path& dir = out->open();
-      write_file_atomic(dir / "run.json", rep.json.dump(2) + "\n");
-      out->commit();
-      const fs::path o = a->out;
-      rep.json["out"] = {{"run", (o / "run.json").string()},
-                         {"trajectory", (o / "trajectory.png").string()}};
-      rep.text += "\nwrote " + (o / "trajectory.png").string() + ", ";
-      if (!pictures.posterior.empty()) {
-        rep.json["out"]["posterior"] = (o / "posterior.png").string();
-        rep.text += (o / "posterior.png").string() + ", ";
-      }
-      rep.text += (o / "run.json").string();
-    }
-    report_run(rep, map, requested, start);
+    run::LocalizeRequest q{
+        a->map, parse_point(a->source, "--source"), std::nullopt, a->seed, a->ste, a->out};
+    if (!a->start.empty()) q.start = parse_point(a->start, "--start");
+    const run::LocalizeReport r = localize(q);
+    report_run(r.report, r.requested_start, r.start, r.start_moved);
   });
 }
 
 // Every flag of `evaluate` that shapes the results, as given or its default: what the parts
-// of a --shard split must share. Where the output goes, the threads, the table cache and the
-// memory limit change no result; the map folder and the CNN are compared by their files'
-// SHA-256 (map_files_json, cnn_sha256) so that paths may differ between machines.
-ordered_json result_options(const CLI::App* cmd, const run::EvaluationOptions& eo) {
+// of a --shard split must share (run::EvaluateRequest::result_options). Where the output goes, the
+// threads, the table cache and the memory limit change no result; the map folder and the CNN are
+// compared by their files' SHA-256, which the job adds.
+ordered_json result_options(const CLI::App* cmd) {
   static const std::set<std::string> not_results{"--out",  "--shard",      "--threads",
                                                  "--json", "--max-memory", "--table-cache",
                                                  "--help", "--map-dir",    "--cnn"};
@@ -445,32 +396,7 @@ ordered_json result_options(const CLI::App* cmd, const run::EvaluationOptions& e
     if (not_results.count(name) || opt->get_group().empty()) continue;  // "": a hidden alias
     j[name] = opt->count() > 0 ? CLI::detail::join(opt->results(), " ") : opt->get_default_str();
   }
-  if (eo.ste.model == run::PlumeModelKind::Surrogate)
-    j["cnn_sha256"] = sha256_file(eo.ste.model_path);
   return j;
-}
-
-// The part folder of `evaluate --shard K/N`: part.json, runs.csv, timings.csv, and the
-// trajectory pictures of this part's median runs.
-Report write_part(OutputDirectory& dir, const run::EvaluationResult& res,
-                  const run::EvaluationOptions& eo, const run::PartIdentity& id,
-                  const fs::path& out) {
-  run::EvaluationFiles files;
-  files.runs_csv = run::runs_csv(res);
-  files.timings_csv = run::timings_csv(res);
-  write_file_atomic(dir.open() / "runs.csv", files.runs_csv);
-  write_file_atomic(dir.open() / "timings.csv", files.timings_csv);
-  write_file_atomic(dir.open() / run::kPartFile, run::part_json(res, eo, id, files).dump(2) + "\n");
-  dir.commit();
-  const std::string part = std::to_string(eo.part_k) + "/" + std::to_string(eo.part_n);
-  const ordered_json j{{"ok", true},           {"part", eo.part_k},
-                       {"parts", eo.part_n},   {"runs", res.runs.size()},
-                       {"wall_s", res.wall_s}, {"out", out.string()}};
-  return {j, "evaluated part " + part + ": " + std::to_string(res.runs.size()) + " runs (pairs " +
-                 std::to_string(res.pairs.first) + ".." + std::to_string(res.pairs.end) + " of " +
-                 std::to_string(res.pairs.total) + " map sources)\nwrote " + out.string() +
-                 "/{part.json, runs.csv, timings.csv, trajectories/}; join the parts with "
-                 "`plumekit evaluate merge PART_DIR... --out DIR`"};
 }
 
 void add_evaluate_merge(CLI::App* evaluate) {
@@ -489,16 +415,9 @@ void add_evaluate_merge(CLI::App* evaluate) {
       ->required();
   add_common_flags(cmd);
   cmd->callback([a] {
-    // Every part is verified before the output folder is touched.
-    const std::vector<fs::path> parts(a->parts.begin(), a->parts.end());
-    const run::MergedEvaluation m = run::merge_evaluation_parts(parts);
-    OutputDirectory dir(a->out, "evaluate", parts);
-    run::write_evaluation_files(dir.open(), m.result, m.files);
-    dir.commit();
-    Report rep = run::evaluation_report(m.result, m.settings, a->out, false);
-    rep.json["parts"] = m.parts;
-    rep.json["timings"] = m.files.timings;
-    report(rep.json, "joined " + std::to_string(m.parts) + " parts\n" + rep.text);
+    const Report rep =
+        run::merge_job(std::vector<fs::path>(a->parts.begin(), a->parts.end()), a->out);
+    report(rep.json, rep.text);
   });
 }
 
@@ -552,87 +471,13 @@ void add_evaluate(CLI::App& app) {
 
 // Evaluates the method or methods of `args` and writes each one's folder.
 void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
-  args.eval.validate();
-  const run::MapFolder maps = run::read_map_folder(args.map_dir);
-  const run::EvaluationOptions& eo = args.eval;
-  // Several methods: each into OUT/NAME/, exactly what `--method NAME --out OUT/NAME` writes.
-  const std::vector<std::string> kinds =
-      args.methods.size() > 1 ? args.methods : std::vector<std::string>{eo.ste.method.name};
-  const bool several = kinds.size() > 1;
-  std::vector<run::EvaluationOptions> each(kinds.size(), eo);
-  const std::vector<fs::path> inputs{args.map_dir, eo.ste.table_cache, eo.ste.model_path};
-  // Several: OUT is one output, checked and locked like any before the work,
-  // and written whole, so that no earlier method's results mix with these and
-  // an interrupt leaves nothing; each method's folder inside is its own output.
-  std::optional<OutputDirectory> whole;
-  if (several) whole.emplace(args.out, "evaluate", inputs);
-  std::vector<fs::path> outs;
-  std::vector<std::unique_ptr<OutputDirectory>> dirs;
-  for (std::size_t m = 0; m < kinds.size(); ++m) {
-    each[m].ste.method.name = kinds[m];
-    const std::string name = kinds[m];
-    outs.push_back(several ? fs::path(args.out) / name : fs::path(args.out));
-    dirs.push_back(std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m],
-                                                     "evaluate", inputs));
-  }
-  std::vector<run::AfterMap> pictures;
-  for (std::size_t m = 0; m < kinds.size(); ++m)
-    pictures.push_back(run::trajectory_pictures(dirs[m]->open(), maps.picture_names));
+  run::EvaluateRequest q{args.map_dir, args.out, args.eval, args.methods, args.part};
+  if (args.part) q.result_options = result_options(cmd);
   ProgressBar bar("evaluate");
-  const std::string per_run =
-      several ? " runs of " + std::to_string(kinds.size()) + " methods" : " runs";
-  const std::vector<run::EvaluationResult> results = run::evaluate_methods(
-      maps.maps, eo, kinds,
-      [&](int done, int total) {
-        bar.update(static_cast<double>(done) / total,
-                   std::to_string(done) + "/" + std::to_string(total) + per_run);
-      },
-      [&](std::size_t m, const run::Scenario& sc, const std::vector<run::RunRecord>& records) {
-        pictures[m](sc, records);
-      });
+  const Report rep = run::evaluate_job(
+      q, [&bar](double fraction, const std::string& note) { bar.update(fraction, note); });
   bar.finish();
-  std::vector<Report> reports;
-  for (std::size_t m = 0; m < kinds.size(); ++m) {
-    const run::EvaluationResult& res = results[m];
-    const ordered_json settings = run::evaluation_settings(each[m], args.map_dir);
-    if (args.part) {
-      ordered_json options = result_options(cmd, each[m]);
-      options["--method"] = kinds[m];  // as the part of a single method
-      const run::PartIdentity id{settings, options, run::map_files_json(maps)};
-      reports.push_back(write_part(*dirs[m], res, each[m], id, outs[m]));
-      continue;
-    }
-    Report rep = run::evaluation_report(res, settings, outs[m]);
-    run::write_evaluation_files(
-        dirs[m]->open(), res,
-        {run::runs_csv(res), run::timings_csv(res), rep.json, run::evaluation_timings(res)});
-    dirs[m]->commit();
-    // On stdout the times go with the summary (they are apart only in the files).
-    rep.json["timings"] = run::evaluation_timings(res);
-    reports.push_back(rep);
-  }
-  if (!several) return report(reports.front().json, reports.front().text);
-  whole->commit();
-  // One total: the methods ran together, each run's plume simulated once for all of them.
-  double wind_s = 0;
-  for (const run::MapReport& mr : results.front().maps)
-    wind_s += mr.wind_s;
-  ordered_json j{{"ok", true}, {"methods", ordered_json::array()}};
-  std::string text;
-  for (std::size_t m = 0; m < kinds.size(); ++m) {
-    j["methods"].push_back({{"method", kinds[m]},
-                            {"model_build_s", results[m].model_build_s()},
-                            {"decisions_s", results[m].decisions_s},
-                            {"result", reports[m].json}});
-    text += std::string(m ? "\n\n" : "") + "== " + kinds[m] + " ==\n" + reports[m].text;
-  }
-  j["wall_s"] = results.front().wall_s;
-  j["wind_s"] = wind_s;
-  std::ostringstream total;
-  total << std::fixed << std::setprecision(1) << "\n\nall " << kinds.size() << " methods in "
-        << results.front().wall_s << " s (wall clock; wind " << wind_s
-        << " s, then every run's plume once for all the methods)";
-  report(j, text + total.str());
+  report(rep.json, rep.text);
 }
 
 void add_demo(CLI::App& app) {
@@ -652,37 +497,12 @@ void add_demo(CLI::App& app) {
                    "Threads of the surrogate's table build (0: one per core)");
   add_common_flags(cmd);
   cmd->callback([a, cmd] {
-    const auto t_start = std::chrono::steady_clock::now();  // the summary accounts for all of it
     run::DemoOptions& d = a->demo;
     const std::string note =
         cmd->get_option("--plume-model")->count() == 0 ? run::choose_demo_model(d.ste) : "";
     if (!note.empty() && !output().json) std::cerr << note << "\n";
-    d.ste.validate();
-    const fs::path map_file = data_dir() / "test-maps" / d.map_file;
-    const Map map = read_map(map_file);
-    OutputDirectory out(a->out, "demo", {map_file});
-    const run::Scenario sc(map, d.ste);
-    const Vec2 source = map.sources.at(d.source_index);
-    const Vec2 requested = map.from_frame(d.start);
-    const Vec2 start = sc.check_start(requested);
-    const run::LocalizationResult r = sc.run(source, start, world::run_seed(d.seed, 0, 0, 0));
-    const bool posterior = !run::write_run_pictures(sc, source, r, out.open()).posterior.empty();
-    out.commit();
-    const fs::path traj = fs::path(a->out) / "trajectory.png",
-                   post = fs::path(a->out) / "posterior.png";
-    Report rep = run::run_report(sc, source, r, seconds_since(t_start));
-    ordered_json j{
-        {"ok", true}, {"map", provenance_path(map_file)}, {"plume_model", to_string(d.ste.model)}};
-    if (!note.empty()) j["note"] = note;
-    j.update(rep.json);
-    j["out"] = {{"trajectory", traj.string()}};
-    rep.text += "\npictures: " + traj.string() + " (trajectory)";
-    if (posterior) {
-      j["out"]["posterior"] = post.string();
-      rep.text += ", " + post.string() + " (posterior)";
-    }
-    rep.json = j;
-    report_run(rep, map, requested, start);
+    const run::LocalizeReport r = run::demo_job(d, data_dir() / "test-maps", a->out, note);
+    report_run(r.report, r.requested_start, r.start, r.start_moved);
   });
 }
 

@@ -7,16 +7,12 @@
 
 #include "apps/cli.hpp"
 #include "apps/commands.hpp"
-#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/option_check.hpp"
-#include "core/output_target.hpp"
 #include "core/progress.hpp"
 #include "core/seed.hpp"
-#include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
-#include "map/map_render.hpp"
-#include "run/tunnel_report.hpp"
+#include "run/tunnel_job.hpp"
 #include "run/tunnel_run.hpp"
 #include "ste/option_tables.hpp"
 
@@ -126,45 +122,14 @@ void add_localize_tunnel(CLI::App* localize) {
   add_tunnel_options(cmd, a->options);
   add_common_flags(cmd);
   cmd->callback([a] {
-    run::TunnelOptions& o = a->options;
-    o.method = run::parse_tunnel_method(a->method);
-    o.validate();
-    std::optional<Vec3> source, start;
-    if (!a->source.empty()) source = parse_point3(a->source, "--source");
-    if (!a->start.empty()) start = parse_point3(a->start, "--start");
-    std::optional<OutputDirectory> out;
-    if (!a->out.empty()) out.emplace(a->out, "localize");
-    const run::TunnelRun run = run::localize_tunnel(o, source, start, a->seed);
-    ordered_json j{{"ok", true}, {"seed", a->seed}};
-    j["settings"] = run::tunnel_settings(o);
-    j.update(run::tunnel_run_json(run, false));
-    std::string text = run::tunnel_run_line(run);
-    if (out) {
-      const fs::path& dir = out->open();
-      ordered_json file = j;
-      file.update(run::tunnel_run_json(run, true));
-      write_file_atomic(dir / "run.json", file.dump(2) + "\n");
-      write_png(run::draw_tunnel_run(run, o.tunnel, text), dir / "trajectory.png");
-      out->commit();
-      const fs::path d = a->out;
-      j["out"] = {{"run", (d / "run.json").string()},
-                  {"trajectory", (d / "trajectory.png").string()}};
-      text += "\nwrote " + (d / "trajectory.png").string() + ", " + (d / "run.json").string();
-    }
-    report(j, text);
+    run::TunnelLocalizeRequest q{a->options, std::nullopt, std::nullopt, a->seed, a->out};
+    q.options.method = run::parse_tunnel_method(a->method);
+    q.options.validate();  // before the points: of both mistakes, the options' is the one said
+    if (!a->source.empty()) q.source = parse_point3(a->source, "--source");
+    if (!a->start.empty()) q.start = parse_point3(a->start, "--start");
+    const Report rep = run::localize_tunnel_job(q);
+    report(rep.json, rep.text);
   });
-}
-
-// The run a picture of an evaluation shows: STE's of median error, a tracker's of median time.
-std::size_t median_run(const std::vector<run::TunnelRun>& runs) {
-  std::vector<double> key;
-  for (const run::TunnelRun& r : runs)
-    key.push_back(run::is_tracker(r.method) ? r.mission_s : r.error_m());
-  const double m = median(key);
-  std::size_t best = 0;
-  for (std::size_t k = 1; k < key.size(); ++k)
-    if (std::abs(key[k] - m) < std::abs(key[best] - m)) best = k;
-  return best;
 }
 
 void add_evaluate_tunnel(CLI::App* evaluate) {
@@ -195,67 +160,13 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
   add_tunnel_options(cmd, a->options);
   add_common_flags(cmd);
   cmd->callback([a] {
-    const std::vector<run::TunnelMethod> methods = run::parse_tunnel_methods(a->methods);
-    const bool several = methods.size() > 1;
-    std::vector<run::TunnelOptions> each(methods.size(), a->options);
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      each[m].method = methods[m];
-      each[m].validate();
-    }
-    // Several: OUT is one output written whole, each method's folder inside its own.
-    std::optional<OutputDirectory> whole;
-    if (several) whole.emplace(a->out, "evaluate");
-    std::vector<fs::path> outs;
-    std::vector<std::unique_ptr<OutputDirectory>> dirs;
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      const std::string name = to_string(methods[m]);
-      outs.push_back(several ? fs::path(a->out) / name : fs::path(a->out));
-      dirs.push_back(
-          std::make_unique<OutputDirectory>(several ? whole->open() / name : outs[m], "evaluate"));
-    }
-    ordered_json j{{"ok", true}, {"seed", a->seed}, {"methods", ordered_json::array()}};
-    std::string text;
+    const run::TunnelEvaluateRequest q{
+        a->options, run::parse_tunnel_methods(a->methods), a->runs, a->threads, a->seed, a->out};
     ProgressBar bar("evaluate tunnel");
-    const int total = a->runs * static_cast<int>(methods.size());
-    for (std::size_t m = 0; m < methods.size(); ++m) {
-      const int before = a->runs * static_cast<int>(m);
-      const std::vector<run::TunnelRun> runs =
-          run::evaluate_tunnel(each[m], a->runs, a->seed, a->threads, [&](int done, int) {
-            bar.update(static_cast<double>(before + done) / total,
-                       std::to_string(before + done) + "/" + std::to_string(total) + " runs");
-          });
-      ordered_json summary{{"method", to_string(methods[m])}, {"seed", a->seed}};
-      summary["settings"] = run::tunnel_settings(each[m]);
-      summary.update(run::tunnel_summary(runs));
-      const fs::path& dir = dirs[m]->open();
-      write_file_atomic(dir / "runs.csv", run::tunnel_runs_csv(runs));
-      write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
-      const std::string name = to_string(methods[m]);
-      write_png(run::draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) +
-                                                    " runs, wind " + compact(each[m].tunnel.speed) +
-                                                    " m/s"),
-                dir / "boxplot.png");
-      const std::size_t k = median_run(runs);
-      write_png(run::draw_tunnel_run(
-                    runs[k], each[m].tunnel,
-                    "run " + std::to_string(k) + " (median): " + run::tunnel_run_line(runs[k])),
-                dir / "trajectory-median.png");
-      dirs[m]->commit();
-      j["methods"].push_back(summary);
-      const ordered_json& s = summary;
-      std::ostringstream line;
-      line.precision(3);
-      line << name << ": " << runs.size() << " runs, success " << 100.0 * s["success"].get<double>()
-           << " %, median error " << s["median_error_m"].get<double>() << " m (z "
-           << s["median_error_z_m"].get<double>() << " m), median distance "
-           << s["median_distance_m"].get<double>() << " m, median time "
-           << s["median_mission_s"].get<double>() << " s\n  wrote " << outs[m].string()
-           << "/{runs.csv, summary.json, boxplot.png, trajectory-median.png}\n";
-      text += line.str();
-    }
+    const Report rep = run::evaluate_tunnel_job(
+        q, [&bar](double fraction, const std::string& note) { bar.update(fraction, note); });
     bar.finish();
-    if (whole) whole->commit();
-    report(j, text);
+    report(rep.json, rep.text);
   });
 }
 

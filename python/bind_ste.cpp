@@ -13,7 +13,9 @@
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/wind.hpp"
+#include "run/evaluate_job.hpp"
 #include "run/evaluation.hpp"
+#include "run/localize_job.hpp"
 #include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/mission.hpp"
@@ -51,24 +53,21 @@ py::dict posterior_dict(const Map& map, const ste::Posterior& p) {
   return out;
 }
 
-// The run `localize` makes: the CLI's seeds, so that the same seed gives the same run.
+// The run `localize` makes (run::localize_once: its seeds, so that the same seed gives the same
+// run), summarised as run.json is without the command's keys.
 py::object run_once(const run::Scenario& sc, const py::handle& source, const py::object& start,
                     std::uint64_t seed) {
   const Map& map = sc.map();
-  const Vec2 s = sc.check_source(map.from_frame(to_point(source, "source")));
-  const std::uint64_t run = world::run_seed(seed, 0, 0, 0);
   // Python objects are read before the GIL is released.
+  const Vec2 s = map.from_frame(to_point(source, "source"));
   const std::optional<Vec2> requested =
       start.is_none() ? std::nullopt
                       : std::optional<Vec2>(map.from_frame(to_point(start, "start")));
-  run::LocalizationResult r;
   nlohmann::ordered_json j;
   {
     ReleasedGil release;
-    const Vec2 a = requested ? sc.check_start(*requested)
-                             : sc.random_start(s, world::stream_seed(run, world::SteStream::Start));
-    r = sc.run(s, a, run);
-    j = run::run_report(sc, s, r).json;
+    const run::LocalizeRun r = run::localize_once(sc, s, requested, seed);
+    j = run::run_report(sc, r.source, r.result).json;
   }
   return from_json(j);
 }
@@ -246,9 +245,7 @@ py::object evaluate_maps(const py::object& maps, int runs, std::uint64_t seed, i
     const std::vector<run::EvaluationResult> results =
         run::evaluate_methods(list, eo, kinds, report);
     for (std::size_t m = 0; m < kinds.size(); ++m) {
-      run::EvaluationOptions each = eo;
-      each.ste.method.name = kinds[m];
-      nlohmann::ordered_json one = run::evaluation_report(results[m], each, dir, "").json;
+      nlohmann::ordered_json one = run::method_report(results[m], eo, kinds[m], dir, "").json;
       one["timings"] = run::evaluation_timings(results[m]);
       if (!several)
         j = one;
