@@ -12,6 +12,7 @@
 #include "core/progress.hpp"
 #include "core/seed.hpp"
 #include "core/thread_pool.hpp"
+#include "methods/registry.hpp"
 #include "run/tunnel_job.hpp"
 #include "run/tunnel_run.hpp"
 #include "ste/option_tables.hpp"
@@ -94,8 +95,7 @@ void add_tunnel_options(CLI::App* cmd, run::TunnelOptions& o) {
 }
 
 std::string method_help() {
-  return "ste-3d (seed 004 ch. 11), surge-spiral (ch. 17) or surge-cast-2d (ch. 17's 2-D "
-         "baseline at a fixed altitude)";
+  return methods::tunnel_methods_help();
 }
 
 void add_localize_tunnel(CLI::App* localize) {

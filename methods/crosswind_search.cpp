@@ -9,6 +9,7 @@
 #include "core/option_check.hpp"
 #include "core/statistics.hpp"
 #include "methods/levy_taxis.hpp"
+#include "methods/registry.hpp"
 
 namespace plumekit::methods {
 
@@ -197,6 +198,32 @@ Move3 CrosswindSearch::next(Vec3 robot) {
       break;
   }
   return Move3::to(toward(robot, waypoint_));
+}
+
+namespace {
+
+TunnelMethodFactory crosswind_factory(CrosswindMode mode) {
+  return [mode](const TunnelMethodInputs& in) {
+    CrosswindSearchOptions o = in.search;
+    o.mode = mode;
+    return std::make_unique<CrosswindSearch>(in.tunnel, o, in.walk_seed);
+  };
+}
+
+}  // namespace
+
+TunnelMethodSpec surge_spiral_spec() {
+  return {"surge-spiral", "the 3-D surge-spiral tracker, ch. 17",    "seed 004 ch. 17", true,
+          false,          crosswind_factory(CrosswindMode::Spiral3d)};
+}
+
+TunnelMethodSpec surge_cast_2d_spec() {
+  return {"surge-cast-2d",
+          "ch. 17's 2-D surge-cast baseline at a fixed altitude",
+          "seed 004 ch. 17, after Rahbar et al. 2017",
+          true,
+          true,
+          crosswind_factory(CrosswindMode::Cast2d)};
 }
 
 std::string CrosswindSearch::phase() const {

@@ -32,6 +32,16 @@ std::vector<MethodSpec>& registry() {
   return methods;
 }
 
+// The tunnel's, the same way.
+const std::vector<TunnelMethodSpec>& tunnel_registry() {
+  static const std::vector<TunnelMethodSpec> methods{
+      ste_3d_spec(),
+      surge_spiral_spec(),
+      surge_cast_2d_spec(),
+  };
+  return methods;
+}
+
 }  // namespace
 
 const char* to_string(RunEnd end) {
@@ -89,6 +99,49 @@ std::vector<std::string> parse_method_list(const std::string& text) {
     if (comma == std::string::npos) return names;
     from = comma + 1;
   }
+}
+
+const std::vector<TunnelMethodSpec>& tunnel_method_registry() {
+  return tunnel_registry();
+}
+
+const TunnelMethodSpec& find_tunnel_method(const std::string& name) {
+  std::string all;
+  for (const TunnelMethodSpec& s : tunnel_registry()) {
+    if (s.name == name) return s;
+    all += (all.empty() ? "" : ", ") + s.name;
+  }
+  throw OptionError("tunnel.method", "unknown method '" + name + "'; use " + all);
+}
+
+std::vector<std::string> parse_tunnel_method_list(const std::string& text) {
+  std::vector<std::string> names;
+  if (text == "all") {
+    for (const TunnelMethodSpec& s : tunnel_registry())
+      names.push_back(s.name);
+    return names;
+  }
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    const std::string name = find_tunnel_method(text.substr(from, comma - from)).name;
+    for (const std::string& n : names)
+      if (n == name) throw OptionError("tunnel.method", "'" + name + "' given twice");
+    names.push_back(name);
+    if (comma == std::string::npos) return names;
+    from = comma + 1;
+  }
+}
+
+std::string tunnel_methods_help() {
+  const std::vector<TunnelMethodSpec>& all = tunnel_registry();
+  std::string help;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    help += std::string(k == 0                ? ""
+                        : k + 1 == all.size() ? " or "
+                                              : ", ") +
+            all[k].name + " (" + all[k].description + ")";
+  return help;
 }
 
 bool uses_plume_model(const std::string& name) {

@@ -12,10 +12,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "methods/crosswind_search.hpp"
 #include "methods/method.hpp"
 #include "planner/planner.hpp"
 #include "ste/navigation.hpp"
 #include "ste/posterior.hpp"
+#include "ste/ste_3d.hpp"
 #include "ste/stop_rule.hpp"
 
 namespace plumekit::methods {
@@ -102,6 +104,36 @@ std::unique_ptr<LocalizationMethod> make_method(const MethodOptions& options,
 // docs/methods-registry.md, which MethodRegistry.DocsTableIsTheRegistry keeps equal to it.
 std::string registry_markdown();
 
+// The tunnel's methods (seed 004's 3-D systems, run/tunnel_run.hpp), listed the same way.
+struct TunnelMethodInputs {
+  Box3 tunnel;
+  double margin = 0.0;            // goals stay this far inside the walls
+  ste::Ste3dOptions ste;          // the 3-D STE's
+  CrosswindSearchOptions search;  // a tracker's: its step and altitude set by the run
+  std::uint64_t chain_seed = 0;   // STE's Metropolis-Hastings chain
+  std::uint64_t walk_seed = 0;    // a tracker's draws
+};
+using TunnelMethodFactory =
+    std::function<std::unique_ptr<LocalizationMethod3>(const TunnelMethodInputs& inputs)>;
+struct TunnelMethodSpec {
+  std::string name;         // the tunnel's --method name
+  std::string description;  // one line, for --help
+  std::string source;       // the seed and section it comes from
+  // A tracker starts downwind of the source, flies reading on the move, and succeeds inside the
+  // source's box while in the plume; otherwise the method declares an estimate.
+  bool tracker = false;
+  // Flies at a fixed altitude 10 cm below the source (ch. 17's 2-D baseline, after Rahbar et al.).
+  bool flies_flat = false;
+  TunnelMethodFactory factory;
+};
+const std::vector<TunnelMethodSpec>& tunnel_method_registry();
+// The spec named `name`; OptionError on tunnel.method listing the names otherwise.
+const TunnelMethodSpec& find_tunnel_method(const std::string& name);
+// "NAME[,NAME...]" (each once) or "all": the tunnel's methods in registry order.
+std::vector<std::string> parse_tunnel_method_list(const std::string& text);
+// "a (from), b (from) or c (from)": the --method help.
+std::string tunnel_methods_help();
+
 // Each method's spec, defined in the method's own file.
 MethodSpec ste_spec();
 MethodSpec sweeping_spec();
@@ -113,5 +145,8 @@ MethodSpec pf_sweep_spec();
 MethodSpec apf_spec();
 MethodSpec levy_taxis_spec();
 MethodSpec ste_local_spec();
+TunnelMethodSpec ste_3d_spec();
+TunnelMethodSpec surge_spiral_spec();
+TunnelMethodSpec surge_cast_2d_spec();
 
 }  // namespace plumekit::methods

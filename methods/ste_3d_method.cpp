@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "methods/registry.hpp"
 
 namespace plumekit::methods {
 
@@ -31,6 +32,17 @@ std::optional<Vec3> Ste3dMethod::estimate() const {
 
 const ste::Posterior3* Ste3dMethod::posterior() const {
   return posterior_ ? &*posterior_ : nullptr;
+}
+
+TunnelMethodSpec ste_3d_spec() {
+  return {"ste-3d",
+          "3-D source term estimation, seed 004 ch. 11",
+          "seed 004 ch. 11",
+          false,
+          false,
+          [](const TunnelMethodInputs& in) {
+            return std::make_unique<Ste3dMethod>(in.tunnel, in.ste, in.margin, in.chain_seed);
+          }};
 }
 
 }  // namespace plumekit::methods

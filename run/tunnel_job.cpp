@@ -59,7 +59,7 @@ void write_tunnel_files(const fs::path& dir, const std::vector<TunnelRun>& runs,
                         const TunnelOptions& o, const ordered_json& summary) {
   write_file_atomic(dir / "runs.csv", tunnel_runs_csv(runs));
   write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
-  const std::string name = to_string(o.method);
+  const std::string name = o.method;
   write_png(draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) + " runs, wind " +
                                            compact(o.tunnel.speed) + " m/s"),
             dir / "boxplot.png");
@@ -85,7 +85,7 @@ std::string tunnel_summary_line(const ordered_json& s, std::size_t runs, const f
 }  // namespace
 
 Report evaluate_tunnel_job(const TunnelEvaluateRequest& q, const JobProgress& progress) {
-  const std::vector<TunnelMethod>& methods = q.methods;
+  const std::vector<std::string>& methods = q.methods;
   const bool several = methods.size() > 1;
   std::vector<TunnelOptions> each(methods.size(), q.options);
   for (std::size_t m = 0; m < methods.size(); ++m) {
@@ -97,10 +97,10 @@ Report evaluate_tunnel_job(const TunnelEvaluateRequest& q, const JobProgress& pr
   if (several) whole.emplace(q.out, "evaluate");
   std::vector<fs::path> outs;
   std::vector<std::unique_ptr<OutputDirectory>> dirs;
-  for (const TunnelMethod method : methods) {
-    outs.push_back(several ? q.out / to_string(method) : q.out);
-    dirs.push_back(std::make_unique<OutputDirectory>(
-        several ? whole->open() / to_string(method) : outs.back(), "evaluate"));
+  for (const std::string& method : methods) {
+    outs.push_back(several ? q.out / method : q.out);
+    dirs.push_back(std::make_unique<OutputDirectory>(several ? whole->open() / method : outs.back(),
+                                                     "evaluate"));
   }
   ordered_json j{{"ok", true}, {"seed", q.seed}, {"methods", ordered_json::array()}};
   std::string text;
@@ -113,7 +113,7 @@ Report evaluate_tunnel_job(const TunnelEvaluateRequest& q, const JobProgress& pr
             progress(static_cast<double>(before + done) / total,
                      std::to_string(before + done) + "/" + std::to_string(total) + " runs");
         });
-    ordered_json summary{{"method", to_string(methods[m])}, {"seed", q.seed}};
+    ordered_json summary{{"method", methods[m]}, {"seed", q.seed}};
     summary["settings"] = tunnel_settings(each[m]);
     summary.update(tunnel_summary(runs));
     write_tunnel_files(dirs[m]->open(), runs, each[m], summary);

@@ -26,8 +26,8 @@ struct TunnelLocalizeRequest {
 Report localize_tunnel_job(const TunnelLocalizeRequest& request);
 
 struct TunnelEvaluateRequest {
-  TunnelOptions options;              // the method is replaced by each of `methods`
-  std::vector<TunnelMethod> methods;  // several: each into out/NAME/
+  TunnelOptions options;             // the method is replaced by each of `methods`
+  std::vector<std::string> methods;  // several: each into out/NAME/
   int runs = 10, threads = kDefaultThreads;
   std::uint64_t seed = kDefaultSeed;
   std::filesystem::path out = "out/evaluate-tunnel";

@@ -1,4 +1,5 @@
 #include "run/tunnel_report.hpp"
+#include "methods/registry.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,6 +10,7 @@
 #include "core/csv.hpp"
 #include "core/option_check.hpp"
 #include "core/statistics.hpp"
+#include "methods/registry.hpp"
 #include "run/render.hpp"
 
 namespace plumekit::run {
@@ -46,7 +48,7 @@ cv::Scalar phase_colour(const std::string& phase) {
 }  // namespace
 
 ordered_json tunnel_settings(const TunnelOptions& o) {
-  ordered_json j{{"method", to_string(o.method)},
+  ordered_json j{{"method", o.method},
                  {"tunnel_m", {o.tunnel.length, o.tunnel.width, o.tunnel.height}},
                  {"wind_m_s", o.tunnel.speed},
                  {"release_rate", o.world.filament.release_rate},
@@ -71,12 +73,12 @@ ordered_json tunnel_settings(const TunnelOptions& o) {
 
 ordered_json tunnel_run_json(const TunnelRun& r, bool steps) {
   const Vec3 e = r.error();
-  ordered_json j{{"method", to_string(r.method)}, {"source", point_json(r.source)},
-                 {"start", point_json(r.start)},  {"estimate", point_json(r.estimate)},
-                 {"error_m", r.error_m()},        {"error_xyz_m", point_json(e)},
-                 {"closest_m", r.closest_m()},    {"time_within_0_5m_s", r.time_within(0.5)},
-                 {"stopped_by", r.stopped_by},    {"samples", r.steps.size()},
-                 {"distance_m", r.distance_m},    {"mission_s", r.mission_s},
+  ordered_json j{{"method", r.method},           {"source", point_json(r.source)},
+                 {"start", point_json(r.start)}, {"estimate", point_json(r.estimate)},
+                 {"error_m", r.error_m()},       {"error_xyz_m", point_json(e)},
+                 {"closest_m", r.closest_m()},   {"time_within_0_5m_s", r.time_within(0.5)},
+                 {"stopped_by", r.stopped_by},   {"samples", r.steps.size()},
+                 {"distance_m", r.distance_m},   {"mission_s", r.mission_s},
                  {"spinup_s", r.spinup_s}};
   if (!is_tracker(r.method)) {
     j["median_step_s"] = r.median_step_s();
@@ -110,8 +112,8 @@ std::string tunnel_runs_csv(const std::vector<TunnelRun>& runs) {
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const TunnelRun& r = runs[k];
     const Vec3 e = r.error();
-    out << k << ',' << csv_field(to_string(r.method)) << ',' << r.source.x << ',' << r.source.y
-        << ',' << r.source.z << ',' << r.start.x << ',' << r.start.y << ',' << r.start.z << ','
+    out << k << ',' << csv_field(r.method) << ',' << r.source.x << ',' << r.source.y << ','
+        << r.source.z << ',' << r.start.x << ',' << r.start.y << ',' << r.start.z << ','
         << r.estimate.x << ',' << r.estimate.y << ',' << r.estimate.z << ',' << e.x << ',' << e.y
         << ',' << e.z << ',' << r.error_m() << ',' << r.steps.size() << ',' << r.distance_m << ','
         << r.mission_s << ',' << csv_field(r.stopped_by) << ',' << (succeeded(r) ? 1 : 0) << ','
@@ -159,7 +161,7 @@ ordered_json tunnel_summary(const std::vector<TunnelRun>& runs) {
 
 std::string tunnel_run_line(const TunnelRun& r) {
   const Vec3 e = r.error();
-  std::string s = std::string(to_string(r.method)) + ": ";
+  std::string s = r.method + ": ";
   if (is_tracker(r.method))
     s += std::string(r.found() ? "found the source" : "did not find the source") + " (ended " +
          fixed(r.error_m(), 2) + " m from it)";
@@ -176,10 +178,11 @@ namespace {
 // What the run's picture shows, for its legend.
 std::string tunnel_run_legend(const TunnelRun& r) {
   std::string legend = "red: source, cyan: start, magenta cross: ";
-  legend += is_tracker(r.method)
-                ? "end; path blue: Levy walk, green: surge, orange: " +
-                      std::string(r.method == TunnelMethod::SurgeSpiral ? "spiral" : "cast")
-                : "estimate; dots: samples";
+  legend +=
+      is_tracker(r.method)
+          ? "end; path blue: Levy walk, green: surge, orange: " +
+                std::string(methods::find_tunnel_method(r.method).flies_flat ? "cast" : "spiral")
+          : "estimate; dots: samples";
   return legend;
 }
 

@@ -10,7 +10,7 @@
 #include "core/random.hpp"
 #include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
-#include "methods/ste_3d_method.hpp"
+#include "methods/registry.hpp"
 #include "run/method_run.hpp"
 #include "world/random_streams.hpp"
 #include "world/tunnel_world.hpp"
@@ -18,9 +18,6 @@
 namespace plumekit::run {
 
 namespace {
-
-constexpr TunnelMethod kMethods[] = {TunnelMethod::Ste3d, TunnelMethod::SurgeSpiral,
-                                     TunnelMethod::SurgeCast2d};
 
 std::string point_text(Vec3 p) {
   return "(" + compact(p.x) + ", " + compact(p.y) + ", " + compact(p.z) + ")";
@@ -38,17 +35,16 @@ double cast_altitude(const TunnelOptions& o, Vec3 source) {
 // The method of o.method: STE's chain and a tracker's draws come from `seed`'s own streams.
 std::unique_ptr<methods::LocalizationMethod3> tunnel_method(const TunnelOptions& o, Vec3 source,
                                                             std::uint64_t seed) {
-  if (!is_tracker(o.method))
-    return std::make_unique<methods::Ste3dMethod>(
-        o.tunnel.box(), o.ste, o.margin,
-        splitmix64(world::stream_seed(seed, world::SteStream::Mh)));
-  methods::CrosswindSearchOptions so = o.search;
-  so.mode = o.method == TunnelMethod::SurgeSpiral ? methods::CrosswindMode::Spiral3d
-                                                  : methods::CrosswindMode::Cast2d;
-  so.step = o.tracker_speed * o.decision_s;
-  so.altitude = cast_altitude(o, source);
-  return std::make_unique<methods::CrosswindSearch>(
-      o.tunnel.box(), so, world::stream_seed(seed, world::SteStream::Method));
+  methods::TunnelMethodInputs in;
+  in.tunnel = o.tunnel.box();
+  in.margin = o.margin;
+  in.ste = o.ste;
+  in.search = o.search;
+  in.search.step = o.tracker_speed * o.decision_s;
+  in.search.altitude = cast_altitude(o, source);
+  in.chain_seed = splitmix64(world::stream_seed(seed, world::SteStream::Mh));
+  in.walk_seed = world::stream_seed(seed, world::SteStream::Method);
+  return methods::find_tunnel_method(o.method).factory(in);
 }
 
 // A robot in the tunnel, for run_loop. STE stops to sample and flies straight to its goal at the
@@ -128,42 +124,16 @@ class TunnelRobot {
 
 }  // namespace
 
-const char* to_string(TunnelMethod method) {
-  switch (method) {
-    case TunnelMethod::Ste3d:
-      return "ste-3d";
-    case TunnelMethod::SurgeSpiral:
-      return "surge-spiral";
-    case TunnelMethod::SurgeCast2d:
-      return "surge-cast-2d";
-  }
-  return "?";
+std::string parse_tunnel_method(const std::string& name) {
+  return methods::find_tunnel_method(name).name;
 }
 
-TunnelMethod parse_tunnel_method(const std::string& name) {
-  for (TunnelMethod m : kMethods)
-    if (name == to_string(m)) return m;
-  throw OptionError("tunnel.method",
-                    "unknown method '" + name + "'; use ste-3d, surge-spiral or surge-cast-2d");
+std::vector<std::string> parse_tunnel_methods(const std::string& text) {
+  return methods::parse_tunnel_method_list(text);
 }
 
-std::vector<TunnelMethod> parse_tunnel_methods(const std::string& text) {
-  if (text == "all") return {std::begin(kMethods), std::end(kMethods)};
-  std::vector<TunnelMethod> out;
-  std::size_t begin = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', begin);
-    const TunnelMethod m = parse_tunnel_method(text.substr(begin, comma - begin));
-    if (std::find(out.begin(), out.end(), m) != out.end())
-      throw OptionError("tunnel.method", std::string("'") + to_string(m) + "' given twice");
-    out.push_back(m);
-    if (comma == std::string::npos) return out;
-    begin = comma + 1;
-  }
-}
-
-bool is_tracker(TunnelMethod method) {
-  return method != TunnelMethod::Ste3d;
+bool is_tracker(const std::string& method) {
+  return methods::find_tunnel_method(method).tracker;
 }
 
 world::WorldOptions TunnelOptions::default_world() {
@@ -249,7 +219,7 @@ double TunnelRun::time_within(double radius) const {
 }
 
 double TunnelRun::median_step_s() const {
-  if (method != TunnelMethod::Ste3d) return 0.0;
+  if (is_tracker(method)) return 0.0;
   std::vector<double> s;
   for (const TunnelStep& step : steps)
     s.push_back(step.compute_s);
@@ -279,7 +249,7 @@ Vec3 random_tunnel_start(const TunnelOptions& o, Vec3 source, std::uint64_t seed
     const double x = std::min(source.x + o.start_downwind, in.hi.x);
     const double y = uniform(rng, in.lo.y, in.hi.y);
     const double z = uniform(rng, in.lo.z, in.hi.z);
-    return {x, y, o.method == TunnelMethod::SurgeCast2d ? cast_altitude(o, source) : z};
+    return {x, y, methods::find_tunnel_method(o.method).flies_flat ? cast_altitude(o, source) : z};
   }
   for (int attempt = 0; attempt < 10000; ++attempt) {
     const Vec3 p{uniform(rng, in.lo.x, in.hi.x), uniform(rng, in.lo.y, in.hi.y),

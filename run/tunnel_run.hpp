@@ -26,16 +26,15 @@
 
 namespace plumekit::run {
 
-enum class TunnelMethod { Ste3d, SurgeSpiral, SurgeCast2d };
-const char* to_string(TunnelMethod method);
-// "ste-3d", "surge-spiral", "surge-cast-2d"; OptionError on tunnel.method otherwise.
-TunnelMethod parse_tunnel_method(const std::string& name);
+// The tunnel's methods come from the registry (methods/registry.hpp's tunnel_method_registry):
+// `name` checked there, OptionError on tunnel.method otherwise.
+std::string parse_tunnel_method(const std::string& name);
 // "NAME[,NAME...]" (each once) or "all".
-std::vector<TunnelMethod> parse_tunnel_methods(const std::string& text);
-bool is_tracker(TunnelMethod method);
+std::vector<std::string> parse_tunnel_methods(const std::string& text);
+bool is_tracker(const std::string& method);
 
 struct TunnelOptions {
-  TunnelMethod method = TunnelMethod::Ste3d;
+  std::string method = "ste-3d";  // a tunnel method's registry name
   world::Tunnel tunnel;
   // The world's rules (tunnel_world.hpp); its filament options are the tunnel's
   // (world::tunnel_filament_options()) with release_rate 1000 (condition "10 %").
@@ -75,7 +74,7 @@ struct TunnelStep {
 };
 
 struct TunnelRun {
-  TunnelMethod method = TunnelMethod::Ste3d;
+  std::string method = "ste-3d";
   Vec3 source, start;
   std::vector<TunnelStep> steps;
   Vec3 estimate;  // STE: its declared (expected) source; a tracker: where it ended

@@ -161,3 +161,39 @@ TEST(MethodRegistry, ANewMethodRunsEndToEndThroughTheScenarioAndTheRunLoop) {
 
 }  // namespace
 }  // namespace plumekit::methods
+
+namespace plumekit::methods {
+namespace {
+
+// The tunnel's methods are listed the same way: each spec makes a method of its own name, the
+// --method help and "all" follow the list, and an unknown name is refused naming the field.
+TEST(TunnelMethodRegistry, EachSpecMakesItsMethodAndTheListsFollowTheRegistry) {
+  TunnelMethodInputs in;
+  in.tunnel = {{0.0, 0.0, 0.0}, {10.0, 4.0, 2.0}};
+  in.margin = 0.1;
+  in.search.altitude = 1.0;
+  std::vector<std::string> names;
+  for (const TunnelMethodSpec& s : tunnel_method_registry()) {
+    names.push_back(s.name);
+    ASSERT_TRUE(static_cast<bool>(s.factory)) << s.name;
+    const std::unique_ptr<LocalizationMethod3> m = s.factory(in);
+    EXPECT_EQ(m->name(), s.name);
+    EXPECT_EQ(m->reads_while_moving(), s.tracker) << s.name;
+    EXPECT_EQ(m->plume_threshold().has_value(), s.tracker) << s.name;
+    EXPECT_NE(tunnel_methods_help().find(s.name + " (" + s.description + ")"), std::string::npos);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"ste-3d", "surge-spiral", "surge-cast-2d"}));
+  EXPECT_EQ(parse_tunnel_method_list("all"), names);
+  EXPECT_EQ(parse_tunnel_method_list("surge-cast-2d,ste-3d"),
+            (std::vector<std::string>{"surge-cast-2d", "ste-3d"}));
+  EXPECT_THROW(parse_tunnel_method_list("ste-3d,ste-3d"), OptionError);
+  try {
+    find_tunnel_method("ste");
+    ADD_FAILURE() << "an unknown tunnel method was accepted";
+  } catch (const OptionError& e) {
+    EXPECT_EQ(e.field(), "tunnel.method");
+  }
+}
+
+}  // namespace
+}  // namespace plumekit::methods
