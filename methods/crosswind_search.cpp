@@ -213,13 +213,13 @@ TunnelMethodFactory crosswind_factory(CrosswindMode mode) {
 }  // namespace
 
 TunnelMethodSpec surge_spiral_spec() {
-  return {"surge-spiral", "the 3-D surge-spiral tracker, ch. 17",    "seed 004 ch. 17", true,
+  return {"surge-spiral", "3-D surge-spiral plume tracker",          "seed 004 ch. 17", true,
           false,          crosswind_factory(CrosswindMode::Spiral3d)};
 }
 
 TunnelMethodSpec surge_cast_2d_spec() {
   return {"surge-cast-2d",
-          "ch. 17's 2-D surge-cast baseline at a fixed altitude",
+          "2-D surge-cast baseline flown at a fixed altitude",
           "seed 004 ch. 17, after Rahbar et al. 2017",
           true,
           true,

@@ -104,9 +104,14 @@ class BasicMethod {
   bool stopped() const { return !stopped_by().empty(); }
 };
 
+class Teammate;
+
 // A method on a floor plan.
 class LocalizationMethod : public BasicMethod<Vec2> {
  public:
+  // The method as a member of a robot team (seed 004 ch. 13, run/team.hpp), or null for a method
+  // that cannot work in one (its spec's traits.teams says which).
+  virtual Teammate* as_teammate() { return nullptr; }
   // The method's picture of its belief, for the run's record and pictures, so that the runner
   // needs no knowledge of any method. Its posterior after the last observe() (STE's), or null
   // for a method that holds none.
@@ -117,6 +122,23 @@ class LocalizationMethod : public BasicMethod<Vec2> {
     (void)map;
     return std::nullopt;
   }
+};
+
+// What a method does in a robot team (seed 004 ch. 13) besides its own stops: it takes the samples
+// its teammates send (cooperative and collaborative teams share every sample), and it can plan
+// as if samples had been taken where its teammates are headed (collaborative teams).
+class Teammate {
+ public:
+  virtual ~Teammate() = default;
+  struct Sample {
+    Vec2 position;
+    double gas = 0.0;
+  };
+  // Teammates' samples, added before the next observation's own, in order.
+  virtual void share(const std::vector<Sample>& samples) = 0;
+  // next(), planned as if samples had been taken at `virtual_points`, reading what its belief
+  // predicts there: it does not plan to learn what its teammates are about to learn.
+  virtual Move next_beside(Vec2 robot, const std::vector<Vec2>& virtual_points) = 0;
 };
 
 // A method in seed 004's wind tunnel (x downwind along it, y across, z up): it flies straight to

@@ -140,7 +140,7 @@ std::string tunnel_methods_help() {
     help += std::string(k == 0                ? ""
                         : k + 1 == all.size() ? " or "
                                               : ", ") +
-            all[k].name + " (" + all[k].description + ")";
+            all[k].name + " (" + all[k].description + ", " + all[k].source + ")";
   return help;
 }
 
@@ -163,12 +163,21 @@ std::string registry_markdown() {
       "`MethodRegistry.DocsTableIsTheRegistry` checks it\n"
       "(rewrite it with `PLUMEKIT_WRITE_DOCS=1 build/tests/methods/methods_tests "
       "--gtest_filter=MethodRegistry.*`).\n\n"
-      "| `--method` | what | from | plume model | a run ends |\n"
-      "|---|---|---|---|---|\n";
+      "| `--method` | what | from | plume model | teams | a run ends |\n"
+      "|---|---|---|---|---|---|\n";
   for (const MethodSpec& s : registry())
     md += "| `" + s.name + "` | " + s.description + " | " + s.source + " | " +
-          (s.traits.uses_plume_model ? "yes" : "no") + " | " + to_string(s.traits.ends) +
-          ", budget |\n";
+          (s.traits.uses_plume_model ? "yes" : "no") + " | " + (s.traits.teams ? "yes" : "no") +
+          " | " + to_string(s.traits.ends) + ", budget |\n";
+  md +=
+      "\n## In the wind tunnel (`localize tunnel`, `evaluate tunnel`)\n\n"
+      "| `--method` | what | from | a run ends |\n"
+      "|---|---|---|---|\n";
+  for (const TunnelMethodSpec& s : tunnel_registry())
+    md += "| `" + s.name + "` | " + s.description + " | " + s.source + " | " +
+          (s.tracker ? "in the source's box while in the plume, time limit"
+                     : "own stop rule, budget") +
+          " |\n";
   return md;
 }
 

@@ -36,6 +36,9 @@ struct MethodTraits {
   // STE needs a plume model; the others read only the gas, the wind and the pose.
   bool uses_plume_model = false;
   RunEnd ends = RunEnd::OwnStopRule;
+  // Works in a robot team (run/team.hpp): its method is a Teammate (as_teammate()) and holds a
+  // posterior.
+  bool teams = false;
   // Runs that end when the robot arrives near the source report whether it reached it and the
   // distance overhead.
   bool ends_on_arrival() const { return ends != RunEnd::OwnStopRule; }

@@ -36,7 +36,7 @@ const ste::Posterior3* Ste3dMethod::posterior() const {
 
 TunnelMethodSpec ste_3d_spec() {
   return {"ste-3d",
-          "3-D source term estimation, seed 004 ch. 11",
+          "3-D source term estimation",
           "seed 004 ch. 11",
           false,
           false,

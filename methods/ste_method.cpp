@@ -4,13 +4,34 @@
 
 namespace plumekit::methods {
 
-methods::Move SteMethod::next(Vec2 robot) {
-  planner::PlanResult p = mission_.next(robot);
+namespace {
+
+methods::Move move_along(planner::PlanResult p) {
   methods::Move m;
   m.goal = p.goal;
   m.path = std::move(p.path);
   m.length = p.length;
   return m;
+}
+
+}  // namespace
+
+void SteMethod::observe(const methods::Observation& o) {
+  mission_.add(o.position, o.gas, shared_);
+  shared_.clear();
+}
+
+methods::Move SteMethod::next(Vec2 robot) {
+  return move_along(mission_.next(robot));
+}
+
+void SteMethod::share(const std::vector<Sample>& samples) {
+  for (const Sample& s : samples)
+    shared_.push_back({s.position, s.gas});
+}
+
+methods::Move SteMethod::next_beside(Vec2 robot, const std::vector<Vec2>& virtual_points) {
+  return move_along(mission_.next(robot, virtual_points));
 }
 
 std::optional<Vec2> SteMethod::estimate() const {
@@ -23,7 +44,7 @@ MethodSpec ste_spec() {
   return {"ste",
           "source term estimation: Bayesian posterior over the source, infotaxis moves",
           "plumekit (ste/)",
-          MethodTraits{true, RunEnd::OwnStopRule},
+          MethodTraits{true, RunEnd::OwnStopRule, true},
           {},
           {},
           [](const PlumeModelParts& parts) {

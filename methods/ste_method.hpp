@@ -9,7 +9,7 @@
 
 namespace plumekit::methods {
 
-class SteMethod : public methods::LocalizationMethod {
+class SteMethod : public methods::LocalizationMethod, public Teammate {
  public:
   // Keeps references: every argument must outlive the method.
   SteMethod(ste::Estimator& estimator, const planner::Planner& planner,
@@ -21,7 +21,8 @@ class SteMethod : public methods::LocalizationMethod {
       : owned_(std::move(estimator)), mission_(*owned_, planner, navigator, stop) {}
 
   std::string name() const override { return "ste"; }
-  void observe(const methods::Observation& o) override { mission_.add(o.position, o.gas); }
+  // The stop's sample after the teammates' shared since the last (one posterior update).
+  void observe(const methods::Observation& o) override;
   methods::Move next(Vec2 robot) override;
   // The posterior's expected value, once there is a sample.
   std::optional<Vec2> estimate() const override;
@@ -30,9 +31,14 @@ class SteMethod : public methods::LocalizationMethod {
   const ste::Mission& mission() const { return mission_; }
   const ste::Posterior* posterior() const override { return &mission_.posterior(); }
 
+  Teammate* as_teammate() override { return this; }
+  void share(const std::vector<Sample>& samples) override;
+  methods::Move next_beside(Vec2 robot, const std::vector<Vec2>& virtual_points) override;
+
  private:
   std::unique_ptr<ste::Estimator> owned_;  // declared before mission_, which refers to it
   ste::Mission mission_;
+  std::vector<ste::Mission::Sample> shared_;  // teammates' samples not yet added
 };
 
 }  // namespace plumekit::methods

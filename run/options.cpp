@@ -112,7 +112,7 @@ void SteOptions::validate() const {
   if (team.robots > 1 && world.odometry_drift > 0.0)
     throw OptionError("ste.team.robots",
                       "teams run in the global framework (a map and positions): no odometry drift");
-  if (team.robots > 1 && method.name != "ste")
+  if (team.robots > 1 && !methods::find_method(method.name).traits.teams)
     throw OptionError("ste.team.robots", "teams run plumekit's STE (seed 004 ch. 13); the " +
                                              method.name + " method runs one robot");
   flow.validate();

@@ -320,11 +320,16 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   world::SharedPlume plume(map_, wind_, source, options_.world.filament, seed,
                            static_cast<int>(starts.size()));
   const double spin_up = since(t0);
-  std::vector<std::unique_ptr<ste::Estimator>> estimators;
-  std::vector<ste::Estimator*> pointers;
+  std::vector<std::unique_ptr<methods::LocalizationMethod>> members;
+  std::vector<methods::LocalizationMethod*> pointers;
   for (std::size_t k = 0; k < starts.size(); ++k) {
-    estimators.push_back(make_estimator(world::team_robot_seed(seed, static_cast<int>(k))));
-    pointers.push_back(estimators.back().get());
+    const std::uint64_t robot_seed = world::team_robot_seed(seed, static_cast<int>(k));
+    const methods::PlumeModelParts model{[this, robot_seed] { return make_estimator(robot_seed); },
+                                         planner_.get(), navigator_.get(), &options_.stop};
+    members.push_back(make_method(options_.method, {&map_},
+                                  world::stream_seed(robot_seed, world::SteStream::Method),
+                                  &model));
+    pointers.push_back(members.back().get());
   }
   MethodRunOptions o;
   if (options_.success_radius > 0.0) o.disc = SourceDisc{source, options_.success_radius};
@@ -334,8 +339,6 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   setup.world = &options_.world;
   setup.planner = planner_.get();
   setup.space = space_.get();
-  setup.navigator = navigator_.get();
-  setup.stop = &options_.stop;
   LocalizationResult r = run::run_team(plume, starts, pointers, seed, setup, options_.team, o);
   r.plume_s += spin_up;
   r.run_s = since(t0);

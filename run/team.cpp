@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
-#include "ste/mission.hpp"
+#include "methods/method.hpp"
 #include "world/random_streams.hpp"
 
 namespace plumekit::run {
@@ -77,8 +77,9 @@ namespace {
 struct Robot {
   int index = 0;
   std::unique_ptr<world::SimulatedWorld> world;
-  std::unique_ptr<ste::Mission> mission;
-  Phase phase = Phase::Sense;  // where it is in the run loop (method_run.hpp)
+  methods::LocalizationMethod* method = nullptr;
+  methods::Teammate* mate = nullptr;  // the same method, as a team member
+  Phase phase = Phase::Sense;         // where it is in the run loop (method_run.hpp)
   Vec2 pos;
   bool stopping = false;   // its stop's readings have begun
   world::Reading reading;  // the stop just ended (to decide on)
@@ -90,7 +91,7 @@ struct Robot {
   std::vector<Vec2> travelled;  // covered since the last stop (paths cut short by swaps included)
   bool halted = false;          // its last action was a wait
   double obstructed = 0.0;      // s of this travel spent waiting or stepping aside
-  std::vector<ste::Mission::Sample> inbox;  // teammates' samples not yet added
+  std::vector<methods::Teammate::Sample> inbox;  // teammates' samples not yet shared
   TeamRobot out;
   std::vector<double> step_times;
   double compute_s = 0.0, decisions_s = 0.0;
@@ -99,20 +100,22 @@ struct Robot {
 class TeamRun {
  public:
   TeamRun(world::SharedPlume& plume, const std::vector<Vec2>& starts,
-          const std::vector<ste::Estimator*>& estimators, std::uint64_t seed,
+          const std::vector<methods::LocalizationMethod*>& members, std::uint64_t seed,
           const TeamSetup& setup, const TeamOptions& team, const MethodRunOptions& options)
       : plume_(plume), setup_(setup), team_(team), options_(options) {
-    if (starts.empty() || starts.size() != estimators.size() ||
+    if (starts.empty() || starts.size() != members.size() ||
         static_cast<int>(starts.size()) != plume.robots())
-      throw std::logic_error("run_team: one start, estimator and plume robot per robot");
+      throw std::logic_error("run_team: one start, method and plume robot per robot");
     for (std::size_t k = 0; k < starts.size(); ++k) {
       Robot r;
       r.index = static_cast<int>(k);
       r.world = std::make_unique<world::SimulatedWorld>(plume, r.index, *setup.map, setup.source,
                                                         *setup.world,
                                                         world::team_robot_seed(seed, r.index));
-      r.mission = std::make_unique<ste::Mission>(*estimators[k], *setup.planner, *setup.navigator,
-                                                 *setup.stop);
+      r.method = members[k];
+      r.mate = r.method->as_teammate();
+      if (r.mate == nullptr)
+        throw std::logic_error("run_team: " + r.method->name() + " cannot work in a team");
       r.pos = starts[k];
       r.out.start = starts[k];
       robots_.push_back(std::move(r));
@@ -190,18 +193,22 @@ class TeamRun {
     s.distance_m = r.out.distance_m;
     s.path_in = std::move(r.travelled);
     r.travelled.clear();
-    std::vector<ste::Mission::Sample> shared;
-    if (team_.shares_samples()) shared.swap(r.inbox);
-    const ste::Posterior& post = r.mission->add(r.reading.position, r.reading.gas, shared);
+    if (team_.shares_samples()) {
+      r.mate->share(r.inbox);
+      r.inbox.clear();
+    }
+    r.method->observe({r.reading.position, r.reading.gas, r.reading.wind, r.reading.wind_variance,
+                       s.time_s, false});
     if (team_.shares_samples())
       for (Robot& o : robots_)
         if (o.index != r.index && o.phase != Phase::Done)
           o.inbox.push_back({r.reading.position, r.reading.gas});
+    const ste::Posterior& post = posterior(r);
     s.estimate = post.expected_source();
     s.map = post.map;
     s.entropy = post.entropy;
 
-    std::string stopped = r.mission->stopped_by();
+    std::string stopped = r.method->stopped_by();
     if (stopped.empty() && options_.disc && options_.disc->contains(r.pos)) stopped = "reached";
     if (stopped.empty() && static_cast<int>(r.out.steps.size()) + 1 >= options_.max_stops)
       stopped = "max_samples";
@@ -224,6 +231,13 @@ class TeamRun {
     return !stopped.empty();
   }
 
+  // A team's methods hold a posterior (traits.teams).
+  static const ste::Posterior& posterior(const Robot& r) {
+    const ste::Posterior* p = r.method->posterior();
+    if (p == nullptr) throw std::logic_error("run_team: " + r.method->name() + " has no posterior");
+    return *p;
+  }
+
   // Where a teammate is headed: its goal while it travels, else where it stands.
   static Vec2 heading_of(const Robot& o) { return o.phase == Phase::Move ? o.path.goal : o.pos; }
 
@@ -232,7 +246,11 @@ class TeamRun {
     if (team_.coordinates())
       for (const Robot& o : robots_)
         if (o.index != r.index && o.phase != Phase::Done) virtual_points.push_back(heading_of(o));
-    planner::PlanResult p = r.mission->next(r.pos, virtual_points);
+    const methods::Move move = r.mate->next_beside(r.pos, virtual_points);
+    planner::PlanResult p;
+    p.path = move.path;
+    p.length = move.length;
+    p.goal = move.goal;
     keep_apart(r, p);
     if (team_.coordinates()) {
       std::vector<Heading> moving;
@@ -439,7 +457,7 @@ class TeamRun {
     std::vector<double> step_times;
     for (Robot& r : robots_) {
       if (!r.out.steps.empty()) {
-        const ste::Posterior& p = r.mission->posterior();
+        const ste::Posterior& p = posterior(r);
         r.out.estimate = p.expected_source();
         r.out.entropy = p.entropy;
         if (declared_by_ < 0 && p.entropy < best_entropy)
@@ -461,7 +479,7 @@ class TeamRun {
     res.reached = res.stopped_by == "reached";
     res.time_s = declared_by_ >= 0 ? c.out.steps.back().time_s : end_s;
     res.steps = c.out.steps;
-    res.posterior = c.mission->posterior();
+    res.posterior = posterior(c);
     res.expected = res.posterior.expected;
     res.estimate = res.posterior.expected_source();
     res.map = res.steps.back().map;
@@ -485,11 +503,11 @@ class TeamRun {
 }  // namespace
 
 LocalizationResult run_team(world::SharedPlume& plume, const std::vector<Vec2>& starts,
-                            const std::vector<ste::Estimator*>& estimators, std::uint64_t seed,
-                            const TeamSetup& setup, const TeamOptions& team,
+                            const std::vector<methods::LocalizationMethod*>& members,
+                            std::uint64_t seed, const TeamSetup& setup, const TeamOptions& team,
                             const MethodRunOptions& options) {
   team.validate();
-  TeamRun run(plume, starts, estimators, seed, setup, team, options);
+  TeamRun run(plume, starts, members, seed, setup, team, options);
   return run.run();
 }
 

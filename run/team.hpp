@@ -86,23 +86,22 @@ struct Heading {
 int best_swap(const Heading& robot, const std::vector<Heading>& moving,
               const std::function<double(Vec2, Vec2)>& distance, double min_gain = 1e-6);
 
-// Everything a team run shares: its map, plume model's navigation and stop rule.
+// Everything a team run shares: its map, world and planner.
 struct TeamSetup {
   const Map* map = nullptr;
   Vec2 source;
   const world::WorldOptions* world = nullptr;
   const planner::Planner* planner = nullptr;
   const planner::FreeSpace* space = nullptr;  // where a goal may move (the planner's margin)
-  const ste::Navigator* navigator = nullptr;
-  const ste::StopOptions* stop = nullptr;
 };
 
-// One run of a team: robot k starts at starts[k], estimates with estimators[k] and reads with
-// the sensors of team_robot_seed(seed, k) in `plume` (built for starts.size() robots from the
-// run's `seed`). `options` may end the run when a robot enters its disc (run_method's rule).
+// One run of a team: robot k starts at starts[k], localizes with members[k] (a method that is a
+// Teammate with a posterior: traits.teams; std::logic_error otherwise) and reads with the sensors
+// of team_robot_seed(seed, k) in `plume` (built for starts.size() robots from the run's `seed`).
+// `options` may end the run when a robot enters its disc (run_method's rule).
 LocalizationResult run_team(world::SharedPlume& plume, const std::vector<Vec2>& starts,
-                            const std::vector<ste::Estimator*>& estimators, std::uint64_t seed,
-                            const TeamSetup& setup, const TeamOptions& team,
+                            const std::vector<methods::LocalizationMethod*>& members,
+                            std::uint64_t seed, const TeamSetup& setup, const TeamOptions& team,
                             const MethodRunOptions& options);
 
 }  // namespace plumekit::run

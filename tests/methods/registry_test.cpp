@@ -71,6 +71,7 @@ TEST(MethodRegistry, NamesAreUniqueAndEveryMethodHasTheFactoryItsTraitsNeed) {
     EXPECT_EQ(s.traits.uses_plume_model, s.name == "ste") << s.name;
     EXPECT_EQ(static_cast<bool>(s.factory), !s.traits.uses_plume_model) << s.name;
     EXPECT_EQ(static_cast<bool>(s.model_factory), s.traits.uses_plume_model) << s.name;
+    EXPECT_EQ(s.traits.teams, s.name == "ste") << s.name;  // seed 004 ch. 13's teams run STE
   }
   EXPECT_EQ(method_names().front(), "ste");
 }
@@ -180,7 +181,8 @@ TEST(TunnelMethodRegistry, EachSpecMakesItsMethodAndTheListsFollowTheRegistry) {
     EXPECT_EQ(m->name(), s.name);
     EXPECT_EQ(m->reads_while_moving(), s.tracker) << s.name;
     EXPECT_EQ(m->plume_threshold().has_value(), s.tracker) << s.name;
-    EXPECT_NE(tunnel_methods_help().find(s.name + " (" + s.description + ")"), std::string::npos);
+    EXPECT_NE(tunnel_methods_help().find(s.name + " (" + s.description + ", " + s.source + ")"),
+              std::string::npos);
   }
   EXPECT_EQ(names, (std::vector<std::string>{"ste-3d", "surge-spiral", "surge-cast-2d"}));
   EXPECT_EQ(parse_tunnel_method_list("all"), names);
