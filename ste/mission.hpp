@@ -1,7 +1,8 @@
 #pragma once
 // The STE loop turned inside out: the caller moves the robot and reads its sensors (a simulated
-// world, a robot log, a live robot), the mission estimates and decides. localize() drives one
-// against the simulated world; the Python module lets a user drive one with their own readings.
+// world, a robot log, a live robot), the mission estimates and decides. methods::SteMethod puts it
+// behind the methods' interface, which the run loop drives against the simulated world; the
+// Python module lets a user drive one with their own readings.
 #include <string>
 #include <vector>
 

@@ -277,7 +277,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   EXPECT_EQ(again.estimate, r.estimate);
 }
 
-// A Mission fed a run's own readings gives that run's posteriors and goals (localize() is a
+// A Mission fed a run's own readings gives that run's posteriors and goals (a run of STE is a
 // Mission driven by the simulated world), and refuses what is not a reading.
 TEST(Localize, AMissionFedARunsReadingsRetracesIt) {
   const Map map = small_map();
