@@ -173,7 +173,7 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
                                options_.navigation.floor_spacing);
   // The floor's goals are scored at every decision: their readings are tabulated once here, as
   // part of the model's build.
-  const auto* table_model = dynamic_cast<const ste::SourceTableModel*>(model_.get());
+  const ste::SourceTableModel* table_model = model_ ? model_->as_source_table() : nullptr;
   if (!navigator_->floor_goals().empty() && table_model) {
     t0 = Clock::now();
     const double goals = static_cast<double>(navigator_->floor_goals().size());
@@ -264,7 +264,7 @@ std::unique_ptr<ste::Estimator> Scenario::make_estimator(std::uint64_t seed) con
                      " method has no plume model to estimate with: STE's estimator and Mission "
                      "need --method ste");
   ste::LikelihoodOptions likelihood = options_.likelihood_options();
-  if (const auto* table = dynamic_cast<const ste::SourceTableModel*>(model_.get())) {
+  if (const ste::SourceTableModel* table = model_->as_source_table()) {
     // A mean-only CNN predicts no std: the likelihood then uses sigma_M (and sigma_rel) alone,
     // unless --sigma-std was given, which the estimator refuses for such a model.
     if (!table->has_spreads() && !options_.likelihood.sigma_std) likelihood.sigma_std = 0.0;

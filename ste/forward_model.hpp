@@ -33,6 +33,9 @@ class ForwardModel {
                                       const std::vector<Vec2>& points) const = 0;
   // One point; models override it when they can avoid predict()'s vectors.
   virtual double predict_at(const double* params, Vec2 p) const;
+  // The model as a table of candidate sources (the surrogate's and physics' grid estimators
+  // read it), or null for a model of free parameters (the Gaussian plume's MH).
+  virtual const class SourceTableModel* as_source_table() const { return nullptr; }
 };
 
 // Parameters {x, y, release_scale}: the concentration is release_scale times
@@ -40,6 +43,7 @@ class ForwardModel {
 // grid of source cells.
 class SourceTableModel : public ForwardModel {
  public:
+  const SourceTableModel* as_source_table() const override { return this; }
   // The candidate source cells; a source is only possible at allowed cells
   // (free cell centres): the prior is zero inside obstacles.
   virtual const GridShape& candidates() const = 0;
