@@ -166,7 +166,7 @@ class FloorRobot {
     method_.observe({reading_.position, reading_.gas, reading_.wind, reading_.wind_variance,
                      step_.time_s, blocked_});
     record_state(method_, step_, r_);
-    r_.stopped_by = stop_rule();
+    r_.stopped_by = stop_reason(method_, pos_, static_cast<int>(r_.steps.size()) + 1, options_);
     path_ = {};
     if (r_.stopped_by.empty())
       path_ = path_to(method_.next(pos_), pos_, planner_, options_, blocked_);
@@ -201,16 +201,6 @@ class FloorRobot {
   }
 
  private:
-  // The method's own reason, or the runner's: the source's box or disc, the stop budget.
-  std::string stop_rule() const {
-    std::string why = method_.stopped_by();
-    if (why.empty() && options_.box && options_.box->contains(pos_)) why = "reached";
-    if (why.empty() && options_.disc && options_.disc->contains(pos_)) why = "reached";
-    if (why.empty() && static_cast<int>(r_.steps.size()) + 1 >= options_.max_stops)
-      why = "max_samples";
-    return why;
-  }
-
   methods::LocalizationMethod& method_;
   world::SimulatedWorld& world_;
   const planner::Planner& planner_;
@@ -227,6 +217,15 @@ class FloorRobot {
 };
 
 }  // namespace
+
+std::string stop_reason(const methods::LocalizationMethod& method, Vec2 pos, int stops,
+                        const MethodRunOptions& options) {
+  std::string why = method.stopped_by();
+  if (why.empty() && options.box && options.box->contains(pos)) why = "reached";
+  if (why.empty() && options.disc && options.disc->contains(pos)) why = "reached";
+  if (why.empty() && stops >= options.max_stops) why = "max_samples";
+  return why;
+}
 
 LocalizationResult run_method(Vec2 start, methods::LocalizationMethod& method,
                               world::SimulatedWorld& world, const planner::Planner& planner,

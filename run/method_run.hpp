@@ -86,6 +86,12 @@ struct MethodRunOptions {
   int max_stops = 2000;
 };
 
+// Why a run ends at its `stops`-th stop, made at `pos`: the method's own reason, or the runner's
+// ("reached": the stop lies in the options' source box or disc; "max_samples": the stop budget);
+// "" while it goes on. A robot alone and each robot of a team end by this rule.
+std::string stop_reason(const methods::LocalizationMethod& method, Vec2 pos, int stops,
+                        const MethodRunOptions& options);
+
 // One run of `method` from `start`. A goal the robot cannot reach leaves it where it is (the
 // method sees that in its next observation). The result's estimate is the method's, or where the
 // robot ended for a method without one (a plume tracker).

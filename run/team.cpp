@@ -208,10 +208,8 @@ class TeamRun {
     s.map = post.map;
     s.entropy = post.entropy;
 
-    std::string stopped = r.method->stopped_by();
-    if (stopped.empty() && options_.disc && options_.disc->contains(r.pos)) stopped = "reached";
-    if (stopped.empty() && static_cast<int>(r.out.steps.size()) + 1 >= options_.max_stops)
-      stopped = "max_samples";
+    const std::string stopped =
+        stop_reason(*r.method, r.pos, static_cast<int>(r.out.steps.size()) + 1, options_);
     if (stopped == "entropy" || stopped == "reached") {
       over_ = true;
       declared_by_ = r.index;

@@ -134,3 +134,68 @@ TEST(MethodRun, UnknownMethodNamesTheFieldAndTheChoices) {
 
 }  // namespace
 }  // namespace plumekit::ste
+
+namespace plumekit::ste {
+namespace {
+
+// The loop's order, whatever a phase costs: a stop read in three parts, a move in two, the run
+// ended by the second decision. run_loop() does the phases in turn; act() one action at a time.
+struct PhasedRobot {
+  std::string log;
+  int readings = 0, legs = 0, decisions = 0;
+  bool sense() {
+    log += "s";
+    return ++readings % 3 == 0;
+  }
+  bool decide() {
+    log += "D";
+    return ++decisions == 2;
+  }
+  bool move() {
+    log += "m";
+    return ++legs % 2 == 0;
+  }
+};
+
+TEST(RunLoop, SensesDecidesAndMovesInTurnUntilADecisionEndsTheRun) {
+  PhasedRobot alone;
+  run::run_loop(alone);
+  EXPECT_EQ(alone.log, "sssDmmsssD");
+  // One action at a time, as a team's robots are stepped.
+  PhasedRobot stepped;
+  run::Phase phase = run::Phase::Sense;
+  std::vector<run::Phase> phases;
+  while (phase != run::Phase::Done) {
+    phase = run::act(stepped, phase);
+    phases.push_back(phase);
+  }
+  EXPECT_EQ(stepped.log, alone.log);
+  EXPECT_EQ(phases.size(), alone.log.size());
+  EXPECT_EQ(phases[2], run::Phase::Decide);
+  EXPECT_EQ(phases[3], run::Phase::Move);
+  EXPECT_EQ(run::act(stepped, run::Phase::Done), run::Phase::Done);
+  EXPECT_EQ(stepped.log, alone.log);  // a robot done does nothing
+}
+
+// The runner's stop rules, after the method's own: the box or the disc ("reached"), then the
+// stop budget.
+TEST(RunLoop, AMethodsOwnReasonComesBeforeTheRunnersRules) {
+  ScriptedMethod going({{1.0, 1.0}});
+  run::MethodRunOptions o;
+  o.max_stops = 5;
+  EXPECT_EQ(run::stop_reason(going, {0.0, 0.0}, 4, o), "");
+  EXPECT_EQ(run::stop_reason(going, {0.0, 0.0}, 5, o), "max_samples");
+  o.disc = run::SourceDisc{{0.0, 0.2}, 0.5};
+  EXPECT_EQ(run::stop_reason(going, {0.0, 0.0}, 5, o), "reached");
+  o.disc.reset();
+  o.box = run::SourceBox{{-0.5, 0.0}};
+  EXPECT_EQ(run::stop_reason(going, {0.0, 0.0}, 1, o), "reached");
+  ScriptedMethod done({});
+  done.observe({});  // one observation more than its goals: it stops by its own rule
+  EXPECT_EQ(run::stop_reason(done, {0.0, 0.0}, 1, o), "max_samples");
+  o.box.reset();
+  EXPECT_EQ(run::stop_reason(done, {0.0, 0.0}, 1, o), "max_samples");
+}
+
+}  // namespace
+}  // namespace plumekit::ste
