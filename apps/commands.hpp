@@ -15,5 +15,6 @@ void add_tunnel_commands(CLI::App& app);
 void add_gdm_commands(CLI::App& app);
 // `options --markdown`: the option reference, docs/options.md
 void add_options_commands(CLI::App& app);
+void add_methods_commands(CLI::App& app);  // the registry
 
 }  // namespace plumekit::cli

@@ -161,8 +161,7 @@ std::string registry_markdown() {
       "# Localization methods\n\n"
       "Generated from the method registry (`methods/registry.cpp`); "
       "`MethodRegistry.DocsTableIsTheRegistry` checks it\n"
-      "(rewrite it with `PLUMEKIT_WRITE_DOCS=1 build/tests/methods/methods_tests "
-      "--gtest_filter=MethodRegistry.*`).\n\n"
+      "(rewrite it with `build/plumekit methods --markdown > docs/methods-registry.md`).\n\n"
       "| `--method` | what | from | plume model | teams | a run ends |\n"
       "|---|---|---|---|---|---|\n";
   for (const MethodSpec& s : registry())

@@ -2,6 +2,7 @@
 // add_method() call to run through the whole run loop, and the registry's names are what the CLI
 // offers.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <fstream>
@@ -135,6 +136,33 @@ TEST_F(MethodRegistryCli, LocalizeHelpListsTheRegistry) {
   for (std::string line; std::getline(lines, line);)
     help += line.substr(std::min(line.find_first_not_of(' '), line.size())) + " ";
   EXPECT_NE(help.find("Localization method: " + names + " "), std::string::npos) << r.out;
+}
+
+// `plumekit methods` prints the registry: its JSON names every method of the floor and the tunnel
+// in order, and --markdown is docs/methods-registry.md.
+TEST_F(MethodRegistryCli, MethodsCommandPrintsTheRegistry) {
+  const test::CliResult j = run("methods --json");
+  ASSERT_EQ(j.code, 0) << j.err;
+  const nlohmann::json out = nlohmann::json::parse(j.out);
+  std::vector<std::string> floor, tunnel;
+  for (const auto& m : out.at("methods"))
+    floor.push_back(m.at("name"));
+  for (const auto& m : out.at("tunnel_methods"))
+    tunnel.push_back(m.at("name"));
+  EXPECT_EQ(floor.front(), "ste");
+  EXPECT_EQ(floor.back(), "ste-local");  // the program's own registry: no test's method
+  EXPECT_EQ(floor.size(), 10u);
+  EXPECT_EQ(tunnel, (std::vector<std::string>{"ste-3d", "surge-spiral", "surge-cast-2d"}));
+  EXPECT_TRUE(out.at("methods").at(0).at("teams").get<bool>());
+  const test::CliResult md = run("methods --markdown");
+  ASSERT_EQ(md.code, 0) << md.err;
+  std::ifstream in(std::string(PLUMEKIT_SOURCE_DIR) + "/docs/methods-registry.md");
+  std::stringstream page;
+  page << in.rdbuf();
+  EXPECT_EQ(md.out, page.str());
+  const test::CliResult text = run("methods");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("surge-cast-2d"), std::string::npos) << text.out;
 }
 
 TEST(MethodRegistry, ANewMethodRunsEndToEndThroughTheScenarioAndTheRunLoop) {
