@@ -1,6 +1,6 @@
 #pragma once
 // The Newton systems J dx = b of one grid's flow equations, solved by one of
-// two methods with the same steps to round-off (docs/design/flow-solver.md, Numerics):
+// two methods with the same steps to round-off (docs/design/flow-solver.md, "Numerics"):
 //  - NullSpaceSolver (nullspace_solver.hpp): the divergence-free subspace, one
 //    unknown per grid node; the default, and far cheaper to factorize;
 //  - CoupledSolver (coupled_solver.hpp): UMFPACK on the full (u, v, p) matrix

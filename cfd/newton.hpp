@@ -2,7 +2,7 @@
 // Newton's method on one grid's flow equations (cfd::solve's inner loop), as
 // named steps: assemble the Newton matrix, factor it, solve for the step, a
 // backtracking line search (with Anderson-mixed chord steps), pseudo-transient
-// continuation, and the convergence test. docs/design/flow-solver.md, Numerics, says why
+// continuation, and the convergence test. docs/design/flow-solver.md, "Numerics", says why
 // each step is as it is.
 #include <Eigen/Core>
 #include <chrono>

@@ -1,10 +1,11 @@
 #pragma once
 // A single-precision sparse LU (MUMPS's smumps, sequential library) of a
 // double matrix, for the large reduced systems of the nullspace solver
-// (docs/validation.md, "Building scale"): half the memory of a double LU and about
-// half the factorization time. Its solves are accurate to about 1e-2 relative
-// on the 5 cm tb3_world matrix, which Newton's chord steps absorb: every step
-// is followed by a residual in double. Built only when CMake finds MUMPS
+// (docs/design/flow-solver.md, "Building scale: how the solver got there"):
+// half the memory of a double LU and about half the factorization time. Its
+// solves are accurate to about 1e-2 relative on the 5 cm tb3_world matrix,
+// which Newton's chord steps absorb: every step is followed by a residual in
+// double. Built only when CMake finds MUMPS
 // (PLUMEKIT_HAVE_MUMPS); single_precision_lu_available() says so.
 #include <Eigen/SparseCore>
 #include <memory>

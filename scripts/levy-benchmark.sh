@@ -9,7 +9,7 @@
 # thesis-style world (steady flow, uniform meander).
 #
 #   scripts/levy-benchmark.sh [RUNS] [OUT]     # RUNS per map (default 3), 10 maps per setting
-#   scripts/levy_table.py OUT                  # the table of docs/methods.md
+#   scripts/levy_table.py OUT                  # the table of docs/validation.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-3}

@@ -9,7 +9,7 @@
 # model (MH), the map and exact positions.
 #
 #   scripts/local-benchmark.sh [RUNS] [OUT]     # RUNS per map (default 2); BUDGETS="7 9" for some
-#   scripts/local_table.py OUT [PNG_DIR]        # the table and box plots of docs/design/ste.md
+#   scripts/local_table.py OUT [PNG_DIR]        # the table and box plots of docs/validation.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-2}

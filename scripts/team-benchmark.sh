@@ -6,7 +6,7 @@
 # 2 and 3 robots; cooperative and collaborative with 2 and 3.
 #
 #   scripts/team-benchmark.sh [RUNS] [OUT] [all|open-field|test-maps]
-#   scripts/team_table.py OUT                  # the tables and box plots of docs/design/ste.md
+#   scripts/team_table.py OUT                  # the tables and box plots of docs/validation.md
 #
 # Open field: the 10 x 4 m arena of scripts/levy_maps.py (10 maps, a source 1 m from the inlet at
 # a random y, five starts 8 m downwind at random y, taken in turn), RUNS runs per map (default 2),

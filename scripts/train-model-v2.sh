@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The v2 surrogate (issue 19; docs/design/surrogate.md, "v2"): one model for any map, on a physical grid
+# The v2 surrogate (issue 19; docs/design/surrogate.md, "Physical-grid models (v2)"): one model for any map, on a physical grid
 # of 0.2 m cells with the map's wind as input, from nothing:
 #   1. training data in the faithful world: the thesis's six random families on the 10 x 4 m arena
 #      and random buildings of 6-30 m, every map's inlets at a speed drawn from 0.3-2 m/s;

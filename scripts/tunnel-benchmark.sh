@@ -11,7 +11,7 @@
 #     (the thesis ran 20).
 #
 #   scripts/tunnel-benchmark.sh [RUNS] [OUT]    # RUNS default 20; OUT default out/tunnel
-#   scripts/tunnel_table.py OUT [PNG_DIR]       # the tables and box plots of docs/design/ste.md
+#   scripts/tunnel_table.py OUT [PNG_DIR]       # the tables and box plots of docs/validation.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-20}

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 20's validation of the seeds' methods in the seeds' own setting (docs/methods.md,
+# Issue 20's validation of the seeds' methods in the seeds' own setting (docs/validation.md,
 # "Validation against the seeds"): the 32 x 8 m tunnel at 0.5 m/s, seed 000's filaments
 # (--world neumann, from a 0.2 m source disc), its infrared sensor under the rotor's 0.5 m disc,
 # 20 s stops at 1 Hz, 1 m steps at 1 m/s, the wind direction's 14.02 degrees, the synthetic
@@ -8,7 +8,7 @@
 #   scripts/validate-methods.sh [RUNS] [OUT]      # RUNS per configuration (the seeds: 100)
 #   TRACKING_RUNS=10 scripts/validate-methods.sh 20   # fewer runs for the trackers' eight
 #   scripts/validate-methods.sh 10                    # as results/methods-validation/
-#   scripts/validation_table.py OUT                   # the table of docs/methods.md
+#   scripts/validation_table.py OUT                   # the tables of docs/validation.md
 #
 # Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 to
 # 2.5 min of CPU per particle-filter run and 15 to 60 s per tracking run.

@@ -7,7 +7,7 @@
 // table is coarser than the candidate sources (table_cell > source_cell): a
 // candidate then reads the plumes of the table cells around it, each shifted
 // by the offset from that cell to the candidate and blended bilinearly (a
-// plume moves with its source over a fraction of a metre; docs/design/ste.md,
+// plume moves with its source over a fraction of a metre; docs/validation.md,
 // "Candidates finer than the table"). The table can be cached on disk,
 // keyed by the SHA-256 of the map's geometry, of the model file and of the
 // table grid, and carries a SHA-256 of its own bytes: a damaged or stale

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 20's comparison of every localization method on 20 random buildings (seed 1001), each
-# map's first source, one run (methods/README.md, "In cluttered maps: every method side by
+# map's first source, one run (docs/validation.md, "In cluttered maps: every method side by
 # side"): the buildings part of scripts/compare-methods.sh, then its table and box plot. Writes
 # OUT/buildings/ in this folder's layout (the maps in OUT/buildings-maps):
 #   scripts/compare_results.py results/methods-buildings OUT/buildings

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Issue 20's comparison of every localization method on the nine test maps, 3 runs per source
-# (methods/README.md, "In cluttered maps: every method side by side"): the test-map part of
+# (docs/validation.md, "In cluttered maps: every method side by side"): the test-map part of
 # scripts/compare-methods.sh, then its table and box plot. Writes OUT/test-maps/ in this folder's
 # layout: scripts/compare_results.py results/methods-test-maps OUT/test-maps
 #   results/methods-test-maps/make.sh [OUT]

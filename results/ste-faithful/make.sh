@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # STE with each plume model on the nine test maps in the faithful world (the default) with the
-# fast MOX sensor, seeds 1 and 2: 1,080 runs each, 2 threads (ste/README.md, "Figures", "The
+# fast MOX sensor, seeds 1 and 2: 1,080 runs each, 2 threads (docs/validation.md, "Figures", "The
 # faithful world"; surrogate-v2: "The nine test maps, against v1").
 #   results/ste-faithful/make.sh [OUT] [MODEL...]   # surrogate physics gaussian surrogate-v2
 # OUT as given from where this was called; then work from the repository root.

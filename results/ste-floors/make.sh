@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # STE on the three real floors (data/floors) and on 20 random buildings (seed 1001), every
-# default (the faithful world, the ideal sensor), seed 1 (ste/README.md, "Real floors and
+# default (the faithful world, the ideal sensor), seed 1 (docs/validation.md, "Real floors and
 # buildings"; the v2 surrogate: "Against physics-STE, the same runs").
 #   results/ste-floors/make.sh [OUT] [PART...]
 #   PART: real buildings real-gaussian buildings-gaussian real-surrogate-v2

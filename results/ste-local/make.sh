@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 004 ch. 12's local framework against the global one (Figs. 12.4, 12.7; ste/README.md,
+# Seed 004 ch. 12's local framework against the global one (Figs. 12.4, 12.7; docs/validation.md,
 # "The local framework against the thesis"): scripts/local-benchmark.sh with 2 runs per map,
 # then its table and box plots.
 #   results/ste-local/make.sh [OUT]      # BUDGETS="7 9" for some budgets only

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 004 ch. 13's robot teams against one robot (Fig. 13.3; ste/README.md, "Teams against one
+# Seed 004 ch. 13's robot teams against one robot (Fig. 13.3; docs/validation.md, "Teams against one
 # robot"): scripts/team-benchmark.sh with 2 runs per map, then its table and box plots.
 #   results/ste-teams/make.sh [OUT] [all|open-field|test-maps]
 # OUT as given from where this was called; then work from the repository root.

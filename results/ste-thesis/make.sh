@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# STE with each plume model on the nine test maps in the thesis-style world (ste/README.md,
+# STE with each plume model on the nine test maps in the thesis-style world (docs/validation.md,
 # "Figures", "The thesis-style world"): 540 runs each, seed 1, 2 threads.
 #   results/ste-thesis/make.sh [OUT] [MODEL...]   # MODEL: surrogate physics gaussian (default all)
 # OUT as given from where this was called; then work from the repository root.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Seed 004's 3-D systems in the wind tunnel (Figs. 11.3, 17.4, 17.8; ste/README.md, "The 3-D
+# Seed 004's 3-D systems in the wind tunnel (Figs. 11.3, 17.4, 17.8; docs/validation.md, "The 3-D
 # systems against the thesis"): scripts/tunnel-benchmark.sh with 20 runs each, then its tables
 # and box plots, and the two committed median runs.
 #   results/tunnel/make.sh [OUT]
