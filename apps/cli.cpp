@@ -168,7 +168,7 @@ void add_gas_sensor_options(CLI::App* command, world::GasSensorModel& sensor,
                      },
                      whose + " gas sensor: ideal (reads the concentration), catalytic, "
                              "electrochemical, infrared (seed 000, Table 4.1) or mox-fast (seed "
-                             "004's MiCS-5521); docs/design/dataset.md, \"Gas sensors\"")
+                             "004's MiCS-5521); docs/world.md, \"Gas sensors\"")
                  ->default_str(sensor.name),
              "sensor.gas");
   bind_field(command,
@@ -204,9 +204,8 @@ void add_wind_model_option(CLI::App* command, bool& unsteady) {
                 unsteady = name == "unsteady";
               },
               "Filament plume's wind: steady (the flow plus a uniform meander, the thesis's) or "
-              "unsteady (a meandering field that fades at walls; docs/design/dataset.md, "
-              "\"Unsteady "
-              "wind\")")
+              "unsteady (a meandering field that fades at walls; docs/world.md, "
+              "\"Unsteady wind\")")
           ->type_name("steady|unsteady")
           ->default_str(unsteady ? "unsteady" : "steady"),
       "plume.wind_model");

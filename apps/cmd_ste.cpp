@@ -102,7 +102,7 @@ void add_model_options(CLI::App* cmd, run::SteOptions& o) {
   bind_to(cmd, "--decay-rate", o.physics.advection_diffusion.decay_rate,
           "First-order decay rate of the physics model's gas, 1/s (default: 1/28, the filament "
           "world's, whose filaments are dropped 28 s after release; 0: none, the model before "
-          "issue 17; docs/design/ste.md, \"Floors\")",
+          "issue 17; docs/validation.md, \"Floors\")",
           "plume.decay_rate");
   bind_field(cmd,
              bind_field(cmd,
@@ -221,7 +221,7 @@ void add_method_options(CLI::App* cmd, run::MethodOptions& m,
   const std::string help =
       several ? "Localization method: " + names + what +
                     "; or several, NAME,NAME,... or all, sampling one world per run, each into "
-                    "OUT/NAME/ (docs/design/ste.md, \"Several methods in one world\")"
+                    "OUT/NAME/ (docs/design/evaluation.md, \"Several methods in one world\")"
               : "Localization method: " + names + what;
   CLI::Option* option = several ? cmd->add_option_function<std::string>("--method", list, help)
                                 : cmd->add_option_function<std::string>("--method", one, help);
