@@ -45,7 +45,7 @@ struct PlannerOptions {
   bool ompl_simplify = true;
 
   // OptionError naming the field ("planner.margin", ...) and its range
-  // (docs/options.md, planner/README.md); make_planner() calls it.
+  // (docs/options.md; docs/design/planner.md, "Options"); make_planner() calls it.
   void validate() const;
 };
 

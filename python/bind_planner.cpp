@@ -56,7 +56,8 @@ std::shared_ptr<MapPlanner> make(const Map& map, const std::string& kind, const 
 }  // namespace
 
 void bind_planner(py::module_& m) {
-  py::class_<PlannerOptions> c(m, "PlannerOptions", "Options of the planner (planner/README.md)");
+  py::class_<PlannerOptions> c(m, "PlannerOptions",
+                               "Options of the planner (docs/design/planner.md, \"Options\")");
   c.def(py::init<>());
   PK_FIELD(c, PlannerOptions, margin, "Clearance from obstacles and walls, m");
   PK_FIELD(c, PlannerOptions, arc_segments, "Sides of the inflation polygon");
