@@ -137,7 +137,7 @@ double passing_cell(const Map& map, const std::vector<GapReport>& gaps, double c
 }  // namespace
 
 double flow_memory_estimate(double cells) {
-  // See docs/design/flow-solver.md, "Memory": bytes per cell grow with log2(cells), as the
+  // See docs/design/flow-solver.md, "Memory estimate": bytes per cell grow with log2(cells), as the
   // LU's fill under nested dissection does, plus the process's own baseline.
   // Square arenas fill more than elongated ones of as many cells, so the
   // constants fit the square ones: 40000 cells 301 MB, 160000 1.27 GB; the

@@ -21,7 +21,7 @@ inline constexpr double kMaxCell = 10.0;
 
 // Estimated peak memory (bytes) of cfd::solve on a grid of `cells` cells: the
 // sparse LU's fill grows a little faster than the cell count. Calibrated on
-// measured peak RSS (docs/design/flow-solver.md, "Memory").
+// measured peak RSS (docs/design/flow-solver.md, "Memory estimate").
 double flow_memory_estimate(double cells);
 
 // The grid size checks, before any grid is made: at least 3 cells per side,

@@ -116,7 +116,7 @@ TEST(FlowGridSize, HundredMetreArenaAtFiveCentimetresIsRefusedQuickly) {
 }
 
 TEST(FlowGridSize, EstimateCoversTheMeasuredPeaks) {
-  // Measured peak RSS (KiB) of `plumekit flow` (docs/design/flow-solver.md, "Memory"): the
+  // Measured peak RSS (KiB) of `plumekit flow` (docs/design/flow-solver.md, "Memory estimate"): the
   // estimate is an upper bound, and not a loose one.
   struct Point {
     double cells, rss;
