@@ -166,7 +166,7 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
     fail(source, "shape mismatch: features.channels must list " + std::to_string(in_channels) +
                      " input channels");
   }
-  // The contracts this engine's callers know how to build (DESIGN.md, features).
+  // The contracts this engine's callers know how to build (surrogate/features.hpp).
   // The source channel (the last) has a form that decides its unit: metres, or 1/m for the
   // inverse distance.
   const std::vector<std::string> names = feature_channel_names(physical);

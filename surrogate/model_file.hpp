@@ -15,7 +15,8 @@ namespace plumekit::surrogate {
 inline constexpr char kModelMagic[8] = {'P', 'L', 'U', 'M', 'E', 'C', 'N', 'N'};
 inline constexpr unsigned kModelVersion = 1;
 
-// DeepCFD U-Net hyper-parameters; DESIGN.md's network is the default.
+// DeepCFD U-Net hyper-parameters; the network of docs/design/surrogate.md, "Architecture" is the
+// default.
 struct Architecture {
   int in_channels = 3;
   int out_channels = 2;

@@ -1,4 +1,5 @@
-"""DeepCFD-style U-Net (Ribeiro et al. 2020) for plume mean and std, as in ../../shared/DESIGN.md.
+"""DeepCFD-style U-Net (Ribeiro et al. 2020) for plume mean and std, as in
+docs/design/surrogate.md, "Architecture".
 
 Wiring (the same as DeepCFD's UNetEx with weight and batch norm off):
   encoder level b = 0..L-1: `convs` convolutions (kernel k, padding k//2, ReLU) to filters[b] channels,

@@ -21,7 +21,7 @@ files), and the header's `training` lists each dataset (`datasets`: its provenan
 sample counts and validation maps, which evaluate.py scores) with the `val_fraction`. The
 checkpoint records the datasets (each folder's name, sample and map count, in order): resuming
 with other ones is refused. One dataset trains, logs and writes exactly as before.
-Optimiser: AdamW, lr 1e-3, weight decay 5e-3 (DESIGN.md). Batches of 32 by default.
+Optimiser: AdamW, lr 1e-3, weight decay 5e-3 (the thesis's settings). Batches of 32 by default.
 Every epoch: WORK/log.csv gains a line (epoch, step, train loss, val loss, val RMSE of the mean in
 dataset units, seconds); WORK/checkpoint.pt is rewritten (model, optimiser, epoch, RNG, best), and
 WORK/best.pt when validation improved. Rerunning the same command resumes from the checkpoint.

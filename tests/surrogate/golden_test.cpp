@@ -208,7 +208,7 @@ TEST(Golden, ForcedPoolIndicesAreChecked) {
 TEST(Golden, RealArchitectureHas600130Parameters) {
   const Network net = Network::load(kDir + "real.pkcnn");
   EXPECT_EQ(net.parameter_count(), 600130u);
-  // DESIGN.md: about 0.4 GFLOP per forward pass.
+  // docs/design/surrogate.md, "Architecture": about 0.4 GFLOP per forward pass.
   EXPECT_NEAR(net.flops_per_sample() / 1e9, 0.4, 0.1);
 }
 
