@@ -5,6 +5,7 @@
 #include <variant>
 
 #include <pybind11/pybind11.h>
+#include <pybind11/stl.h>  // std::optional fields: None when unset
 
 #include "core/option_table.hpp"
 
@@ -27,6 +28,8 @@ void bind_table(pybind11::class_<T>& c, const OptionTable<T>& table) {
             c.def_property(
                 e.key().c_str(), [get = field.get](const T& o) { return get(o); },
                 [set = field.set](T& o, const std::string& v) { set(o, v); }, doc.c_str());
+          else if constexpr (std::is_same_v<F, OptionalField<T>>)
+            c.def_readwrite(e.key().c_str(), field.field, doc.c_str());
           else
             c.def_readwrite(e.key().c_str(), field, doc.c_str());
         },
