@@ -1,0 +1,29 @@
+#pragma once
+// The options tables of the methods' own options (core/option_table.hpp): their validate()
+// checks, localize's and evaluate's method flags, the Python properties and docs/options.md are
+// made from these. Each table lives beside its struct's code.
+#include "core/option_table.hpp"
+
+namespace plumekit::methods {
+
+struct TrackingOptions;
+struct ParticleFilterOptions;
+struct PfMethodOptions;
+struct LevyTaxisOptions;
+struct LocalFrameworkOptions;
+struct MethodOptions;
+
+// The seeds' plume trackers (plume_tracking.cpp).
+const OptionTable<TrackingOptions>& tracking_option_table();
+// The particle filter (particle_filter.cpp) and its declaration rule (pf_method.cpp).
+const OptionTable<ParticleFilterOptions>& particle_filter_option_table();
+const OptionTable<PfMethodOptions>& pf_method_option_table();
+// Adaptive Lévy taxis (levy_taxis.cpp).
+const OptionTable<LevyTaxisOptions>& levy_option_table();
+// STE in the local framework (local_framework.cpp); its nested MH and navigation use STE's tables.
+const OptionTable<LocalFrameworkOptions>& local_option_table();
+// What MethodOptions adds to the methods' own: the run's step budget and the particle filter's
+// penalties, unset the seeds' best for the exploration (method_options.cpp).
+const OptionTable<MethodOptions>& method_option_table();
+
+}  // namespace plumekit::methods
