@@ -12,8 +12,11 @@
 #include "dataset/map_set.hpp"
 #include "dataset/option_tables.hpp"
 #include "dataset/random_maps.hpp"
+#include "methods/crosswind_search.hpp"
+#include "methods/kernel_dmv.hpp"
 #include "methods/method_options.hpp"
 #include "methods/option_tables.hpp"
+#include "methods/pf_method.hpp"
 #include "planner/planner.hpp"
 #include "run/evaluation.hpp"
 #include "run/option_tables.hpp"
@@ -73,9 +76,12 @@ std::string reference() {
                                    option_markdown(methods::tracking_option_table()),
                                    option_markdown(methods::particle_filter_option_table()),
                                    option_markdown(methods::pf_method_option_table()),
+                                   option_markdown(methods::sweep_option_table()),
                                    option_markdown(methods::levy_option_table()),
                                    option_markdown(methods::local_option_table()),
                                    option_markdown(methods::method_option_table()),
+                                   option_markdown(methods::gdm_option_table()),
+                                   option_markdown(methods::crosswind_search_option_table()),
                                    option_markdown(run::ste_option_table()),
                                    option_markdown(run::ste_likelihood_option_table()),
                                    option_markdown(run::team_option_table()),

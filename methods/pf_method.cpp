@@ -46,9 +46,19 @@ ParticleFilterOptions pf_options_for(PfExploration exploration, ParticleFilterOp
   return base;
 }
 
+const OptionTable<SweepPatternOptions>& sweep_option_table() {
+  using O = SweepPatternOptions;
+  static const OptionTable<O> table{
+      "Predefined sweep (methods::SweepPatternOptions)",
+      {{"sweep.step", "", &O::step, real_range(0.1, 100.0, "m"),
+        "Spacing of the sweep's lines and of the stops on a line, m"},
+       {"sweep.max_steps", "", &O::max_steps, count_range(1, 10000000),
+        "Stops before the sweep gives up (the run's step budget replaces it)"}}};
+  return table;
+}
+
 void SweepPatternOptions::validate() const {
-  check_range("sweep.step", step, 0.1, 100.0, "m", "the default is 1 m");
-  check_count("sweep.max_steps", max_steps, 1, 10000000, "the default is 2000");
+  plumekit::validate(sweep_option_table(), *this);
 }
 
 std::vector<Vec2> sweep_pattern(const SearchArea& area, Vec2 start, Vec2 wind, double step) {
