@@ -12,6 +12,7 @@
 #include "dataset/map_set.hpp"
 #include "dataset/option_tables.hpp"
 #include "dataset/random_maps.hpp"
+#include "map/ros_import.hpp"
 #include "methods/crosswind_search.hpp"
 #include "methods/kernel_dmv.hpp"
 #include "methods/method_options.hpp"
@@ -54,8 +55,9 @@ const char* const kPreamble =
 
 std::string reference() {
   std::string md = kPreamble;
-  // In the data flow's order: flow, world, datasets, planner, STE, runs.
-  for (const std::string& table : {option_markdown(cfd::flow_option_table()),
+  // In the data flow's order: maps, flow, world, datasets, planner, STE, methods, runs.
+  for (const std::string& table : {option_markdown(ros_import_option_table()),
+                                   option_markdown(cfd::flow_option_table()),
                                    option_markdown(cfd::openfoam_option_table()),
                                    option_markdown(cfd::advection_diffusion_option_table()),
                                    option_markdown(world::filament_option_table()),
