@@ -128,8 +128,11 @@ TEST(OptionTable, CliFlagsSetTheFieldsAndShowTheDefaults) {
   EXPECT_FALSE(toy.tidy);
   EXPECT_EQ(toy.label, "fancy");
   EXPECT_EQ(toy.colour, Colour::Blue);
-  // Errors name the flag, not the field.
+  // Errors name the flag, not the field, and only where the whole name stands.
   EXPECT_EQ(cli::with_flag_names(app, "toy.speed: must be ..."), "--speed: must be ...");
+  EXPECT_EQ(cli::with_flag_names(app, "see toy.speed."), "see --speed.");
+  EXPECT_EQ(cli::with_flag_names(app, "mytoy.speed_max: no; toy.speed.x: no"),
+            "mytoy.speed_max: no; toy.speed.x: no");
 }
 
 TEST(OptionTable, CliOnlyAddsTheNamedEntries) {
