@@ -13,6 +13,7 @@
 #include "dataset/option_tables.hpp"
 #include "dataset/random_maps.hpp"
 #include "map/ros_import.hpp"
+#include "methods/apf_planner.hpp"
 #include "methods/crosswind_search.hpp"
 #include "methods/kernel_dmv.hpp"
 #include "methods/method_options.hpp"
@@ -82,6 +83,7 @@ std::string reference() {
                                    option_markdown(methods::levy_option_table()),
                                    option_markdown(methods::local_option_table()),
                                    option_markdown(methods::method_option_table()),
+                                   option_markdown(methods::apf_option_table()),
                                    option_markdown(methods::gdm_option_table()),
                                    option_markdown(methods::crosswind_search_option_table()),
                                    option_markdown(run::ste_option_table()),

@@ -202,16 +202,11 @@ void add_walk_options(CLI::App* cmd, run::MethodOptions& m) {
                     "APF: weights of the mean, variance and confidence terms, summing to 1 "
                     "(seed 000 ch. 8's best)")
                  ->type_name("M,V,C")
-                 ->default_str("0.1,0.1,0.8"),
+                 ->default_str(methods::default_weights()),
              "apf.beta_c");
-  bind_field(cmd,
-             cmd->add_option_function<std::string>(
-                    "--apf-locality",
-                    [&m](const std::string& s) { m.apf.locality = methods::parse_locality(s); },
-                    "APF: which of the suggestions to take: none (the best), closest (A) or "
-                    "most-suggested (B)")
-                 ->default_str(to_string(m.apf.locality)),
-             "apf.locality");
+  bind_field_label(cmd, "apf.beta_m", "--apf-weights' M");
+  bind_field_label(cmd, "apf.beta_v", "--apf-weights' V");
+  add_table_flags(cmd, m.apf, methods::apf_option_table(), {"apf.locality"});
   add_table_flags(cmd, m.levy, methods::levy_option_table());
   add_table_flags(cmd, m.local, methods::local_option_table(), {"local.budget", "local.map_size"});
 }

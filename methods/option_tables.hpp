@@ -13,6 +13,7 @@ struct LevyTaxisOptions;
 struct LocalFrameworkOptions;
 struct MethodOptions;
 struct GdmOptions;
+struct ApfOptions;
 struct SweepPatternOptions;
 struct CrosswindSearchOptions;
 
@@ -30,6 +31,8 @@ const OptionTable<LocalFrameworkOptions>& local_option_table();
 // What MethodOptions adds to the methods' own: the run's step budget and the particle filter's
 // penalties, unset the seeds' best for the exploration (method_options.cpp).
 const OptionTable<MethodOptions>& method_option_table();
+// Adaptive sampling for gas mapping, the APF (apf_planner.cpp).
+const OptionTable<ApfOptions>& apf_option_table();
 // Gas distribution mapping, Kernel DM+V and DM+V/W (kernel_dmv.cpp).
 const OptionTable<GdmOptions>& gdm_option_table();
 // The tunnel's crosswind trackers: surge-cast, surge-spiral, Lévy (crosswind_search.cpp).
