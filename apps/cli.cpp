@@ -1,6 +1,7 @@
 #include "apps/cli.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <iostream>
 #include <map>
@@ -81,6 +82,23 @@ void bind_field_label(CLI::App* command, const std::string& field, const std::st
   bound_fields()[command][field] = label;
 }
 
+namespace {
+
+bool name_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
+
+// Whether `length` characters at `at` are a whole field name, not part of a longer one
+// ("pf.beta" in "apf.beta_m"); a sentence's full stop may follow it.
+bool whole_name(const std::string& text, std::size_t at, std::size_t length) {
+  if (at > 0 && (name_char(text[at - 1]) || text[at - 1] == '.')) return false;
+  const std::size_t end = at + length;
+  if (end < text.size() && name_char(text[end])) return false;
+  return !(end + 1 < text.size() && text[end] == '.' && name_char(text[end + 1]));
+}
+
+}  // namespace
+
 std::string with_flag_names(const CLI::App& command, std::string message) {
   std::map<std::string, std::string> fields;  // the nearest binding wins
   for (const CLI::App* app = &command; app; app = app->get_parent())
@@ -91,9 +109,14 @@ std::string with_flag_names(const CLI::App& command, std::string message) {
   std::sort(order.begin(), order.end(),
             [](const auto& a, const auto& b) { return a.first.size() > b.first.size(); });
   for (const auto& [field, flag] : order)
-    for (std::size_t at = message.find(field); at != std::string::npos;
-         at = message.find(field, at + flag.size()))
+    for (std::size_t at = message.find(field); at != std::string::npos;) {
+      if (!whole_name(message, at, field.size())) {
+        at = message.find(field, at + 1);
+        continue;
+      }
       message.replace(at, field.size(), flag);
+      at = message.find(field, at + flag.size());
+    }
   return message;
 }
 

@@ -59,7 +59,8 @@ std::string with_flag_names(const CLI::App& command, std::string message);
 
 // Adds the flag of one options-table entry (core/option_table.hpp) to
 // `command`, bound to its field in `options` (which must outlive the parse):
-// a number or a name takes a value and --help shows the struct's default; a
+// a number or a name takes a value and --help shows the struct's default (an
+// optional number's unset text ends its help); a
 // bool that is false by default is a switch, one that is true takes true/false.
 template <class T>
 CLI::Option* add_table_flag(CLI::App* command, T& options, const OptionEntry<T>& e) {
@@ -71,6 +72,11 @@ CLI::Option* add_table_flag(CLI::App* command, T& options, const OptionEntry<T>&
           return command->add_option_function<std::string>(
               e.flag, [&options, set = field.set](const std::string& v) { set(options, v); },
               e.help);
+        } else if constexpr (std::is_same_v<F, OptionalField<T>>) {
+          // Unset is a choice made elsewhere, in words: said in the help, not as a value.
+          return command->add_option_function<double>(
+              e.flag, [&options, f = field.field](double v) { options.*f = v; },
+              e.help + " (default: " + default_text(e) + ")");
         } else if constexpr (std::is_same_v<F, bool T::*>) {
           if (!(options.*field)) return command->add_flag(e.flag, options.*field, e.help);
           return command->add_option(e.flag, options.*field, e.help);
@@ -79,6 +85,7 @@ CLI::Option* add_table_flag(CLI::App* command, T& options, const OptionEntry<T>&
         }
       },
       e.field);
+  if (std::holds_alternative<OptionalField<T>>(e.field)) return bind_field(command, option, e.name);
   if (!std::holds_alternative<bool T::*>(e.field) || option->get_expected_min() > 0)
     option->default_str(value_text(e, options));
   return bind_field(command, option, e.name);

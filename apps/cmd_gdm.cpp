@@ -13,6 +13,7 @@
 #include "core/thread_pool.hpp"
 #include "map/map_json.hpp"
 #include "methods/kernel_dmv.hpp"
+#include "methods/option_tables.hpp"
 #include "run/gdm_render.hpp"
 #include "run/gdm_report.hpp"
 #include "run/gdm_samples.hpp"
@@ -25,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 struct GdmArgs {
-  std::string map, samples, run, out, source, wind, background = "mean";
+  std::string map, samples, run, out, source, wind;
   bool map_given = false;  // MAP typed: it replaces the map a --run recorded
   int threads = kDefaultThreads;
   methods::GdmOptions options;
@@ -33,30 +34,7 @@ struct GdmArgs {
 };
 
 void bind_gdm_options(CLI::App* cmd, GdmArgs& a) {
-  methods::GdmOptions& o = a.options;
-  bind_field(cmd, cmd->add_option("--map-cell", o.cell, "The gas map's cell, m"), "gdm.cell")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--kernel-width", o.kernel_width,
-                             "The kernel's sigma, m (seed 000: 0.4 for samples 1 m apart)"),
-             "gdm.kernel_width")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--sigma-omega", o.sigma_omega,
-                             "Confidence scale: alpha = 1 - exp(-Omega / sigma_omega^2)"),
-             "gdm.sigma_omega")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--wind-stretch", o.wind_stretch,
-                             "gamma, s: 0 gives Kernel DM+V; more stretches each kernel along its "
-                             "sample's wind (Kernel DM+V/W; seed 000: 0.2-0.6)"),
-             "gdm.wind_stretch")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--background", a.background,
-                             "What a cell far from every sample shows: the readings' mean or min"),
-             "gdm.background")
-      ->capture_default_str();
+  add_table_flags(cmd, a.options, methods::gdm_option_table());
 }
 
 // The map and samples to work on: the CSV's on MAP, or a run's on the map it recorded (MAP when
@@ -137,7 +115,6 @@ void add_gdm_commands(CLI::App& app) {
   cmd->callback([a, cmd] {
     if (a->samples.empty() && a->run.empty())
       throw OptionError("gdm.samples", "give --samples CSV or --run DIR");
-    a->options.background = methods::parse_background(a->background);
     a->options.validate();
     check_count("gdm.threads", a->threads, 0, 1024, "0 means one per core");
     a->map_given = cmd->get_option("MAP")->count() > 0;

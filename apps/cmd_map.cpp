@@ -186,27 +186,14 @@ void add_import_ros(CLI::App& map_cmd) {
   cmd->add_option("MAP_YAML", a->yaml, "map_server YAML file")->required();
   cmd->add_option("--out,-o", a->out, "plumekit map file to write (new, or one plumekit wrote)")
       ->required();
-  bind_field(cmd,
-             cmd->add_option("--simplify", a->options.simplify_px,
-                             "Douglas-Peucker tolerance for obstacle outlines, in pixels"),
-             "ros.simplify_px")
-      ->capture_default_str();
+  const OptionTable<RosImportOptions>& table = ros_import_option_table();
+  add_table_flags(cmd, a->options, table, {"ros.simplify_px"});
   bind_field(cmd,
              cmd->add_option("--unknown", a->unknown, "How to treat unknown (unexplored) pixels")
                  ->capture_default_str()
                  ->check(CLI::IsMember({"occupied", "free"})),
              "ros.unknown");
-  bind_field(cmd,
-             cmd->add_option("--min-area", a->options.min_area_px,
-                             "Drop occupied specks with fewer pixels than this"),
-             "ros.min_area_px")
-      ->capture_default_str();
-  bind_field(cmd,
-             cmd->add_option("--close-gaps", a->options.close_gaps_m,
-                             "Close free gaps narrower than this (m) between occupied regions "
-                             "or the image's edge (0: none)"),
-             "ros.close_gaps_m")
-      ->capture_default_str();
+  add_table_flags(cmd, a->options, table, {"ros.min_area_px", "ros.close_gaps_m"});
   bind_field(cmd,
              cmd->add_option("--inlet", a->options.inlets,
                              "Inlet X1,Y1,X2,Y2[,SPEED[,PROFILE]] in the map frame (m; m/s, "
@@ -222,11 +209,7 @@ void add_import_ros(CLI::App& map_cmd) {
                  ->expected(1)
                  ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll),
              "ros.outlets");
-  bind_field(cmd,
-             cmd->add_option("--snap", a->options.snap_px,
-                             "How far (pixels) a given opening may move onto the boundary"),
-             "ros.snap_px")
-      ->capture_default_str();
+  add_table_flags(cmd, a->options, table, {"ros.snap_px"});
   cmd->add_option("--source", a->sources,
                   "Ground-truth source X,Y in the map frame (m), for `evaluate`; repeat for more")
       ->expected(1)

@@ -12,9 +12,17 @@
 #include "dataset/map_set.hpp"
 #include "dataset/option_tables.hpp"
 #include "dataset/random_maps.hpp"
+#include "map/ros_import.hpp"
+#include "methods/apf_planner.hpp"
+#include "methods/crosswind_search.hpp"
+#include "methods/kernel_dmv.hpp"
+#include "methods/method_options.hpp"
+#include "methods/option_tables.hpp"
+#include "methods/pf_method.hpp"
 #include "planner/planner.hpp"
 #include "run/evaluation.hpp"
 #include "run/option_tables.hpp"
+#include "run/scenario.hpp"
 #include "run/team.hpp"
 #include "run/tunnel_run.hpp"
 #include "ste/gaussian_plume.hpp"
@@ -43,13 +51,14 @@ const char* const kPreamble =
     "To add or change an option, edit its entry in the struct's table (next to the struct's "
     "`validate()`): the check, the flag's help and default, the Python property and this page "
     "all follow from it. Then regenerate this page; the test `OptionsDoc.MatchesTheCode` fails "
-    "until it matches. Options not listed here (the localization methods', the plume model "
-    "choice, lists and seeds) are still checked and bound by hand.\n";
+    "until it matches. Options not listed here (the APF's, lists, seeds, and flags that also take "
+    "a preset's name) are still checked and bound by hand.\n";
 
 std::string reference() {
   std::string md = kPreamble;
-  // In the data flow's order: flow, world, datasets, planner, STE, runs.
-  for (const std::string& table : {option_markdown(cfd::flow_option_table()),
+  // In the data flow's order: maps, flow, world, datasets, planner, STE, methods, runs.
+  for (const std::string& table : {option_markdown(ros_import_option_table()),
+                                   option_markdown(cfd::flow_option_table()),
                                    option_markdown(cfd::openfoam_option_table()),
                                    option_markdown(cfd::advection_diffusion_option_table()),
                                    option_markdown(world::filament_option_table()),
@@ -67,6 +76,18 @@ std::string reference() {
                                    option_markdown(ste::physics_option_table()),
                                    option_markdown(ste::gaussian_option_table()),
                                    option_markdown(ste::ste3d_option_table()),
+                                   option_markdown(methods::tracking_option_table()),
+                                   option_markdown(methods::particle_filter_option_table()),
+                                   option_markdown(methods::pf_method_option_table()),
+                                   option_markdown(methods::sweep_option_table()),
+                                   option_markdown(methods::levy_option_table()),
+                                   option_markdown(methods::local_option_table()),
+                                   option_markdown(methods::method_option_table()),
+                                   option_markdown(methods::apf_option_table()),
+                                   option_markdown(methods::gdm_option_table()),
+                                   option_markdown(methods::crosswind_search_option_table()),
+                                   option_markdown(run::ste_option_table()),
+                                   option_markdown(run::ste_likelihood_option_table()),
                                    option_markdown(run::team_option_table()),
                                    option_markdown(run::evaluation_option_table()),
                                    option_markdown(run::tunnel_option_table())})

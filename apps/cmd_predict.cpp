@@ -82,7 +82,9 @@ void add_predict_commands(CLI::App& app) {
     std::optional<cfd::WindField> wind;
     double flow_s = 0.0;
     if (surrogate::PlumeNetwork::takes_wind(*network)) {
-      check_range("flow.cell", a->flow_cell, 0.01, 1.0, "m", "the default is 0.1 m");
+      check_range(
+          "flow.cell", a->flow_cell, 0.01, 1.0, "m",
+          "the default is the model's wind cell, " + compact(surrogate::kModelWindCell) + " m");
       const auto tw = std::chrono::steady_clock::now();
       wind = surrogate::model_wind(map, a->flow_cell, a->wind);
       flow_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - tw).count();

@@ -16,6 +16,7 @@
 #include "cfd/wind_file.hpp"
 #include "core/option_check.hpp"
 #include "core/progress.hpp"
+#include "methods/option_tables.hpp"
 #include "run/demo.hpp"
 #include "run/evaluate_job.hpp"
 #include "run/evaluation.hpp"
@@ -41,69 +42,18 @@ void bind_to(CLI::App* cmd, const std::string& flag, T& field, const std::string
   bind_field(cmd, cmd->add_option(flag, field, help), name)->capture_default_str();
 }
 
-// A flag that sets an optional field (unset: the plume model's default, said in `help`).
-void bind_optional(CLI::App* cmd, const std::string& flag, std::optional<double>& field,
-                   const std::string& help, const std::string& name) {
-  bind_field(cmd,
-             cmd->add_option_function<double>(
-                 flag, [&field](double v) { field = v; }, help),
-             name);
-}
-
 // The plume model, the CNN file, the likelihood: what depends on the model.
 void add_model_options(CLI::App* cmd, run::SteOptions& o) {
-  bind_field(cmd,
-             cmd->add_option_function<std::string>(
-                    "--plume-model",
-                    [&o](const std::string& s) { o.model = run::parse_plume_model_kind(s); },
-                    "surrogate (the CNN), gaussian or physics")
-                 ->default_str(to_string(o.model)),
-             "ste.model");
+  const OptionTable<run::SteOptions>& table = run::ste_option_table();
+  add_table_flags(cmd, o, table, {"ste.model"});
   o.model_path = shipped_cnn().string();  // the library leaves where the shipped CNN is to us
-  bind_to(cmd, "--cnn", o.model_path, "CNN model file of the surrogate plume model",
-          "ste.model_path");
+  add_table_flags(cmd, o, table, {"ste.model_path"});
   add_deprecated_alias(cmd, "--model", "--cnn", o.model_path);
-  const ste::LikelihoodOptions s = run::default_likelihood(run::PlumeModelKind::Surrogate),
-                               p = run::default_likelihood(run::PlumeModelKind::Physics),
-                               g = run::default_likelihood(run::PlumeModelKind::Gaussian);
-  bind_optional(cmd, "--sigma-m", o.likelihood.sigma_m,
-                "Model error sigma_M, concentration units (default: " + compact(s.sigma_m) +
-                    " for the surrogate, about the shipped model's RMSE on the test maps; " +
-                    compact(p.sigma_m) + " for physics, chosen on held-out maps; " +
-                    compact(g.sigma_m) +
-                    " for gaussian, the thesis's; pass 30 for the thesis's physics)",
-                "ste.likelihood.sigma_m");
-  bind_to(cmd, "--sigma-d", o.likelihood.sigma_d, "Measurement error sigma_D, concentration units",
-          "ste.likelihood.sigma_d");
-  bind_optional(cmd, "--sigma-rel", o.likelihood.sigma_rel,
-                "Model error relative to the predicted concentration, added in quadrature to "
-                "sigma_M (default: " +
-                    compact(p.sigma_rel) +
-                    " for physics, chosen on held-out buildings; 0 for the others)",
-                "ste.likelihood.sigma_rel");
-  bind_optional(cmd, "--sigma-std", o.likelihood.sigma_std,
-                "Model error in units of the surrogate's predicted std of the readings, added in "
-                "quadrature (default: " +
-                    compact(s.sigma_std) + " for the surrogate; the other models predict no std)",
-                "ste.likelihood.sigma_std");
-  bind_optional(cmd, "--source-cell", o.source_cell,
-                "Candidate source grid, m (surrogate, physics; default: " +
-                    compact(ste::SurrogatePlumeOptions{}.source_cell) + " for the surrogate, " +
-                    compact(o.physics.source_cell) + " for physics)",
-                "ste.source_cell");
-  bind_optional(cmd, "--table-cell", o.table_cell,
-                "The surrogate's table grid, m: one network run per free cell, each candidate "
-                "source reads the cells around it (default: the source cell, coarser on maps of "
-                "over 100 m^2 free: about " +
-                    compact(run::kSurrogateTableCells) + " cells)",
-                "ste.table_cell");
-  bind_to(cmd, "--diffusivity", o.physics.advection_diffusion.diffusivity,
-          "Eddy diffusivity of the physics model, m^2/s", "plume.diffusivity");
-  bind_to(cmd, "--decay-rate", o.physics.advection_diffusion.decay_rate,
-          "First-order decay rate of the physics model's gas, 1/s (default: 1/28, the filament "
-          "world's, whose filaments are dropped 28 s after release; 0: none, the model before "
-          "issue 17; docs/validation.md, \"Floors\")",
-          "plume.decay_rate");
+  add_table_flags(cmd, o.likelihood, run::ste_likelihood_option_table());
+  add_table_flags(cmd, o, table, {"ste.source_cell", "ste.table_cell"});
+  add_table_flags(cmd, o.physics.advection_diffusion, cfd::advection_diffusion_option_table(),
+                  {"plume.diffusivity", "plume.decay_rate"});
+  const std::string known = default_text(ste::physics_option_table().entry("ste.physics.scale_lo"));
   bind_field(cmd,
              bind_field(cmd,
                         cmd->add_option_function<std::string>(
@@ -116,11 +66,10 @@ void add_model_options(CLI::App* cmd, run::SteOptions& o) {
                             "LO,HI: estimate the release rate as a scale in [LO, HI] of the "
                             "nominal 1000, marginalised in closed form (surrogate, physics; "
                             "default: known, " +
-                                compact(o.physics.scale_lo) + ")"),
+                                known + ")"),
                         "ste.physics.scale_lo"),
              "ste.physics.scale_hi");
-  bind_to(cmd, "--table-cache", o.table_cache,
-          "Folder caching surrogate tables (keyed by map and model hashes)", "ste.table_cache");
+  add_table_flags(cmd, o, table, {"ste.table_cache"});
 }
 
 // `text` as a number, for a flag that also takes a preset's name (handled by
@@ -140,10 +89,7 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
           "The true source's release rate in the world, concentration units * m^2/s (the plume "
           "models' nominal is 1000; --release-scale lets STE estimate another)",
           "plume.release_rate");
-  bind_to(cmd, "--success-radius", o.success_radius,
-          "End a run as soon as the robot comes this close to the source, on its way too, m "
-          "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
-          "ste.success_radius");
+  add_table_flags(cmd, o, run::ste_option_table(), {"ste.success_radius"});
   add_table_flags(
       cmd, o.world, world::world_option_table(),
       {"ste.world.noise", "ste.world.speed", "ste.world.sample_s", "ste.world.sample_rate"});
@@ -195,7 +141,7 @@ void add_team_options(CLI::App* cmd, run::TeamOptions& t) {
 void add_run_options(CLI::App* cmd, run::SteOptions& o) {
   add_robot_world_options(cmd, o);
   add_table_flags(cmd, o.navigation, ste::navigation_option_table());
-  bind_to(cmd, "--margin", o.margin, "Planner clearance from obstacles, m", "ste.margin");
+  add_table_flags(cmd, o, run::ste_option_table(), {"ste.margin"});
   add_table_flags(cmd, o.stop, ste::stop_option_table());
   add_table_flags(cmd, o.flow, cfd::flow_option_table(), {"flow.cell"});
   add_team_options(cmd, o.team);
@@ -226,55 +172,12 @@ void add_method_options(CLI::App* cmd, run::MethodOptions& m,
   CLI::Option* option = several ? cmd->add_option_function<std::string>("--method", list, help)
                                 : cmd->add_option_function<std::string>("--method", one, help);
   bind_field(cmd, option->default_str(m.name), "ste.method");
-  methods::TrackingOptions& t = m.tracking;
-  bind_to(cmd, "--track-step", t.step,
-          "Step of the trackers and the particle filter's exploration, m (the seeds': 1)",
-          "tracking.step");
-  bind_to(cmd, "--detection-threshold", t.detection_threshold,
-          "A stop detects gas above this mean reading, concentration units (trackers; the "
-          "particle filter's lower detection limit)",
-          "tracking.detection_threshold");
-  bind_to(cmd, "--zigzag-angle", t.zigzag_alpha_deg, "Zigzag legs' angle off upwind, degrees",
-          "tracking.zigzag_alpha_deg");
-  bind_field(cmd,
-             cmd->add_option_function<std::string>(
-                    "--zigzag-flip",
-                    [&t](const std::string& s) {
-                      if (s != "loss" && s != "detection")
-                        throw OptionError("tracking.zigzag_flip",
-                                          "expected loss or detection, got '" + s + "'");
-                      t.zigzag_flip = s == "loss" ? methods::ZigzagFlip::OnLoss
-                                                  : methods::ZigzagFlip::OnDetection;
-                    },
-                    "When the zigzag turns: loss (seed 002: the reading falls below the "
-                    "threshold) or detection (seed 000's list)")
-                 ->default_str("loss"),
-             "tracking.zigzag_flip");
-  bind_to(cmd, "--gradient-angle", t.gradient_beta_deg,
-          "Pseudo-gradient's largest turn off upwind beta, degrees", "tracking.gradient_beta_deg");
-  bind_to(cmd, "--max-casts", t.max_casts, "Surge-cast: casts before it sweeps again",
-          "tracking.max_casts");
-  bind_to(cmd, "--max-misses", t.max_misses,
-          "Zigzag: non-detections in a row before it sweeps again", "tracking.max_misses");
-  bind_to(cmd, "--max-steps", m.max_steps,
-          "Stops of a tracker or particle filter run at most (0: two per square step of the "
-          "arena, at least 50)",
-          "tracking.max_steps");
-  bind_to(cmd, "--particles", m.pf.filter.particles, "Particle filter: particles", "pf.particles");
-  bind_to(cmd, "--declare-iterations", m.pf.declare_iterations,
-          "Particle filter: declare when the estimate stayed within --declare-radius this many "
-          "iterations (0: never; Li et al.'s 20)",
-          "pf.declare_iterations");
-  bind_to(cmd, "--declare-radius", m.pf.declare_radius,
-          "Particle filter: the declaration's radius, m", "pf.declare_radius");
-  bind_optional(cmd, "--pf-alpha", m.pf_alpha,
-                "Particle filter: penalty alpha of a particle outside the patch path envelope "
-                "on a detection (default: 0.2 with pf-gradient, 0.4 with pf-sweep, seed 001)",
-                "pf.alpha");
-  bind_optional(cmd, "--pf-beta", m.pf_beta,
-                "Particle filter: penalty beta on a non-detection (default: 0.8 with "
-                "pf-gradient, 0.9 with pf-sweep, seed 001)",
-                "pf.beta");
+  add_table_flags(cmd, m.tracking, methods::tracking_option_table());
+  add_table_flags(cmd, m, methods::method_option_table(), {"tracking.max_steps"});
+  add_table_flags(cmd, m.pf.filter, methods::particle_filter_option_table(), {"pf.particles"});
+  add_table_flags(cmd, m.pf, methods::pf_method_option_table(),
+                  {"pf.declare_iterations", "pf.declare_radius"});
+  add_table_flags(cmd, m, methods::method_option_table(), {"pf.alpha", "pf.beta"});
   add_walk_options(cmd, m);
 }
 
@@ -293,26 +196,13 @@ void add_walk_options(CLI::App* cmd, run::MethodOptions& m) {
                     "APF: weights of the mean, variance and confidence terms, summing to 1 "
                     "(seed 000 ch. 8's best)")
                  ->type_name("M,V,C")
-                 ->default_str("0.1,0.1,0.8"),
+                 ->default_str(methods::default_weights()),
              "apf.beta_c");
-  bind_field(cmd,
-             cmd->add_option_function<std::string>(
-                    "--apf-locality",
-                    [&m](const std::string& s) { m.apf.locality = methods::parse_locality(s); },
-                    "APF: which of the suggestions to take: none (the best), closest (A) or "
-                    "most-suggested (B)")
-                 ->default_str(to_string(m.apf.locality)),
-             "apf.locality");
-  bind_to(cmd, "--levy-threshold", m.levy.gradient_threshold,
-          "Lévy taxis: a change of the reading between stops from which the walk is all "
-          "exploitation (longest, straightest moves), concentration units (theta of seed 004 "
-          "Eq. 16.3, which it does not give; docs/methods.md)",
-          "levy.gradient_threshold");
-  bind_to(cmd, "--budget", m.local.budget,
-          "ste-local: samples per local map when nothing is learnt, B_0 of seed 004 Eq. 12.1",
-          "local.budget");
-  bind_to(cmd, "--local-map", m.local.map_size, "ste-local: the local map's side, m",
-          "local.map_size");
+  bind_field_label(cmd, "apf.beta_m", "--apf-weights' M");
+  bind_field_label(cmd, "apf.beta_v", "--apf-weights' V");
+  add_table_flags(cmd, m.apf, methods::apf_option_table(), {"apf.locality"});
+  add_table_flags(cmd, m.levy, methods::levy_option_table());
+  add_table_flags(cmd, m.local, methods::local_option_table(), {"local.budget", "local.map_size"});
 }
 
 void add_ste_options(CLI::App* cmd, run::SteOptions& o,

@@ -12,6 +12,7 @@
 #include "core/progress.hpp"
 #include "core/seed.hpp"
 #include "core/thread_pool.hpp"
+#include "methods/option_tables.hpp"
 #include "methods/registry.hpp"
 #include "run/tunnel_job.hpp"
 #include "run/tunnel_run.hpp"
@@ -72,12 +73,8 @@ void add_tunnel_options(CLI::App* cmd, run::TunnelOptions& o) {
              "ste.world.noise")
       ->capture_default_str();
   add_gas_sensor_options(cmd, o.world.sensor, "The robot's");
-  bind_field(cmd,
-             cmd->add_option("--threshold", o.search.threshold,
-                             "Trackers: the share of the first readings taken as in the plume "
-                             "(Table 17.1: 0.7 or 0.9)"),
-             "tunnel.search.threshold")
-      ->capture_default_str();
+  add_table_flags(cmd, o.search, methods::crosswind_search_option_table(),
+                  {"tunnel.search.threshold"});
   add_table_flags(cmd, o, run::tunnel_option_table(),
                   {"tunnel.time_limit_s", "tunnel.start_downwind"});
   add_table_flags(cmd, o.ste, ste::ste3d_option_table(), {"tunnel.ste.max_samples"});

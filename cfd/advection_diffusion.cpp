@@ -53,12 +53,16 @@ const OptionTable<AdvectionDiffusionOptions>& advection_diffusion_option_table()
   static const OptionTable<O> table{
       "Advection-diffusion plume (cfd::AdvectionDiffusionOptions)",
       {{"plume.diffusivity", "--diffusivity", &O::diffusivity, positive(100.0, "m^2/s"),
-        "advection-diffusion: eddy diffusivity, m^2/s"},
+        "Eddy diffusivity of the advection-diffusion plume (the dataset's; STE's physics "
+        "model's), m^2/s"},
        {"plume.release_rate", "", &O::release_rate, positive(1e9, "concentration units * m^2/s"),
         "Release rate per metre of depth (concentration units * m^2/s)",
         "the default is {default}"},
-       {"plume.decay_rate", "", &O::decay_rate, non_negative(100.0, "1/s"),
-        "First-order decay rate, 1/s (0: no decay)", "the default is {default} (no decay)"}}};
+       {"plume.decay_rate", "--decay-rate", &O::decay_rate, non_negative(100.0, "1/s"),
+        "First-order decay rate of the gas, 1/s (0: no decay; STE's physics model takes the "
+        "filament world's, whose filaments are dropped after a fixed lifetime: "
+        "docs/design/ste.md, \"Floors\")",
+        "0 means no decay"}}};
   return table;
 }
 

@@ -8,6 +8,7 @@
 // (`plumekit options --markdown`) are all made from the table.
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -36,8 +37,24 @@ EnumField<T> enum_field(E T::*field, const char* (*name)(E), E (*parse)(const st
           std::move(names)};
 }
 
+// An optional number whose unset value is chosen elsewhere (by the plume model, the method):
+// `unset` says what it then is, computed by the code that chooses it, so that the docs and
+// --help never repeat a number ("200 for the surrogate, 150 for physics, 30 for gaussian").
 template <class T>
-using OptionField = std::variant<double T::*, int T::*, bool T::*, std::string T::*, EnumField<T>>;
+struct OptionalField {
+  std::optional<double> T::*field;
+  std::function<std::string()> unset;
+};
+
+template <class T>
+OptionalField<T> optional_field(std::optional<double> T::*field,
+                                std::function<std::string()> unset) {
+  return {field, std::move(unset)};
+}
+
+template <class T>
+using OptionField = std::variant<double T::*, int T::*, bool T::*, std::string T::*, EnumField<T>,
+                                 OptionalField<T>>;
 
 // What a number is checked against (core/option_check.hpp's checks).
 struct OptionRange {
@@ -122,11 +139,15 @@ std::string value_text(const OptionEntry<T>& e, const T& options) {
         if constexpr (std::is_same_v<F, bool T::*>) return options.*field ? "true" : "false";
         if constexpr (std::is_same_v<F, std::string T::*>) return options.*field;
         if constexpr (std::is_same_v<F, EnumField<T>>) return field.get(options);
+        if constexpr (std::is_same_v<F, OptionalField<T>>) {
+          const std::optional<double>& value = options.*(field.field);
+          return value ? option_number(*value) : field.unset();
+        }
       },
       e.field);
 }
 
-// The default: the value in a default-constructed T.
+// The default: the value in a default-constructed T (an unset optional's `unset` text).
 template <class T>
 std::string default_text(const OptionEntry<T>& e) {
   return value_text(e, T{});
@@ -145,6 +166,11 @@ void validate_entry(const OptionEntry<T>& e, const T& options) {
   double value = 0.0;
   if (const auto* d = std::get_if<double T::*>(&e.field)) value = options.**d;
   if (const auto* i = std::get_if<int T::*>(&e.field)) value = options.**i;
+  if (const auto* o = std::get_if<OptionalField<T>>(&e.field)) {
+    const std::optional<double>& set = options.*(o->field);
+    if (!set) return;  // unset: the value chosen for it is checked where it is chosen
+    value = *set;
+  }
   if (r.zero_is_auto && value == 0.0) return;
   const std::string advice = option_advice(e.advice, default_text(e), r.unit);
   if (r.kind == OptionRange::Kind::Real)

@@ -306,6 +306,28 @@ std::vector<Polygon> occupancy_to_polygons(const cv::Mat& occupied, double resol
   return polygons;
 }
 
+const OptionTable<RosImportOptions>& ros_import_option_table() {
+  using O = RosImportOptions;
+  static const OptionTable<O> table{
+      "ROS map import (RosImportOptions)",
+      {{"ros.simplify_px", "--simplify", &O::simplify_px, non_negative(10.0, "px"),
+        "Douglas-Peucker tolerance for obstacle outlines, in pixels"},
+       {"ros.unknown_is_occupied",
+        "",
+        &O::unknown_is_occupied,
+        {},
+        "Unexplored pixels are obstacles (--unknown occupied|free)"},
+       {"ros.min_area_px", "--min-area", &O::min_area_px, non_negative(1e12, "px"),
+        "Drop occupied specks with fewer pixels than this", "0 keeps every speck"},
+       {"ros.close_gaps_m", "--close-gaps", &O::close_gaps_m, non_negative(100.0, "m"),
+        "Close free gaps narrower than this (m) between occupied regions or the image's edge "
+        "(0: none)",
+        "0 closes none"},
+       {"ros.snap_px", "--snap", &O::snap_px, non_negative(100.0, "px"),
+        "How far (pixels) a given opening may move onto the boundary"}}};
+  return table;
+}
+
 namespace {
 
 // What a map_server YAML file says.
@@ -381,10 +403,7 @@ cv::Mat threshold(const cv::Mat& image, const RosYaml& y, bool unknown_is_occupi
 }
 
 void check_options(const RosImportOptions& o) {
-  check_non_negative("ros.simplify_px", o.simplify_px, 10.0, "px", "the default is 0.75");
-  check_non_negative("ros.min_area_px", o.min_area_px, 1e12, "px", "0 keeps every speck");
-  check_non_negative("ros.close_gaps_m", o.close_gaps_m, 100.0, "m", "0 closes none");
-  check_non_negative("ros.snap_px", o.snap_px, 100.0, "px", "the default is 2");
+  plumekit::validate(ros_import_option_table(), o);
   if (o.inlets.empty() != o.outlets.empty())
     throw OptionError(o.inlets.empty() ? "ros.inlets" : "ros.outlets",
                       "give at least one inlet and one outlet, or neither (the default: the whole "

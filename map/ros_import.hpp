@@ -31,6 +31,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "core/option_table.hpp"
 #include "map/connectivity.hpp"
 #include "map/map.hpp"
 #include "map/occupancy_cleanup.hpp"
@@ -51,6 +52,10 @@ struct RosImportOptions {
   double snap_px = 2.0;  // how far (pixels) a typed opening may move onto the boundary
   std::string name;      // map name; default: the YAML's file stem
 };
+
+// Its numbers' table (core/option_table.hpp): their checks, `map import-ros`'s flags, the Python
+// properties and docs/options.md. The openings, the name and --unknown are bound by hand.
+const OptionTable<RosImportOptions>& ros_import_option_table();
 
 struct MaskPolygonStats {
   int pinches_filled = 0;  // pixels set to remove diagonal-only contacts

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "methods/gdm_estimates.hpp"
+#include "methods/option_tables.hpp"
 
 namespace plumekit::methods {
 
@@ -82,24 +83,70 @@ GdmOptions ApfOptions::default_gdm() {
   return g;
 }
 
+const OptionTable<ApfOptions>& apf_option_table() {
+  using O = ApfOptions;
+  static const OptionTable<O> table{
+      "Adaptive sampling for gas mapping (methods::ApfOptions; --apf-weights sets the betas)",
+      {{"apf.beta_m", "", &O::beta_m, real_range(0.0, 1.0, ""),
+        "Weight of the mean term (eq. 8.4; the three weights sum to 1)",
+        "the seed's best is {default}"},
+       {"apf.beta_v", "", &O::beta_v, real_range(0.0, 1.0, ""), "Weight of the variance term",
+        "the seed's best is {default}"},
+       {"apf.beta_c", "", &O::beta_c, real_range(0.0, 1.0, ""), "Weight of the confidence term",
+        "the seed's best is {default}"},
+       {"apf.suggestions", "", &O::suggestions, count_range(1, 10000),
+        "Suggestions n_sp per decision", "the seed's n_sp is {default}"},
+       {"apf.charge", "", &O::charge, real_range(-1000.0, 0.0, ""),
+        "Charge q of each picked suggestion's repulsion (eq. 8.7; <= 0 repels)",
+        "q <= 0 repels; the seed's is {default}"},
+       {"apf.sigma_d", "", &O::sigma_d, positive(1000.0, "m"),
+        "Length of the repulsion q exp(-d / sigma_d), m", "the seed's is {default} m"},
+       {"apf.locality",
+        "--apf-locality",
+        enum_field(&O::locality, &to_string, &parse_locality, "none, closest, most-suggested"),
+        {},
+        "APF: which of the suggestions to take: none (the best), closest (A) or most-suggested "
+        "(B)"},
+       {"apf.counter_radius", "", &O::counter_radius, non_negative(100.0, "m"),
+        "Locality B: neighbours counted (and reset) with a cell, m", "the seed's is {default} m"},
+       {"apf.min_step", "", &O::min_step, non_negative(1000.0, "m"),
+        "Cells closer than this to the robot are never suggested, m",
+        "the seed's drone's is {default} m"},
+       {"apf.max_steps", "", &O::max_steps, count_range(1, 1000000),
+        "Stops before it gives up (the run's step budget replaces it)",
+        "the seed compared runs at {default}"},
+       {"apf.confidence_stop", "", &O::confidence_stop, real_range(0.0, 1.0, "", false, true),
+        "Stop once the confidence exceeds this in every free cell (0: never)",
+        "0 disables the stop; e.g. {default}"},
+       {"apf.normalise",
+        "",
+        &O::normalise,
+        {},
+        "Scale the mean and variance maps to [0, 1] over the free cells before weighting"},
+       {"apf.estimator",
+        "",
+        &O::estimator,
+        {},
+        "Which source estimate of the gas map it reports"}}};
+  return table;
+}
+
 void ApfOptions::validate() const {
-  check_range("apf.beta_m", beta_m, 0.0, 1.0, "", "the seed's best is 0.1");
-  check_range("apf.beta_v", beta_v, 0.0, 1.0, "", "the seed's best is 0.1");
-  check_range("apf.beta_c", beta_c, 0.0, 1.0, "", "the seed's best is 0.8");
+  const OptionTable<ApfOptions>& table = apf_option_table();
+  for (const char* name : {"apf.beta_m", "apf.beta_v", "apf.beta_c"})
+    validate_entry(table.entry(name), *this);
   const double sum = beta_m + beta_v + beta_c;
   if (std::abs(sum - 1.0) > 1e-6)
     throw OptionError("apf.beta_c", "beta_m + beta_v + beta_c must be 1 (seed 000 eq. 8.5), got " +
-                                        compact(sum) + "; the seed's best is 0.1, 0.1, 0.8");
-  check_count("apf.suggestions", suggestions, 1, 10000, "the seed's n_sp is 10");
-  check_range("apf.charge", charge, -1000.0, 0.0, "", "q <= 0 repels; the seed's is -1");
-  check_positive("apf.sigma_d", sigma_d, 1000.0, "m", "the seed's is 1 m");
-  check_non_negative("apf.counter_radius", counter_radius, 100.0, "m", "the seed's is 0.5 m");
-  check_non_negative("apf.min_step", min_step, 1000.0, "m", "the seed's drone's is 1 m");
-  check_count("apf.max_steps", max_steps, 1, 1000000, "the seed compared runs at 206");
-  check_range("apf.confidence_stop", confidence_stop, 0.0, 1.0, "", "0 disables the stop; e.g. 0.9",
-              false, true);
+                                        compact(sum) + "; the seed's best is " + default_weights());
+  plumekit::validate(table, *this);
   check_name("apf.estimator", estimator, estimator_names());
   gdm.validate();
+}
+
+std::string default_weights() {
+  const ApfOptions o;
+  return option_number(o.beta_m) + "," + option_number(o.beta_v) + "," + option_number(o.beta_c);
 }
 
 Grid<double> apf_field(const GdmMaps& maps, const ApfOptions& o) {

@@ -56,6 +56,9 @@ struct ApfOptions {
   void validate() const;
 };
 
+// The default weights as --apf-weights takes them: "0.1,0.1,0.8".
+std::string default_weights();
+
 // beta_m r' + beta_v v' - beta_c alpha per cell (eqs. 8.1-8.4), r' and v' the mean and variance,
 // normalised when options.normalise; NaN in obstacle cells.
 Grid<double> apf_field(const GdmMaps& maps, const ApfOptions& options);

@@ -9,6 +9,7 @@
 #include "core/option_check.hpp"
 #include "core/statistics.hpp"
 #include "methods/levy_taxis.hpp"
+#include "methods/option_tables.hpp"
 #include "methods/registry.hpp"
 
 namespace plumekit::methods {
@@ -30,21 +31,57 @@ void check_finite(double value, const char* field) {
 
 }  // namespace
 
-void CrosswindSearchOptions::validate() const {
+const OptionTable<CrosswindSearchOptions>& crosswind_search_option_table() {
+  using O = CrosswindSearchOptions;
   const double inf = std::numeric_limits<double>::infinity();
-  check_positive("tunnel.search.step", step, 10.0, "m", "the thesis's 50 mm/s for 1 s: 0.05 m");
-  check_range("tunnel.search.levy_mu", levy_mu, 1.0, 3.0, "", "1 < mu <= 3; the thesis's 3", true);
-  check_positive("tunnel.search.levy_min", levy_min, 100.0, "m", "the thesis's 0.5 m");
+  static const OptionTable<O> table{
+      "The tunnel's trackers (methods::CrosswindSearchOptions)",
+      {{"tunnel.search.step", "", &O::step, positive(10.0, "m"),
+        "Travel per decision, m (the thesis's 50 mm/s for 1 s)",
+        "the thesis's 50 mm/s for 1 s: {default} m"},
+       {"tunnel.search.levy_mu", "", &O::levy_mu, real_range(1.0, 3.0, "", true),
+        "Exponent mu of the Lévy walk's moves (seed 004 Eq. 17.1)",
+        "1 < mu <= 3; the thesis's {default}"},
+       {"tunnel.search.levy_min", "", &O::levy_min, positive(100.0, "m"),
+        "Shortest Lévy move L_min, m", "the thesis's {default} m"},
+       {"tunnel.search.levy_max",
+        "",
+        &O::levy_max,
+        {},
+        "Longest Lévy move (longer draws are cut to it), m",
+        "",
+        "more than tunnel.search.levy_min, at most 1000 m"},
+       {"tunnel.search.spiral_drift", "", &O::spiral_drift, positive(10.0, "m"),
+        "Radius the spiral gains per turn s_d, m (seed 004 Eq. 17.3)",
+        "the default is {default} m per turn"},
+       {"tunnel.search.cast", "", &O::cast, positive(100.0, "m"), "Cast width D_cast, m",
+        "the thesis's {default} m"},
+       {"tunnel.search.threshold", "--threshold", &O::threshold, real_range(0.0, 1.0, "", true),
+        "Trackers: the share of the first readings taken as in the plume (Table 17.1: 0.7 or "
+        "0.9)",
+        "the thesis's 0.7 or 0.9"},
+       {"tunnel.search.calibration", "", &O::calibration, count_range(1, 1000000),
+        "Readings that set the in-plume threshold"},
+       {"tunnel.search.detection", "", &O::detection, positive(inf, "concentration units"),
+        "The lowest reading that counts as gas, concentration units"},
+       {"tunnel.search.altitude", "", &O::altitude, real_range(-1e6, 1e6, "m"),
+        "Cast2d: the height the robot flies at, m (the runner sets it)",
+        "a height inside the tunnel"}}};
+  return table;
+}
+
+void CrosswindSearchOptions::validate() const {
+  const OptionTable<CrosswindSearchOptions>& table = crosswind_search_option_table();
+  for (const char* name : {"tunnel.search.step", "tunnel.search.levy_mu", "tunnel.search.levy_min"})
+    validate_entry(table.entry(name), *this);
   check_range("tunnel.search.levy_max", levy_max, levy_min, 1000.0, "m",
-              "it must exceed tunnel.search.levy_min; the default is 4 m", true);
-  check_positive("tunnel.search.spiral_drift", spiral_drift, 10.0, "m",
-                 "the default is 0.1 m per turn");
-  check_positive("tunnel.search.cast", cast, 100.0, "m", "the thesis's 0.43 m");
-  check_range("tunnel.search.threshold", threshold, 0.0, 1.0, "", "the thesis's 0.7 or 0.9", true);
-  check_count("tunnel.search.calibration", calibration, 1, 1000000, "the default is 20");
-  check_positive("tunnel.search.detection", detection, inf, "concentration units",
-                 "the default is 5");
-  check_range("tunnel.search.altitude", altitude, -1e6, 1e6, "m", "a height inside the tunnel");
+              "it must exceed tunnel.search.levy_min; the default is " +
+                  default_text(table.entry("tunnel.search.levy_max")) + " m",
+              true);
+  for (const char* name :
+       {"tunnel.search.spiral_drift", "tunnel.search.cast", "tunnel.search.threshold",
+        "tunnel.search.calibration", "tunnel.search.detection", "tunnel.search.altitude"})
+    validate_entry(table.entry(name), *this);
 }
 
 CrosswindSearch::CrosswindSearch(const Box3& tunnel, const CrosswindSearchOptions& options,

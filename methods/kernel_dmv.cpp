@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/option_check.hpp"
+#include "methods/option_tables.hpp"
 
 namespace plumekit::methods {
 
@@ -167,14 +168,32 @@ Background parse_background(const std::string& name) {
   throw OptionError("gdm.background", "unknown background '" + name + "'; use mean or min");
 }
 
-void GdmOptions::validate() const {
-  check_positive("gdm.cell", cell, 10.0, "m", "the default is 0.1 m");
+const OptionTable<GdmOptions>& gdm_option_table() {
+  using O = GdmOptions;
   // Lower bounds keep a kernel's peak 1 / (2 pi sigma^2) and Omega / sigma_omega^2 finite.
-  check_range("gdm.kernel_width", kernel_width, 1e-3, 100.0, "m", "the default is 0.4 m");
-  check_range("gdm.sigma_omega", sigma_omega, 1e-6, 1e6, "", "the default is 1");
-  check_non_negative("gdm.wind_stretch", wind_stretch, 100.0, "s",
-                     "0 (the default) gives Kernel DM+V; the seed used 0.2-0.6 s");
-  check_range("gdm.cutoff", cutoff, 1.0, 10.0, "kernel widths", "the default is 4");
+  static const OptionTable<O> table{
+      "Gas distribution mapping (methods::GdmOptions)",
+      {{"gdm.cell", "--map-cell", &O::cell, positive(10.0, "m"), "The gas map's cell, m"},
+       {"gdm.kernel_width", "--kernel-width", &O::kernel_width, real_range(1e-3, 100.0, "m"),
+        "The kernel's sigma, m (seed 000: 0.4 for samples 1 m apart)"},
+       {"gdm.sigma_omega", "--sigma-omega", &O::sigma_omega, real_range(1e-6, 1e6, ""),
+        "Confidence scale: alpha = 1 - exp(-Omega / sigma_omega^2)"},
+       {"gdm.wind_stretch", "--wind-stretch", &O::wind_stretch, non_negative(100.0, "s"),
+        "gamma, s: 0 gives Kernel DM+V; more stretches each kernel along its sample's wind "
+        "(Kernel DM+V/W; seed 000: 0.2-0.6)",
+        "0 (the default) gives Kernel DM+V; the seed used 0.2-0.6 s"},
+       {"gdm.background",
+        "--background",
+        enum_field(&O::background, &to_string, &parse_background, "mean, min"),
+        {},
+        "What a cell far from every sample shows: the readings' mean or min"},
+       {"gdm.cutoff", "", &O::cutoff, real_range(1.0, 10.0, "kernel widths"),
+        "Kernels are summed out to this many of their longer axis"}}};
+  return table;
+}
+
+void GdmOptions::validate() const {
+  plumekit::validate(gdm_option_table(), *this);
 }
 
 void check_grid_memory(const Map& map, double cell, double bytes_per_cell) {

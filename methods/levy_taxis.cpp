@@ -9,23 +9,67 @@
 
 #include "core/option_check.hpp"
 #include "core/random.hpp"
+#include "methods/option_tables.hpp"
 
 namespace plumekit::methods {
 
-void LevyTaxisOptions::validate() const {
+const OptionTable<LevyTaxisOptions>& levy_option_table() {
+  using O = LevyTaxisOptions;
   const double inf = std::numeric_limits<double>::infinity();
-  check_positive("levy.min_move", min_move, 100.0, "m", "the thesis's 0.1 m");
+  // The move and turn ranges depend on each other: validate() checks them in order.
+  static const OptionTable<O> table{
+      "Lévy taxis (methods::LevyTaxisOptions)",
+      {{"levy.min_move", "", &O::min_move, positive(100.0, "m"), "Shortest move L_min, m",
+        "the thesis's {default} m"},
+       {"levy.max_move",
+        "",
+        &O::max_move,
+        {},
+        "Longest move (longer draws are cut to it), m",
+        "",
+        "more than levy.min_move, at most 1000 m"},
+       {"levy.mu_min", "", &O::mu_min, real_range(1.0, 3.0, "", true), "Smallest exponent mu",
+        "1 < mu <= 3; the thesis's {default}"},
+       {"levy.mu_max",
+        "",
+        &O::mu_max,
+        {},
+        "Largest exponent mu",
+        "",
+        "at least levy.mu_min, at most 3"},
+       {"levy.gamma_min", "", &O::gamma_min, real_range(0.0, 1.0, ""),
+        "Least concentration gamma of the turns", "the thesis's {default}"},
+       {"levy.gamma_max",
+        "",
+        &O::gamma_max,
+        {},
+        "Most concentration gamma of the turns",
+        "",
+        "at least levy.gamma_min, at most 1"},
+       {"levy.gradient_threshold", "--levy-threshold", &O::gradient_threshold,
+        positive(inf, "concentration units"),
+        "Lévy taxis: a change of the reading between stops from which the walk is all "
+        "exploitation (longest, straightest moves), concentration units (theta of seed 004 "
+        "Eq. 16.3, which it does not give; docs/methods.md)"},
+       {"levy.max_steps", "", &O::max_steps, count_range(1, 10000000),
+        "Stops before the walk gives up (the run's step budget replaces it)"}}};
+  return table;
+}
+
+void LevyTaxisOptions::validate() const {
+  // In order: each upper bound is checked against its lower one once that one is known good.
+  const OptionTable<LevyTaxisOptions>& table = levy_option_table();
+  validate_entry(table.entry("levy.min_move"), *this);
   check_range("levy.max_move", max_move, min_move, 1000.0, "m",
               "it must exceed levy.min_move; the thesis's 2 m", true);
-  check_range("levy.mu_min", mu_min, 1.0, 3.0, "", "1 < mu <= 3; the thesis's 1.1", true);
+  validate_entry(table.entry("levy.mu_min"), *this);
   check_range("levy.mu_max", mu_max, mu_min, 3.0, "",
               "at least levy.mu_min and at most 3; the thesis's 2.9");
-  check_range("levy.gamma_min", gamma_min, 0.0, 1.0, "", "the thesis's 0");
+  validate_entry(table.entry("levy.gamma_min"), *this);
   check_range("levy.gamma_max", gamma_max, gamma_min, 1.0, "",
               "at least levy.gamma_min and at most 1; the thesis's 1");
-  check_positive("levy.gradient_threshold", gradient_threshold, inf, "concentration units",
-                 "the default is 50");
-  check_count("levy.max_steps", max_steps, 1, 10000000, "the default is 300");
+  validate_entry(table.entry("levy.gradient_threshold"), *this);
+  validate_entry(table.entry("levy.max_steps"), *this);
 }
 
 double levy_move_length(double u, double mu, double min_move, double max_move) {

@@ -9,15 +9,31 @@
 #include "core/error.hpp"
 #include "core/option_check.hpp"
 #include "core/seed.hpp"
+#include "methods/option_tables.hpp"
 
 namespace plumekit::methods {
 
+const OptionTable<LocalFrameworkOptions>& local_option_table() {
+  using O = LocalFrameworkOptions;
+  static const OptionTable<O> table{
+      "STE in the local framework (methods::LocalFrameworkOptions)",
+      {{"local.budget", "--budget", &O::budget, positive(1000.0, "samples"),
+        "ste-local: samples per local map when nothing is learnt, B_0 of seed 004 Eq. 12.1",
+        "the thesis's B_0 is {default}"},
+       {"local.map_size", "--local-map", &O::map_size, positive(100.0, "m"),
+        "ste-local: the local map's side, m", "the thesis's local map is {default} m"},
+       {"local.max_samples", "", &O::max_samples, count_range(1, 100'000),
+        "Samples in all before the run declares (the run's step budget replaces it)"},
+       {"local.sigma_m", "", &O::sigma_m, positive(1e9, "concentration units"),
+        "The likelihood's model error, concentration units", "the thesis's is {default}"},
+       {"local.entropy_fraction", "", &O::entropy_fraction, non_negative(1.0, ""),
+        "Stop when the local posterior's entropy falls below this fraction of its maximum",
+        "the thesis's is {default}"}}};
+  return table;
+}
+
 void LocalFrameworkOptions::validate() const {
-  check_positive("local.map_size", map_size, 100.0, "m", "the thesis's local map is 2 m");
-  check_positive("local.budget", budget, 1000.0, "samples", "the thesis's B_0 is 7");
-  check_count("local.max_samples", max_samples, 1, 100'000, "the default is 300");
-  check_positive("local.sigma_m", sigma_m, 1e9, "concentration units", "the thesis's is 30");
-  check_non_negative("local.entropy_fraction", entropy_fraction, 1.0, "", "the thesis's is 0.02");
+  plumekit::validate(local_option_table(), *this);
   mh.validate();
   navigation.validate();
 }

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "methods/option_tables.hpp"
 #include "methods/wind_statistics.hpp"
 
 namespace plumekit::methods {
@@ -58,17 +59,37 @@ void check_finite(double v, const char* what) {
 
 }  // namespace
 
+const OptionTable<ParticleFilterOptions>& particle_filter_option_table() {
+  using O = ParticleFilterOptions;
+  static const OptionTable<O> table{
+      "Particle filter (methods::ParticleFilterOptions)",
+      {{"pf.particles", "--particles", &O::particles, count_range(1, 10000000),
+        "Particle filter: particles"},
+       {"pf.alpha", "", &O::alpha, positive(1.0, ""),
+        "Penalty alpha of a particle outside the patch path envelope on a detection (1: none)",
+        "the seeds' best are 0.4 (sweep), 0.2 (gradient)"},
+       {"pf.beta", "", &O::beta, positive(1.0, ""), "Penalty beta on a non-detection (1: none)",
+        "the seeds' best are 0.9 (sweep), 0.8 (gradient)"},
+       {"pf.resample_fraction", "", &O::resample_fraction, non_negative(1.0, ""),
+        "gamma: resample when N_eff < gamma N"},
+       {"pf.injection", "", &O::injection, non_negative(1.0, ""),
+        "delta: share of resampled particles drawn uniformly"},
+       {"pf.jitter_variance", "", &O::jitter_variance, non_negative(100.0, "m^2"),
+        "Jitter variance per axis of particles drawn by weight, m^2"},
+       {"pf.mne_radius", "", &O::mne_radius, positive(1000.0, "m"),
+        "epsilon: radius of the mean neighbourhood estimate, m"},
+       {"pf.detection_limit", "", &O::detection_limit, non_negative(1e300, ""),
+        "th_c, concentration units: readings below count 0 (run by the trackers' "
+        "--detection-threshold)"},
+       {"pf.ema_lambda", "", &O::ema_lambda, non_negative(1.0, ""),
+        "lambda of the adaptive threshold (seed 001 Eq. 4)"},
+       {"pf.min_opening_deg", "", &O::min_opening_deg, positive(180.0, "deg"),
+        "Floor of the envelope's opening theta_C, degrees (a steady wind gives 0)"}}};
+  return table;
+}
+
 void ParticleFilterOptions::validate() const {
-  check_count("pf.particles", particles, 1, 10000000, "the default is 1000");
-  check_positive("pf.alpha", alpha, 1.0, "", "the seeds' best are 0.4 (sweep), 0.2 (gradient)");
-  check_positive("pf.beta", beta, 1.0, "", "the seeds' best are 0.9 (sweep), 0.8 (gradient)");
-  check_non_negative("pf.resample_fraction", resample_fraction, 1.0, "", "the default is 0.5");
-  check_non_negative("pf.injection", injection, 1.0, "", "the default is 0.1");
-  check_non_negative("pf.jitter_variance", jitter_variance, 100.0, "m^2", "the default is 0.1");
-  check_positive("pf.mne_radius", mne_radius, 1000.0, "m", "the default is 0.5 m");
-  check_non_negative("pf.detection_limit", detection_limit, 1e300, "", "the default is 50");
-  check_non_negative("pf.ema_lambda", ema_lambda, 1.0, "", "the default is 0.5");
-  check_positive("pf.min_opening_deg", min_opening_deg, 180.0, "deg", "the default is 1 deg");
+  plumekit::validate(particle_filter_option_table(), *this);
 }
 
 AdaptiveThreshold::AdaptiveThreshold(double detection_limit, double lambda)

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/option_check.hpp"
+#include "methods/option_tables.hpp"
 #include "methods/wind_statistics.hpp"
 
 namespace plumekit::methods {
@@ -45,9 +46,19 @@ ParticleFilterOptions pf_options_for(PfExploration exploration, ParticleFilterOp
   return base;
 }
 
+const OptionTable<SweepPatternOptions>& sweep_option_table() {
+  using O = SweepPatternOptions;
+  static const OptionTable<O> table{
+      "Predefined sweep (methods::SweepPatternOptions)",
+      {{"sweep.step", "", &O::step, real_range(0.1, 100.0, "m"),
+        "Spacing of the sweep's lines and of the stops on a line, m"},
+       {"sweep.max_steps", "", &O::max_steps, count_range(1, 10000000),
+        "Stops before the sweep gives up (the run's step budget replaces it)"}}};
+  return table;
+}
+
 void SweepPatternOptions::validate() const {
-  check_range("sweep.step", step, 0.1, 100.0, "m", "the default is 1 m");
-  check_count("sweep.max_steps", max_steps, 1, 10000000, "the default is 2000");
+  plumekit::validate(sweep_option_table(), *this);
 }
 
 std::vector<Vec2> sweep_pattern(const SearchArea& area, Vec2 start, Vec2 wind, double step) {
@@ -106,12 +117,25 @@ std::string PredefinedSweep::stopped_by() const {
   return "";
 }
 
+const OptionTable<PfMethodOptions>& pf_method_option_table() {
+  using O = PfMethodOptions;
+  static const OptionTable<O> table{
+      "Particle filter's declaration (methods::PfMethodOptions)",
+      {{"pf.declare_iterations", "--declare-iterations", &O::declare_iterations,
+        count_range(0, 1000000),
+        "Particle filter: declare when the estimate stayed within --declare-radius this many "
+        "iterations (0: never; Li et al.'s 20)",
+        "e.g. 20 (Li et al.); 0, the default, never declares"},
+       {"pf.declare_radius", "--declare-radius", &O::declare_radius, positive(1000.0, "m"),
+        "Particle filter: the declaration's radius, m"},
+       {"pf.max_steps", "", &O::max_steps, count_range(1, 10000000),
+        "Stops before the filter gives up (the run's step budget replaces it)"}}};
+  return table;
+}
+
 void PfMethodOptions::validate() const {
   filter.validate();
-  check_positive("pf.declare_radius", declare_radius, 1000.0, "m", "the default is 0.5 m");
-  check_count("pf.declare_iterations", declare_iterations, 0, 1000000,
-              "e.g. 20 (Li et al.); 0, the default, never declares");
-  check_count("pf.max_steps", max_steps, 1, 10000000, "the default is 2000");
+  plumekit::validate(pf_method_option_table(), *this);
 }
 
 ParticleFilterMethod::ParticleFilterMethod(const SearchArea& area,

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/option_check.hpp"
+#include "methods/option_tables.hpp"
 #include "methods/wind_statistics.hpp"
 
 namespace plumekit::methods {
@@ -38,19 +39,52 @@ const TrackingOptions& validated(const TrackingOptions& options) {
 
 }  // namespace
 
-void TrackingOptions::validate() const {
+const char* to_string(ZigzagFlip flip) {
+  return flip == ZigzagFlip::OnLoss ? "loss" : "detection";
+}
+
+ZigzagFlip parse_zigzag_flip(const std::string& name) {
+  if (name == "loss") return ZigzagFlip::OnLoss;
+  if (name == "detection") return ZigzagFlip::OnDetection;
+  throw OptionError("tracking.zigzag_flip", "expected loss or detection, got '" + name + "'");
+}
+
+const OptionTable<TrackingOptions>& tracking_option_table() {
+  using O = TrackingOptions;
   const double inf = std::numeric_limits<double>::infinity();
-  check_positive("tracking.step", step, 100.0, "m", "the default is 1 m");
-  check_non_negative("tracking.detection_threshold", detection_threshold, inf, "",
-                     "the default is 50 (concentration units)");
-  check_non_negative("tracking.wall_margin", wall_margin, 100.0, "m", "the default is 0.5 m");
-  check_range("tracking.zigzag_alpha_deg", zigzag_alpha_deg, 0.0, 90.0, "deg",
-              "the default is 60 deg", true, true);
-  check_range("tracking.gradient_beta_deg", gradient_beta_deg, 0.0, 90.0, "deg",
-              "the default is 90 deg");
-  check_count("tracking.max_casts", max_casts, 1, 1000, "the default is 5");
-  check_count("tracking.max_misses", max_misses, 1, 1000, "the default is 3");
-  check_count("tracking.max_steps", max_steps, 1, 10000000, "the default is 300");
+  static const OptionTable<O> table{
+      "Plume trackers (methods::TrackingOptions)",
+      {{"tracking.step", "--track-step", &O::step, positive(100.0, "m"),
+        "Step of the trackers and the particle filter's exploration, m (the seeds': 1)"},
+       {"tracking.detection_threshold", "--detection-threshold", &O::detection_threshold,
+        non_negative(inf, ""),
+        "A stop detects gas above this mean reading, concentration units (trackers; the "
+        "particle filter's lower detection limit)",
+        "the default is {default} (concentration units)"},
+       {"tracking.wall_margin", "", &O::wall_margin, non_negative(100.0, "m"),
+        "Distance kept from the arena's walls: the search area is the arena shrunk by it, m"},
+       {"tracking.zigzag_alpha_deg", "--zigzag-angle", &O::zigzag_alpha_deg,
+        real_range(0.0, 90.0, "deg", true, true), "Zigzag legs' angle off upwind, degrees"},
+       {"tracking.zigzag_flip",
+        "--zigzag-flip",
+        enum_field(&O::zigzag_flip, &to_string, &parse_zigzag_flip, "loss, detection"),
+        {},
+        "When the zigzag turns: loss (seed 002: the reading falls below the threshold) or "
+        "detection (seed 000's list)"},
+       {"tracking.gradient_beta_deg", "--gradient-angle", &O::gradient_beta_deg,
+        real_range(0.0, 90.0, "deg"), "Pseudo-gradient's largest turn off upwind beta, degrees"},
+       {"tracking.max_casts", "--max-casts", &O::max_casts, count_range(1, 1000),
+        "Surge-cast: casts before it sweeps again"},
+       {"tracking.max_misses", "--max-misses", &O::max_misses, count_range(1, 1000),
+        "Zigzag: non-detections in a row before it sweeps again"},
+       {"tracking.max_steps", "", &O::max_steps, count_range(1, 10000000),
+        "Stops before a tracker gives up (the run's step budget, MethodOptions' max_steps, "
+        "replaces it)"}}};
+  return table;
+}
+
+void TrackingOptions::validate() const {
+  plumekit::validate(tracking_option_table(), *this);
 }
 
 // ---- SearchBounds ----

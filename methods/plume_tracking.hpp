@@ -42,6 +42,10 @@ struct TrackingOptions {
   void validate() const;
 };
 
+// "loss", "detection"; OptionError naming tracking.zigzag_flip otherwise.
+const char* to_string(ZigzagFlip flip);
+ZigzagFlip parse_zigzag_flip(const std::string& name);
+
 // The search area of the trackers: the arena's rectangle less the wall margin. Obstacles are the
 // runner's concern (it moves a goal inside one to the nearest free point), as the seeds searched
 // an open rectangle.

@@ -6,6 +6,7 @@
 
 #include "methods/gdm_estimates.hpp"
 #include "methods/kernel_dmv.hpp"
+#include "methods/option_tables.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
 #include "python/options.hpp"
@@ -74,18 +75,7 @@ std::vector<methods::Sample> samples_from(const Map& map, const py::handle& rows
 void bind_gdm(py::module_& m) {
   py::class_<methods::GdmOptions> c(m, "GdmOptions", "Options of gas_map() (docs/methods.md)");
   c.def(py::init<>());
-  PK_FIELD(c, methods::GdmOptions, cell, "The map's cell, m");
-  PK_FIELD(c, methods::GdmOptions, kernel_width, "The kernel's sigma, m");
-  PK_FIELD(c, methods::GdmOptions, sigma_omega, "Confidence scale");
-  PK_FIELD(c, methods::GdmOptions, wind_stretch, "gamma, s: 0 gives DM+V, more gives DM+V/W");
-  PK_FIELD(c, methods::GdmOptions, cutoff, "Kernels reach this many widths");
-  c.def_property(
-      "background",
-      [](const methods::GdmOptions& o) { return std::string(to_string(o.background)); },
-      [](methods::GdmOptions& o, const std::string& v) {
-        o.background = methods::parse_background(v);
-      },
-      "'mean' or 'min' of the readings, where no reading reaches");
+  bind_table(c, methods::gdm_option_table());
   m.def(
       "gas_map",
       [](const Map& map, const py::handle& rows, const py::object& source, const py::object& wind,

@@ -9,6 +9,7 @@
 #include "map/ros_import.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "python/options.hpp"
 
 namespace plumekit::python {
 
@@ -96,23 +97,14 @@ void bind_map_class(py::module_& m) {
 }
 
 void bind_ros_import(py::module_& m) {
-  py::class_<RosImportOptions>(m, "RosImportOptions",
-                               "Options of import_ros (the flags of `plumekit map import-ros`)")
-      .def(py::init<>())
-      .def_readwrite("simplify_px", &RosImportOptions::simplify_px,
-                     "Douglas-Peucker tolerance, pixels")
-      .def_readwrite("unknown_is_occupied", &RosImportOptions::unknown_is_occupied,
-                     "Unexplored pixels are obstacles")
-      .def_readwrite("min_area_px", &RosImportOptions::min_area_px,
-                     "Drop occupied specks smaller than this, pixels")
-      .def_readwrite("close_gaps_m", &RosImportOptions::close_gaps_m,
-                     "Close free gaps narrower than this, m (0: none)")
-      .def_readwrite("inlets", &RosImportOptions::inlets,
-                     "Inlets, map frame: 'X1,Y1,X2,Y2[,SPEED[,PROFILE]]' (none: the whole left "
-                     "wall at 1 m/s)")
+  py::class_<RosImportOptions> c(m, "RosImportOptions",
+                                 "Options of import_ros (the flags of `plumekit map import-ros`)");
+  c.def(py::init<>());
+  bind_table(c, ros_import_option_table());
+  c.def_readwrite("inlets", &RosImportOptions::inlets,
+                  "Inlets, map frame: 'X1,Y1,X2,Y2[,SPEED[,PROFILE]]' (none: the whole left "
+                  "wall at 1 m/s)")
       .def_readwrite("outlets", &RosImportOptions::outlets, "Outlets, map frame: 'X1,Y1,X2,Y2'")
-      .def_readwrite("snap_px", &RosImportOptions::snap_px,
-                     "How far a typed opening may move onto the boundary, pixels")
       .def_readwrite("name", &RosImportOptions::name, "Map name (default: the YAML's stem)");
   m.def(
       "import_ros",

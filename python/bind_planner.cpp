@@ -59,12 +59,7 @@ void bind_planner(py::module_& m) {
   py::class_<PlannerOptions> c(m, "PlannerOptions",
                                "Options of the planner (docs/design/planner.md, \"Options\")");
   c.def(py::init<>());
-  PK_FIELD(c, PlannerOptions, margin, "Clearance from obstacles and walls, m");
-  PK_FIELD(c, PlannerOptions, arc_segments, "Sides of the inflation polygon");
-  PK_FIELD(c, PlannerOptions, ompl_iterations, "OMPL: iteration budget");
-  PK_FIELD(c, PlannerOptions, ompl_time_limit_s, "OMPL: time budget, s");
-  PK_FIELD(c, PlannerOptions, ompl_target_length, "OMPL: stop at a path this short (0: never)");
-  PK_FIELD(c, PlannerOptions, ompl_simplify, "OMPL: shortcut and smooth the path");
+  bind_table(c, planner::planner_option_table());
 
   py::class_<MapPlanner, std::shared_ptr<MapPlanner>>(
       m, "Planner",

@@ -29,28 +29,8 @@ void bind_filament_options(py::module_& m) {
   py::class_<world::FilamentOptions> c(m, "FilamentOptions",
                                        "The filament plume (docs/options.md)");
   c.def(py::init<>());
-  PK_FIELD(c, world::FilamentOptions, release_per_second, "Filaments released per second");
-  PK_FIELD(c, world::FilamentOptions, release_rate, "Release rate per metre of depth");
-  PK_FIELD(c, world::FilamentOptions, initial_radius, "Filament radius at release, m");
-  PK_FIELD(c, world::FilamentOptions, source_radius,
-           "Radius of the source disc the filaments leave from, m (0: its point)");
-  PK_FIELD(c, world::FilamentOptions, growth, "dR^2/dt, m^2/s");
-  PK_FIELD(c, world::FilamentOptions, sigma_walk, "Random walk, m/sqrt(s)");
-  PK_FIELD(c, world::FilamentOptions, meander_speed, "Meander std per axis, m/s");
-  PK_FIELD(c, world::FilamentOptions, meander_time, "Meander correlation time, s");
-  PK_FIELD(c, world::FilamentOptions, dt, "Integration step, s");
-  PK_FIELD(c, world::FilamentOptions, max_radius, "Filaments wider than this are dropped, m");
-  PK_FIELD(c, world::FilamentOptions, steady_window, "Spin-up steadiness window, s");
-  PK_FIELD(c, world::FilamentOptions, steady_tolerance, "Spin-up steadiness tolerance");
-  PK_FIELD(c, world::FilamentOptions, min_spinup, "Shortest spin-up, s");
-  PK_FIELD(c, world::FilamentOptions, max_spinup, "Longest spin-up, s");
-  PK_FIELD(c, world::FilamentOptions, record_s, "Recording length, s");
-  PK_FIELD(c, world::FilamentOptions, sample_rate, "Sensor reads per second");
-  PK_FIELD(c, world::FilamentOptions, cutoff, "Kernel cutoff, in radii");
-  PK_FIELD(c, world::FilamentOptions, occlusion, "Gas stops at walls (line of sight)");
-  PK_FIELD(c, world::FilamentOptions, unsteady_wind, "Meander as a field fading at walls");
-  PK_FIELD(c, world::FilamentOptions, meander_length, "Meander wavelength, m");
-  PK_FIELD(c, world::FilamentOptions, meander_wall_layer, "Meander fade distance at walls, m");
+  bind_table(c, world::filament_option_table());
+  bind_deprecated_alias(c, "release_per_second", "filaments_per_second");
   c.def_property(
       "world", &world_name,
       [](world::FilamentOptions& o, const std::string& name) { world::set_world(o, name); },

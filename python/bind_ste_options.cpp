@@ -7,6 +7,7 @@
 #include "run/evaluation.hpp"
 #include "run/option_tables.hpp"
 #include "ste/option_tables.hpp"
+#include "world/option_tables.hpp"
 
 namespace plumekit::python {
 
@@ -18,13 +19,7 @@ void bind_estimation(py::module_& m) {
   py::class_<run::SteLikelihood> l(m, "SteLikelihood",
                                    "The likelihood's errors; None: the plume model's default");
   l.def(py::init<>());
-  PK_FIELD(l, run::SteLikelihood, sigma_m,
-           "Model error (None: 200 surrogate, 150 physics, 30 gaussian)");
-  PK_FIELD(l, run::SteLikelihood, sigma_d, "Measurement error");
-  PK_FIELD(l, run::SteLikelihood, sigma_rel,
-           "Model error relative to the prediction (None: 0.15 physics, else 0)");
-  PK_FIELD(l, run::SteLikelihood, sigma_std,
-           "Model error in the surrogate's predicted stds (None: 2 surrogate)");
+  bind_table(l, run::ste_likelihood_option_table());
 
   py::class_<BinOptions> b(m, "BinOptions", "Entropy bins, m");
   b.def(py::init<>());
@@ -47,21 +42,9 @@ void bind_world(py::module_& m) {
   py::class_<world::WorldOptions> w(m, "WorldOptions", "The simulated robot's world and sensors");
   w.def(py::init<>());
   PK_FIELD(w, world::WorldOptions, filament, "The world's FilamentOptions");
-  PK_FIELD(w, world::WorldOptions, speed, "Travel speed, m/s");
-  PK_FIELD(w, world::WorldOptions, sample_s, "Seconds per sample");
-  PK_FIELD(w, world::WorldOptions, sample_rate, "Readings per second");
-  PK_FIELD(w, world::WorldOptions, noise, "Std of each reading's noise");
   PK_FIELD(w, world::WorldOptions, sensor, "The robot's GasSensorModel");
-  PK_FIELD(w, world::WorldOptions, wind_direction_noise_deg, "Anemometer direction error, degrees");
-  PK_FIELD(w, world::WorldOptions, wind_noise_from_table35,
-           "Direction error from seed 000's table 3.5");
-  PK_FIELD(w, world::WorldOptions, position_noise, "Std per axis of the recorded position, m");
-  PK_FIELD(w, world::WorldOptions, position_noise_per_fix,
-           "position_noise is each reading's fix error; a stop records their mean");
-  PK_FIELD(w, world::WorldOptions, odometry_drift,
-           "Recorded positions drift by this std per axis per sqrt(m) travelled (ste-local)");
-  PK_FIELD(w, world::WorldOptions, rotor_disc,
-           "Radius of the disc each gas reading averages over, m (seed 000's rotor: 0.5)");
+  bind_table(w, world::world_option_table());
+  bind_deprecated_alias(w, "wind_direction_noise_deg", "wind_direction_noise");
   w.def_property(
       "gas_sensor", [](const world::WorldOptions& o) { return o.sensor.name; },
       [](world::WorldOptions& o, const std::string& name) { set_gas_sensor(o.sensor, name); },
@@ -104,7 +87,8 @@ void bind_ste_options_class(py::module_& m) {
       "plume_model", [](const run::SteOptions& s) { return std::string(to_string(s.model)); },
       [](run::SteOptions& s, const std::string& v) { s.model = run::parse_plume_model_kind(v); },
       "'surrogate' (the CNN), 'gaussian' or 'physics'");
-  PK_FIELD(o, run::SteOptions, model_path, "The surrogate's CNN file (empty: the shipped model)");
+  // Its own numbers and names from its table; the plume model keeps its keyword plume_model.
+  bind_table(o, run::ste_option_table(), {"ste.model"});
   PK_FIELD(o, run::SteOptions, likelihood, "SteLikelihood");
   PK_FIELD(o, run::SteOptions, bins, "BinOptions");
   PK_FIELD(o, run::SteOptions, mh, "MhOptions");
@@ -116,16 +100,6 @@ void bind_ste_options_class(py::module_& m) {
   PK_FIELD(o, run::SteOptions, wind_dir, "A `plumekit flow` output to use instead of solving");
   PK_FIELD(o, run::SteOptions, physics, "PhysicsPlumeOptions");
   PK_FIELD(o, run::SteOptions, gaussian, "GaussianPlumeBounds");
-  PK_FIELD(o, run::SteOptions, source_cell, "Candidate source grid, m (None: the model's default)");
-  PK_FIELD(o, run::SteOptions, table_cell,
-           "The surrogate's table grid, m (None: the source cell, coarser on large maps)");
-  PK_FIELD(o, run::SteOptions, margin, "The planner's clearance, m");
-  PK_FIELD(o, run::SteOptions, table_cache, "Folder caching surrogate tables (empty: none)");
-  PK_FIELD(o, run::SteOptions, threads, "Threads of the surrogate's table build (0: one per core)");
-  PK_FIELD(o, run::SteOptions, min_start_distance,
-           "Random starts are at least this far from the source, m");
-  PK_FIELD(o, run::SteOptions, success_radius,
-           "A run ends on coming this close to the source, m (0: never; levy-taxis: 0.5)");
 }
 
 }  // namespace

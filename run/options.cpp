@@ -57,6 +57,110 @@ const OptionTable<EvaluationOptions>& evaluation_option_table() {
   return table;
 }
 
+namespace {
+
+// "200 for the surrogate, 150 for physics, 30 for gaussian": what an unset likelihood field
+// is with each plume model (default_likelihood).
+std::string per_model(double ste::LikelihoodOptions::*field) {
+  std::string text;
+  for (PlumeModelKind kind :
+       {PlumeModelKind::Surrogate, PlumeModelKind::Physics, PlumeModelKind::Gaussian})
+    text += (text.empty() ? "" : ", ") + option_number(default_likelihood(kind).*field) + " for " +
+            (kind == PlumeModelKind::Surrogate ? "the surrogate" : to_string(kind));
+  return text;
+}
+
+}  // namespace
+
+const OptionTable<SteLikelihood>& ste_likelihood_option_table() {
+  using O = SteLikelihood;
+  using L = ste::LikelihoodOptions;
+  static const OptionTable<O> table{
+      "Localization likelihood (run::SteLikelihood; ste::LikelihoodOptions with the plume "
+      "model's defaults)",
+      {{"ste.likelihood.sigma_m", "--sigma-m",
+        optional_field(&O::sigma_m, [] { return per_model(&L::sigma_m); }),
+        non_negative(1e9, "concentration units"),
+        "Model error sigma_M, concentration units (the surrogate's: about the shipped model's "
+        "RMSE on the test maps; physics: chosen on held-out maps; gaussian: the thesis's; pass "
+        "30 for the thesis's physics)",
+        "the thesis uses 30"},
+       {"ste.likelihood.sigma_d", "--sigma-d", &O::sigma_d,
+        non_negative(1e9, "concentration units"), "Measurement error sigma_D, concentration units",
+        "0 in simulation, 125 in the thesis's wind tunnel"},
+       {"ste.likelihood.sigma_rel", "--sigma-rel",
+        optional_field(&O::sigma_rel, [] { return per_model(&L::sigma_rel); }),
+        non_negative(100.0, ""),
+        "Model error relative to the predicted concentration, added in quadrature to sigma_M "
+        "(physics: chosen on held-out buildings)",
+        "0 means none"},
+       {"ste.likelihood.sigma_std", "--sigma-std",
+        optional_field(&O::sigma_std, [] { return per_model(&L::sigma_std); }),
+        non_negative(100.0, ""),
+        "Model error in units of the surrogate's predicted std of the readings, added in "
+        "quadrature (the surrogate only: the other models predict no std)",
+        "0 means none"}}};
+  return table;
+}
+
+const OptionTable<SteOptions>& ste_option_table() {
+  using O = SteOptions;
+  static const OptionTable<O> table{
+      "Localization (run::SteOptions)",
+      {{"ste.model",
+        "--plume-model",
+        enum_field(&O::model, &to_string, &parse_plume_model_kind, "surrogate, gaussian, physics"),
+        {},
+        "STE's plume model: surrogate (the CNN), gaussian or physics"},
+       {"ste.model_path",
+        "--cnn",
+        &O::model_path,
+        {},
+        "CNN model file of the surrogate plume model (empty: the shipped one, which the CLI and "
+        "Python fill in)"},
+       {"ste.source_cell", "--source-cell",
+        optional_field(&O::source_cell,
+                       [] {
+                         return option_number(ste::SurrogatePlumeOptions{}.source_cell) +
+                                " for the surrogate, " +
+                                option_number(ste::PhysicsPlumeOptions{}.source_cell) +
+                                " for physics";
+                       }),
+        positive(10.0, "m"),
+        "Candidate source grid, m (surrogate and physics; the Gaussian plume has none)",
+        "unset, it is {default}"},
+       {"ste.table_cell",
+        "--table-cell",
+        optional_field(&O::table_cell,
+                       [] {
+                         return "the source cell, coarser on maps of over " +
+                                option_number(kSurrogateTableArea) + " m^2 free: about " +
+                                option_number(kSurrogateTableCells) + " cells";
+                       }),
+        {},
+        "The surrogate's table grid, m: one network run per free cell, each candidate source "
+        "reads the cells around it",
+        "",
+        "at least the source cell, at most 10 m"},
+       {"ste.margin", "--margin", &O::margin, non_negative(10.0, "m"),
+        "Planner clearance from obstacles, m", "the thesis's clearance is {default} m"},
+       {"ste.table_cache",
+        "--table-cache",
+        &O::table_cache,
+        {},
+        "Folder caching surrogate tables (keyed by map and model hashes; empty: none)"},
+       {"ste.threads", "", &O::threads, count_range(0, 1024),
+        "Threads of the surrogate's table build (0: one per core; the commands' --threads)",
+        "0 means one per core"},
+       {"ste.min_start_distance", "", &O::min_start_distance, non_negative(1000.0, "m"),
+        "Random starts are at least this far from the source, m"},
+       {"ste.success_radius", "--success-radius", &O::success_radius, non_negative(100.0, "m"),
+        "End a run as soon as the robot comes this close to the source, on its way too, m "
+        "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
+        "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m"}}};
+  return table;
+}
+
 ste::LikelihoodOptions SteOptions::likelihood_options() const {
   ste::LikelihoodOptions l = default_likelihood(model);
   l.sigma_m = likelihood.sigma_m.value_or(l.sigma_m);
@@ -97,6 +201,7 @@ double SteOptions::table_cell_in_use(const Map& map) const {
 
 void SteOptions::validate() const {
   method.validate();
+  plumekit::validate(ste_likelihood_option_table(), likelihood);
   likelihood_options().validate();
   if (likelihood.sigma_std && *likelihood.sigma_std != 0.0 && model != PlumeModelKind::Surrogate)
     throw OptionError("ste.likelihood.sigma_std",
@@ -118,26 +223,16 @@ void SteOptions::validate() const {
   flow.validate();
   physics.validate();
   gaussian.validate();
-  if (source_cell) {
-    if (model == PlumeModelKind::Gaussian)
-      throw OptionError("ste.source_cell",
-                        "only the surrogate and physics models have a source grid (the Gaussian "
-                        "plume's MH runs on the bins); leave it unset");
-    check_positive("ste.source_cell", *source_cell, 10.0, "m",
-                   "the defaults are 0.2 m (surrogate) and 0.1 m (physics)");
-  }
-  if (table_cell) {
-    if (model != PlumeModelKind::Surrogate)
-      throw OptionError("ste.table_cell", "only the surrogate has a table; leave it unset");
+  if (source_cell && model == PlumeModelKind::Gaussian)
+    throw OptionError("ste.source_cell",
+                      "only the surrogate and physics models have a source grid (the Gaussian "
+                      "plume's MH runs on the bins); leave it unset");
+  if (table_cell && model != PlumeModelKind::Surrogate)
+    throw OptionError("ste.table_cell", "only the surrogate has a table; leave it unset");
+  plumekit::validate(ste_option_table(), *this);
+  if (table_cell)
     check_range("ste.table_cell", *table_cell, source_cell_in_use(), 10.0, "m",
                 "it must be at least the source cell (" + compact(source_cell_in_use()) + " m)");
-  }
-  check_non_negative("ste.margin", margin, 10.0, "m", "the thesis's clearance is 0.15 m");
-  check_count("ste.threads", threads, 0, 1024, "0 means one per core");
-  check_non_negative("ste.min_start_distance", min_start_distance, 1000.0, "m",
-                     "the default is 1 m");
-  check_non_negative("ste.success_radius", success_radius, 100.0, "m",
-                     "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m");
   if (model == PlumeModelKind::Surrogate && uses_plume_model(method.name)) check_model_file();
 }
 

@@ -63,6 +63,24 @@ def test_options_reach_the_library(block):
     assert e.value.field == "ste.stop.entropy_fraction"
 
 
+def test_options_are_the_tables_and_old_keywords_still_work():
+    # Bound from the options tables: the keyword is the option's name, the doc says the default.
+    assert plumekit.WorldOptions().wind_direction_noise == 0.0
+    assert "150 for physics" in plumekit.SteLikelihood.sigma_m.__doc__
+    o = plumekit.SteOptions()
+    assert o.source_cell is None and o.margin == 0.15
+    f = plumekit.FilamentOptions()
+    assert f.filaments_per_second == 200.0
+    # The old field names still set the same option, with a DeprecationWarning.
+    with pytest.warns(DeprecationWarning, match="use filaments_per_second"):
+        f.release_per_second = 150.0
+    assert f.filaments_per_second == 150.0
+    w = plumekit.WorldOptions()
+    with pytest.warns(DeprecationWarning, match="use wind_direction_noise"):
+        w.wind_direction_noise_deg = 10.0
+    assert w.wind_direction_noise == 10.0 and w.wind_direction_noise_deg == 10.0
+
+
 def test_source_in_obstacle(block):
     import numpy as np
     inside = tuple(np.mean(block.obstacles[0], axis=0))

@@ -3,6 +3,7 @@
 // CLI binder (apps/cli.hpp) sets the fields and shows the defaults.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 
 #include "apps/cli.hpp"
@@ -127,8 +128,11 @@ TEST(OptionTable, CliFlagsSetTheFieldsAndShowTheDefaults) {
   EXPECT_FALSE(toy.tidy);
   EXPECT_EQ(toy.label, "fancy");
   EXPECT_EQ(toy.colour, Colour::Blue);
-  // Errors name the flag, not the field.
+  // Errors name the flag, not the field, and only where the whole name stands.
   EXPECT_EQ(cli::with_flag_names(app, "toy.speed: must be ..."), "--speed: must be ...");
+  EXPECT_EQ(cli::with_flag_names(app, "see toy.speed."), "see --speed.");
+  EXPECT_EQ(cli::with_flag_names(app, "mytoy.speed_max: no; toy.speed.x: no"),
+            "mytoy.speed_max: no; toy.speed.x: no");
 }
 
 TEST(OptionTable, CliOnlyAddsTheNamedEntries) {
@@ -144,6 +148,45 @@ TEST(OptionTable, CliUnknownEnumNameIsTheLibrarysOptionError) {
   Toy toy;
   cli::add_table_flags(&app, toy, toy_table());
   EXPECT_THROW(app.parse("--colour green", false), OptionError);
+}
+
+// An optional number whose unset value another part chooses (the plume model's sigma_M).
+struct Chosen {
+  std::optional<double> gain;
+};
+double chosen_gain() {
+  return 7.0;
+}
+
+const OptionTable<Chosen>& chosen_table() {
+  static const OptionTable<Chosen> table{
+      "Chosen",
+      {{"chosen.gain", "--gain",
+        optional_field(&Chosen::gain,
+                       [] { return option_number(chosen_gain()) + " for the model"; }),
+        positive(10.0, ""), "Gain"}}};
+  return table;
+}
+
+TEST(OptionTable, OptionalNumberSaysWhatUnsetMeansAndChecksOnlyWhenSet) {
+  const OptionTable<Chosen>& t = chosen_table();
+  EXPECT_EQ(default_text(t.entry("chosen.gain")), "7 for the model");
+  EXPECT_NE(option_markdown(t).find("| `chosen.gain` | `--gain` | `7 for the model` | more than 0"),
+            std::string::npos)
+      << option_markdown(t);
+  EXPECT_NO_THROW(validate(t, Chosen{}));
+  EXPECT_THROW(validate(t, Chosen{20.0}), OptionError);
+  EXPECT_EQ(value_text(t.entry("chosen.gain"), Chosen{2.5}), "2.5");
+
+  CLI::App app;
+  Chosen chosen;
+  cli::add_table_flags(&app, chosen, t);
+  EXPECT_NE(app.help().find("Gain (default: 7 for the model)"), std::string::npos) << app.help();
+  app.parse("", false);
+  EXPECT_FALSE(chosen.gain.has_value());
+  app.parse("--gain 3", false);
+  ASSERT_TRUE(chosen.gain.has_value());
+  EXPECT_EQ(*chosen.gain, 3.0);
 }
 
 }  // namespace
