@@ -61,7 +61,7 @@ const OptionTable<AdvectionDiffusionOptions>& advection_diffusion_option_table()
        {"plume.decay_rate", "--decay-rate", &O::decay_rate, non_negative(100.0, "1/s"),
         "First-order decay rate of the gas, 1/s (0: no decay; STE's physics model takes the "
         "filament world's, whose filaments are dropped after a fixed lifetime: "
-        "docs/design/ste.md, \"Floors\")",
+        "docs/validation.md, \"Floors\")",
         "0 means no decay"}}};
   return table;
 }

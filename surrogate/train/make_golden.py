@@ -107,7 +107,7 @@ def main():
     real = PlumeUNet()
     count = parameter_count(real)
     if count != REAL_PARAMETERS:
-        sys.exit(f"real architecture has {count} parameters, docs/design/surrogate.md, "Architecture" says {REAL_PARAMETERS}")
+        sys.exit(f'real architecture has {count} parameters, docs/design/surrogate.md, "Architecture" says {REAL_PARAMETERS}')
     golden(args.out, "real", real, 1, DEFAULT_FEATURES, DEFAULT_OUTPUTS, seed=11)
     # (a') the same model on smooth, plume-like features: near-ties everywhere. The engine is
     # compared with PyTorch on these with PyTorch's pool indices forced (tests/surrogate).
