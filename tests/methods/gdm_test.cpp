@@ -5,7 +5,6 @@
 #include <cstring>
 #include <random>
 
-#include "support/uniform_wind.hpp"
 #include "core/error.hpp"
 #include "core/memory_limit.hpp"
 #include "core/thread_pool.hpp"
@@ -13,6 +12,7 @@
 #include "methods/gdm_estimates.hpp"
 #include "methods/kernel_dmv.hpp"
 #include "run/gdm_score.hpp"
+#include "support/uniform_wind.hpp"
 
 namespace plumekit::methods {
 namespace {

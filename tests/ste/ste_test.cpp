@@ -6,7 +6,6 @@
 #include <memory>
 #include <utility>
 
-#include "support/uniform_wind.hpp"
 #include "core/error.hpp"
 #include "dataset/plume.hpp"
 #include "map/map.hpp"
@@ -19,6 +18,7 @@
 #include "ste/mission.hpp"
 #include "ste/physics_plume.hpp"
 #include "ste/surrogate_plume.hpp"
+#include "support/uniform_wind.hpp"
 #include "surrogate/network.hpp"
 #include "surrogate/plume_network.hpp"
 
