@@ -42,6 +42,40 @@ const std::vector<TunnelMethodSpec>& tunnel_registry() {
   return methods;
 }
 
+// The spec named `name` in `specs`; OptionError on `field` listing their names otherwise.
+template <class Spec>
+const Spec& find_spec(const std::vector<Spec>& specs, const std::string& name, const char* field) {
+  std::string all;
+  for (const Spec& s : specs) {
+    if (s.name == name) return s;
+    all += (all.empty() ? "" : ", ") + s.name;
+  }
+  throw OptionError(field, "unknown method '" + name + "'; use one of " + all);
+}
+
+// "NAME[,NAME...]" (each once) or "all" (every one of `specs`, in their order); OptionError on
+// `field` otherwise.
+template <class Spec>
+std::vector<std::string> parse_spec_list(const std::vector<Spec>& specs, const std::string& text,
+                                         const char* field) {
+  std::vector<std::string> names;
+  if (text == "all") {
+    for (const Spec& s : specs)
+      names.push_back(s.name);
+    return names;
+  }
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    const std::string name = find_spec(specs, text.substr(from, comma - from), field).name;
+    for (const std::string& n : names)
+      if (n == name) throw OptionError(field, name + " is named twice in '" + text + "'");
+    names.push_back(name);
+    if (comma == std::string::npos) return names;
+    from = comma + 1;
+  }
+}
+
 }  // namespace
 
 const char* to_string(RunEnd end) {
@@ -71,12 +105,7 @@ void add_method(MethodSpec spec) {
 }
 
 const MethodSpec& find_method(const std::string& name) {
-  for (const MethodSpec& s : registry())
-    if (s.name == name) return s;
-  std::string all;
-  for (const MethodSpec& s : registry())
-    all += (all.empty() ? "" : ", ") + s.name;
-  throw OptionError("ste.method", "unknown method '" + name + "'; use one of " + all);
+  return find_spec(registry(), name, "ste.method");
 }
 
 std::vector<std::string> method_names() {
@@ -87,18 +116,7 @@ std::vector<std::string> method_names() {
 }
 
 std::vector<std::string> parse_method_list(const std::string& text) {
-  if (text == "all") return method_names();
-  std::vector<std::string> names;
-  std::size_t from = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', from);
-    const std::string name = find_method(text.substr(from, comma - from)).name;
-    for (const std::string& n : names)
-      if (n == name) throw OptionError("ste.method", name + " is named twice in '" + text + "'");
-    names.push_back(name);
-    if (comma == std::string::npos) return names;
-    from = comma + 1;
-  }
+  return parse_spec_list(registry(), text, "ste.method");
 }
 
 const std::vector<TunnelMethodSpec>& tunnel_method_registry() {
@@ -106,31 +124,11 @@ const std::vector<TunnelMethodSpec>& tunnel_method_registry() {
 }
 
 const TunnelMethodSpec& find_tunnel_method(const std::string& name) {
-  std::string all;
-  for (const TunnelMethodSpec& s : tunnel_registry()) {
-    if (s.name == name) return s;
-    all += (all.empty() ? "" : ", ") + s.name;
-  }
-  throw OptionError("tunnel.method", "unknown method '" + name + "'; use " + all);
+  return find_spec(tunnel_registry(), name, "tunnel.method");
 }
 
 std::vector<std::string> parse_tunnel_method_list(const std::string& text) {
-  std::vector<std::string> names;
-  if (text == "all") {
-    for (const TunnelMethodSpec& s : tunnel_registry())
-      names.push_back(s.name);
-    return names;
-  }
-  std::size_t from = 0;
-  for (;;) {
-    const std::size_t comma = text.find(',', from);
-    const std::string name = find_tunnel_method(text.substr(from, comma - from)).name;
-    for (const std::string& n : names)
-      if (n == name) throw OptionError("tunnel.method", "'" + name + "' given twice");
-    names.push_back(name);
-    if (comma == std::string::npos) return names;
-    from = comma + 1;
-  }
+  return parse_spec_list(tunnel_registry(), text, "tunnel.method");
 }
 
 std::string tunnel_methods_help() {

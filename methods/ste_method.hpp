@@ -11,14 +11,11 @@ namespace plumekit::methods {
 
 class SteMethod : public methods::LocalizationMethod, public Teammate {
  public:
-  // Keeps references: every argument must outlive the method.
-  SteMethod(ste::Estimator& estimator, const planner::Planner& planner,
-            const ste::Navigator& navigator, const ste::StopOptions& stop)
-      : mission_(estimator, planner, navigator, stop) {}
-  // Owns its estimator (the registry's way: run/scenario.cpp builds it for the map).
+  // Owns its estimator (run/scenario.cpp builds it for the map, the registry makes the method);
+  // keeps references to the rest, which must outlive the method.
   SteMethod(std::unique_ptr<ste::Estimator> estimator, const planner::Planner& planner,
             const ste::Navigator& navigator, const ste::StopOptions& stop)
-      : owned_(std::move(estimator)), mission_(*owned_, planner, navigator, stop) {}
+      : estimator_(std::move(estimator)), mission_(*estimator_, planner, navigator, stop) {}
 
   std::string name() const override { return "ste"; }
   // The stop's sample after the teammates' shared since the last (one posterior update).
@@ -36,7 +33,7 @@ class SteMethod : public methods::LocalizationMethod, public Teammate {
   methods::Move next_beside(Vec2 robot, const std::vector<Vec2>& virtual_points) override;
 
  private:
-  std::unique_ptr<ste::Estimator> owned_;  // declared before mission_, which refers to it
+  std::unique_ptr<ste::Estimator> estimator_;  // declared before mission_, which refers to it
   ste::Mission mission_;
   std::vector<ste::Mission::Sample> shared_;  // teammates' samples not yet added
 };
