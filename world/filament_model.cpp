@@ -30,35 +30,6 @@ bool through_obstacle_outlet(const Map& map, Vec2 a, Vec2 b) {
   return false;
 }
 
-// A filament's kernel window: sensor columns i0..i1, rows j0..j1 of a grid of cell dx x dy.
-struct Window {
-  int i0, i1, j0, j1;
-  double dx, dy;
-};
-
-// Zeroes, in the window's row-major mask, the sensors in `shadow`; a row's
-// mask is set to ones the first time a shadow reaches it (masked[row] = 1).
-void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
-           std::vector<std::uint8_t>& masked) {
-  const std::size_t width = static_cast<std::size_t>(w.i1 - w.i0 + 1);
-  // Rows and columns whose centres lie in the shadow, clamped in double (bounds may be infinite).
-  const double from_j = std::max<double>(w.j0, std::ceil(shadow.y_lo() / w.dy - 0.5));
-  const double to_j = std::min<double>(w.j1, std::floor(shadow.y_hi() / w.dy - 0.5));
-  if (from_j > to_j) return;
-  for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
-    double lo, hi;
-    if (!shadow.on_row((j + 0.5) * w.dy, lo, hi)) continue;
-    const double from_i = std::max<double>(w.i0, std::ceil(lo / w.dx - 0.5));
-    const double to_i = std::min<double>(w.i1, std::floor(hi / w.dx - 0.5));
-    if (from_i > to_i) continue;
-    double* row = mask.data() + (j - w.j0) * width;
-    if (!masked[j - w.j0]) std::fill(row, row + width, 1.0);
-    masked[j - w.j0] = 1;
-    std::fill(row + (static_cast<int>(from_i) - w.i0), row + (static_cast<int>(to_i) - w.i0 + 1),
-              0.0);
-  }
-}
-
 }  // namespace
 
 // Bounds well beyond any useful setting: they catch NaN, signs and unit
@@ -109,7 +80,12 @@ Entries filament_motion_entries() {
        "",
        &O::unsteady_wind,
        {},
-       "Meander as a field fading at walls (--world, --wind-model)"}};
+       "Meander as a field fading at walls (--world, --wind-model)"},
+      {"plume.engine",
+       "",
+       enum_field(&O::engine, &to_string, &parse_plume_engine, "fast, v1"),
+       {},
+       "How the plume is computed: fast, or v1 (before issue 45; --world faithful-v1)"}};
 }
 
 // The spin-up to a statistically steady plume and the recording.
@@ -165,12 +141,26 @@ void FilamentOptions::validate() const {
                                       "1e+08; use a larger dt or shorter times");
 }
 
+const char* to_string(PlumeEngine engine) {
+  return engine == PlumeEngine::V1 ? "v1" : "fast";
+}
+
+PlumeEngine parse_plume_engine(const std::string& name) {
+  if (name == "fast") return PlumeEngine::Fast;
+  if (name == "v1") return PlumeEngine::V1;
+  throw OptionError("plume.engine", "unknown engine '" + name + "'; use fast or v1");
+}
+
 void set_world(FilamentOptions& options, const std::string& name) {
-  if (name != "faithful" && name != "thesis" && name != "neumann")
-    throw OptionError("plume.world",
-                      "unknown world '" + name + "'; use faithful, thesis or neumann");
-  options.occlusion = options.unsteady_wind = name == "faithful";
-  if (name != "neumann") return;
+  const bool v1 = name.size() > 3 && name.compare(name.size() - 3, 3, "-v1") == 0;
+  const std::string preset = v1 ? name.substr(0, name.size() - 3) : name;
+  if (preset != "faithful" && preset != "thesis" && preset != "neumann")
+    throw OptionError("plume.world", "unknown world '" + name +
+                                         "'; use faithful, thesis or neumann, or one of them "
+                                         "with -v1 (faithful-v1: the world before issue 45)");
+  options.engine = v1 ? PlumeEngine::V1 : PlumeEngine::Fast;
+  options.occlusion = options.unsteady_wind = preset == "faithful";
+  if (preset != "neumann") return;
   // Seed 000 Eqs. 4.1-4.2 with its step taken as 0.1 s (the seed gives none), also the
   // integration step (5 cm at 0.5 m/s: one flow cell): a walk of
   // sigma_p = 0.1 m per step is 0.1 / sqrt(0.1) m/sqrt(s), and R grows by gamma / (2 R) per step
@@ -194,12 +184,14 @@ double FilamentOptions::max_filaments() const {
 
 FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& wind, Vec2 source,
                                        const FilamentOptions& options, std::uint64_t seed)
-    : map_(map), wind_(wind), source_(source), o_(options), rng_(seed) {
+    : map_(map), wind_(wind), source_(source), o_(options), seed_(seed), rng_(seed) {
   o_.validate();
-  // The filament vector at its largest, twice over for its growth by doubling.
-  const double bytes = 2.0 * sizeof(Filament) * o_.max_filaments();
+  // The filament arrays at their largest (position, R^2, release number, and the sensor index's
+  // copies), twice over for their growth by doubling.
+  constexpr double kBytesPerFilament = 2.0 * (7 * sizeof(double) + sizeof(std::uint64_t));
+  const double bytes = kBytesPerFilament * o_.max_filaments();
   if (!fits_in_memory(bytes)) {
-    const double fits = memory_limit() / (2.0 * sizeof(Filament) * (o_.max_spinup + o_.record_s));
+    const double fits = memory_limit() / (kBytesPerFilament * (o_.max_spinup + o_.record_s));
     check_memory(
         bytes, "the filament model at " + compact(o_.release_per_second) + " filaments per second",
         "use fewer plume.filaments_per_second (" + compact(std::floor(0.9 * fits)) + " fits)");
@@ -235,7 +227,20 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
     // Its own stream, derived from the plume's seed.
     fluctuation_ =
         std::make_unique<world::FluctuatingWind>(wind, f, splitmix64(seed ^ kFluctuationStream));
+    if (o_.engine == PlumeEngine::Fast) {
+      cell_u_.assign(s.size(), 0.0);
+      cell_v_.assign(s.size(), 0.0);
+      cell_stamp_.assign(s.size(), 0);
+    }
   }
+}
+
+std::vector<Filament> FilamentSimulation::filaments() const {
+  std::vector<Filament> out;
+  out.reserve(x_.size());
+  for (std::size_t k = 0; k < x_.size(); ++k)
+    out.push_back(filament(k));
+  return out;
 }
 
 bool FilamentSimulation::free_at(Vec2 p) const {
@@ -246,45 +251,26 @@ bool FilamentSimulation::free_at(Vec2 p) const {
   return clear_[s.index(i, j)] || map_.obstacle_at(p) < 0;
 }
 
-Vec2 FilamentSimulation::release_point() {
-  if (o_.source_radius <= 0.0) return source_;
-  // Uniform over the disc's free part: redrawn where the disc overlaps a wall or an obstacle.
-  for (int attempt = 0; attempt < 100; ++attempt) {
-    const double r = o_.source_radius * std::sqrt(uniform01(rng_));
-    const double a = 2.0 * kPi * uniform01(rng_);
-    const Vec2 p{source_.x + r * std::cos(a), source_.y + r * std::sin(a)};
-    if (map_.is_free(p)) return p;
-  }
-  return source_;
-}
-
-void FilamentSimulation::advance_meander(double dt) {
-  if (fluctuation_) {
-    fluctuation_->advance(dt);
-  } else {
-    // Ornstein-Uhlenbeck meander, exact update over dt.
-    const double decay = std::exp(-dt / o_.meander_time);
-    const double kick = o_.meander_speed * std::sqrt(1.0 - decay * decay);
-    meander_.x = decay * meander_.x + kick * normal_(rng_);
-    meander_.y = decay * meander_.y + kick * normal_(rng_);
-  }
+void FilamentSimulation::add_filament(Vec2 p) {
+  x_.push_back(p.x);
+  y_.push_back(p.y);
+  r2_.push_back(o_.initial_radius * o_.initial_radius);
+  serial_.push_back(static_cast<std::uint64_t>(summary_.released));
+  ++summary_.released;
 }
 
 void FilamentSimulation::release_filaments(double dt) {
   release_debt_ += o_.release_per_second * dt;
   while (release_debt_ >= 1.0) {
-    filaments_.push_back({release_point(), o_.initial_radius * o_.initial_radius});
+    add_filament(o_.engine == PlumeEngine::V1
+                     ? release_point_v1()
+                     : release_point_fast(static_cast<std::uint64_t>(summary_.released)));
     release_debt_ -= 1.0;
-    ++summary_.released;
   }
 }
 
-bool FilamentSimulation::move_filament(Filament& f, double dt, double walk, double max_r2) {
+FilamentSimulation::Move FilamentSimulation::settle(Vec2 from, Vec2& p) const {
   const double W = map_.width, H = map_.height;
-  const Vec2 w = wind_at(f.position);
-  Vec2 p = f.position + dt * w;
-  p.x += walk * normal_(rng_);
-  p.y += walk * normal_(rng_);
   // Through an arena wall: gone if through the outlet, else reflected.
   bool gone = false;
   if (p.x < 0.0 || p.x > W) {
@@ -297,119 +283,24 @@ bool FilamentSimulation::move_filament(Filament& f, double dt, double walk, doub
     if (outlet_on_wall(map_, side, std::clamp(p.x, 0.0, W))) gone = true;
     p.y = p.y < 0.0 ? -p.y : 2.0 * H - p.y;
   }
-  if (gone) {
-    ++summary_.left_through_outlet;
-    return false;
-  }
+  if (gone) return Move::Left;
   p.x = std::clamp(p.x, 0.0, W);
   p.y = std::clamp(p.y, 0.0, H);
-  if (free_at(p)) {
-    f.position = p;
-  } else if (through_obstacle_outlet(map_, f.position, p)) {
-    ++summary_.left_through_outlet;  // out through a door or vent in an obstacle's edge
-    return false;
-  } else {
-    ++summary_.rejected_moves;  // into an obstacle: the move is not taken
-  }
-  f.radius2 += o_.growth * dt;
-  if (f.radius2 > max_r2) {
-    ++summary_.dropped_too_wide;
-    return false;
-  }
-  return true;
+  if (free_at(p)) return Move::Kept;
+  // Out through a door or vent in an obstacle's edge, or into an obstacle: the move is not taken.
+  return through_obstacle_outlet(map_, from, p) ? Move::Left : Move::Rejected;
 }
 
 void FilamentSimulation::step() {
-  const double dt = o_.dt;
-  const double walk = o_.sigma_walk * std::sqrt(dt);
-  advance_meander(dt);
-  release_filaments(dt);
-  const double max_r2 = o_.max_radius * o_.max_radius;
-  // The kept filaments close up in place, in their order: the random draws stay in that order.
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < filaments_.size(); ++k) {
-    Filament f = filaments_[k];
-    if (move_filament(f, dt, walk, max_r2)) filaments_[kept++] = f;
-  }
-  filaments_.resize(kept);
-  time_ += dt;
-}
-
-void FilamentSimulation::concentration(const GridShape& shape, std::vector<double>& out) const {
-  const double dx = shape.dx(), dy = shape.dy();
-  std::vector<double> ex, ey, mask;
-  std::vector<std::uint8_t> masked;  // per window row: some sensor in it is hidden
-  std::vector<Edge> edges;
-  for (const Filament& f : filaments_) {
-    const double r = o_.cutoff * std::sqrt(f.radius2);
-    const int i0 = std::max(0, static_cast<int>(std::ceil((f.position.x - r) / dx - 0.5)));
-    const int i1 =
-        std::min(shape.nx - 1, static_cast<int>(std::floor((f.position.x + r) / dx - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil((f.position.y - r) / dy - 0.5)));
-    const int j1 =
-        std::min(shape.ny - 1, static_cast<int>(std::floor((f.position.y + r) / dy - 0.5)));
-    if (i0 > i1 || j0 > j1) continue;
-    const double inv = 1.0 / f.radius2;
-    // The kernel is separable: two short 1-D tables, then an outer product.
-    ex.resize(i1 - i0 + 1);
-    ey.resize(j1 - j0 + 1);
-    for (int i = i0; i <= i1; ++i) {
-      const double d = (i + 0.5) * dx - f.position.x;
-      ex[i - i0] = std::exp(-d * d * inv);
-    }
-    const double amp = mass_ * inv / kPi;
-    for (int j = j0; j <= j1; ++j) {
-      const double d = (j + 0.5) * dy - f.position.y;
-      ey[j - j0] = amp * std::exp(-d * d * inv);
-    }
-    // With occlusion, mark the window's rows that some obstacle edge shadows.
-    masked.assign(ey.size(), 0);
-    if (sight_) {
-      // The sensors' centres and the filament: every segment between them lies inside.
-      const Vec2 lo{(i0 + 0.5) * dx, (j0 + 0.5) * dy}, hi{(i1 + 0.5) * dx, (j1 + 0.5) * dy};
-      const Box window{{std::min(lo.x, f.position.x), std::min(lo.y, f.position.y)},
-                       {std::max(hi.x, f.position.x), std::max(hi.y, f.position.y)}};
-      edges.clear();
-      sight_->facing_edges(f.position, window, edges);
-      mask.resize(ex.size() * ey.size());
-      for (const Edge& e : edges)
-        shade(EdgeShadow(f.position, e), {i0, i1, j0, j1, dx, dy}, mask, masked);
-    }
-    for (int j = j0; j <= j1; ++j) {
-      double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
-      const double a = ey[j - j0];
-      if (!masked[j - j0]) {
-        for (int i = i0; i <= i1; ++i)
-          row[i] += a * ex[i - i0];
-        continue;
-      }
-      const double* row_mask = mask.data() + (j - j0) * ex.size();
-      for (int i = i0; i <= i1; ++i)
-        row[i] += a * ex[i - i0] * row_mask[i - i0];
-    }
-  }
+  if (o_.engine == PlumeEngine::V1)
+    step_v1();
+  else
+    step_fast();
+  ++steps_;
 }
 
 double FilamentSimulation::concentration_at(Vec2 p) const {
-  // The same kernel and cutoff as concentration(), at one point (a square of
-  // half-side cutoff * R, as there). With occlusion, the edges that face the
-  // sensor within any filament's reach decide which filaments it sees.
-  std::vector<Edge> edges;
-  if (sight_) {
-    const double reach = o_.cutoff * o_.max_radius;
-    sight_->facing_edges(p, {{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}}, edges);
-  }
-  double c = 0.0;
-  for (const Filament& f : filaments_) {
-    const double dx = p.x - f.position.x, dy = p.y - f.position.y;
-    const double reach = o_.cutoff * o_.cutoff * f.radius2;
-    if (dx * dx > reach || dy * dy > reach) continue;
-    if (std::any_of(edges.begin(), edges.end(),
-                    [&](const Edge& e) { return hides(p, e, f.position); }))
-      continue;
-    c += std::exp(-(dx * dx + dy * dy) / f.radius2) / f.radius2;
-  }
-  return c * mass_ / kPi;
+  return o_.engine == PlumeEngine::V1 ? concentration_at_v1(p) : concentration_at_fast(p);
 }
 
 namespace {
@@ -512,7 +403,7 @@ SensorRecord simulate_filaments(const Map& map, const cfd::WindField& wind, Vec2
   rec.summary.rejected_moves = end.rejected_moves;
   rec.summary.left_through_outlet = end.left_through_outlet;
   rec.summary.dropped_too_wide = end.dropped_too_wide;
-  rec.summary.filaments_at_end = static_cast<int>(sim.filaments().size());
+  rec.summary.filaments_at_end = static_cast<int>(sim.filament_count());
   rec.summary.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return rec;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <random>
 #include <string>
 #include <vector>
@@ -26,6 +27,16 @@
 #include "world/wind_fluctuation.hpp"
 
 namespace plumekit::world {
+
+// How the plume is computed (issue 45). Fast: filaments as arrays, drawn from counter-based
+// normals, the wind combined once per cell and step, sensors read through a spatial index of the
+// filaments. V1: the world before issue 45, bit for bit, kept for one release so that published
+// numbers can be reproduced (--world faithful-v1, thesis-v1, neumann-v1; docs/world.md,
+// "Worlds"). Both follow the same physics; tests/world/engine_equivalence_test.cpp shows it.
+enum class PlumeEngine { Fast, V1 };
+const char* to_string(PlumeEngine engine);
+// OptionError "plume.engine" for a name other than fast or v1.
+PlumeEngine parse_plume_engine(const std::string& name);
 
 struct FilamentOptions {
   // Filaments released per second (Neumann used 500/s). Each carries
@@ -80,6 +91,7 @@ struct FilamentOptions {
   bool unsteady_wind = true;
   double meander_length = 2.0;      // m
   double meander_wall_layer = 1.0;  // m
+  PlumeEngine engine = PlumeEngine::Fast;
 
   double equivalent_diffusivity() const { return 0.5 * sigma_walk * sigma_walk + 0.25 * growth; }
   // A filament's age when it is dropped for being max_radius wide, s: (R^2 - R0^2) / growth,
@@ -99,11 +111,11 @@ struct FilamentOptions {
 
 // The world presets (--world, docs/world.md, "Worlds"): "faithful" (the
 // defaults: occlusion and the unsteady wind) or "thesis" (neither), which set only
-// those two fields; or "neumann", seed 000 §4.1's filaments in a laminar wind (no
+// those two fields and the fast engine; each with "-v1" ("faithful-v1") sets the V1 engine
+// instead; or "neumann", seed 000 §4.1's filaments in a laminar wind (no
 // meander, 500 filaments/s of 0.2 m, sigma_p 0.1 m per 0.1 s step (dt 0.1 s), almost no growth,
 // a spin-up of at least 100 s), released over a source disc of 0.2 m, for the seeds' 32 x 8 m
-// tunnel. OptionError
-// "plume.world" for another name.
+// tunnel (also "neumann-v1"). OptionError "plume.world" for another name.
 void set_world(FilamentOptions& options, const std::string& name);
 
 struct Filament {
@@ -134,7 +146,9 @@ class FilamentSimulation {
 
   void step();  // advance by options.dt
   double time() const { return time_; }
-  const std::vector<Filament>& filaments() const { return filaments_; }
+  std::size_t filament_count() const { return x_.size(); }
+  Filament filament(std::size_t k) const { return {{x_[k], y_[k]}, r2_[k]}; }
+  std::vector<Filament> filaments() const;  // a copy, for tests and pictures
   const FilamentSummary& summary() const { return summary_; }
   // The meander velocity shared by all filaments now: the wind's large-scale
   // swing (zero with the unsteady wind, whose swing is in the field).
@@ -145,33 +159,71 @@ class FilamentSimulation {
   bool unsteady() const { return fluctuation_ != nullptr; }
   // Adds the concentration at the cell centres of `shape` to `out`.
   void concentration(const GridShape& shape, std::vector<double>& out) const;
-  // The concentration at one point (what a robot's sensor reads there now).
+  // The concentration at one point (what a robot's sensor reads there now). Robots sharing the
+  // plume may call it at once (world/shared_plume.hpp).
   double concentration_at(Vec2 p) const;
 
  private:
   bool free_at(Vec2 p) const;
-  Vec2 release_point();  // the source, or a free point of its disc (options.source_radius)
-  // The parts of step(), in its order (the random draws' order decides the plume).
-  void advance_meander(double dt);    // the meander's or the unsteady wind's next state
+  // What happens at the arena's walls and obstacles to a filament moving from `from` to `p`:
+  // Kept (p is where it is now), Rejected (it stays at `from`) or Left (through an outlet).
+  enum class Move { Kept, Rejected, Left };
+  Move settle(Vec2 from, Vec2& p) const;
   void release_filaments(double dt);  // the filaments the source released over dt
-  // Moves f over dt; false when it left (an outlet) or grew past max_r2.
-  bool move_filament(Filament& f, double dt, double walk, double max_r2);
+  void add_filament(Vec2 p);
+  // The fast engine (world/filament_step.cpp).
+  void step_fast();
+  Vec2 release_point_fast(std::uint64_t serial) const;
+  void meander_fast(double dt);
+  // The winds at filaments [begin, end) now, into wx_, wy_.
+  void winds_fast(std::size_t begin, std::size_t end);
+  // The V1 engine (world/filament_model_v1.cpp): the world before issue 45, bit for bit.
+  void step_v1();
+  Vec2 release_point_v1();
+  void advance_meander_v1(double dt);
+  double concentration_at_v1(Vec2 p) const;
+  // Sensors read through a spatial index of the filaments (world/filament_concentration.cpp):
+  // square buckets, and in each its filaments' copies, contiguous.
+  struct Index {
+    long long step = -1;  // the step it was built for
+    double bucket = 0.5;  // m
+    int nx = 0, ny = 0;
+    std::vector<int> start;        // per bucket, its first filament below; nx * ny + 1
+    std::vector<double> x, y, r2;  // the filaments by bucket, in their order within one
+    std::vector<double> max_r2;    // per bucket
+    double max_r2_all = 0.0;
+  };
+  const Index& index() const;
+  double concentration_at_fast(Vec2 p) const;
 
   const Map& map_;
   const cfd::WindField& wind_;
   Vec2 source_;
   FilamentOptions o_;
-  std::mt19937_64 rng_;
-  NormalSampler normal_;  // core/random.hpp: the same variates with any standard library
-  std::vector<Filament> filaments_;
+  std::uint64_t seed_;
+  std::mt19937_64 rng_;   // V1
+  NormalSampler normal_;  // V1; core/random.hpp: the same variates with any standard library
+  // The filaments, as arrays: position, R^2 and (fast engine) the release number, which keys
+  // its random draws.
+  std::vector<double> x_, y_, r2_;
+  std::vector<std::uint64_t> serial_;
+  std::vector<double> wx_, wy_;  // fast engine: scratch, the winds of a block of filaments
+  // Fast engine with the unsteady wind: each flow cell's wind this step, computed when a
+  // filament first needs it (stamp = the step's number + 1).
+  std::vector<double> cell_u_, cell_v_;
+  std::vector<long long> cell_stamp_;
   std::vector<std::uint8_t> clear_;                      // per flow cell: no obstacle within it
   std::unique_ptr<LineOfSight> sight_;                   // with options.occlusion only
   std::unique_ptr<world::FluctuatingWind> fluctuation_;  // with options.unsteady_wind only
   double time_ = 0.0;
+  long long steps_ = 0;
   double release_debt_ = 0.0;
   Vec2 meander_;
   double mass_ = 0.0;  // per filament
   FilamentSummary summary_;
+  // The spatial index, built by the first sensor read after a step.
+  mutable std::mutex index_lock_;
+  mutable Index index_;
 };
 
 struct SensorRecord {
@@ -193,7 +245,7 @@ bool spin_up(Plume& sim, const FilamentOptions& options) {
     double sum = 0.0;
     for (int s = 0; s < per_window; ++s) {
       sim.step();
-      sum += static_cast<double>(sim.filaments().size());
+      sum += static_cast<double>(sim.filament_count());
     }
     const double mean = sum / per_window;
     if (previous > 0.0 && sim.time() >= options.min_spinup - 1e-9 &&

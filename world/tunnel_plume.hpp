@@ -51,6 +51,7 @@ class TunnelPlume {
   void step();  // advance by options.dt
   double time() const { return time_; }
   const std::vector<Filament3>& filaments() const { return filaments_; }
+  std::size_t filament_count() const { return filaments_.size(); }
   // The wind that carries the gas now: the tunnel's plus the meander (what an anemometer reads).
   Vec3 wind() const { return Vec3{tunnel_.speed, 0.0, 0.0} + meander_; }
   // The concentration at p now.

@@ -125,22 +125,26 @@ TEST(FilamentOcclusion, GasBehindABlockIsNotReadUpwindOfIt) {
   world::FilamentOptions o;
   o.unsteady_wind = false;  // the thesis-style wind, in which the wake's pile-up was seen
   o.record_s = 20.0;
+  // Over five plumes: one plume's wake sends gas upwind of the block in some seeds and hardly in
+  // others (0.15 to 3 here).
   double mean[2] = {0.0, 0.0};
   for (const bool occlusion : {false, true}) {
     o.occlusion = occlusion;
-    world::FilamentSimulation sim(map, flow.wind, {6.0, 2.0}, o, 3);
-    world::spin_up(sim, o);
     double sum = 0.0;
     int n = 0;
-    for (double t = 0.0; t < o.record_s; t += 0.5, ++n) {
-      for (int s = 0; s < 10; ++s)
-        sim.step();
-      sum += sim.concentration_at({3.8, 2.0});
+    for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+      world::FilamentSimulation sim(map, flow.wind, {6.0, 2.0}, o, seed);
+      world::spin_up(sim, o);
+      for (double t = 0.0; t < o.record_s; t += 0.5, ++n) {
+        for (int s = 0; s < 10; ++s)
+          sim.step();
+        sum += sim.concentration_at({3.8, 2.0});
+      }
     }
     mean[occlusion] = sum / n;
     std::printf("occlusion %d: mean upwind of the block %.4g\n", occlusion, mean[occlusion]);
   }
-  EXPECT_GT(mean[0], 1.0);  // the kernels of the wake's pile reach through the block
+  EXPECT_GT(mean[0], 0.5);  // the kernels of the wake's pile reach through the block
   EXPECT_LT(mean[1], 0.01 * mean[0]);
 }
 

@@ -1,0 +1,231 @@
+// What sensors read from the filaments: the concentration on a grid of sensors (datasets'
+// frames) and at one point (a robot's sensor), with line of sight when occlusion is on.
+#include <algorithm>
+#include <cmath>
+
+#include "core/fast_math.hpp"
+#include "world/filament_model.hpp"
+
+namespace plumekit::world {
+
+namespace {
+
+// A filament's kernel window: sensor columns i0..i1, rows j0..j1 of a grid of cell dx x dy.
+struct Window {
+  int i0, i1, j0, j1;
+  double dx, dy;
+};
+
+// Zeroes, in the window's row-major mask, the sensors in `shadow`; a row's
+// mask is set to ones the first time a shadow reaches it (masked[row] = 1).
+void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
+           std::vector<std::uint8_t>& masked) {
+  const std::size_t width = static_cast<std::size_t>(w.i1 - w.i0 + 1);
+  // Rows and columns whose centres lie in the shadow, clamped in double (bounds may be infinite).
+  const double from_j = std::max<double>(w.j0, std::ceil(shadow.y_lo() / w.dy - 0.5));
+  const double to_j = std::min<double>(w.j1, std::floor(shadow.y_hi() / w.dy - 0.5));
+  if (from_j > to_j) return;
+  for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
+    double lo, hi;
+    if (!shadow.on_row((j + 0.5) * w.dy, lo, hi)) continue;
+    const double from_i = std::max<double>(w.i0, std::ceil(lo / w.dx - 0.5));
+    const double to_i = std::min<double>(w.i1, std::floor(hi / w.dx - 0.5));
+    if (from_i > to_i) continue;
+    double* row = mask.data() + (j - w.j0) * width;
+    if (!masked[j - w.j0]) std::fill(row, row + width, 1.0);
+    masked[j - w.j0] = 1;
+    std::fill(row + (static_cast<int>(from_i) - w.i0), row + (static_cast<int>(to_i) - w.i0 + 1),
+              0.0);
+  }
+}
+
+// The Gaussian kernel's 1-D factors exp(-(centre - at)^2 / r2) * amp for the centres of cells
+// first..last of size `cell`. V1 used libm's exp; the fast engine plumekit's (a loop that
+// vectorizes).
+void kernel_factors(int first, int last, double cell, double at, double inv_r2, double amp,
+                    bool libm, std::vector<double>& out) {
+  out.resize(static_cast<std::size_t>(last - first + 1));
+  double* o = out.data();
+  if (libm) {
+    for (int i = first; i <= last; ++i) {
+      const double d = (i + 0.5) * cell - at;
+      o[i - first] = amp * std::exp(-d * d * inv_r2);
+    }
+    return;
+  }
+  const int n = last - first + 1;
+  for (int k = 0; k < n; ++k) {
+    const double d = (first + k + 0.5) * cell - at;
+    o[k] = amp * fast::exp_neg(-d * d * inv_r2);
+  }
+}
+
+}  // namespace
+
+void FilamentSimulation::concentration(const GridShape& shape, std::vector<double>& out) const {
+  const double dx = shape.dx(), dy = shape.dy();
+  const bool libm = o_.engine == PlumeEngine::V1;
+  std::vector<double> ex, ey, mask;
+  std::vector<std::uint8_t> masked;  // per window row: some sensor in it is hidden
+  std::vector<Edge> edges;
+  for (std::size_t k = 0; k < x_.size(); ++k) {
+    const Vec2 f{x_[k], y_[k]};
+    const double r = o_.cutoff * std::sqrt(r2_[k]);
+    const int i0 = std::max(0, static_cast<int>(std::ceil((f.x - r) / dx - 0.5)));
+    const int i1 = std::min(shape.nx - 1, static_cast<int>(std::floor((f.x + r) / dx - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((f.y - r) / dy - 0.5)));
+    const int j1 = std::min(shape.ny - 1, static_cast<int>(std::floor((f.y + r) / dy - 0.5)));
+    if (i0 > i1 || j0 > j1) continue;
+    const double inv = 1.0 / r2_[k];
+    // The kernel is separable: two short 1-D tables, then an outer product.
+    kernel_factors(i0, i1, dx, f.x, inv, 1.0, libm, ex);
+    kernel_factors(j0, j1, dy, f.y, inv, mass_ * inv / kPi, libm, ey);
+    // With occlusion, mark the window's rows that some obstacle edge shadows.
+    masked.assign(ey.size(), 0);
+    if (sight_) {
+      // The sensors' centres and the filament: every segment between them lies inside.
+      const Vec2 lo{(i0 + 0.5) * dx, (j0 + 0.5) * dy}, hi{(i1 + 0.5) * dx, (j1 + 0.5) * dy};
+      const Box window{{std::min(lo.x, f.x), std::min(lo.y, f.y)},
+                       {std::max(hi.x, f.x), std::max(hi.y, f.y)}};
+      edges.clear();
+      sight_->facing_edges(f, window, edges);
+      mask.resize(ex.size() * ey.size());
+      for (const Edge& e : edges)
+        shade(EdgeShadow(f, e), {i0, i1, j0, j1, dx, dy}, mask, masked);
+    }
+    for (int j = j0; j <= j1; ++j) {
+      double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
+      const double a = ey[j - j0];
+      if (!masked[j - j0]) {
+        for (int i = i0; i <= i1; ++i)
+          row[i] += a * ex[i - i0];
+        continue;
+      }
+      const double* row_mask = mask.data() + (j - j0) * ex.size();
+      for (int i = i0; i <= i1; ++i)
+        row[i] += a * ex[i - i0] * row_mask[i - i0];
+    }
+  }
+}
+
+const FilamentSimulation::Index& FilamentSimulation::index() const {
+  std::lock_guard<std::mutex> g(index_lock_);
+  Index& ix = index_;
+  if (ix.step == steps_) return ix;
+  ix.step = steps_;
+  ix.nx = std::max(1, static_cast<int>(std::ceil(map_.width / ix.bucket)));
+  ix.ny = std::max(1, static_cast<int>(std::ceil(map_.height / ix.bucket)));
+  const std::size_t buckets = static_cast<std::size_t>(ix.nx) * ix.ny, n = x_.size();
+  // A counting sort by bucket, stable: filaments keep their order within a bucket.
+  std::vector<int> of(n);
+  ix.start.assign(buckets + 1, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = std::min(ix.nx - 1, static_cast<int>(x_[k] / ix.bucket));
+    const int j = std::min(ix.ny - 1, static_cast<int>(y_[k] / ix.bucket));
+    of[k] = j * ix.nx + i;
+    ++ix.start[static_cast<std::size_t>(of[k]) + 1];
+  }
+  for (std::size_t b = 0; b < buckets; ++b)
+    ix.start[b + 1] += ix.start[b];
+  std::vector<int> next(ix.start.begin(), ix.start.end() - 1);
+  ix.x.resize(n);
+  ix.y.resize(n);
+  ix.r2.resize(n);
+  ix.max_r2.assign(buckets, 0.0);
+  ix.max_r2_all = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const int at = next[static_cast<std::size_t>(of[k])]++;
+    ix.x[at] = x_[k];
+    ix.y[at] = y_[k];
+    ix.r2[at] = r2_[k];
+    double& m = ix.max_r2[static_cast<std::size_t>(of[k])];
+    m = std::max(m, r2_[k]);
+    ix.max_r2_all = std::max(ix.max_r2_all, r2_[k]);
+  }
+  return ix;
+}
+
+namespace {
+
+// Where a box lies against the shadow an edge facing `from` casts (the points q for which the
+// segment from `from` to q crosses the edge): the shadow is convex, the far side of the edge's
+// line inside the cone from `from` through its ends, so the box's corners decide.
+enum class Shade { None, Part, All };
+
+Shade shade_of(Vec2 from, const Edge& e, const Box& box) {
+  const Vec2 corners[4] = {box.lo, {box.hi.x, box.lo.y}, {box.lo.x, box.hi.y}, box.hi};
+  int inside = 0;
+  // Each half-plane as orient(u, v, q) * sign >= 0.
+  const struct {
+    Vec2 u, v;
+    double sign;
+  } planes[3] = {{e.a, e.b, 1.0}, {from, e.a, -1.0}, {from, e.b, 1.0}};
+  bool in[4] = {true, true, true, true};
+  for (const auto& h : planes) {
+    int out = 0;
+    for (int c = 0; c < 4; ++c) {
+      const bool ok = h.sign * orient(h.u, h.v, corners[c]) >= 0.0;
+      in[c] = in[c] && ok;
+      out += ok ? 0 : 1;
+    }
+    if (out == 4) return Shade::None;  // the whole box is beyond one half-plane
+  }
+  for (int c = 0; c < 4; ++c)
+    inside += in[c] ? 1 : 0;
+  return inside == 4 ? Shade::All : Shade::Part;
+}
+
+}  // namespace
+
+double FilamentSimulation::concentration_at_fast(Vec2 p) const {
+  const Index& ix = index();
+  const double cut2 = o_.cutoff * o_.cutoff;
+  const double reach = o_.cutoff * std::sqrt(ix.max_r2_all);
+  const Box query{{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}};
+  std::vector<Edge> edges, part;
+  if (sight_) sight_->facing_edges(p, query, edges);
+  const int i0 = std::max(0, static_cast<int>(std::floor(query.lo.x / ix.bucket)));
+  const int i1 = std::min(ix.nx - 1, static_cast<int>(std::floor(query.hi.x / ix.bucket)));
+  const int j0 = std::max(0, static_cast<int>(std::floor(query.lo.y / ix.bucket)));
+  const int j1 = std::min(ix.ny - 1, static_cast<int>(std::floor(query.hi.y / ix.bucket)));
+  double c = 0.0;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const std::size_t b = static_cast<std::size_t>(j) * ix.nx + i;
+      const int first = ix.start[b], last = ix.start[b + 1];
+      if (first == last) continue;
+      // The bucket's box, and whether any of its filaments can reach p.
+      const Box box{{i * ix.bucket, j * ix.bucket}, {(i + 1) * ix.bucket, (j + 1) * ix.bucket}};
+      const double gx = std::max({0.0, box.lo.x - p.x, p.x - box.hi.x});
+      const double gy = std::max({0.0, box.lo.y - p.y, p.y - box.hi.y});
+      const double far = cut2 * ix.max_r2[b];
+      if (gx * gx > far || gy * gy > far) continue;
+      // Edges whose shadow covers the bucket hide it; those that cut it are tested per filament.
+      part.clear();
+      bool hidden = false;
+      for (const Edge& e : edges) {
+        const Shade s = shade_of(p, e, box);
+        if (s == Shade::All) {
+          hidden = true;
+          break;
+        }
+        if (s == Shade::Part) part.push_back(e);
+      }
+      if (hidden) continue;
+      double sum = 0.0;
+      for (int k = first; k < last; ++k) {
+        const double dx = p.x - ix.x[k], dy = p.y - ix.y[k];
+        const double r2 = ix.r2[k];
+        const double lim = cut2 * r2;
+        if (dx * dx > lim || dy * dy > lim) continue;
+        const Vec2 f{ix.x[k], ix.y[k]};
+        if (std::any_of(part.begin(), part.end(), [&](const Edge& e) { return hides(p, e, f); }))
+          continue;
+        sum += fast::exp_neg(-(dx * dx + dy * dy) / r2) / r2;
+      }
+      c += sum;
+    }
+  return c * mass_ / kPi;
+}
+
+}  // namespace plumekit::world
