@@ -184,7 +184,13 @@ double FilamentOptions::max_filaments() const {
 
 FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& wind, Vec2 source,
                                        const FilamentOptions& options, std::uint64_t seed)
-    : map_(map), wind_(wind), source_(source), o_(options), seed_(seed), rng_(seed) {
+    : map_(map),
+      wind_(wind),
+      source_(source),
+      o_(options),
+      seed_(seed),
+      rng_(seed),
+      obstacles_(map, wind.shape()) {
   o_.validate();
   // The filament arrays at their largest (position, R^2, release number, and the sensor index's
   // copies), twice over for their growth by doubling.
@@ -200,23 +206,7 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
     throw InputError("filament model: source " + to_string(source) +
                      " is outside the arena or inside an obstacle");
   mass_ = o_.release_rate / o_.release_per_second;
-  // Cells no obstacle reaches need no polygon test: the common case, and the
-  // exact test stays for cells an obstacle edge crosses.
-  const GridShape& s = wind.shape();
-  clear_.assign(s.size(), 1);
-  const double half_diagonal = 0.5 * std::hypot(s.dx(), s.dy()) * (1.0 + 1e-9);
-  for (int j = 0; j < s.ny; ++j)
-    for (int i = 0; i < s.nx; ++i) {
-      const Vec2 c = s.centre(i, j);
-      bool clear = map.obstacle_at(c) < 0;
-      for (const Polygon& poly : map.obstacles) {
-        for (std::size_t k = 0; clear && k < poly.size(); ++k)
-          if (distance_to_segment(c, poly[k], poly[(k + 1) % poly.size()]) <= half_diagonal)
-            clear = false;
-        if (!clear) break;
-      }
-      clear_[s.index(i, j)] = clear;
-    }
+  if (o_.engine == PlumeEngine::V1) clear_ = clear_cells_v1(map, wind.shape());
   if (o_.occlusion) sight_ = std::make_unique<LineOfSight>(map);
   if (o_.unsteady_wind) {
     world::FluctuationOptions f;
@@ -227,11 +217,6 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
     // Its own stream, derived from the plume's seed.
     fluctuation_ =
         std::make_unique<world::FluctuatingWind>(wind, f, splitmix64(seed ^ kFluctuationStream));
-    if (o_.engine == PlumeEngine::Fast) {
-      cell_u_.assign(s.size(), 0.0);
-      cell_v_.assign(s.size(), 0.0);
-      cell_stamp_.assign(s.size(), 0);
-    }
   }
 }
 
@@ -245,6 +230,8 @@ std::vector<Filament> FilamentSimulation::filaments() const {
 
 bool FilamentSimulation::free_at(Vec2 p) const {
   if (!map_.in_arena(p)) return false;
+  if (o_.engine == PlumeEngine::Fast) return obstacles_.free(p);
+  // V1 as it was, cost included (bench/world_bench measures the fast engine against it).
   const GridShape& s = wind_.shape();
   const int i = std::min(s.nx - 1, static_cast<int>(p.x / s.dx()));
   const int j = std::min(s.ny - 1, static_cast<int>(p.y / s.dy()));

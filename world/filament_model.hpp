@@ -24,6 +24,7 @@
 #include "map/map.hpp"
 #include "world/gas_sensor.hpp"
 #include "world/line_of_sight.hpp"
+#include "world/obstacle_cells.hpp"
 #include "world/wind_fluctuation.hpp"
 
 namespace plumekit::world {
@@ -207,13 +208,10 @@ class FilamentSimulation {
   // its random draws.
   std::vector<double> x_, y_, r2_;
   std::vector<std::uint64_t> serial_;
-  std::vector<double> wx_, wy_;  // fast engine: scratch, the winds of a block of filaments
-  // Fast engine with the unsteady wind: each flow cell's wind this step, computed when a
-  // filament first needs it (stamp = the step's number + 1).
-  std::vector<double> cell_u_, cell_v_;
-  std::vector<long long> cell_stamp_;
-  std::vector<std::uint8_t> clear_;                      // per flow cell: no obstacle within it
-  std::unique_ptr<LineOfSight> sight_;                   // with options.occlusion only
+  std::vector<double> wx_, wy_;         // fast engine: scratch, the winds of a block of filaments
+  ObstacleCells obstacles_;             // free_at, per flow cell
+  std::vector<std::uint8_t> clear_;     // V1: per flow cell, no obstacle within it (free_at)
+  std::unique_ptr<LineOfSight> sight_;  // with options.occlusion only
   std::unique_ptr<world::FluctuatingWind> fluctuation_;  // with options.unsteady_wind only
   double time_ = 0.0;
   long long steps_ = 0;
@@ -225,6 +223,9 @@ class FilamentSimulation {
   mutable std::mutex index_lock_;
   mutable Index index_;
 };
+
+// V1's free cells: per flow cell, no obstacle within its half-diagonal of its centre.
+std::vector<std::uint8_t> clear_cells_v1(const Map& map, const GridShape& cells);
 
 struct SensorRecord {
   Grid<double> mean, std;

@@ -10,6 +10,26 @@
 
 namespace plumekit::world {
 
+std::vector<std::uint8_t> clear_cells_v1(const Map& map, const GridShape& s) {
+  // Cells no obstacle reaches need no polygon test: the common case, and the
+  // exact test stays for cells an obstacle edge crosses.
+  std::vector<std::uint8_t> clear(s.size(), 1);
+  const double half_diagonal = 0.5 * std::hypot(s.dx(), s.dy()) * (1.0 + 1e-9);
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const Vec2 c = s.centre(i, j);
+      bool free = map.obstacle_at(c) < 0;
+      for (const Polygon& poly : map.obstacles) {
+        for (std::size_t k = 0; free && k < poly.size(); ++k)
+          if (distance_to_segment(c, poly[k], poly[(k + 1) % poly.size()]) <= half_diagonal)
+            free = false;
+        if (!free) break;
+      }
+      clear[s.index(i, j)] = free;
+    }
+  return clear;
+}
+
 Vec2 FilamentSimulation::release_point_v1() {
   if (o_.source_radius <= 0.0) return source_;
   // Uniform over the disc's free part: redrawn where the disc overlaps a wall or an obstacle.

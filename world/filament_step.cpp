@@ -52,57 +52,63 @@ void FilamentSimulation::meander_fast(double dt) {
 
 void FilamentSimulation::winds_fast(std::size_t begin, std::size_t end) {
   const GridShape& s = wind_.shape();
-  const double dx = s.dx(), dy = s.dy();
-  const double *u0 = wind_.u().data(), *v0 = wind_.v().data();
-  const std::vector<std::uint8_t>& solid = wind_.solid_cells();
-  const long long stamp = steps_ + 1;
-  // Bilinear between cell centres, constant beyond the outermost (GridShape::bilinear).
-  auto axis = [](double g, int n, int& i0, int& i1, double& t) {
-    g = std::clamp(g - 0.5, 0.0, static_cast<double>(n - 1));
-    i0 = std::min(static_cast<int>(g), std::max(n - 2, 0));
-    i1 = std::min(i0 + 1, n - 1);
-    t = n > 1 ? g - i0 : 0.0;
-  };
-  for (std::size_t k = begin; k < end; ++k) {
-    const double px = x_[k], py = y_[k];
-    double wx = 0.0, wy = 0.0;
-    const int ci = std::min(s.nx - 1, static_cast<int>(px / dx));
-    const int cj = std::min(s.ny - 1, static_cast<int>(py / dy));
-    // Zero outside the arena and in obstacle cells, as WindField::at.
-    if (px >= 0.0 && px <= s.width && py >= 0.0 && py <= s.height && !solid[s.index(ci, cj)]) {
-      int i0, i1, j0, j1;
-      double tx, ty;
-      axis(px / dx, s.nx, i0, i1, tx);
-      axis(py / dy, s.ny, j0, j1, ty);
-      const std::size_t cells[4] = {s.index(i0, j0), s.index(i1, j0), s.index(i0, j1),
-                                    s.index(i1, j1)};
-      const double w[4] = {(1 - tx) * (1 - ty), tx * (1 - ty), (1 - tx) * ty, tx * ty};
-      if (fluctuation_) {
-        for (const std::size_t c : cells)
-          if (cell_stamp_[c] != stamp) {
-            const Vec2 cw = fluctuation_->cell_wind(c);
-            cell_u_[c] = cw.x;
-            cell_v_[c] = cw.y;
-            cell_stamp_[c] = stamp;
-          }
-        for (int c = 0; c < 4; ++c) {
-          wx += w[c] * cell_u_[cells[c]];
-          wy += w[c] * cell_v_[cells[c]];
-        }
-      } else {
-        for (int c = 0; c < 4; ++c) {
-          wx += w[c] * u0[cells[c]];
-          wy += w[c] * v0[cells[c]];
-        }
-      }
-    }
-    if (!fluctuation_) {
-      wx += meander_.x;
-      wy += meander_.y;
-    }
-    wx_[k - begin] = wx;
-    wy_[k - begin] = wy;
+  const int nx = s.nx, ny = s.ny;
+  const double inv_dx = 1.0 / s.dx(), inv_dy = 1.0 / s.dy();
+  const std::uint8_t* solid = wind_.solid_cells().data();
+  const std::size_t count = end - begin;
+  const double* x = x_.data() + begin;
+  const double* y = y_.data() + begin;
+  // Each filament's lower-left cell centre and its bilinear weights (GridShape::bilinear:
+  // constant beyond the outermost centres); the wind is zero where WindField::at has none
+  // (outside the arena, in an obstacle cell).
+  int base[kBlock];
+  double tx[kBlock], ty[kBlock];
+  bool calm[kBlock];
+  const int step_x = nx > 1 ? 1 : 0, step_y = ny > 1 ? nx : 0;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double gx = std::clamp(x[k] * inv_dx - 0.5, 0.0, double(nx - 1));
+    const double gy = std::clamp(y[k] * inv_dy - 0.5, 0.0, double(ny - 1));
+    const int i0 = std::min(static_cast<int>(gx), std::max(nx - 2, 0));
+    const int j0 = std::min(static_cast<int>(gy), std::max(ny - 2, 0));
+    tx[k] = nx > 1 ? gx - i0 : 0.0;
+    ty[k] = ny > 1 ? gy - j0 : 0.0;
+    base[k] = j0 * nx + i0;
+    const int ci = std::min(nx - 1, static_cast<int>(x[k] * inv_dx));
+    const int cj = std::min(ny - 1, static_cast<int>(y[k] * inv_dy));
+    const bool outside = !(x[k] >= 0.0 && x[k] <= s.width && y[k] >= 0.0 && y[k] <= s.height);
+    calm[k] = outside || solid[static_cast<std::size_t>(cj) * nx + ci];
   }
+  const double *u = wind_.u().data(), *v = wind_.v().data();
+  // The unsteady wind's modes in single precision, as they are stored: sixteen lanes.
+  constexpr int K = FluctuatingWind::kModes;
+  float a[2 * K] = {};
+  if (fluctuation_)
+    for (int j = 0; j < K; ++j)
+      a[j] = a[K + j] = static_cast<float>(fluctuation_->amplitudes()[j]);
+  const Vec2 swing = fluctuation_ ? Vec2{} : meander_;
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t c = calm[k] ? 0 : static_cast<std::size_t>(base[k]);
+    const std::size_t c10 = c + step_x, c01 = c + step_y, c11 = c + step_x + step_y;
+    const double w00 = (1 - tx[k]) * (1 - ty[k]), w10 = tx[k] * (1 - ty[k]),
+                 w01 = (1 - tx[k]) * ty[k], w11 = tx[k] * ty[k];
+    double wu = w00 * u[c] + w10 * u[c10] + w01 * u[c01] + w11 * u[c11];
+    double wv = w00 * v[c] + w10 * v[c10] + w01 * v[c01] + w11 * v[c11];
+    if (fluctuation_) {
+      // The modes' bilinear mean, weighted by their amplitudes: sixteen lanes at once.
+      const float *m00 = fluctuation_->cell_modes(c), *m10 = fluctuation_->cell_modes(c10),
+                  *m01 = fluctuation_->cell_modes(c01), *m11 = fluctuation_->cell_modes(c11);
+      const float f00 = static_cast<float>(w00), f10 = static_cast<float>(w10),
+                  f01 = static_cast<float>(w01), f11 = static_cast<float>(w11);
+      float p[2 * K];
+      for (int j = 0; j < 2 * K; ++j)
+        p[j] = a[j] * ((f00 * m00[j] + f10 * m10[j]) + (f01 * m01[j] + f11 * m11[j]));
+      wu += ((p[0] + p[1]) + (p[2] + p[3])) + ((p[4] + p[5]) + (p[6] + p[7]));
+      wv += ((p[8] + p[9]) + (p[10] + p[11])) + ((p[12] + p[13]) + (p[14] + p[15]));
+    }
+    wx_[k] = (calm[k] ? 0.0 : wu) + swing.x;
+    wy_[k] = (calm[k] ? 0.0 : wv) + swing.y;
+  }
+  static_assert(K == 8, "the sums above are written out for eight modes");
 }
 
 void FilamentSimulation::step_fast() {
@@ -111,6 +117,7 @@ void FilamentSimulation::step_fast() {
   meander_fast(dt);
   release_filaments(dt);
   const double growth = o_.growth * dt, max_r2 = o_.max_radius * o_.max_radius;
+  const double W = map_.width, H = map_.height;
   // This step's key: filament `serial` takes pair `serial` of its stream.
   const std::uint64_t key =
       counter_bits(splitmix64(seed_ ^ kWalkStream), static_cast<std::uint64_t>(steps_));
@@ -129,7 +136,9 @@ void FilamentSimulation::step_fast() {
       const std::size_t f = begin + k;
       const Vec2 from{x_[f], y_[f]};
       Vec2 p{from.x + dt * wx_[k] + walk * zx[k], from.y + dt * wy_[k] + walk * zy[k]};
-      const Move move = settle(from, p);
+      // Most moves stay inside the arena, in a cell that decides without a polygon test.
+      const bool plain = p.x > 0.0 && p.x < W && p.y > 0.0 && p.y < H && obstacles_.free(p);
+      const Move move = plain ? Move::Kept : settle(from, p);
       if (move == Move::Left) {
         ++summary_.left_through_outlet;
         continue;

@@ -64,19 +64,9 @@ class FluctuatingWind {
   // The wind now: the steady flow plus the modes, each bilinear between cell
   // centres; zero inside obstacles and outside the arena, as WindField::at.
   Vec2 at(Vec2 p) const;
-  // The wind now at the centre of flow cell `cell` (row-major): the steady flow plus the modes.
-  // at() is the bilinear mean of these; the fast plume combines each cell once per step.
-  Vec2 cell_wind(std::size_t cell) const {
-    constexpr int K = kModes;
-    const float* m = &cell_modes_[cell * 2 * K];
-    const double* a = amplitude_.data();
-    double u = steady_.u()[cell], v = steady_.v()[cell];
-    for (int k = 0; k < K; ++k) {
-      u += a[k] * double(m[k]);
-      v += a[k] * double(m[K + k]);
-    }
-    return {u, v};
-  }
+  // The modes at flow cell `cell` (row-major): u of modes 0..K-1, then v; what the fast plume
+  // combines with amplitudes() once per cell and step (at() is their bilinear mean).
+  const float* cell_modes(std::size_t cell) const { return &cell_modes_[cell * 2 * kModes]; }
 
   const cfd::WindField& steady() const { return steady_; }
   // Eight plane waves: enough directions for an isotropic swing, few enough
