@@ -108,41 +108,74 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
   }
 }
 
-const FilamentSimulation::Index& FilamentSimulation::index() const {
-  std::lock_guard<std::mutex> g(index_lock_);
-  Index& ix = index_;
-  if (ix.step == steps_) return ix;
-  ix.step = steps_;
-  ix.nx = std::max(1, static_cast<int>(std::ceil(map_.width / ix.bucket)));
-  ix.ny = std::max(1, static_cast<int>(std::ceil(map_.height / ix.bucket)));
-  const std::size_t buckets = static_cast<std::size_t>(ix.nx) * ix.ny, n = x_.size();
+void FilamentSimulation::capture(PlumeFrame& frame) const {
+  frame.sim_ = this;
+  frame.step_ = steps_;
+  frame.time_ = time_;
+  frame.meander_ = meander_;
+  if (fluctuation_)
+    frame.amplitudes_ = fluctuation_->amplitudes();
+  else
+    frame.amplitudes_.clear();
+  const std::size_t n = x_.size();
+  if (o_.engine == PlumeEngine::V1) {
+    frame.x_ = x_;
+    frame.y_ = y_;
+    frame.r2_ = r2_;
+    return;
+  }
+  frame.nx_ = std::max(1, static_cast<int>(std::ceil(map_.width / frame.bucket_)));
+  frame.ny_ = std::max(1, static_cast<int>(std::ceil(map_.height / frame.bucket_)));
+  const std::size_t buckets = static_cast<std::size_t>(frame.nx_) * frame.ny_;
   // A counting sort by bucket, stable: filaments keep their order within a bucket.
   std::vector<int> of(n);
-  ix.start.assign(buckets + 1, 0);
+  std::vector<int>& start = frame.start_;
+  start.assign(buckets + 1, 0);
+  const double inv = 1.0 / frame.bucket_;
   for (std::size_t k = 0; k < n; ++k) {
-    const int i = std::min(ix.nx - 1, static_cast<int>(x_[k] / ix.bucket));
-    const int j = std::min(ix.ny - 1, static_cast<int>(y_[k] / ix.bucket));
-    of[k] = j * ix.nx + i;
-    ++ix.start[static_cast<std::size_t>(of[k]) + 1];
+    const int i = std::min(frame.nx_ - 1, static_cast<int>(x_[k] * inv));
+    const int j = std::min(frame.ny_ - 1, static_cast<int>(y_[k] * inv));
+    of[k] = j * frame.nx_ + i;
+    ++start[static_cast<std::size_t>(of[k]) + 1];
   }
   for (std::size_t b = 0; b < buckets; ++b)
-    ix.start[b + 1] += ix.start[b];
-  std::vector<int> next(ix.start.begin(), ix.start.end() - 1);
-  ix.x.resize(n);
-  ix.y.resize(n);
-  ix.r2.resize(n);
-  ix.max_r2.assign(buckets, 0.0);
-  ix.max_r2_all = 0.0;
+    start[b + 1] += start[b];
+  std::vector<int> next(start.begin(), start.end() - 1);
+  frame.x_.resize(n);
+  frame.y_.resize(n);
+  frame.r2_.resize(n);
+  frame.max_r2_.assign(buckets, 0.0);
+  frame.max_r2_all_ = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    const int at = next[static_cast<std::size_t>(of[k])]++;
-    ix.x[at] = x_[k];
-    ix.y[at] = y_[k];
-    ix.r2[at] = r2_[k];
-    double& m = ix.max_r2[static_cast<std::size_t>(of[k])];
-    m = std::max(m, r2_[k]);
-    ix.max_r2_all = std::max(ix.max_r2_all, r2_[k]);
+    const std::size_t b = static_cast<std::size_t>(of[k]);
+    const int at = next[b]++;
+    frame.x_[at] = x_[k];
+    frame.y_[at] = y_[k];
+    frame.r2_[at] = r2_[k];
+    frame.max_r2_[b] = std::max(frame.max_r2_[b], r2_[k]);
+    frame.max_r2_all_ = std::max(frame.max_r2_all_, r2_[k]);
   }
-  return ix;
+}
+
+double FilamentSimulation::concentration_at(Vec2 p) const {
+  const PlumeFrame* frame;
+  {
+    std::lock_guard<std::mutex> g(now_lock_);
+    if (now_.step_ != steps_ || now_.sim_ != this) capture(now_);
+    frame = &now_;
+  }
+  // The plume does not step while its sensors read (world/shared_plume.hpp).
+  return frame->concentration_at(p);
+}
+
+Vec2 PlumeFrame::wind_at(Vec2 p) const {
+  const FilamentSimulation& s = *sim_;
+  if (s.fluctuation_) return s.fluctuation_->at(p, amplitudes_.data());
+  return s.wind_.at(p) + meander_;
+}
+
+double PlumeFrame::concentration_at(Vec2 p) const {
+  return sim_->o_.engine == PlumeEngine::V1 ? concentration_v1(p) : concentration_fast(p);
 }
 
 namespace {
@@ -177,28 +210,28 @@ Shade shade_of(Vec2 from, const Edge& e, const Box& box) {
 
 }  // namespace
 
-double FilamentSimulation::concentration_at_fast(Vec2 p) const {
-  const Index& ix = index();
-  const double cut2 = o_.cutoff * o_.cutoff;
-  const double reach = o_.cutoff * std::sqrt(ix.max_r2_all);
+double PlumeFrame::concentration_fast(Vec2 p) const {
+  const FilamentOptions& o = sim_->o_;
+  const double cut2 = o.cutoff * o.cutoff;
+  const double reach = o.cutoff * std::sqrt(max_r2_all_);
   const Box query{{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}};
   std::vector<Edge> edges, part;
-  if (sight_) sight_->facing_edges(p, query, edges);
-  const int i0 = std::max(0, static_cast<int>(std::floor(query.lo.x / ix.bucket)));
-  const int i1 = std::min(ix.nx - 1, static_cast<int>(std::floor(query.hi.x / ix.bucket)));
-  const int j0 = std::max(0, static_cast<int>(std::floor(query.lo.y / ix.bucket)));
-  const int j1 = std::min(ix.ny - 1, static_cast<int>(std::floor(query.hi.y / ix.bucket)));
+  if (sim_->sight_) sim_->sight_->facing_edges(p, query, edges);
+  const int i0 = std::max(0, static_cast<int>(std::floor(query.lo.x / bucket_)));
+  const int i1 = std::min(nx_ - 1, static_cast<int>(std::floor(query.hi.x / bucket_)));
+  const int j0 = std::max(0, static_cast<int>(std::floor(query.lo.y / bucket_)));
+  const int j1 = std::min(ny_ - 1, static_cast<int>(std::floor(query.hi.y / bucket_)));
   double c = 0.0;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
-      const std::size_t b = static_cast<std::size_t>(j) * ix.nx + i;
-      const int first = ix.start[b], last = ix.start[b + 1];
+      const std::size_t b = static_cast<std::size_t>(j) * nx_ + i;
+      const int first = start_[b], last = start_[b + 1];
       if (first == last) continue;
       // The bucket's box, and whether any of its filaments can reach p.
-      const Box box{{i * ix.bucket, j * ix.bucket}, {(i + 1) * ix.bucket, (j + 1) * ix.bucket}};
+      const Box box{{i * bucket_, j * bucket_}, {(i + 1) * bucket_, (j + 1) * bucket_}};
       const double gx = std::max({0.0, box.lo.x - p.x, p.x - box.hi.x});
       const double gy = std::max({0.0, box.lo.y - p.y, p.y - box.hi.y});
-      const double far = cut2 * ix.max_r2[b];
+      const double far = cut2 * max_r2_[b];
       if (gx * gx > far || gy * gy > far) continue;
       // Edges whose shadow covers the bucket hide it; those that cut it are tested per filament.
       part.clear();
@@ -214,18 +247,18 @@ double FilamentSimulation::concentration_at_fast(Vec2 p) const {
       if (hidden) continue;
       double sum = 0.0;
       for (int k = first; k < last; ++k) {
-        const double dx = p.x - ix.x[k], dy = p.y - ix.y[k];
-        const double r2 = ix.r2[k];
+        const double dx = p.x - x_[k], dy = p.y - y_[k];
+        const double r2 = r2_[k];
         const double lim = cut2 * r2;
         if (dx * dx > lim || dy * dy > lim) continue;
-        const Vec2 f{ix.x[k], ix.y[k]};
+        const Vec2 f{x_[k], y_[k]};
         if (std::any_of(part.begin(), part.end(), [&](const Edge& e) { return hides(p, e, f); }))
           continue;
         sum += fast::exp_neg(-(dx * dx + dy * dy) / r2) / r2;
       }
       c += sum;
     }
-  return c * mass_ / kPi;
+  return c * sim_->mass_ / kPi;
 }
 
 }  // namespace plumekit::world

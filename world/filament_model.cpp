@@ -286,10 +286,6 @@ void FilamentSimulation::step() {
   ++steps_;
 }
 
-double FilamentSimulation::concentration_at(Vec2 p) const {
-  return o_.engine == PlumeEngine::V1 ? concentration_at_v1(p) : concentration_at_fast(p);
-}
-
 namespace {
 
 // The sensor grid's concentrations, frame after frame of simulate_filaments' record.

@@ -136,6 +136,39 @@ struct FilamentSummary {
   double seconds = 0.0;          // wall time
 };
 
+class FilamentSimulation;
+
+// The plume at one moment as the sensors read it: what a robot's gas sensor and anemometer see
+// there then. FilamentSimulation::capture() fills one; a plume several robots share keeps a ring
+// of them (world/shared_plume.hpp), so that each robot reads at its own pace. Reading is const
+// and may run on several threads at once.
+class PlumeFrame {
+ public:
+  double concentration_at(Vec2 p) const;    // the gas concentration at p
+  Vec2 wind_at(Vec2 p) const;               // the wind that carries the gas at p
+  long long step() const { return step_; }  // the plume's steps since it was made
+  double time() const { return time_; }     // s since the release
+
+ private:
+  friend class FilamentSimulation;
+  double concentration_fast(Vec2 p) const;
+  double concentration_v1(Vec2 p) const;
+
+  const FilamentSimulation* sim_ = nullptr;
+  long long step_ = -1;
+  double time_ = 0.0;
+  // The fast engine: the filaments by square bucket (a spatial index), in their order within
+  // one. V1: the filaments in their order, as V1 summed them.
+  double bucket_ = 0.5;  // m
+  int nx_ = 0, ny_ = 0;
+  std::vector<int> start_;          // per bucket, its first filament; nx * ny + 1
+  std::vector<double> x_, y_, r2_;  // the filaments
+  std::vector<double> max_r2_;      // per bucket
+  double max_r2_all_ = 0.0;
+  std::vector<double> amplitudes_;  // the unsteady wind's modes then
+  Vec2 meander_;                    // the uniform meander then
+};
+
 // One plume, stepped in time. Used through simulate() for datasets; the
 // class is public so tests can check each step.
 class FilamentSimulation {
@@ -160,9 +193,11 @@ class FilamentSimulation {
   bool unsteady() const { return fluctuation_ != nullptr; }
   // Adds the concentration at the cell centres of `shape` to `out`.
   void concentration(const GridShape& shape, std::vector<double>& out) const;
-  // The concentration at one point (what a robot's sensor reads there now). Robots sharing the
-  // plume may call it at once (world/shared_plume.hpp).
+  // The concentration at one point (what a robot's sensor reads there now); may run on several
+  // threads at once.
   double concentration_at(Vec2 p) const;
+  // The plume now as sensors read it, into `frame` (its storage is reused).
+  void capture(PlumeFrame& frame) const;
 
  private:
   bool free_at(Vec2 p) const;
@@ -182,20 +217,7 @@ class FilamentSimulation {
   void step_v1();
   Vec2 release_point_v1();
   void advance_meander_v1(double dt);
-  double concentration_at_v1(Vec2 p) const;
-  // Sensors read through a spatial index of the filaments (world/filament_concentration.cpp):
-  // square buckets, and in each its filaments' copies, contiguous.
-  struct Index {
-    long long step = -1;  // the step it was built for
-    double bucket = 0.5;  // m
-    int nx = 0, ny = 0;
-    std::vector<int> start;        // per bucket, its first filament below; nx * ny + 1
-    std::vector<double> x, y, r2;  // the filaments by bucket, in their order within one
-    std::vector<double> max_r2;    // per bucket
-    double max_r2_all = 0.0;
-  };
-  const Index& index() const;
-  double concentration_at_fast(Vec2 p) const;
+  friend class PlumeFrame;
 
   const Map& map_;
   const cfd::WindField& wind_;
@@ -219,9 +241,9 @@ class FilamentSimulation {
   Vec2 meander_;
   double mass_ = 0.0;  // per filament
   FilamentSummary summary_;
-  // The spatial index, built by the first sensor read after a step.
-  mutable std::mutex index_lock_;
-  mutable Index index_;
+  // The plume now as sensors read it, captured by the first read after a step.
+  mutable std::mutex now_lock_;
+  mutable PlumeFrame now_;
 };
 
 // V1's free cells: per flow cell, no obstacle within its half-diagonal of its centre.

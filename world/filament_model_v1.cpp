@@ -95,26 +95,27 @@ void FilamentSimulation::step_v1() {
   time_ += dt;
 }
 
-double FilamentSimulation::concentration_at_v1(Vec2 p) const {
+double PlumeFrame::concentration_v1(Vec2 p) const {
   // The same kernel and cutoff as concentration(), at one point (a square of
   // half-side cutoff * R, as there). With occlusion, the edges that face the
   // sensor within any filament's reach decide which filaments it sees.
+  const FilamentOptions& o = sim_->o_;
   std::vector<Edge> edges;
-  if (sight_) {
-    const double reach = o_.cutoff * o_.max_radius;
-    sight_->facing_edges(p, {{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}}, edges);
+  if (sim_->sight_) {
+    const double reach = o.cutoff * o.max_radius;
+    sim_->sight_->facing_edges(p, {{p.x - reach, p.y - reach}, {p.x + reach, p.y + reach}}, edges);
   }
   double c = 0.0;
   for (std::size_t k = 0; k < x_.size(); ++k) {
     const Vec2 f{x_[k], y_[k]};
     const double dx = p.x - f.x, dy = p.y - f.y;
-    const double reach = o_.cutoff * o_.cutoff * r2_[k];
+    const double reach = o.cutoff * o.cutoff * r2_[k];
     if (dx * dx > reach || dy * dy > reach) continue;
     if (std::any_of(edges.begin(), edges.end(), [&](const Edge& e) { return hides(p, e, f); }))
       continue;
     c += std::exp(-(dx * dx + dy * dy) / r2_[k]) / r2_[k];
   }
-  return c * mass_ / kPi;
+  return c * sim_->mass_ / kPi;
 }
 
 }  // namespace plumekit::world

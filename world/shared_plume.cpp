@@ -3,12 +3,27 @@
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace plumekit::world {
 
 namespace {
 constexpr long long kGone = std::numeric_limits<long long>::max();
 }
+
+namespace {
+
+// Frames kept: as many as fit in this many bytes, estimated from the filaments after the spin-up
+// (with room for them to grow by half), between 2 and 256 (12.8 s at the default dt).
+constexpr double kRingBytes = 32e6;
+
+int ring_frames(std::size_t filaments, int robots) {
+  if (robots == 1) return 2;  // a robot alone reads only the plume's newest frame
+  const double frame = 1.5 * static_cast<double>(filaments) * 3 * sizeof(double) + 4096.0;
+  return static_cast<int>(std::clamp(kRingBytes / frame, 2.0, 256.0));
+}
+
+}  // namespace
 
 SharedPlume::SharedPlume(const Map& map, const cfd::WindField& wind, Vec2 source,
                          const world::FilamentOptions& options, std::uint64_t seed, int robots)
@@ -17,29 +32,50 @@ SharedPlume::SharedPlume(const Map& map, const cfd::WindField& wind, Vec2 source
   world::spin_up(sim_, options);
   spinup_s_ = sim_.time();
   need_.assign(static_cast<std::size_t>(robots), 0);
+  ring_.resize(static_cast<std::size_t>(ring_frames(sim_.filament_count(), robots)));
+  sim_.capture(ring_[0]);
 }
 
-const world::FilamentSimulation& SharedPlume::at(long long step, int robot) {
+long long SharedPlume::earliest_need() const {
+  return *std::min_element(need_.begin(), need_.end());
+}
+
+void SharedPlume::advance_to(long long step, std::unique_lock<std::mutex>& g) {
+  const long long frames = static_cast<long long>(ring_.size());
+  while (step_ < step) {
+    // Step s overwrites the frame of s - frames: wait until nobody may still read it.
+    if (stepping_ || earliest_need() <= step_ + 1 - frames) {
+      moved_.wait(g);
+      continue;
+    }
+    stepping_ = true;
+    const long long to = std::min(step, earliest_need() + frames - 1);
+    g.unlock();
+    // A robot alone reads only the step it asked for; robots together may read any.
+    const bool every = need_.size() > 1;
+    for (long long s = step_ + 1; s <= to; ++s) {
+      sim_.step();
+      if (every || s == to) sim_.capture(ring_[static_cast<std::size_t>(s % frames)]);
+    }
+    g.lock();
+    step_ = to;
+    stepping_ = false;
+    moved_.notify_all();
+  }
+}
+
+const world::PlumeFrame& SharedPlume::at(long long step, int robot) {
   std::unique_lock<std::mutex> g(lock_);
   long long& need = need_.at(static_cast<std::size_t>(robot));
   if (step < need || need == kGone)
     throw std::logic_error("SharedPlume: robot " + std::to_string(robot) + " asked for step " +
                            std::to_string(step) + " after step " + std::to_string(need));
+  const bool freed = step > need && need == earliest_need();
   need = step;
-  // Invariant: the plume is never past any robot's need, so nobody reads while it steps.
-  while (step_ < step) {
-    const long long earliest = *std::min_element(need_.begin(), need_.end());
-    if (earliest > step_) {
-      while (step_ < earliest) {
-        sim_.step();
-        ++step_;
-      }
-      moved_.notify_all();
-    } else {
-      moved_.wait(g);
-    }
-  }
-  return sim_;
+  // This robot was the slowest: a robot waiting for room in the ring may go on.
+  if (freed) moved_.notify_all();
+  advance_to(step, g);
+  return ring_[static_cast<std::size_t>(step % static_cast<long long>(ring_.size()))];
 }
 
 void SharedPlume::promise(int robot, long long step) {

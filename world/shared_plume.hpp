@@ -9,6 +9,11 @@
 // what it would have read alone in a world of the same seed: one plume serves every method of a
 // run (`evaluate --method a,b,...`), each at the cost of its own decisions only. Robots that read
 // at the same time run on their own threads; a robot alone needs none.
+//
+// The plume keeps the frames of its latest steps (PlumeFrame: what sensors read then), up to a
+// ring's worth, so robots on threads run ahead of one another without waiting at every reading:
+// the plume steps when a robot needs a step it has not made, while no robot still needs the frame
+// that step overwrites. A robot reads a frame until it asks for a later one.
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -33,10 +38,13 @@ class SharedPlume {
   double spinup_s() const { return spinup_s_; }
   int robots() const { return static_cast<int>(need_.size()); }
 
-  // The plume `step` steps after the spin-up, for `robot` to read. Blocks until every other
-  // robot is done with the steps before it. The plume stays there until this robot asks for a
-  // later step or leaves; a robot's steps never go back (std::logic_error).
-  const world::FilamentSimulation& at(long long step, int robot);
+  // The plume `step` steps after the spin-up, for `robot` to read. Blocks while the plume cannot
+  // step there yet (another robot still needs the frame that step would overwrite). The frame
+  // stays valid until this robot asks for a later step or leaves; a robot's steps never go back
+  // (std::logic_error).
+  const world::PlumeFrame& at(long long step, int robot);
+  // Frames kept: steps a robot may run ahead of the slowest.
+  int ring_size() const { return static_cast<int>(ring_.size()); }
   // The robot reads nothing before `step`: the plume need not wait for it until then. A loop that
   // moves several robots on one thread, always the one furthest behind (run/team.hpp), promises
   // each robot's next step after each of its actions, so that at() never waits there.
@@ -45,9 +53,16 @@ class SharedPlume {
   void leave(int robot);
 
  private:
+  // Steps the plume to `step`, capturing every frame on the way; called with the lock held,
+  // which it releases while it steps (stepping_ keeps other robots from stepping too).
+  void advance_to(long long step, std::unique_lock<std::mutex>& g);
+  long long earliest_need() const;
+
   world::FilamentSimulation sim_;
   double spinup_s_ = 0.0;
-  long long step_ = 0;  // the plume's steps since the spin-up
+  long long step_ = 0;                   // the plume's steps since the spin-up: the newest frame's
+  std::vector<world::PlumeFrame> ring_;  // frame of step s at s % ring size
+  bool stepping_ = false;
   std::mutex lock_;
   std::condition_variable moved_;
   // Per robot, the earliest step it may still read (its last request); "gone" once it left.

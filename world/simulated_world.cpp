@@ -149,7 +149,7 @@ std::vector<Vec2> disc_points(Vec2 centre, double radius) {
   return points;
 }
 
-double SimulatedWorld::exposure(const world::FilamentSimulation& plume, Vec2 p) const {
+double SimulatedWorld::exposure(const world::PlumeFrame& plume, Vec2 p) const {
   if (options_.rotor_disc <= 0.0) return plume.concentration_at(p);
   // The downwash mixes the air it reaches: the disc's points outside walls and obstacles do not
   // count (the robot's own position always does).
@@ -184,7 +184,7 @@ bool SimulatedWorld::stop_reading() {
   if (stop_.taken >= stop_.readings)
     throw std::logic_error("SimulatedWorld: a reading after the stop's last (begin_stop first)");
   const Vec2 p = stop_.p;
-  const world::FilamentSimulation& plume_now = plume();
+  const world::PlumeFrame& plume_now = plume();
   double c = gas_.read(exposure(plume_now, p));
   if (options_.noise > 0.0)
     c = std::max(0.0, c + normal(stop_.noise, noise_rng_, 0.0, options_.noise));

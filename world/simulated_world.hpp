@@ -142,10 +142,10 @@ class SimulatedWorld {
                  Vec2 source, const WorldOptions& options, std::uint64_t seed);
   void advance(double seconds);
   // The plume at this robot's time.
-  const world::FilamentSimulation& plume() { return plume_.at(steps_, robot_); }
+  const world::PlumeFrame& plume() { return plume_.at(steps_, robot_); }
   // The concentration the gas sensor is exposed to at p: at the point, or the rotor disc's mean
   // over its free points.
-  double exposure(const world::FilamentSimulation& plume, Vec2 p) const;
+  double exposure(const world::PlumeFrame& plume, Vec2 p) const;
   // Adds the wall time of the outermost timed call to busy_s_ (stop() calls stop_reading()).
   class Busy;
   double busy_s_ = 0.0;

@@ -129,7 +129,7 @@ void FluctuatingWind::advance(double dt) {
     a = decay * a + kick * normal_(rng_);
 }
 
-Vec2 FluctuatingWind::at(Vec2 p) const {
+Vec2 FluctuatingWind::at(Vec2 p, const double* amplitudes) const {
   // The steady flow's own corners and weights serve the modes too (solid
   // cells hold zero in every mode).
   cfd::CellCorners c;
@@ -151,7 +151,7 @@ Vec2 FluctuatingWind::at(Vec2 p) const {
   for (int k = 0; k < 2 * K; ++k)
     mixed[k] = (w[0] * double(m0[k]) + w[1] * double(m1[k])) +
                (w[2] * double(m2[k]) + w[3] * double(m3[k]));
-  const double* a = amplitude_.data();
+  const double* a = amplitudes;
   const Vec2 d{((a[0] * mixed[0] + a[1] * mixed[1]) + (a[2] * mixed[2] + a[3] * mixed[3])) +
                    ((a[4] * mixed[4] + a[5] * mixed[5]) + (a[6] * mixed[6] + a[7] * mixed[7])),
                ((a[0] * mixed[8] + a[1] * mixed[9]) + (a[2] * mixed[10] + a[3] * mixed[11])) +

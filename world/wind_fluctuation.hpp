@@ -63,7 +63,9 @@ class FluctuatingWind {
   void advance(double dt);
   // The wind now: the steady flow plus the modes, each bilinear between cell
   // centres; zero inside obstacles and outside the arena, as WindField::at.
-  Vec2 at(Vec2 p) const;
+  Vec2 at(Vec2 p) const { return at(p, amplitude_.data()); }
+  // The same with the modes' amplitudes of another moment (a PlumeFrame's, kModes of them).
+  Vec2 at(Vec2 p, const double* amplitudes) const;
   // The modes at flow cell `cell` (row-major): u of modes 0..K-1, then v; what the fast plume
   // combines with amplitudes() once per cell and step (at() is their bilinear mean).
   const float* cell_modes(std::size_t cell) const { return &cell_modes_[cell * 2 * kModes]; }

@@ -2,6 +2,8 @@
 // on its own thread, reads exactly what it reads in a world of its own with the same seed.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -96,6 +98,33 @@ TEST(SharedPlume, RobotsOnThreadsReadWhatEachReadsAlone) {
   }
   // The readings are of a plume, not of nothing.
   EXPECT_GT(alone[1].readings.back().gas + alone[2].readings.back().gas, 0.0);
+}
+
+TEST(SharedPlume, ARobotRunsAheadByAtMostTheRingOfFramesAndReadsTheSamePlume) {
+  const PlumeWorld w;
+  const world::FilamentOptions o = w.options("ideal").filament;
+  world::SharedPlume plume(w.map, w.wind, w.source, o, w.seed, 2);
+  world::SharedPlume alone(w.map, w.wind, w.source, o, w.seed, 1);
+  const long long ring = plume.ring_size();
+  ASSERT_GE(ring, 2);
+  const long long far = ring + 50;
+  const Vec2 p{4.0, 2.0};
+  std::atomic<bool> done{false};
+  double read_far = -1.0;
+  std::thread ahead([&] {
+    read_far = plume.at(far, 0).concentration_at(p);
+    done = true;
+    plume.leave(0);
+  });
+  // Robot 0 cannot have its frame while robot 1 may still read the one it would overwrite.
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(done);
+  const double read_near = plume.at(60, 1).concentration_at(p);  // room for robot 0 now
+  ahead.join();
+  EXPECT_TRUE(done);
+  EXPECT_EQ(read_near, alone.at(60, 0).concentration_at(p));
+  EXPECT_EQ(read_far, alone.at(far, 0).concentration_at(p));
+  EXPECT_GT(read_far, 0.0);
 }
 
 TEST(SharedPlume, ARobotsStepsNeverGoBack) {
