@@ -148,6 +148,7 @@ void add_plume(CLI::App& app) {
         map.from_frame(parse_point(a->source, "--source"));  // typed in the map's frame
     check_source(map, src);                                  // before the output folder is checked
     OutputDirectory out(a->out, "plume", {a->map, a->wind});
+    a->p.filament.threads = 0;  // one plume: every core (it does not depend on the count)
     const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed, a->wind);
     const PlumeTargets& t = plume.targets;
     const Picture img =

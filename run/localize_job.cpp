@@ -59,7 +59,10 @@ LocalizeReport localize_job(const LocalizeRequest& q) {
   std::optional<OutputDirectory> out;
   if (!q.out.empty())
     out.emplace(q.out, "localize", std::vector<fs::path>{q.map, q.ste.table_cache, q.ste.wind_dir});
-  const Scenario sc(map, q.ste);
+  // One run, one plume: its steps on every core (the plume does not depend on the count).
+  SteOptions options = q.ste;
+  options.world.filament.threads = 0;
+  const Scenario sc(map, options);
   const LocalizeRun r = localize_once(sc, map.from_frame(q.source), requested, q.seed);
   // The pictures first, so that the time they take is in the summary's total.
   RunPictures pictures;

@@ -63,6 +63,18 @@ void kernel_factors(int first, int last, double cell, double at, double inv_r2, 
 }  // namespace
 
 void FilamentSimulation::concentration(const GridShape& shape, std::vector<double>& out) const {
+  // Threads take bands of rows; each sensor still sums its filaments in their order, so the
+  // record does not depend on the thread count.
+  const int parts = pool_ && x_.size() >= 256 ? std::min(pool_->size(), shape.ny) : 1;
+  if (parts == 1) return concentration_rows(shape, 0, shape.ny - 1, out);
+  pool_->parallel_for(static_cast<std::size_t>(parts), [&](std::size_t part) {
+    const int p = static_cast<int>(part);
+    concentration_rows(shape, shape.ny * p / parts, shape.ny * (p + 1) / parts - 1, out);
+  });
+}
+
+void FilamentSimulation::concentration_rows(const GridShape& shape, int row_lo, int row_hi,
+                                            std::vector<double>& out) const {
   const double dx = shape.dx(), dy = shape.dy();
   const bool libm = o_.engine == PlumeEngine::V1;
   std::vector<double> ex, ey, mask;
@@ -73,8 +85,8 @@ void FilamentSimulation::concentration(const GridShape& shape, std::vector<doubl
     const double r = o_.cutoff * std::sqrt(r2_[k]);
     const int i0 = std::max(0, static_cast<int>(std::ceil((f.x - r) / dx - 0.5)));
     const int i1 = std::min(shape.nx - 1, static_cast<int>(std::floor((f.x + r) / dx - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil((f.y - r) / dy - 0.5)));
-    const int j1 = std::min(shape.ny - 1, static_cast<int>(std::floor((f.y + r) / dy - 0.5)));
+    const int j0 = std::max(row_lo, static_cast<int>(std::ceil((f.y - r) / dy - 0.5)));
+    const int j1 = std::min(row_hi, static_cast<int>(std::floor((f.y + r) / dy - 0.5)));
     if (i0 > i1 || j0 > j1) continue;
     const double inv = 1.0 / r2_[k];
     // The kernel is separable: two short 1-D tables, then an outer product.

@@ -81,6 +81,8 @@ Entries filament_motion_entries() {
        &O::unsteady_wind,
        {},
        "Meander as a field fading at walls (--world, --wind-model)"},
+      {"plume.threads", "", &O::threads, count_range(0, 1024),
+       "Threads of one plume's step, 0: one per core (the plume does not depend on it)"},
       {"plume.engine",
        "",
        enum_field(&O::engine, &to_string, &parse_plume_engine, "fast, v1"),
@@ -207,6 +209,8 @@ FilamentSimulation::FilamentSimulation(const Map& map, const cfd::WindField& win
                      " is outside the arena or inside an obstacle");
   mass_ = o_.release_rate / o_.release_per_second;
   if (o_.engine == PlumeEngine::V1) clear_ = clear_cells_v1(map, wind.shape());
+  if (o_.engine == PlumeEngine::Fast && o_.threads != 1)
+    pool_ = std::make_unique<ThreadPool>(o_.threads);
   if (o_.occlusion) sight_ = std::make_unique<LineOfSight>(map);
   if (o_.unsteady_wind) {
     world::FluctuationOptions f;

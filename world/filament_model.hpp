@@ -21,6 +21,7 @@
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
 #include "core/random.hpp"
+#include "core/thread_pool.hpp"
 #include "map/map.hpp"
 #include "world/gas_sensor.hpp"
 #include "world/line_of_sight.hpp"
@@ -93,6 +94,9 @@ struct FilamentOptions {
   double meander_length = 2.0;      // m
   double meander_wall_layer = 1.0;  // m
   PlumeEngine engine = PlumeEngine::Fast;
+  // Threads of one plume's step (fast engine; 0: one per core). The plume does not depend on
+  // it. 1 where plumes already run in parallel (evaluate, dataset generate).
+  int threads = 1;
 
   double equivalent_diffusivity() const { return 0.5 * sigma_walk * sigma_walk + 0.25 * growth; }
   // A filament's age when it is dropped for being max_radius wide, s: (R^2 - R0^2) / growth,
@@ -211,13 +215,22 @@ class FilamentSimulation {
   void step_fast();
   Vec2 release_point_fast(std::uint64_t serial) const;
   void meander_fast(double dt);
-  // The winds at filaments [begin, end) now, into wx_, wy_.
-  void winds_fast(std::size_t begin, std::size_t end);
+  // The winds at filaments [begin, end) now, into wx[0 ..), wy[0 ..).
+  void winds_fast(std::size_t begin, std::size_t end, double* wx, double* wy) const;
+  // Moves filaments [begin, end) with the step's key; the kept ones close up from `begin`.
+  struct Moved {
+    std::size_t kept = 0;
+    long long left = 0, rejected = 0, dropped = 0;
+  };
+  Moved move_fast(std::size_t begin, std::size_t end, std::uint64_t key);
   // The V1 engine (world/filament_model_v1.cpp): the world before issue 45, bit for bit.
   void step_v1();
   Vec2 release_point_v1();
   void advance_meander_v1(double dt);
   friend class PlumeFrame;
+  // concentration() on sensor rows row_lo..row_hi only.
+  void concentration_rows(const GridShape& shape, int row_lo, int row_hi,
+                          std::vector<double>& out) const;
 
   const Map& map_;
   const cfd::WindField& wind_;
@@ -230,7 +243,7 @@ class FilamentSimulation {
   // its random draws.
   std::vector<double> x_, y_, r2_;
   std::vector<std::uint64_t> serial_;
-  std::vector<double> wx_, wy_;         // fast engine: scratch, the winds of a block of filaments
+  std::unique_ptr<ThreadPool> pool_;    // fast engine, with options.threads other than 1
   ObstacleCells obstacles_;             // free_at, per flow cell
   std::vector<std::uint8_t> clear_;     // V1: per flow cell, no obstacle within it (free_at)
   std::unique_ptr<LineOfSight> sight_;  // with options.occlusion only

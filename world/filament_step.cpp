@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/counter_random.hpp"
+#include "core/thread_pool.hpp"
 #include "world/filament_model.hpp"
 
 namespace plumekit::world {
@@ -19,6 +20,9 @@ constexpr std::uint64_t kReleaseStream = 0x72656c73;  // "rels": release points 
 constexpr std::uint64_t kMeanderStream = 0x6d65616e;  // "mean": the uniform meander
 // Filaments moved per block: the block's winds and normals stay in the first-level cache.
 constexpr std::size_t kBlock = 256;
+// Threads pay from about this many filaments (a step of some 80 microseconds); below, waking
+// them costs more than they save.
+constexpr std::size_t kParallelFilaments = 4096;
 
 }  // namespace
 
@@ -50,7 +54,8 @@ void FilamentSimulation::meander_fast(double dt) {
   meander_.y = decay * meander_.y + kick * zy;
 }
 
-void FilamentSimulation::winds_fast(std::size_t begin, std::size_t end) {
+void FilamentSimulation::winds_fast(std::size_t begin, std::size_t end, double* wx_out,
+                                    double* wy_out) const {
   const GridShape& s = wind_.shape();
   const int nx = s.nx, ny = s.ny;
   const double inv_dx = 1.0 / s.dx(), inv_dy = 1.0 / s.dy();
@@ -105,51 +110,45 @@ void FilamentSimulation::winds_fast(std::size_t begin, std::size_t end) {
       wu += ((p[0] + p[1]) + (p[2] + p[3])) + ((p[4] + p[5]) + (p[6] + p[7]));
       wv += ((p[8] + p[9]) + (p[10] + p[11])) + ((p[12] + p[13]) + (p[14] + p[15]));
     }
-    wx_[k] = (calm[k] ? 0.0 : wu) + swing.x;
-    wy_[k] = (calm[k] ? 0.0 : wv) + swing.y;
+    wx_out[k] = (calm[k] ? 0.0 : wu) + swing.x;
+    wy_out[k] = (calm[k] ? 0.0 : wv) + swing.y;
   }
   static_assert(K == 8, "the sums above are written out for eight modes");
 }
 
-void FilamentSimulation::step_fast() {
+FilamentSimulation::Moved FilamentSimulation::move_fast(std::size_t begin, std::size_t end,
+                                                        std::uint64_t key) {
   const double dt = o_.dt;
   const double walk = o_.sigma_walk * std::sqrt(dt);
-  meander_fast(dt);
-  release_filaments(dt);
   const double growth = o_.growth * dt, max_r2 = o_.max_radius * o_.max_radius;
   const double W = map_.width, H = map_.height;
-  // This step's key: filament `serial` takes pair `serial` of its stream.
-  const std::uint64_t key =
-      counter_bits(splitmix64(seed_ ^ kWalkStream), static_cast<std::uint64_t>(steps_));
-  const std::size_t n = x_.size();
-  wx_.resize(kBlock);
-  wy_.resize(kBlock);
-  double zx[kBlock], zy[kBlock];
-  std::size_t kept = 0;
-  for (std::size_t begin = 0; begin < n; begin += kBlock) {
-    const std::size_t end = std::min(n, begin + kBlock), count = end - begin;
-    winds_fast(begin, end);
-    const std::uint64_t* serial = serial_.data() + begin;
+  double wx[kBlock], wy[kBlock], zx[kBlock], zy[kBlock];
+  Moved moved;
+  std::size_t kept = begin;
+  for (std::size_t first = begin; first < end; first += kBlock) {
+    const std::size_t last = std::min(end, first + kBlock), count = last - first;
+    winds_fast(first, last, wx, wy);
+    const std::uint64_t* serial = serial_.data() + first;
     for (std::size_t k = 0; k < count; ++k)  // vectorized: no branch, no call
       counter_normals(key, serial[k], zx[k], zy[k]);
     for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t f = begin + k;
+      const std::size_t f = first + k;
       const Vec2 from{x_[f], y_[f]};
-      Vec2 p{from.x + dt * wx_[k] + walk * zx[k], from.y + dt * wy_[k] + walk * zy[k]};
+      Vec2 p{from.x + dt * wx[k] + walk * zx[k], from.y + dt * wy[k] + walk * zy[k]};
       // Most moves stay inside the arena, in a cell that decides without a polygon test.
       const bool plain = p.x > 0.0 && p.x < W && p.y > 0.0 && p.y < H && obstacles_.free(p);
       const Move move = plain ? Move::Kept : settle(from, p);
       if (move == Move::Left) {
-        ++summary_.left_through_outlet;
+        ++moved.left;
         continue;
       }
       if (move == Move::Rejected) {
-        ++summary_.rejected_moves;
+        ++moved.rejected;
         p = from;
       }
       const double r2 = r2_[f] + growth;
       if (r2 > max_r2) {
-        ++summary_.dropped_too_wide;
+        ++moved.dropped;
         continue;
       }
       x_[kept] = p.x;
@@ -159,11 +158,49 @@ void FilamentSimulation::step_fast() {
       ++kept;
     }
   }
+  moved.kept = kept - begin;
+  return moved;
+}
+
+void FilamentSimulation::step_fast() {
+  meander_fast(o_.dt);
+  release_filaments(o_.dt);
+  // This step's key: filament `serial` takes pair `serial` of its stream.
+  const std::uint64_t key =
+      counter_bits(splitmix64(seed_ ^ kWalkStream), static_cast<std::uint64_t>(steps_));
+  const std::size_t n = x_.size();
+  // Threads take equal runs of blocks; each filament's move depends on it alone, and the kept
+  // ones close up in their order, so the plume does not depend on the thread count.
+  const std::size_t parts =
+      pool_ && n >= kParallelFilaments ? static_cast<std::size_t>(pool_->size()) : 1;
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  auto range = [&](std::size_t part) { return std::min(n, blocks * part / parts * kBlock); };
+  std::vector<Moved> moved(parts);
+  if (parts == 1)
+    moved[0] = move_fast(0, n, key);
+  else
+    pool_->parallel_for(parts, [&](std::size_t part) {
+      moved[part] = move_fast(range(part), range(part + 1), key);
+    });
+  std::size_t kept = 0;
+  for (std::size_t part = 0; part < parts; ++part) {
+    const std::size_t from = range(part), count = moved[part].kept;
+    if (from != kept) {
+      std::copy(x_.begin() + from, x_.begin() + from + count, x_.begin() + kept);
+      std::copy(y_.begin() + from, y_.begin() + from + count, y_.begin() + kept);
+      std::copy(r2_.begin() + from, r2_.begin() + from + count, r2_.begin() + kept);
+      std::copy(serial_.begin() + from, serial_.begin() + from + count, serial_.begin() + kept);
+    }
+    kept += count;
+    summary_.left_through_outlet += moved[part].left;
+    summary_.rejected_moves += moved[part].rejected;
+    summary_.dropped_too_wide += moved[part].dropped;
+  }
   x_.resize(kept);
   y_.resize(kept);
   r2_.resize(kept);
   serial_.resize(kept);
-  time_ += dt;
+  time_ += o_.dt;
 }
 
 }  // namespace plumekit::world

@@ -129,3 +129,46 @@ TEST(FilamentModel, SameSeedSameRecordAndSensorsInObstaclesReadZero) {
 
 }  // namespace
 }  // namespace plumekit::dataset
+
+namespace plumekit {
+namespace {
+
+// Issue 45: one plume may step on several threads, and it is the same plume, bit for bit.
+TEST(FilamentModel, AStepOnTwoThreadsMovesTheSameFilaments) {
+  const Map map = default_arena(10.0, 4.0);
+  const cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
+  world::FilamentOptions o;
+  o.release_per_second = 2000.0;  // some 18,000 filaments: past where threads start
+  o.max_spinup = 12.0;            // the first ones reach the outlet after about 9 s
+  std::vector<world::Filament> after[2];
+  world::FilamentSummary summary[2];
+  std::vector<double> grid[2];
+  const GridShape sensors{64, 64, 10.0, 4.0};
+  for (const int threads : {1, 2}) {
+    o.threads = threads;
+    world::FilamentSimulation sim(map, wind, {1.0, 2.0}, o, 17);
+    world::spin_up(sim, o);
+    for (int s = 0; s < 10; ++s)
+      sim.step();
+    after[threads - 1] = sim.filaments();
+    summary[threads - 1] = sim.summary();
+    grid[threads - 1].assign(sensors.size(), 0.0);
+    sim.concentration(sensors, grid[threads - 1]);
+  }
+  ASSERT_GT(after[0].size(), 8000u);
+  ASSERT_EQ(after[0].size(), after[1].size());
+  for (std::size_t k = 0; k < after[0].size(); ++k) {
+    ASSERT_EQ(after[0][k].position.x, after[1][k].position.x) << k;
+    ASSERT_EQ(after[0][k].position.y, after[1][k].position.y) << k;
+    ASSERT_EQ(after[0][k].radius2, after[1][k].radius2) << k;
+  }
+  EXPECT_EQ(summary[0].released, summary[1].released);
+  EXPECT_EQ(summary[0].left_through_outlet, summary[1].left_through_outlet);
+  EXPECT_GT(summary[0].left_through_outlet, 0);
+  EXPECT_EQ(summary[0].rejected_moves, summary[1].rejected_moves);
+  EXPECT_EQ(summary[0].dropped_too_wide, summary[1].dropped_too_wide);
+  EXPECT_EQ(grid[0], grid[1]);
+}
+
+}  // namespace
+}  // namespace plumekit
