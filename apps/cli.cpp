@@ -250,11 +250,14 @@ void add_world_options(CLI::App* command, world::FilamentOptions& filament) {
               "thesis (--occlusion off --wind-model steady, the thesis-style world of the "
               "thesis's figures), or neumann (seed 000's filaments in a laminar wind, from a "
               "0.2 m source disc, for its 32 x 8 m tunnel: data/seeds/); either flag "
-              "overrides its half")
-          ->type_name("faithful|thesis|neumann")
-          ->default_str(faithful ? "faithful"
-                        : thesis ? "thesis"
-                                 : "neither"),
+              "overrides its half. Each with -v1 (faithful-v1): the same world computed as "
+              "before issue 45, bit for bit, to reproduce earlier results (docs/world.md, "
+              "\"Worlds\")")
+          ->type_name("faithful|thesis|neumann[-v1]")
+          ->default_str(std::string(faithful ? "faithful"
+                                    : thesis ? "thesis"
+                                             : "neither") +
+                        (filament.engine == world::PlumeEngine::V1 ? "-v1" : "")),
       "plume.world");
   add_occlusion_option(command, filament.occlusion);
   add_wind_model_option(command, filament.unsteady_wind);

@@ -96,6 +96,9 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
                      {"equivalent_diffusivity", f.equivalent_diffusivity()}};
     // Only when on, so that manifests written before the option still match on resume.
     if (f.occlusion) j["filament"]["occlusion"] = true;
+    // The fast engine only (issue 45): a dataset made before it is V1's, and resumes only with
+    // --world ...-v1, never mixed with the other engine's plumes.
+    if (f.engine == world::PlumeEngine::Fast) j["filament"]["engine"] = "fast";
     if (f.source_radius > 0.0) j["filament"]["source_radius"] = f.source_radius;
     if (f.unsteady_wind) {
       j["filament"]["wind_model"] = "unsteady";

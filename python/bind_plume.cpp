@@ -19,10 +19,12 @@ using dataset::PlumeOptions;
 using world::FilamentOptions;
 using world::GasSensorModel;
 
-// The preset the two world fields match: "faithful", "thesis", or "custom".
+// The preset the two world fields and the engine match: "faithful", "thesis" (each with "-v1"
+// for the V1 engine), or "custom".
 std::string world_name(const world::FilamentOptions& o) {
-  if (o.occlusion && o.unsteady_wind) return "faithful";
-  return !o.occlusion && !o.unsteady_wind ? "thesis" : "custom";
+  const std::string v1 = o.engine == world::PlumeEngine::V1 ? "-v1" : "";
+  if (o.occlusion && o.unsteady_wind) return "faithful" + v1;
+  return !o.occlusion && !o.unsteady_wind ? "thesis" + v1 : "custom";
 }
 
 void bind_filament_options(py::module_& m) {
@@ -34,7 +36,8 @@ void bind_filament_options(py::module_& m) {
   c.def_property(
       "world", &world_name,
       [](world::FilamentOptions& o, const std::string& name) { world::set_world(o, name); },
-      "World preset: 'faithful' (occlusion, unsteady wind) or 'thesis' (neither)");
+      "World preset: 'faithful' (occlusion, unsteady wind) or 'thesis' (neither); with '-v1' "
+      "the world before issue 45");
 }
 
 void bind_sensor(py::module_& m) {

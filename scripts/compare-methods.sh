@@ -17,6 +17,7 @@
 # square metre, would be up to 1,650 stops of 5 s on the largest.
 #   scripts/methods_table.py OUT/test-maps/* ; scripts/methods_table.py OUT/buildings/*
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 runs=${1:-3}
 out=${2:-out/compare}

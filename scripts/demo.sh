@@ -2,6 +2,7 @@
 # Quick start 1: install, build, and run the pipeline so far on the shipped
 # default map. Writes its pictures and data to out/.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 mkdir -p out

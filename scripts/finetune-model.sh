@@ -16,6 +16,7 @@
 # unsteady wind), for both the data and the test maps' truth.
 # On the 2-core build machine the data take about 10 min and an epoch about 13 min.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 work=${1:-out/finetune}
 maps=${MAPS:-200}

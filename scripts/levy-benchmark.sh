@@ -11,6 +11,7 @@
 #   scripts/levy-benchmark.sh [RUNS] [OUT]     # RUNS per map (default 3), 10 maps per setting
 #   scripts/levy_table.py OUT                  # the table of docs/validation.md
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 runs=${1:-3}
 out=${2:-out/levy}

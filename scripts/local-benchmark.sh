@@ -11,6 +11,7 @@
 #   scripts/local-benchmark.sh [RUNS] [OUT]     # RUNS per map (default 2); BUDGETS="7 9" for some
 #   scripts/local_table.py OUT [PNG_DIR]        # the table and box plots of docs/validation.md
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 runs=${1:-2}
 out=${2:-out/local}

@@ -16,6 +16,7 @@
 # sensor (as the methods' comparison). The team starts side by side about the
 # run's start (Scenario::team_starts). OUT/wall.txt has each setting's wall time.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 runs=${1:-2}
 out=${2:-out/teams}

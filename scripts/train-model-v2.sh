@@ -13,6 +13,7 @@
 # BATCH (8), THREADS (nproc), MAX_MINUTES (no limit), PYTHON (/usr/bin/python3; CUDA is used when
 # present). The shipped model's settings and timings are in docs/design/surrogate.md.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 work=${1:-out/train-v2}
 family_maps=${FAMILY_MAPS:-60}

@@ -16,6 +16,7 @@
 # (the second resumes the first and carries the cosine on as planned for 22 epochs).
 # On the 2-core build machine the 180-map dataset takes about 20 min and an epoch 7 to 8 min.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 work=${1:-out/train}
 maps=${MAPS:-180}

@@ -13,6 +13,7 @@
 #   scripts/tunnel-benchmark.sh [RUNS] [OUT]    # RUNS default 20; OUT default out/tunnel
 #   scripts/tunnel_table.py OUT [PNG_DIR]       # the tables and box plots of docs/validation.md
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 runs=${1:-20}
 out=${2:-out/tunnel}

@@ -13,6 +13,7 @@
 # Writes one `evaluate` folder per configuration under OUT (default out/validate). About 1 to
 # 2.5 min of CPU per particle-filter run and 15 to 60 s per tracking run.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/blas-env.sh"
 cd "$(dirname "$0")/.."
 runs=${1:-100}
 out=${2:-out/validate}

@@ -152,10 +152,14 @@ class PlumeFrame {
   Vec2 wind_at(Vec2 p) const;               // the wind that carries the gas at p
   long long step() const { return step_; }  // the plume's steps since it was made
   double time() const { return time_; }     // s since the release
+  std::size_t filament_count() const { return x_.size(); }
 
  private:
   friend class FilamentSimulation;
   double concentration_fast(Vec2 p) const;
+  // The kernels at p of filaments first..last - 1 (one bucket), those behind a `part` edge left
+  // out.
+  double bucket_sum(Vec2 p, int first, int last, const std::vector<Edge>& part) const;
   double concentration_v1(Vec2 p) const;
 
   const FilamentSimulation* sim_ = nullptr;

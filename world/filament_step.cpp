@@ -24,6 +24,36 @@ constexpr std::size_t kBlock = 256;
 // them costs more than they save.
 constexpr std::size_t kParallelFilaments = 4096;
 
+// Each filament's lower-left cell centre and its bilinear weights (GridShape::bilinear: constant
+// beyond the outermost centres); calm where WindField::at has no wind (outside the arena, in an
+// obstacle cell).
+struct CellWeights {
+  int base[kBlock];
+  double tx[kBlock], ty[kBlock];
+  bool calm[kBlock];
+};
+
+void cell_weights(const cfd::WindField& wind, const double* x, const double* y, std::size_t count,
+                  CellWeights& out) {
+  const GridShape& s = wind.shape();
+  const int nx = s.nx, ny = s.ny;
+  const double inv_dx = 1.0 / s.dx(), inv_dy = 1.0 / s.dy();
+  const std::uint8_t* solid = wind.solid_cells().data();
+  for (std::size_t k = 0; k < count; ++k) {
+    const double gx = std::clamp(x[k] * inv_dx - 0.5, 0.0, double(nx - 1));
+    const double gy = std::clamp(y[k] * inv_dy - 0.5, 0.0, double(ny - 1));
+    const int i0 = std::min(static_cast<int>(gx), std::max(nx - 2, 0));
+    const int j0 = std::min(static_cast<int>(gy), std::max(ny - 2, 0));
+    out.tx[k] = nx > 1 ? gx - i0 : 0.0;
+    out.ty[k] = ny > 1 ? gy - j0 : 0.0;
+    out.base[k] = j0 * nx + i0;
+    const int ci = std::min(nx - 1, static_cast<int>(x[k] * inv_dx));
+    const int cj = std::min(ny - 1, static_cast<int>(y[k] * inv_dy));
+    const bool outside = !(x[k] >= 0.0 && x[k] <= s.width && y[k] >= 0.0 && y[k] <= s.height);
+    out.calm[k] = outside || solid[static_cast<std::size_t>(cj) * nx + ci];
+  }
+}
+
 }  // namespace
 
 Vec2 FilamentSimulation::release_point_fast(std::uint64_t serial) const {
@@ -57,32 +87,13 @@ void FilamentSimulation::meander_fast(double dt) {
 void FilamentSimulation::winds_fast(std::size_t begin, std::size_t end, double* wx_out,
                                     double* wy_out) const {
   const GridShape& s = wind_.shape();
-  const int nx = s.nx, ny = s.ny;
-  const double inv_dx = 1.0 / s.dx(), inv_dy = 1.0 / s.dy();
-  const std::uint8_t* solid = wind_.solid_cells().data();
   const std::size_t count = end - begin;
-  const double* x = x_.data() + begin;
-  const double* y = y_.data() + begin;
-  // Each filament's lower-left cell centre and its bilinear weights (GridShape::bilinear:
-  // constant beyond the outermost centres); the wind is zero where WindField::at has none
-  // (outside the arena, in an obstacle cell).
-  int base[kBlock];
-  double tx[kBlock], ty[kBlock];
-  bool calm[kBlock];
-  const int step_x = nx > 1 ? 1 : 0, step_y = ny > 1 ? nx : 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const double gx = std::clamp(x[k] * inv_dx - 0.5, 0.0, double(nx - 1));
-    const double gy = std::clamp(y[k] * inv_dy - 0.5, 0.0, double(ny - 1));
-    const int i0 = std::min(static_cast<int>(gx), std::max(nx - 2, 0));
-    const int j0 = std::min(static_cast<int>(gy), std::max(ny - 2, 0));
-    tx[k] = nx > 1 ? gx - i0 : 0.0;
-    ty[k] = ny > 1 ? gy - j0 : 0.0;
-    base[k] = j0 * nx + i0;
-    const int ci = std::min(nx - 1, static_cast<int>(x[k] * inv_dx));
-    const int cj = std::min(ny - 1, static_cast<int>(y[k] * inv_dy));
-    const bool outside = !(x[k] >= 0.0 && x[k] <= s.width && y[k] >= 0.0 && y[k] <= s.height);
-    calm[k] = outside || solid[static_cast<std::size_t>(cj) * nx + ci];
-  }
+  CellWeights cw;
+  cell_weights(wind_, x_.data() + begin, y_.data() + begin, count, cw);
+  const int step_x = s.nx > 1 ? 1 : 0, step_y = s.ny > 1 ? s.nx : 0;
+  const int* base = cw.base;
+  const double *tx = cw.tx, *ty = cw.ty;
+  const bool* calm = cw.calm;
   const double *u = wind_.u().data(), *v = wind_.v().data();
   // The unsteady wind's modes in single precision, as they are stored: sixteen lanes.
   constexpr int K = FluctuatingWind::kModes;
@@ -107,8 +118,19 @@ void FilamentSimulation::winds_fast(std::size_t begin, std::size_t end, double* 
       float p[2 * K];
       for (int j = 0; j < 2 * K; ++j)
         p[j] = a[j] * ((f00 * m00[j] + f10 * m10[j]) + (f01 * m01[j] + f11 * m11[j]));
-      wu += ((p[0] + p[1]) + (p[2] + p[3])) + ((p[4] + p[5]) + (p[6] + p[7]));
-      wv += ((p[8] + p[9]) + (p[10] + p[11])) + ((p[12] + p[13]) + (p[14] + p[15]));
+      // Each half summed by halving (lanes j and j + 4, then j and j + 2, then the two left),
+      // both halves at once: vector adds, no lane-by-lane sum.
+      float h[8], g[4];
+      for (int j = 0; j < 4; ++j) {
+        h[j] = p[j] + p[j + 4];
+        h[4 + j] = p[8 + j] + p[12 + j];
+      }
+      for (int j = 0; j < 2; ++j) {
+        g[j] = h[j] + h[j + 2];
+        g[2 + j] = h[4 + j] + h[6 + j];
+      }
+      wu += g[0] + g[1];
+      wv += g[2] + g[3];
     }
     wx_out[k] = (calm[k] ? 0.0 : wu) + swing.x;
     wy_out[k] = (calm[k] ? 0.0 : wv) + swing.y;

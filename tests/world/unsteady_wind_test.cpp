@@ -62,6 +62,7 @@ TEST(UnsteadyWind, InTheOpenThePlumeIsLikeTheUniformMeanders) {
   world::FilamentOptions o;
   o.record_s = 60.0;
   o.sample_rate = 2.0;
+  o.unsteady_wind = false;  // the uniform meander (the default is the unsteady wind)
   const world::SensorRecord steady = world::simulate_filaments(map, wind, source, sensors, o, 42);
   o.unsteady_wind = true;
   const world::SensorRecord moving = world::simulate_filaments(map, wind, source, sensors, o, 42);
