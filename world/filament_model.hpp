@@ -30,9 +30,9 @@
 
 namespace plumekit::world {
 
-// How the plume is computed (issue 45). Fast: filaments as arrays, drawn from counter-based
-// normals, the wind combined once per cell and step, sensors read through a spatial index of the
-// filaments. V1: the world before issue 45, bit for bit, kept for one release so that published
+// How the plume is computed (issue 45). Fast: filaments as arrays moved a block at a time, their
+// walks drawn from counter-based normals, the unsteady wind's modes read sixteen lanes at once,
+// sensors read through a spatial index of the filaments, threads where they pay. V1: the world before issue 45, bit for bit, kept for one release so that published
 // numbers can be reproduced (--world faithful-v1, thesis-v1, neumann-v1; docs/world.md,
 // "Worlds"). Both follow the same physics; tests/world/engine_equivalence_test.cpp shows it.
 enum class PlumeEngine { Fast, V1 };
