@@ -181,9 +181,7 @@ double FilamentSimulation::concentration_at(Vec2 p) const {
 }
 
 Vec2 PlumeFrame::wind_at(Vec2 p) const {
-  const FilamentSimulation& s = *sim_;
-  if (s.fluctuation_) return s.fluctuation_->at(p, amplitudes_.data());
-  return s.wind_.at(p) + meander_;
+  return sim_->wind_then(p, amplitudes_.data(), meander_);
 }
 
 double PlumeFrame::concentration_at(Vec2 p) const {

@@ -282,6 +282,16 @@ FilamentSimulation::Move FilamentSimulation::settle(Vec2 from, Vec2& p) const {
   return through_obstacle_outlet(map_, from, p) ? Move::Left : Move::Rejected;
 }
 
+void FilamentSimulation::close_up(std::size_t n, const Moved& fates) {
+  x_.resize(n);
+  y_.resize(n);
+  r2_.resize(n);
+  serial_.resize(n);
+  summary_.left_through_outlet += fates.left;
+  summary_.rejected_moves += fates.rejected;
+  summary_.dropped_too_wide += fates.dropped;
+}
+
 void FilamentSimulation::step() {
   if (o_.engine == PlumeEngine::V1)
     step_v1();

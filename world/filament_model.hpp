@@ -32,9 +32,10 @@ namespace plumekit::world {
 
 // How the plume is computed (issue 45). Fast: filaments as arrays moved a block at a time, their
 // walks drawn from counter-based normals, the unsteady wind's modes read sixteen lanes at once,
-// sensors read through a spatial index of the filaments, threads where they pay. V1: the world before issue 45, bit for bit, kept for one release so that published
-// numbers can be reproduced (--world faithful-v1, thesis-v1, neumann-v1; docs/world.md,
-// "Worlds"). Both follow the same physics; tests/world/engine_equivalence_test.cpp shows it.
+// sensors read through a spatial index of the filaments, threads where they pay. V1: the world
+// before issue 45, bit for bit, kept for one release so that published numbers can be reproduced
+// (--world faithful-v1, thesis-v1, neumann-v1; docs/world.md, "Worlds"). Both follow the same
+// physics; tests/world/engine_equivalence_test.cpp shows it.
 enum class PlumeEngine { Fast, V1 };
 const char* to_string(PlumeEngine engine);
 // OptionError "plume.engine" for a name other than fast or v1.
@@ -197,7 +198,9 @@ class FilamentSimulation {
   Vec2 meander() const { return meander_; }
   // The wind that carries the gas at p now: the steady flow plus the meander,
   // or the unsteady field. What an anemometer there reads.
-  Vec2 wind_at(Vec2 p) const { return fluctuation_ ? fluctuation_->at(p) : wind_.at(p) + meander_; }
+  Vec2 wind_at(Vec2 p) const {
+    return wind_then(p, fluctuation_ ? fluctuation_->amplitudes().data() : nullptr, meander_);
+  }
   bool unsteady() const { return fluctuation_ != nullptr; }
   // Adds the concentration at the cell centres of `shape` to `out`.
   void concentration(const GridShape& shape, std::vector<double>& out) const;
@@ -221,12 +224,44 @@ class FilamentSimulation {
   void meander_fast(double dt);
   // The winds at filaments [begin, end) now, into wx[0 ..), wy[0 ..).
   void winds_fast(std::size_t begin, std::size_t end, double* wx, double* wy) const;
-  // Moves filaments [begin, end) with the step's key; the kept ones close up from `begin`.
+  // The fates of a run of moved filaments.
   struct Moved {
     std::size_t kept = 0;
     long long left = 0, rejected = 0, dropped = 0;
   };
+  // Moves filaments [begin, end) with the step's key; the kept ones close up from `begin`.
   Moved move_fast(std::size_t begin, std::size_t end, std::uint64_t key);
+  // Filament f moved from `from` towards p (settled as `move`): counts its fate in `fates` and,
+  // when it stays (not out through an outlet, not grown past max_r2), writes it at `to` (<= f).
+  // Both engines' steps end each filament's move with it.
+  bool place(std::size_t f, std::size_t to, Vec2 from, Vec2 p, Move move, double growth,
+             double max_r2, Moved& fates) {
+    if (move == Move::Left) {
+      ++fates.left;
+      return false;
+    }
+    if (move == Move::Rejected) {
+      ++fates.rejected;
+      p = from;
+    }
+    const double r2 = r2_[f] + growth;
+    if (r2 > max_r2) {
+      ++fates.dropped;
+      return false;
+    }
+    x_[to] = p.x;
+    y_[to] = p.y;
+    r2_[to] = r2;
+    serial_[to] = serial_[f];
+    return true;
+  }
+  // Keeps the first n filaments, and adds a step's fates to the summary.
+  void close_up(std::size_t n, const Moved& fates);
+  // The wind at p with the unsteady wind's amplitudes (null: the steady flow plus `meander`):
+  // the plume's now, or a PlumeFrame's.
+  Vec2 wind_then(Vec2 p, const double* amplitudes, Vec2 meander) const {
+    return fluctuation_ ? fluctuation_->at(p, amplitudes) : wind_.at(p) + meander;
+  }
   // The V1 engine (world/filament_model_v1.cpp): the world before issue 45, bit for bit.
   void step_v1();
   Vec2 release_point_v1();

@@ -59,9 +59,9 @@ void FilamentSimulation::step_v1() {
   const double walk = o_.sigma_walk * std::sqrt(dt);
   advance_meander_v1(dt);
   release_filaments(dt);
-  const double max_r2 = o_.max_radius * o_.max_radius;
+  const double growth = o_.growth * dt, max_r2 = o_.max_radius * o_.max_radius;
   // The kept filaments close up in place, in their order: the random draws stay in that order.
-  std::size_t kept = 0;
+  Moved fates;
   for (std::size_t k = 0; k < x_.size(); ++k) {
     const Vec2 from{x_[k], y_[k]};
     const Vec2 w = wind_at(from);
@@ -69,29 +69,9 @@ void FilamentSimulation::step_v1() {
     p.x += walk * normal_(rng_);
     p.y += walk * normal_(rng_);
     const Move move = settle(from, p);
-    if (move == Move::Left) {
-      ++summary_.left_through_outlet;
-      continue;
-    }
-    if (move == Move::Rejected) {
-      ++summary_.rejected_moves;
-      p = from;
-    }
-    const double r2 = r2_[k] + o_.growth * dt;
-    if (r2 > max_r2) {
-      ++summary_.dropped_too_wide;
-      continue;
-    }
-    x_[kept] = p.x;
-    y_[kept] = p.y;
-    r2_[kept] = r2;
-    serial_[kept] = serial_[k];
-    ++kept;
+    if (place(k, fates.kept, from, p, move, growth, max_r2, fates)) ++fates.kept;
   }
-  x_.resize(kept);
-  y_.resize(kept);
-  r2_.resize(kept);
-  serial_.resize(kept);
+  close_up(fates.kept, fates);
   time_ += dt;
 }
 

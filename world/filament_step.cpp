@@ -160,24 +160,7 @@ FilamentSimulation::Moved FilamentSimulation::move_fast(std::size_t begin, std::
       // Most moves stay inside the arena, in a cell that decides without a polygon test.
       const bool plain = p.x > 0.0 && p.x < W && p.y > 0.0 && p.y < H && obstacles_.free(p);
       const Move move = plain ? Move::Kept : settle(from, p);
-      if (move == Move::Left) {
-        ++moved.left;
-        continue;
-      }
-      if (move == Move::Rejected) {
-        ++moved.rejected;
-        p = from;
-      }
-      const double r2 = r2_[f] + growth;
-      if (r2 > max_r2) {
-        ++moved.dropped;
-        continue;
-      }
-      x_[kept] = p.x;
-      y_[kept] = p.y;
-      r2_[kept] = r2;
-      serial_[kept] = serial_[f];
-      ++kept;
+      if (place(f, kept, from, p, move, growth, max_r2, moved)) ++kept;
     }
   }
   moved.kept = kept - begin;
@@ -205,6 +188,7 @@ void FilamentSimulation::step_fast() {
       moved[part] = move_fast(range(part), range(part + 1), key);
     });
   std::size_t kept = 0;
+  Moved all;
   for (std::size_t part = 0; part < parts; ++part) {
     const std::size_t from = range(part), count = moved[part].kept;
     if (from != kept) {
@@ -214,14 +198,11 @@ void FilamentSimulation::step_fast() {
       std::copy(serial_.begin() + from, serial_.begin() + from + count, serial_.begin() + kept);
     }
     kept += count;
-    summary_.left_through_outlet += moved[part].left;
-    summary_.rejected_moves += moved[part].rejected;
-    summary_.dropped_too_wide += moved[part].dropped;
+    all.left += moved[part].left;
+    all.rejected += moved[part].rejected;
+    all.dropped += moved[part].dropped;
   }
-  x_.resize(kept);
-  y_.resize(kept);
-  r2_.resize(kept);
-  serial_.resize(kept);
+  close_up(kept, all);
   time_ += o_.dt;
 }
 
