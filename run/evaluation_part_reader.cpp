@@ -1,5 +1,6 @@
 #include "run/evaluation_part_reader.hpp"
 
+#include <limits>
 #include <map>
 
 #include "core/atomic_file.hpp"
@@ -14,16 +15,37 @@ using nlohmann::ordered_json;
 
 namespace {
 
+// The integer `name` of part.json, in [lo, hi]. Only a JSON integer: nlohmann converts a float
+// such as 1e60 to an int by a cast that is undefined behaviour (the fuzzer found it), so a float,
+// or an integer out of range, is refused with the bounds.
+long long whole(const ordered_json& v, const std::string& name, long long lo, long long hi) {
+  if (!v.is_number_integer())
+    throw InputError(name + " is " + v.dump().substr(0, 40) + ", not a whole number");
+  const bool above = v.is_number_unsigned() && v.get<std::uint64_t>() > std::uint64_t(hi);
+  const long long x = above ? hi : v.get<long long>();
+  if (above || x < lo || x > hi)
+    throw InputError(name + " is " + v.dump() + ", outside " + std::to_string(lo) + ".." +
+                     std::to_string(hi));
+  return x;
+}
+
+int whole_int(const ordered_json& v, const std::string& name,
+              int lo = std::numeric_limits<int>::min()) {
+  return static_cast<int>(whole(v, name, lo, std::numeric_limits<int>::max()));
+}
+
 // A run row of part.json (evaluation_parts.cpp writes it: run_row), its map named from "maps".
 RunRecord parse_run_row(const ordered_json& row, const ordered_json& maps) {
   RunRecord r;
-  r.map_index = row.at(0).get<int>();
+  r.map_index = whole_int(row.at(0), "a run's map", 0);
   r.map = maps.at(r.map_index).at("name").get<std::string>();
-  r.source_index = row.at(1).get<int>();
-  r.run = row.at(2).get<int>();
+  r.source_index = whole_int(row.at(1), "a run's source", 0);
+  r.run = whole_int(row.at(2), "a run's number", 0);
+  if (!row.at(3).is_number_unsigned())
+    throw InputError("a run's seed is " + row.at(3).dump().substr(0, 40) + ", not a whole number");
   r.seed = row.at(3).get<std::uint64_t>();
   r.error_m = row.at(4).get<double>();
-  r.samples = row.at(5).get<int>();
+  r.samples = whole_int(row.at(5), "a run's samples", 0);
   r.distance_m = row.at(6).get<double>();
   r.mission_s = row.at(7).get<double>();
   r.stopped_by = row.at(8).get<std::string>();
@@ -64,12 +86,7 @@ void check_shape(const ordered_json& j) {
   // The counts as evaluate's options bound them, so that the part's pair range and run count
   // (check_part_coverage) are computed without overflow.
   const auto count = [](const ordered_json& v, const std::string& where, const char* key,
-                        long long hi) {
-    const long long x = v.at(key).get<long long>();
-    if (x < 0 || x > hi)
-      throw InputError(where + key + " is " + std::to_string(x) + ", outside 0.." +
-                       std::to_string(hi));
-  };
+                        long long hi) { whole(v.at(key), where + key, 0, hi); };
   count(s, "settings.", "runs_per_source", 1'000'000);  // evaluation.runs
   count(s, "settings.", "seeds", 1000);                 // evaluation.seeds
   // The summary's label: STE's plume model, or the method.
@@ -81,7 +98,7 @@ void check_shape(const ordered_json& j) {
   // (map, source) pairs: total * K stays within 63 bits for any K < N (an int).
   for (const char* key : {"first", "end", "total"})
     count(j.at("pairs"), "pairs.", key, 1LL << 31);
-  j.at("threads").get<int>();
+  whole_int(j.at("threads"), "threads");
   j.at("wall_s").get<double>();
   const ordered_json& maps = j.at("maps");
   if (!maps.is_array() || maps.empty() || j.at("map_times").size() != maps.size())
@@ -132,8 +149,8 @@ EvaluationPart read_evaluation_part(const fs::path& dir) {
                        ": does not match its own checksum (damaged or edited); "
                        "rerun that part");
     check_shape(p.j);
-    p.k = p.j.at("part").get<int>();
-    p.n = p.j.at("parts").get<int>();
+    p.k = whole_int(p.j.at("part"), "part");
+    p.n = whole_int(p.j.at("parts"), "parts");
     if (p.n < 1 || p.k < 0 || p.k >= p.n)
       throw InputError(file.string() + ": part " + std::to_string(p.k) + " of " +
                        std::to_string(p.n) + " is no part");

@@ -17,8 +17,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A part folder of part K of N with no runs and `total` pairs in all, sealed as evaluate seals it.
-fs::path write_part(const std::string& name, int k, int n, long long total) {
+// A part folder of part K of N with no runs and `total` pairs in all, sealed as evaluate seals it
+// (`threads` as given).
+fs::path write_part(const std::string& name, int k, int n, long long total,
+                    const nlohmann::ordered_json& threads = 1) {
   const fs::path dir = fs::temp_directory_path() /
                        ("plumekit-parts-test-" + std::to_string(::getpid()) + "-" + name);
   fs::remove_all(dir);
@@ -33,7 +35,7 @@ fs::path write_part(const std::string& name, int k, int n, long long total) {
       {"options", nlohmann::ordered_json::object()},
       {"maps", {{{"name", "m"}}}},
       {"files", {{"runs.csv", sha256_hex(runs)}, {"timings.csv", sha256_hex(timings)}}},
-      {"threads", 1},
+      {"threads", threads},
       {"wall_s", 1.0},
       {"map_times", {{{"ran", false}, {"wind_s", 0.0}, {"table_build_s", 0.0}, {"wall_s", 0.0}}}},
       {"runs", nlohmann::ordered_json::array()}};
@@ -59,6 +61,21 @@ TEST(EvaluationParts, CountsBeyondWhatEvaluateWritesAreRefusedNamingTheKey) {
     FAIL() << "a part of 2^40 pairs was read";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("pairs.total is 1099511627776, outside 0.."),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(dir);
+}
+
+// A float where evaluate writes an integer is refused, not cast (1e60 to an int is undefined
+// behaviour; fuzz/corpus/fuzz_evaluate_part/float-count is the fuzzer's case).
+TEST(EvaluationParts, AFloatWhereAWholeNumberBelongsIsRefusedNamingTheKey) {
+  const fs::path dir = write_part("float", 0, 1, 0, 1.44444e60);
+  try {
+    run::read_evaluation_part(dir);
+    FAIL() << "threads 1.44444e60 was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("threads is 1.44444e+60, not a whole number"),
               std::string::npos)
         << e.what();
   }
