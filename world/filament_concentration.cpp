@@ -1,5 +1,6 @@
-// What sensors read from the filaments: the concentration on a grid of sensors (datasets'
-// frames) and at one point (a robot's sensor), with line of sight when occlusion is on.
+// What a robot's sensor reads from the filaments: the plume captured as a frame (filaments in
+// buckets) and the concentration at one point, with line of sight when occlusion is on. The
+// sensor grid's (datasets' frames) is world/grid_concentration.cpp.
 #include <algorithm>
 #include <cmath>
 
@@ -10,115 +11,50 @@ namespace plumekit::world {
 
 namespace {
 
-// A filament's kernel window: sensor columns i0..i1, rows j0..j1 of a grid of cell dx x dy.
-struct Window {
-  int i0, i1, j0, j1;
-  double dx, dy;
+// Where a box lies against the shadow an edge facing `from` casts (the points q for which the
+// segment from `from` to q crosses the edge): the shadow is convex, the far side of the edge's
+// line inside the cone from `from` through its ends, three half-planes a x + b y + c >= 0, set up
+// once per sensor and edge. A box beyond one of them is outside the shadow; a box inside all
+// three is inside it. Near a boundary (within rounding) the box counts as cut, so that the
+// filaments there take the exact test.
+enum class Shade { None, Part, All };
+
+class ShadowPlanes {
+ public:
+  ShadowPlanes(Vec2 from, const Edge& e) {
+    set(0, e.a, e.b, 1.0);
+    set(1, from, e.a, -1.0);
+    set(2, from, e.b, 1.0);
+  }
+  Shade of(const Box& box) const {
+    bool all = true;
+    for (int h = 0; h < 3; ++h) {
+      // The plane's largest and smallest value over the box, at its corners.
+      const double x_hi = a_[h] > 0.0 ? box.hi.x : box.lo.x,
+                   x_lo = a_[h] > 0.0 ? box.lo.x : box.hi.x;
+      const double y_hi = b_[h] > 0.0 ? box.hi.y : box.lo.y,
+                   y_lo = b_[h] > 0.0 ? box.lo.y : box.hi.y;
+      const double most = a_[h] * x_hi + b_[h] * y_hi + c_[h];
+      const double least = a_[h] * x_lo + b_[h] * y_lo + c_[h];
+      if (most < -tolerance_[h]) return Shade::None;
+      all = all && least > tolerance_[h];
+    }
+    return all ? Shade::All : Shade::Part;
+  }
+
+ private:
+  // sign * orient(u, v, q) = a q.x + b q.y + c.
+  void set(int h, Vec2 u, Vec2 v, double sign) {
+    const double dx = v.x - u.x, dy = v.y - u.y;
+    a_[h] = -sign * dy;
+    b_[h] = sign * dx;
+    c_[h] = sign * (dy * u.x - dx * u.y);
+    tolerance_[h] = 1e-9 * (std::abs(dx) + std::abs(dy)) * (1.0 + std::abs(u.x) + std::abs(u.y));
+  }
+  double a_[3], b_[3], c_[3], tolerance_[3];
 };
 
-// Zeroes, in the window's row-major mask, the sensors in `shadow`; a row's
-// mask is set to ones the first time a shadow reaches it (masked[row] = 1).
-void shade(const EdgeShadow& shadow, const Window& w, std::vector<double>& mask,
-           std::vector<std::uint8_t>& masked) {
-  const std::size_t width = static_cast<std::size_t>(w.i1 - w.i0 + 1);
-  // Rows and columns whose centres lie in the shadow, clamped in double (bounds may be infinite).
-  const double from_j = std::max<double>(w.j0, std::ceil(shadow.y_lo() / w.dy - 0.5));
-  const double to_j = std::min<double>(w.j1, std::floor(shadow.y_hi() / w.dy - 0.5));
-  if (from_j > to_j) return;
-  for (int j = static_cast<int>(from_j); j <= static_cast<int>(to_j); ++j) {
-    double lo, hi;
-    if (!shadow.on_row((j + 0.5) * w.dy, lo, hi)) continue;
-    const double from_i = std::max<double>(w.i0, std::ceil(lo / w.dx - 0.5));
-    const double to_i = std::min<double>(w.i1, std::floor(hi / w.dx - 0.5));
-    if (from_i > to_i) continue;
-    double* row = mask.data() + (j - w.j0) * width;
-    if (!masked[j - w.j0]) std::fill(row, row + width, 1.0);
-    masked[j - w.j0] = 1;
-    std::fill(row + (static_cast<int>(from_i) - w.i0), row + (static_cast<int>(to_i) - w.i0 + 1),
-              0.0);
-  }
-}
-
-// The Gaussian kernel's 1-D factors exp(-(centre - at)^2 / r2) * amp for the centres of cells
-// first..last of size `cell`. V1 used libm's exp; the fast engine plumekit's (a loop that
-// vectorizes).
-void kernel_factors(int first, int last, double cell, double at, double inv_r2, double amp,
-                    bool libm, std::vector<double>& out) {
-  out.resize(static_cast<std::size_t>(last - first + 1));
-  double* o = out.data();
-  if (libm) {
-    for (int i = first; i <= last; ++i) {
-      const double d = (i + 0.5) * cell - at;
-      o[i - first] = amp * std::exp(-d * d * inv_r2);
-    }
-    return;
-  }
-  const int n = last - first + 1;
-  for (int k = 0; k < n; ++k) {
-    const double d = (first + k + 0.5) * cell - at;
-    o[k] = amp * fast::exp_neg(-d * d * inv_r2);
-  }
-}
-
 }  // namespace
-
-void FilamentSimulation::concentration(const GridShape& shape, std::vector<double>& out) const {
-  // Threads take bands of rows; each sensor still sums its filaments in their order, so the
-  // record does not depend on the thread count.
-  const int parts = pool_ && x_.size() >= 256 ? std::min(pool_->size(), shape.ny) : 1;
-  if (parts == 1) return concentration_rows(shape, 0, shape.ny - 1, out);
-  pool_->parallel_for(static_cast<std::size_t>(parts), [&](std::size_t part) {
-    const int p = static_cast<int>(part);
-    concentration_rows(shape, shape.ny * p / parts, shape.ny * (p + 1) / parts - 1, out);
-  });
-}
-
-void FilamentSimulation::concentration_rows(const GridShape& shape, int row_lo, int row_hi,
-                                            std::vector<double>& out) const {
-  const double dx = shape.dx(), dy = shape.dy();
-  const bool libm = o_.engine == PlumeEngine::V1;
-  std::vector<double> ex, ey, mask;
-  std::vector<std::uint8_t> masked;  // per window row: some sensor in it is hidden
-  std::vector<Edge> edges;
-  for (std::size_t k = 0; k < x_.size(); ++k) {
-    const Vec2 f{x_[k], y_[k]};
-    const double r = o_.cutoff * std::sqrt(r2_[k]);
-    const int i0 = std::max(0, static_cast<int>(std::ceil((f.x - r) / dx - 0.5)));
-    const int i1 = std::min(shape.nx - 1, static_cast<int>(std::floor((f.x + r) / dx - 0.5)));
-    const int j0 = std::max(row_lo, static_cast<int>(std::ceil((f.y - r) / dy - 0.5)));
-    const int j1 = std::min(row_hi, static_cast<int>(std::floor((f.y + r) / dy - 0.5)));
-    if (i0 > i1 || j0 > j1) continue;
-    const double inv = 1.0 / r2_[k];
-    // The kernel is separable: two short 1-D tables, then an outer product.
-    kernel_factors(i0, i1, dx, f.x, inv, 1.0, libm, ex);
-    kernel_factors(j0, j1, dy, f.y, inv, mass_ * inv / kPi, libm, ey);
-    // With occlusion, mark the window's rows that some obstacle edge shadows.
-    masked.assign(ey.size(), 0);
-    if (sight_) {
-      // The sensors' centres and the filament: every segment between them lies inside.
-      const Vec2 lo{(i0 + 0.5) * dx, (j0 + 0.5) * dy}, hi{(i1 + 0.5) * dx, (j1 + 0.5) * dy};
-      const Box window{{std::min(lo.x, f.x), std::min(lo.y, f.y)},
-                       {std::max(hi.x, f.x), std::max(hi.y, f.y)}};
-      edges.clear();
-      sight_->facing_edges(f, window, edges);
-      mask.resize(ex.size() * ey.size());
-      for (const Edge& e : edges)
-        shade(EdgeShadow(f, e), {i0, i1, j0, j1, dx, dy}, mask, masked);
-    }
-    for (int j = j0; j <= j1; ++j) {
-      double* row = out.data() + static_cast<std::size_t>(j) * shape.nx;
-      const double a = ey[j - j0];
-      if (!masked[j - j0]) {
-        for (int i = i0; i <= i1; ++i)
-          row[i] += a * ex[i - i0];
-        continue;
-      }
-      const double* row_mask = mask.data() + (j - j0) * ex.size();
-      for (int i = i0; i <= i1; ++i)
-        row[i] += a * ex[i - i0] * row_mask[i - i0];
-    }
-  }
-}
 
 void FilamentSimulation::capture(PlumeFrame& frame) const {
   frame.sim_ = this;
@@ -187,53 +123,6 @@ Vec2 PlumeFrame::wind_at(Vec2 p) const {
 double PlumeFrame::concentration_at(Vec2 p) const {
   return sim_->o_.engine == PlumeEngine::V1 ? concentration_v1(p) : concentration_fast(p);
 }
-
-namespace {
-
-// Where a box lies against the shadow an edge facing `from` casts (the points q for which the
-// segment from `from` to q crosses the edge): the shadow is convex, the far side of the edge's
-// line inside the cone from `from` through its ends, three half-planes a x + b y + c >= 0, set up
-// once per sensor and edge. A box beyond one of them is outside the shadow; a box inside all
-// three is inside it. Near a boundary (within rounding) the box counts as cut, so that the
-// filaments there take the exact test.
-enum class Shade { None, Part, All };
-
-class ShadowPlanes {
- public:
-  ShadowPlanes(Vec2 from, const Edge& e) {
-    set(0, e.a, e.b, 1.0);
-    set(1, from, e.a, -1.0);
-    set(2, from, e.b, 1.0);
-  }
-  Shade of(const Box& box) const {
-    bool all = true;
-    for (int h = 0; h < 3; ++h) {
-      // The plane's largest and smallest value over the box, at its corners.
-      const double x_hi = a_[h] > 0.0 ? box.hi.x : box.lo.x,
-                   x_lo = a_[h] > 0.0 ? box.lo.x : box.hi.x;
-      const double y_hi = b_[h] > 0.0 ? box.hi.y : box.lo.y,
-                   y_lo = b_[h] > 0.0 ? box.lo.y : box.hi.y;
-      const double most = a_[h] * x_hi + b_[h] * y_hi + c_[h];
-      const double least = a_[h] * x_lo + b_[h] * y_lo + c_[h];
-      if (most < -tolerance_[h]) return Shade::None;
-      all = all && least > tolerance_[h];
-    }
-    return all ? Shade::All : Shade::Part;
-  }
-
- private:
-  // sign * orient(u, v, q) = a q.x + b q.y + c.
-  void set(int h, Vec2 u, Vec2 v, double sign) {
-    const double dx = v.x - u.x, dy = v.y - u.y;
-    a_[h] = -sign * dy;
-    b_[h] = sign * dx;
-    c_[h] = sign * (dy * u.x - dx * u.y);
-    tolerance_[h] = 1e-9 * (std::abs(dx) + std::abs(dy)) * (1.0 + std::abs(u.x) + std::abs(u.y));
-  }
-  double a_[3], b_[3], c_[3], tolerance_[3];
-};
-
-}  // namespace
 
 double PlumeFrame::bucket_sum(Vec2 p, int first, int last, const std::vector<Edge>& part) const {
   const double cut2 = sim_->o_.cutoff * sim_->o_.cutoff;

@@ -270,6 +270,9 @@ class FilamentSimulation {
   // concentration() on sensor rows row_lo..row_hi only.
   void concentration_rows(const GridShape& shape, int row_lo, int row_hi,
                           std::vector<double>& out) const;
+  // V1's (world/filament_model_v1.cpp): a mask per window, libm's exp.
+  void concentration_rows_v1(const GridShape& shape, int row_lo, int row_hi,
+                             std::vector<double>& out) const;
 
   const Map& map_;
   const cfd::WindField& wind_;

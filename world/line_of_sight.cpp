@@ -88,17 +88,27 @@ EdgeShadow::EdgeShadow(Vec2 from, const Edge& e)
   // The shadow lies beyond the edge: on its far side of `from` in y too.
   if (from.y <= std::min(e.a.y, e.b.y)) y_lo_ = std::max(y_lo_, std::min(e.a.y, e.b.y));
   if (from.y >= std::max(e.a.y, e.b.y)) y_hi_ = std::min(y_hi_, std::max(e.a.y, e.b.y));
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int k = lowers_; k < 3; ++k)
+    lower_[k] = {0.0, -inf};
+  for (int k = uppers_; k < 3; ++k)
+    upper_[k] = {0.0, inf};
 }
 
-bool EdgeShadow::on_row(double y, double& lo, double& hi) const {
-  if (y < y_lo_ || y > y_hi_) return false;
-  lo = -std::numeric_limits<double>::infinity();
-  hi = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < lowers_; ++k)
-    lo = std::max(lo, lower_[k].slope * y + lower_[k].offset);
-  for (int k = 0; k < uppers_; ++k)
-    hi = std::min(hi, upper_[k].slope * y + upper_[k].offset);
-  return lo <= hi;
+void EdgeShadow::on_rows(int first, int n, double dy, double* lo, double* hi) const {
+  const double inf = std::numeric_limits<double>::infinity();
+  const Bound l0 = lower_[0], l1 = lower_[1], l2 = lower_[2];
+  const Bound u0 = upper_[0], u1 = upper_[1], u2 = upper_[2];
+  for (int r = 0; r < n; ++r) {
+    const double y = (first + r + 0.5) * dy;
+    const double l = std::max(std::max(l0.slope * y + l0.offset, l1.slope * y + l1.offset),
+                              l2.slope * y + l2.offset);
+    const double h = std::min(std::min(u0.slope * y + u0.offset, u1.slope * y + u1.offset),
+                              u2.slope * y + u2.offset);
+    const bool in = y >= y_lo_ && y <= y_hi_;
+    lo[r] = in ? l : inf;
+    hi[r] = in ? h : -inf;
+  }
 }
 
 bool hides(Vec2 from, const Edge& e, Vec2 p) {
