@@ -96,17 +96,30 @@ int main(int argc, char** argv) {
   bool occlusion = false, unsteady = false, engines = false;
   Slice slice;
   fs::path out = fs::temp_directory_path() / "plumekit-dataset-bench";
-  for (int k = 1; k + 1 < argc; k += 2) {
-    if (!std::strcmp(argv[k], "--maps")) maps = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--threads")) threads = std::atoi(argv[k + 1]);
-    if (!std::strcmp(argv[k], "--repeats")) repeats = std::max(1, std::atoi(argv[k + 1]));
-    if (!std::strcmp(argv[k], "--out")) out = argv[k + 1];
-  }
+  // Flags in any order; --maps, --threads, --repeats and --out take a value.
   for (int k = 1; k < argc; ++k) {
-    if (!std::strcmp(argv[k], "--occlusion")) occlusion = true;
-    if (!std::strcmp(argv[k], "--unsteady")) unsteady = true;
-    if (!std::strcmp(argv[k], "--engines")) engines = true;
-    if (!std::strcmp(argv[k], "--buildings")) slice.buildings = true;
+    const bool valued = k + 1 < argc;
+    if (!std::strcmp(argv[k], "--maps") && valued)
+      maps = std::atoi(argv[++k]);
+    else if (!std::strcmp(argv[k], "--threads") && valued)
+      threads = std::atoi(argv[++k]);
+    else if (!std::strcmp(argv[k], "--repeats") && valued)
+      repeats = std::max(1, std::atoi(argv[++k]));
+    else if (!std::strcmp(argv[k], "--out") && valued)
+      out = argv[++k];
+    else if (!std::strcmp(argv[k], "--occlusion"))
+      occlusion = true;
+    else if (!std::strcmp(argv[k], "--unsteady"))
+      unsteady = true;
+    else if (!std::strcmp(argv[k], "--engines"))
+      engines = true;
+    else if (!std::strcmp(argv[k], "--buildings"))
+      slice.buildings = true;
+    else {
+      std::fprintf(stderr, "dataset_bench: unknown argument %s (see the comment at the top)\n",
+                   argv[k]);
+      return 2;
+    }
   }
   if (engines) occlusion = unsteady = false;  // the engines' comparison is in the default world
   const int full_samples = slice.full_samples();
