@@ -95,6 +95,17 @@ EdgeShadow::EdgeShadow(Vec2 from, const Edge& e)
     upper_[k] = {0.0, inf};
 }
 
+bool EdgeShadow::on_row(double y, double& lo, double& hi) const {
+  if (y < y_lo_ || y > y_hi_) return false;
+  lo = -std::numeric_limits<double>::infinity();
+  hi = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < lowers_; ++k)
+    lo = std::max(lo, lower_[k].slope * y + lower_[k].offset);
+  for (int k = 0; k < uppers_; ++k)
+    hi = std::min(hi, upper_[k].slope * y + upper_[k].offset);
+  return lo <= hi;
+}
+
 void EdgeShadow::on_rows(int first, int n, double dy, double* lo, double* hi) const {
   const double inf = std::numeric_limits<double>::infinity();
   const Bound l0 = lower_[0], l1 = lower_[1], l2 = lower_[2];

@@ -9,8 +9,6 @@
 // outer side faces that point. Filaments and free sensors are outside every
 // obstacle, so "front-facing" edges decide every query (and a point inside an
 // obstacle is hidden from the outside by the edge it entered through).
-#include <algorithm>
-#include <limits>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -54,20 +52,11 @@ class EdgeShadow {
   // The rows the shadow can reach: y in [y_lo(), y_hi()] (possibly infinite).
   double y_lo() const { return y_lo_; }
   double y_hi() const { return y_hi_; }
-  // false when the row holds no shadow; lo, hi may be infinite. Inline: a filament's window
-  // asks it once per row and edge.
-  bool on_row(double y, double& lo, double& hi) const {
-    if (y < y_lo_ || y > y_hi_) return false;
-    lo = -std::numeric_limits<double>::infinity();
-    hi = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < lowers_; ++k)
-      lo = std::max(lo, lower_[k].slope * y + lower_[k].offset);
-    for (int k = 0; k < uppers_; ++k)
-      hi = std::min(hi, upper_[k].slope * y + upper_[k].offset);
-    return lo <= hi;
-  }
+  // false when the row holds no shadow; lo, hi may be infinite.
+  bool on_row(double y, double& lo, double& hi) const;
   // on_row for the rows at y = (j + 0.5) * dy, j = first .. first + n - 1, into lo[] and hi[]
-  // (lo > hi where a row holds no shadow): the same numbers, in a loop that vectorizes.
+  // (lo > hi where a row holds no shadow): the same numbers, a window's rows in one call without
+  // branches.
   void on_rows(int first, int n, double dy, double* lo, double* hi) const;
 
  private:

@@ -64,6 +64,40 @@ TEST(LineOfSight, RowShadowsAgreeWithASegmentTestAgainstEveryEdge) {
   EXPECT_GT(seen, 2000);
 }
 
+// The sensor grid asks a shadow for a window's rows at once (world/grid_concentration.cpp): the
+// same bounds as row by row, bit for bit, and an empty row (lo > hi) where on_row says none.
+TEST(LineOfSight, AWindowsRowsAtOnceAreTheRowsOneByOne) {
+  const Map map = read_map(std::string(PLUMEKIT_DATA_DIR) + "/maps/cluttered-1.json");
+  const world::LineOfSight sight(map, 0.7);
+  std::mt19937_64 rng(8);
+  const double dy = 0.0625;
+  int shaded = 0, empty = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Vec2 f = random_free_point(map, rng);
+    std::vector<world::Edge> edges;
+    sight.facing_edges(f, {{0.0, 0.0}, {map.width, map.height}}, edges);
+    for (const world::Edge& e : edges) {
+      const world::EdgeShadow shadow(f, e);
+      const int n = static_cast<int>(map.height / dy);
+      std::vector<double> lo(n), hi(n);
+      shadow.on_rows(0, n, dy, lo.data(), hi.data());
+      for (int j = 0; j < n; ++j) {
+        double l, h;
+        if (shadow.on_row((j + 0.5) * dy, l, h)) {
+          ASSERT_EQ(lo[j], l) << j;
+          ASSERT_EQ(hi[j], h) << j;
+          ++shaded;
+        } else {
+          ASSERT_GT(lo[j], hi[j]) << j;
+          ++empty;
+        }
+      }
+    }
+  }
+  EXPECT_GT(shaded, 1000);
+  EXPECT_GT(empty, 1000);
+}
+
 TEST(LineOfSight, EachEdgeIsReportedOnceWhateverTheBuckets) {
   Map map = default_arena(10.0, 4.0);
   map.obstacles = {rectangle(1.0, 1.0, 8.0, 1.2)};  // a long wall across many buckets
