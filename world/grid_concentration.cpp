@@ -23,10 +23,10 @@ constexpr int kTile = 8;  // sensors on a tile's side
 // A tile row's sensors (GCC's vector extension: AVX-512 here, plain code elsewhere).
 typedef double Lanes __attribute__((vector_size(kTile * sizeof(double))));
 
-Lanes load(const double* p) {
-  Lanes v;
+// By reference, never by value: a vector that size returned by value changes the calling ABI
+// between builds with and without AVX-512 (GCC's -Wpsabi).
+void load(const double* p, Lanes& v) {
   std::memcpy(&v, p, sizeof v);
-  return v;
 }
 
 void store(double* p, const Lanes& v) {
@@ -205,10 +205,11 @@ class GridTiles {
     Lanes acc[kTile];
 #pragma GCC unroll 8
     for (int r = 0; r < kTile; ++r)
-      acc[r] = load(tile + r * pitch);
+      load(tile + r * pitch, acc[r]);
     for (const int* k = first; k != last; ++k) {
       const Footprint& p = footprints_[static_cast<std::size_t>(*k)];
-      const Lanes e = load(factors_.data() + p.ex + (ti - p.ti0) * kTile);
+      Lanes e;
+      load(factors_.data() + p.ex + (ti - p.ti0) * kTile, e);
       const double* y = factors_.data() + p.ey + (tj - p.tj0) * kTile;
       if (p.masks < 0) {
 #pragma GCC unroll 8
