@@ -192,7 +192,8 @@ void add_generate(CLI::App* group) {
   add_deprecated_alias(cmd, "--from-maps", "--map-dir", a->map_dir);
   add_families_option(cmd, a->o.map);
   add_table_flags(cmd, a->o.flow, cfd::flow_option_table(), {"flow.cell"});
-  add_table_flags(cmd, a->o, dataset_option_table(), {"dataset.feature_cell"});
+  add_table_flags(cmd, a->o, dataset_option_table(),
+                  {"dataset.feature_cell", "dataset.physics_input"});
   bind_field(cmd,
              cmd->add_option("--inlet-speeds", a->inlet_speeds,
                              "LO,HI: each random map's inlets blow at a speed drawn uniformly "

@@ -22,7 +22,14 @@ const OptionTable<DatasetOptions>& dataset_option_table() {
         "Feature grid: 0, the thesis's 64 x 64 grid over the arena (3 input channels); else "
         "cells of about this size in m over the whole map, with the wind as 2 more channels "
         "(the v2 surrogate's data; 0.2)",
-        "0 (the thesis's 64 x 64 grid) or a cell size; the v2 model uses 0.2 m"}}};
+        "0 (the thesis's 64 x 64 grid) or a cell size; the v2 model uses 0.2 m"},
+       {"dataset.physics_input",
+        "--physics-input",
+        &O::physics_input,
+        {},
+        "Add the physics plume of each source (steady advection-diffusion in the map's wind) as "
+        "an input channel before the source distance: a hybrid model's data (needs "
+        "--feature-cell)"}}};
   return table;
 }
 
@@ -37,6 +44,10 @@ void DatasetOptions::validate() const {
     throw std::logic_error("DatasetOptions: given_maps and map_files differ in length");
   validate_entry(table.entry("dataset.source_clearance"), *this);
   validate_entry(table.entry("dataset.feature_cell"), *this);
+  if (physics_input && !(feature_cell > 0))
+    throw OptionError("dataset.physics_input",
+                      "needs a physical grid: give --feature-cell too (0.2 m, as the shipped "
+                      "models); the thesis's 64 x 64 grid has three channels only");
   if (inlet_speed_hi != 0.0 || inlet_speed_lo != 0.0) {
     const std::string advice = "LO,HI with 0 < LO <= HI, each " + std::string(kInletSpeedBound) +
                                "; unset, maps.inlet_speed";

@@ -289,6 +289,19 @@ double feature_cell(const Manifest& m) {
   return it->get<double>();
 }
 
+bool physics_input(const Manifest& m) {
+  const auto it = m.generator.find("physics_input");
+  if (it == m.generator.end()) return false;
+  if (!it->is_boolean())
+    throw InputError("manifest.json: generator.physics_input: expected true or false, found " +
+                     it->dump());
+  if (it->get<bool>() && feature_cell(m) == 0.0)
+    throw InputError(
+        "manifest.json: generator.physics_input is true without a generator.feature_cell: the "
+        "physics channel needs a physical grid");
+  return it->get<bool>();
+}
+
 ShardArrays read_shard(const fs::path& dataset_dir, const ManifestShard& entry, int channels) {
   const fs::path dir = dataset_dir / "shards" / entry.name;
   check_shard(dir, entry.sha256);
@@ -365,7 +378,7 @@ DatasetSample read_sample(const fs::path& dir, long long index) {
     start += e.samples;
   }
   const double cell = feature_cell(m);
-  const int channels = surrogate::input_channels(cell);
+  const int channels = surrogate::input_channels(cell, physics_input(m));
   const ShardArrays arrays = read_shard(dir, s.shard, channels);
   s.map = read_map(dir / s.shard.map);
   const GridShape g = surrogate::sample_grid(s.map, cell);

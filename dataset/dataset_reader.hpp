@@ -64,10 +64,14 @@ long long shard_samples(const std::filesystem::path& dir);
 
 // The dataset's feature cell (generator.feature_cell; 0 for the thesis's 64 x 64 grid).
 double feature_cell(const Manifest& m);
+// Whether the dataset's inputs hold the physics_mean channel (generator.physics_input; 6
+// channels).
+bool physics_input(const Manifest& m);
 
 // The checked arrays of `entry` in the dataset `dataset_dir` (map_ids left empty: they equal
 // entry.map_index, which the checksum covers): shapes as manifest.json's contract says, `channels`
-// input channels (input_channels(feature_cell(manifest))); the grid is the shard's own (its map's).
+// input channels (input_channels(feature_cell(manifest), physics_input(manifest))); the grid is the
+// shard's own (its map's).
 ShardArrays read_shard(const std::filesystem::path& dataset_dir, const ManifestShard& entry,
                        int channels);
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <tuple>
@@ -247,9 +248,13 @@ ShardArrays map_samples(const DatasetOptions& o, int index, const Map& map,
     base.insert(base.end(), w.begin(), w.end());
   }
   const MapPlumes plumes(map, wind, sensors, o.plume);
+  std::unique_ptr<surrogate::PhysicsFeature> physics;
+  if (o.physics_input)
+    physics =
+        std::make_unique<surrogate::PhysicsFeature>(map, wind, sensors, physics_mean_options(o));
   ShardArrays a;
   a.samples = samples;
-  a.channels = surrogate::input_channels(o.feature_cell);
+  a.channels = surrogate::input_channels(o.feature_cell, o.physics_input);
   a.nx = sensors.nx;
   a.ny = sensors.ny;
   const std::size_t cells = sensors.size();
@@ -259,6 +264,9 @@ ShardArrays map_samples(const DatasetOptions& o, int index, const Map& map,
     const Vec2 src = map.sources[s];
     const PlumeTargets p = plumes.run(src, derive_seed(o.seed, index, s, Stream::Filaments));
     a.inputs.insert(a.inputs.end(), base.begin(), base.end());
+    if (physics)
+      for (double v : (*physics)(src).values)
+        a.inputs.push_back(static_cast<float>(v));
     const std::vector<float> d = surrogate::source_feature(src, sensors);
     a.inputs.insert(a.inputs.end(), d.begin(), d.end());
     for (double v : p.mean.values)

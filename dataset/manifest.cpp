@@ -6,6 +6,7 @@
 #include <random>
 
 #include "map/map_json.hpp"
+#include "surrogate/features.hpp"
 
 namespace plumekit::dataset {
 
@@ -69,6 +70,13 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
   }
   // The v2 grid and drawn inlet speeds, only when used, so that older manifests match on resume.
   if (o.feature_cell > 0) j["feature_cell"] = o.feature_cell;
+  if (o.physics_input) {
+    const cfd::AdvectionDiffusionOptions p = physics_mean_options(o);
+    j["physics_input"] = true;
+    j["physics_mean"] = {{"diffusivity", p.diffusivity},
+                         {"decay_rate", p.decay_rate},
+                         {"release_rate", p.release_rate}};
+  }
   if (o.inlet_speed_hi > 0) j["inlet_speeds"] = {o.inlet_speed_lo, o.inlet_speed_hi};
   j["flow"] = {{"cell", flow_cell_json(o)},
                {"nu", o.flow.nu},
@@ -125,7 +133,13 @@ nlohmann::ordered_json parameters_json(const DatasetOptions& o) {
   return j;
 }
 
-nlohmann::ordered_json contract_json(double feature_cell) {
+cfd::AdvectionDiffusionOptions physics_mean_options(const DatasetOptions& o) {
+  cfd::AdvectionDiffusionOptions p = o.plume.advection_diffusion;
+  p.decay_rate = 1.0 / o.plume.filament.lifetime_s();
+  return p;
+}
+
+nlohmann::ordered_json contract_json(double feature_cell, bool physics_input) {
   nlohmann::ordered_json j;
   const bool physical = feature_cell > 0;
   const std::string order =
@@ -159,14 +173,24 @@ nlohmann::ordered_json contract_json(double feature_cell) {
         "2: the map's steady wind (wind/map-NNNNN/), u in m/s at the cell centre, bilinear "
         "between the flow's cell centres, 0 in the flow's solid cells");
     channels.push_back("3: the same wind's v in m/s");
-    channels.push_back(
-        "4: Euclidean distance in metres from the cell centre to the source (not its inverse)");
+    if (physics_input)
+      channels.push_back(
+          "4: physics_mean: the steady advection-diffusion concentration of the source's release "
+          "in the same wind (generator.physics_mean: diffusivity, decay_rate, release_rate), on "
+          "the flow grid, bilinear among free flow cells at the cell centre, 0 inside obstacles; "
+          "target units, no sensor baseline");
+    channels.push_back(std::to_string(physics_input ? 5 : 4) +
+                       ": Euclidean distance in metres from the cell centre to the source (not "
+                       "its inverse)");
   } else {
     channels.push_back(
         "2: Euclidean distance in metres from the cell centre to the source (not its inverse)");
   }
+  const int count = surrogate::input_channels(feature_cell, physics_input);
   j["inputs"] = {{"dtype", "float32"},
-                 {"shape", physical ? "[n, 5, ny, nx]" : "[n, 3, 64, 64]"},
+                 {"shape", physical ? "[n, " + std::to_string(count) + ", ny, nx]"
+                                    : std::string("[n, 3, 64, 64]")},
+                 {"names", surrogate::input_channel_names(feature_cell, physics_input)},
                  {"channels", channels}};
   j["targets"] = {
       {"dtype", "float32"},
@@ -193,7 +217,8 @@ nlohmann::ordered_json manifest_json(const nlohmann::ordered_json& parameters,
   j["format"] = kDatasetFormat;
   if (part_n > 1) j["part"] = {{"k", part_k}, {"n", part_n}};
   j["generator"] = parameters;
-  j["contract"] = contract_json(parameters.value("feature_cell", 0.0));
+  j["contract"] = contract_json(parameters.value("feature_cell", 0.0),
+                                parameters.value("physics_input", false));
   long long samples = 0;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const ShardEntry& s : shards) {

@@ -31,6 +31,11 @@ struct DatasetOptions {
   // else the v2 surrogate's physical grid of this nominal cell (m) and five channels, with the
   // wind (features.hpp, physical_grid).
   double feature_cell = 0.0;
+  // dataset.physics_input (issue 46): a sixth input channel, physics_mean, before the source
+  // distance: plumekit's own physics plume for the source (surrogate::PhysicsFeature with
+  // physics_mean_options()), so a hybrid model learns the world's correction to it. Physical
+  // grids only.
+  bool physics_input = false;
   // dataset.inlet_speeds: when hi > 0, every random map's inlets blow at one speed drawn uniformly
   // from [lo, hi] m/s (rounded to 0.01 m/s) from the map's own stream, instead of maps.inlet_speed.
   double inlet_speed_lo = 0.0, inlet_speed_hi = 0.0;
@@ -48,7 +53,10 @@ struct DatasetOptions {
 nlohmann::ordered_json parameters_json(const DatasetOptions& o);
 // The feature/target contract, in words and numbers (the thesis grid, or the physical grid of
 // `feature_cell` m).
-nlohmann::ordered_json contract_json(double feature_cell = 0.0);
+nlohmann::ordered_json contract_json(double feature_cell = 0.0, bool physics_input = false);
+// The physics_mean channel's options: the dataset's plume diffusivity and release rate, and the
+// filament world's decay, 1 over a filament's lifetime: the physics model ste's estimators use.
+cfd::AdvectionDiffusionOptions physics_mean_options(const DatasetOptions& o);
 // The random-map draw's inlet speed for map `index` when o.inlet_speed_hi > 0.
 double drawn_inlet_speed(const DatasetOptions& o, int index, int redraw);
 

@@ -46,14 +46,9 @@ MapPlumes::MapPlumes(const Map& map, const cfd::WindField& wind, const GridShape
                      const PlumeOptions& options)
     : map_(map), wind_(wind), sensors_(sensors), options_(options) {
   options.validate();
-  if (options.model == PlumeSimulator::AdvectionDiffusion) {
-    ad_ = std::make_unique<cfd::AdvectionDiffusion>(wind, options.advection_diffusion);
-    resampler_ = std::make_unique<GridResampler>(ad_->shape(), ad_->solid_mask(), sensors_);
-    in_obstacle_.resize(sensors_.size());
-    for (std::size_t k = 0; k < sensors_.size(); ++k)
-      in_obstacle_[k] = map_.obstacle_at(sensors_.centre(static_cast<int>(k % sensors_.nx),
-                                                         static_cast<int>(k / sensors_.nx))) >= 0;
-  }
+  if (options.model == PlumeSimulator::AdvectionDiffusion)
+    ad_ = std::make_unique<surrogate::PhysicsFeature>(map, wind, sensors_,
+                                                      options.advection_diffusion);
 }
 
 MapPlumes::~MapPlumes() = default;
@@ -62,10 +57,10 @@ PlumeTargets MapPlumes::run(Vec2 source, std::uint64_t seed) const {
   check_source(map_, source);
   PlumeTargets t;
   if (ad_) {
-    t.mean = resampler_->apply(ad_->solve(source));
+    t.mean = (*ad_)(source);
     t.std = Grid<double>(sensors_, 0.0);
     for (std::size_t k = 0; k < sensors_.size(); ++k)
-      t.mean.values[k] = in_obstacle_[k] ? 0.0 : t.mean.values[k] + options_.sensor.baseline;
+      if (!ad_->in_obstacle(k)) t.mean.values[k] += options_.sensor.baseline;
     return t;
   }
   world::SensorRecord r = world::simulate_filaments(map_, wind_, source, sensors_,

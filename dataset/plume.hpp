@@ -13,8 +13,8 @@
 #include "cfd/options.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
-#include "core/resample.hpp"
 #include "map/map.hpp"
+#include "surrogate/features.hpp"
 #include "world/filament_model.hpp"
 #include "world/gas_sensor.hpp"
 
@@ -76,11 +76,8 @@ class MapPlumes {
   const cfd::WindField& wind_;
   GridShape sensors_;
   PlumeOptions options_;
-  std::unique_ptr<cfd::AdvectionDiffusion> ad_;
-  // Advection-diffusion only, per map: the sensor weights, and which
-  // sensors lie inside obstacles.
-  std::unique_ptr<GridResampler> resampler_;
-  std::vector<char> in_obstacle_;
+  // Advection-diffusion only: the operator factored once, read at the sensors.
+  std::unique_ptr<surrogate::PhysicsFeature> ad_;
 };
 
 // `plumekit plume`: one source's plume in a map whose wind is solved by the flow policy

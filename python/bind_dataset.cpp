@@ -40,7 +40,7 @@ py::dict shard_dict(const dataset::ManifestShard& entry, const dataset::ShardArr
 py::dict read_dataset(const std::filesystem::path& dir) {
   const dataset::Manifest manifest = dataset::read_manifest(dir / "manifest.json");
   const double cell = dataset::feature_cell(manifest);
-  const int channels = surrogate::input_channels(cell);
+  const int channels = surrogate::input_channels(cell, dataset::physics_input(manifest));
   std::vector<dataset::ShardArrays> shards;
   {
     ReleasedGil release;

@@ -70,6 +70,35 @@ std::vector<float> wind_features(const cfd::WindField& wind, const GridShape& sh
   return out;
 }
 
+std::vector<std::string> input_channel_names(double feature_cell, bool physics_input) {
+  std::vector<std::string> names = {"region", "signed_distance"};
+  if (feature_cell > 0) {
+    names.insert(names.end(), {"wind_u", "wind_v"});
+    if (physics_input) names.push_back("physics_mean");
+  }
+  names.push_back("source_distance");
+  return names;
+}
+
+PhysicsFeature::PhysicsFeature(const Map& map, const cfd::WindField& wind, const GridShape& grid,
+                               const cfd::AdvectionDiffusionOptions& options)
+    : ad_(std::make_unique<cfd::AdvectionDiffusion>(wind, options)),
+      resampler_(std::make_unique<GridResampler>(ad_->shape(), ad_->solid_mask(), grid)),
+      in_obstacle_(grid.size()) {
+  for (std::size_t k = 0; k < grid.size(); ++k)
+    in_obstacle_[k] = map.obstacle_at(grid.centre(static_cast<int>(k % grid.nx),
+                                                  static_cast<int>(k / grid.nx))) >= 0;
+}
+
+PhysicsFeature::~PhysicsFeature() = default;
+
+Grid<double> PhysicsFeature::operator()(Vec2 source) const {
+  Grid<double> c = resampler_->apply(ad_->solve(source));
+  for (std::size_t k = 0; k < c.values.size(); ++k)
+    if (in_obstacle_[k]) c.values[k] = 0.0;
+  return c;
+}
+
 std::vector<float> source_feature(Vec2 source, const GridShape& shape) {
   std::vector<float> out(shape.size());
   for (int j = 0; j < shape.ny; ++j)

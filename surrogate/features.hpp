@@ -8,11 +8,16 @@
 //   2  Euclidean distance in metres from the cell centre to the source
 // Datasets for the v2 surrogate (issue 19, `--feature-cell`) use a physical grid instead, and
 // five channels: region, signed distance, the steady wind's u and v in m/s at the cell centre,
-// and the source distance.
+// and the source distance. A hybrid model's datasets (issue 46, `--physics-input`) add a sixth
+// before the source distance: physics_mean, plumekit's own physics plume for the source.
+#include <memory>
+#include <string>
 #include <vector>
 
+#include "cfd/advection_diffusion.hpp"
 #include "cfd/wind_field.hpp"
 #include "core/grid.hpp"
+#include "core/resample.hpp"
 #include "map/map.hpp"
 
 namespace plumekit::surrogate {
@@ -31,10 +36,14 @@ GridShape physical_grid(const Map& map, double cell);
 inline GridShape sample_grid(const Map& map, double feature_cell) {
   return feature_cell > 0 ? physical_grid(map, feature_cell) : feature_grid(map);
 }
-// Input channels of a dataset's samples: 3 on the thesis grid, 5 (with the wind) on a physical one.
-inline int input_channels(double feature_cell) {
-  return feature_cell > 0 ? 5 : 3;
+// Input channels of a dataset's samples: 3 on the thesis grid, 5 (with the wind) on a physical
+// one, 6 with the physics plume too.
+inline int input_channels(double feature_cell, bool physics_input = false) {
+  return feature_cell > 0 ? (physics_input ? 6 : 5) : 3;
 }
+// Their names, in order (the source distance last): region, signed_distance, [wind_u, wind_v,
+// [physics_mean,]] source_distance.
+std::vector<std::string> input_channel_names(double feature_cell, bool physics_input = false);
 
 // Channels 0 and 1: they depend on the map only. [2][ny][nx], row 0 at y = 0.
 std::vector<float> map_features(const Map& map, const GridShape& shape);
@@ -43,6 +52,28 @@ std::vector<float> map_features(const Map& map, const GridShape& shape);
 std::vector<float> wind_features(const cfd::WindField& wind, const GridShape& shape);
 // The source distance channel. [ny][nx].
 std::vector<float> source_feature(Vec2 source, const GridShape& shape);
+// The physics_mean channel of one map: the steady advection-diffusion plume of a release at the
+// source (cfd/advection_diffusion.hpp) in the map's wind, read at the grid's cell centres
+// (GridResampler: bilinear among free flow cells), 0 at centres inside obstacles. The operator
+// depends on the wind only, so it is factored once here and each source is one forward solve.
+// The dataset generator and PlumeNetwork both call it, so a model sees what it was trained on.
+class PhysicsFeature {
+ public:
+  PhysicsFeature(const Map& map, const cfd::WindField& wind, const GridShape& grid,
+                 const cfd::AdvectionDiffusionOptions& options);
+  ~PhysicsFeature();
+  // In concentration units (the targets' units), [ny][nx]. Const: callable from many threads.
+  Grid<double> operator()(Vec2 source) const;
+  const cfd::AdvectionDiffusion& advection_diffusion() const { return *ad_; }
+  // Whether cell k's centre lies inside an obstacle (where the channel is 0).
+  bool in_obstacle(std::size_t k) const { return in_obstacle_[k] != 0; }
+
+ private:
+  std::unique_ptr<cfd::AdvectionDiffusion> ad_;
+  std::unique_ptr<GridResampler> resampler_;
+  std::vector<char> in_obstacle_;
+};
+
 // Signed distance from p to the nearest solid surface (see above).
 double signed_distance(const Map& map, Vec2 p);
 
