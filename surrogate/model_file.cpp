@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -128,6 +129,73 @@ void check_layers(const json& j, const std::vector<LayerSpec>& expected,
   }
 }
 
+// The grid part of `features`: a physical grid (cell_size, multiple) or a fixed one (grid, arena).
+void parse_grid(const json& j, int levels, const std::string& source, FeatureContract& f) {
+  if (f.physical()) {
+    f.multiple = get<int>(j, "multiple", source, "features");
+    if (f.multiple != (1 << levels))
+      fail(source, "shape mismatch: features.multiple is " + std::to_string(f.multiple) +
+                       "; a network that pools " + std::to_string(levels) + " times needs " +
+                       std::to_string(1 << levels));
+    f.rows = f.cols = 0;
+    f.width = f.height = 0.0;
+    return;
+  }
+  const auto grid = get<std::vector<int>>(j, "grid", source, "features");
+  const auto arena = get<std::vector<double>>(j, "arena", source, "features");
+  if (grid.size() != 2 || grid[0] < 1 || grid[1] < 1 || grid[0] > 4096 || grid[1] > 4096) {
+    fail(source, "shape mismatch: features.grid must be [rows, cols], got " + shape_text(grid));
+  }
+  if (arena.size() != 2 || !(arena[0] > 0) || !(arena[1] > 0)) {
+    fail(source, "header: features.arena must be [width, height] in metres, both positive");
+  }
+  f.rows = grid[0];
+  f.cols = grid[1];
+  f.width = arena[0];
+  f.height = arena[1];
+}
+
+// The physics_mean channel's scale and plume options. The ranges are
+// cfd::AdvectionDiffusionOptions' (advection_diffusion_option_table), restated here since this
+// library does not link cfd.
+PhysicsChannel parse_physics(const json& c, const std::string& source, const std::string& where) {
+  PhysicsChannel p;
+  const auto number = [&](const char* key, bool zero_ok, double max, const char* what) {
+    const double v = get<double>(c, key, source, where);
+    if (!std::isfinite(v) || v < 0.0 || (v == 0.0 && !zero_ok) || v > max)
+      fail(source,
+           "header: " + where + "." + key + " is " + c.at(key).dump() + "; it must be " + what);
+    return v;
+  };
+  const double huge = std::numeric_limits<double>::max();
+  p.scale =
+      number("scale", false, huge, "a positive finite number (input = concentration / scale)");
+  p.diffusivity = number("diffusivity", false, 100.0, "in (0, 100] m^2/s");
+  p.decay_rate = number("decay_rate", true, 100.0, "in [0, 100] 1/s");
+  p.release_rate = number("release_rate", false, 1e9, "in (0, 1e9] concentration units * m^2/s");
+  return p;
+}
+
+// What each channel's unit must be: the source channel's by its form.
+std::string channel_unit(const std::string& name, bool inverse) {
+  if (name == "region") return "label";
+  if (name == "signed_distance") return "m";
+  if (name == "physics_mean") return "concentration / scale";
+  if (name == "source_distance") return inverse ? "1/m" : "m";
+  return "m/s";  // wind_u, wind_v
+}
+
+std::string contract_text(bool physical, bool physics) {
+  if (!physical)
+    return "the feature contract is region (label), signed_distance (m), source_distance (m, or "
+           "1/m in the inverse form)";
+  return std::string(
+             "a physical-grid model's contract is region (label), signed_distance (m), "
+             "wind_u (m/s), wind_v (m/s), ") +
+         (physics ? "physics_mean (concentration / scale), " : "") +
+         "source_distance (m, or 1/m in the inverse form)";
+}
+
 FeatureContract parse_features(const json& j, int in_channels, int levels,
                                const std::string& source) {
   FeatureContract f;
@@ -140,40 +208,24 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
     f.cell_size = get<double>(j, "cell_size", source, "features");
     if (!std::isfinite(f.cell_size) || f.cell_size < 0.01 || f.cell_size > 10.0)
       fail(source, "header: features.cell_size must be a cell size in metres (0.01 .. 10)");
-    f.multiple = get<int>(j, "multiple", source, "features");
-    if (f.multiple != (1 << levels))
-      fail(source, "shape mismatch: features.multiple is " + std::to_string(f.multiple) +
-                       "; a network that pools " + std::to_string(levels) + " times needs " +
-                       std::to_string(1 << levels));
-    f.rows = f.cols = 0;
-    f.width = f.height = 0.0;
-  } else {
-    const auto grid = get<std::vector<int>>(j, "grid", source, "features");
-    const auto arena = get<std::vector<double>>(j, "arena", source, "features");
-    if (grid.size() != 2 || grid[0] < 1 || grid[1] < 1 || grid[0] > 4096 || grid[1] > 4096) {
-      fail(source, "shape mismatch: features.grid must be [rows, cols], got " + shape_text(grid));
-    }
-    if (arena.size() != 2 || !(arena[0] > 0) || !(arena[1] > 0)) {
-      fail(source, "header: features.arena must be [width, height] in metres, both positive");
-    }
-    f.rows = grid[0];
-    f.cols = grid[1];
-    f.width = arena[0];
-    f.height = arena[1];
   }
+  parse_grid(j, levels, source, f);
   const json& ch = j.contains("channels") ? j.at("channels") : json();
   if (!ch.is_array() || static_cast<int>(ch.size()) != in_channels) {
     fail(source, "shape mismatch: features.channels must list " + std::to_string(in_channels) +
                      " input channels");
   }
-  // The contracts this engine's callers know how to build (surrogate/features.hpp).
+  // The contracts this engine's callers know how to build (surrogate/features.hpp): on a physical
+  // grid, six channels are a hybrid model's (the physics plume before the source distance).
   // The source channel (the last) has a form that decides its unit: metres, or 1/m for the
   // inverse distance.
-  const std::vector<std::string> names = feature_channel_names(physical);
+  const bool physics = physical && ch.size() == 6;
+  const std::vector<std::string> names = feature_channel_names(physical, physics);
   if (ch.size() != names.size()) {
     fail(source, "shape mismatch: features.channels lists " + std::to_string(ch.size()) +
                      " channels; " +
-                     (physical ? "a physical-grid model's contract has 5" : "the contract has 3"));
+                     (physical ? "a physical-grid model's contract has 5 (6 with physics_mean)"
+                               : "the contract has 3"));
   }
   const std::size_t last = names.size() - 1;
   const std::string last_where = "features.channels[" + std::to_string(last) + "]";
@@ -188,17 +240,12 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
     const std::string where = "features.channels[" + std::to_string(i) + "]";
     FeatureChannel c{get<std::string>(ch[i], "name", source, where),
                      get<std::string>(ch[i], "unit", source, where)};
-    const std::string unit = i == last ? (inverse ? "1/m" : "m")
-                             : i == 0  ? "label"
-                             : i == 1  ? "m"
-                                       : "m/s";
-    if (i >= names.size() || c.name != names[i] || c.unit != unit) {
+    if (c.name != names[i] || c.unit != channel_unit(names[i], inverse))
       fail(source, "header: " + where + " is \"" + c.name + "\" in \"" + c.unit + "\"; " +
-                       (physical ? "a physical-grid model's contract is region (label), "
-                                   "signed_distance (m), wind_u (m/s), wind_v (m/s), "
-                                   "source_distance (m, or 1/m in the inverse form)"
-                                 : "the feature contract is region (label), signed_distance "
-                                   "(m), source_distance (m, or 1/m in the inverse form)"));
+                       contract_text(physical, physics));
+    if (c.name == "physics_mean") {
+      f.physics_channel = static_cast<int>(i);
+      f.physics = parse_physics(ch[i], source, where);
     }
     f.channels.push_back(c);
   }
@@ -216,7 +263,9 @@ FeatureContract parse_features(const json& j, int in_channels, int levels,
 
 }  // namespace
 
-std::vector<std::string> feature_channel_names(bool physical) {
+std::vector<std::string> feature_channel_names(bool physical, bool physics) {
+  if (physical && physics)
+    return {"region", "signed_distance", "wind_u", "wind_v", "physics_mean", "source_distance"};
   if (physical) return {"region", "signed_distance", "wind_u", "wind_v", "source_distance"};
   return {"region", "signed_distance", "source_distance"};
 }
@@ -332,8 +381,27 @@ json member_or_null(const json& header, const char* key) {
   return header.contains(key) ? header.at(key) : json();
 }
 
+// An output's "plus_input" (a residual output): only the mean's, only "physics_mean", and only
+// when the model has that input channel.
+std::string parse_plus_input(const json& o, const std::string& name, const FeatureContract& f,
+                             const std::string& source, const std::string& where) {
+  if (!o.contains("plus_input")) return "";
+  const auto input = get<std::string>(o, "plus_input", source, where);
+  if (input != "physics_mean")
+    fail(source, "header: " + where + ".plus_input is \"" + input +
+                     "\"; an output can add back only the \"physics_mean\" input");
+  if (name != "mean")
+    fail(source, "header: " + where + " (\"" + name +
+                     "\") has plus_input; only the mean may be a residual over the physics plume");
+  if (!f.has_physics())
+    fail(source, "shape mismatch: " + where +
+                     ".plus_input adds \"physics_mean\", which is not among the model's input "
+                     "channels");
+  return input;
+}
+
 std::vector<OutputSpec> parse_outputs(const json& outs, int out_channels,
-                                      const std::string& source) {
+                                      const FeatureContract& features, const std::string& source) {
   if (!outs.is_array() || static_cast<int>(outs.size()) != out_channels) {
     fail(source, "shape mismatch: \"outputs\" must describe " + std::to_string(out_channels) +
                      " output channels");
@@ -341,10 +409,12 @@ std::vector<OutputSpec> parse_outputs(const json& outs, int out_channels,
   std::vector<OutputSpec> outputs;
   for (std::size_t i = 0; i < outs.size(); ++i) {
     const std::string where = "outputs[" + std::to_string(i) + "]";
-    OutputSpec o{get<std::string>(outs[i], "name", source, where),
-                 get<std::string>(outs[i], "unit", source, where),
-                 get<float>(outs[i], "scale", source, where)};
+    OutputSpec o;
+    o.name = get<std::string>(outs[i], "name", source, where);
+    o.unit = get<std::string>(outs[i], "unit", source, where);
+    o.scale = get<float>(outs[i], "scale", source, where);
     if (!std::isfinite(o.scale)) fail(source, "header: " + where + ".scale is not finite");
+    o.plus_input = parse_plus_input(outs[i], o.name, features, source, where);
     outputs.push_back(o);
   }
   return outputs;
@@ -406,8 +476,8 @@ void parse_description(const Framing& f, ModelFile& m, const std::string& source
                      std::to_string(m.features.cols) + " grid cannot be pooled " +
                      std::to_string(levels) + " times");
   }
-  m.outputs =
-      parse_outputs(member_or_null(f.header, "outputs"), m.architecture.out_channels, source);
+  m.outputs = parse_outputs(member_or_null(f.header, "outputs"), m.architecture.out_channels,
+                            m.features, source);
   m.trained_on = parse_trained_on(member_or_null(f.header, "trained_on"), source);
 }
 

@@ -53,10 +53,20 @@ std::size_t parameter_count(const std::vector<LayerSpec>& layers);
 //   signed_distance, source_distance;
 // - a physical grid (v2, issue 19; cell_size > 0): nominal cells of cell_size metres over any map,
 //   padded with zeros to a multiple of `multiple` (2^levels) on the high side, channels region,
-//   signed_distance, wind_u, wind_v, source_distance. rows, cols, width and height are 0.
+//   signed_distance, wind_u, wind_v, [physics_mean,] source_distance. rows, cols, width and
+//   height are 0.
 struct FeatureChannel {
-  std::string name;  // region, signed_distance, [wind_u, wind_v,] source_distance
+  std::string name;  // region, signed_distance, [wind_u, wind_v, [physics_mean,]] source_distance
   std::string unit;
+};
+// The physics_mean channel of a hybrid model (issue 46): the steady advection-diffusion plume of
+// the source in the map's wind (surrogate::PhysicsFeature), divided by `scale`. Plain numbers,
+// the cfd::AdvectionDiffusionOptions of that plume, so this engine library needs no cfd.
+struct PhysicsChannel {
+  double scale = 1.0;            // input value = concentration / scale
+  double diffusivity = 0.05;     // m^2/s
+  double decay_rate = 0.0;       // 1/s
+  double release_rate = 1000.0;  // concentration units * m^2/s
 };
 struct FeatureContract {
   int rows = 64;           // grid rows (along y), row 0 at y = 0, cell-centred
@@ -70,21 +80,36 @@ struct FeatureContract {
   // source_min_distance), in 1/m (the thesis's code and DeepCFD-style inputs).
   std::string source_distance_form;
   double source_min_distance = 0.0;  // m, the inverse form's floor (header min_distance)
+  int physics_channel = -1;          // physics_mean's index; -1: none (not a hybrid model)
+  PhysicsChannel physics;            // its scale and plume options, when there is one
 
   bool physical() const { return cell_size > 0; }
   bool has_wind() const { return physical(); }
+  bool has_physics() const { return physics_channel >= 0; }
   int source_channel() const { return static_cast<int>(channels.size()) - 1; }
 };
 
-// The input channels of a contract, in order: region, signed_distance, [wind_u, wind_v,]
-// source_distance (the wind on a physical grid).
-std::vector<std::string> feature_channel_names(bool physical);
+// The input channels of a contract, in order: region, signed_distance, [wind_u, wind_v,
+// [physics_mean,]] source_distance (the wind on a physical grid, the physics plume on a hybrid
+// model's).
+std::vector<std::string> feature_channel_names(bool physical, bool physics = false);
 
 struct OutputSpec {
   std::string name;  // mean, std
   std::string unit;
   float scale = 1.0f;  // network output times scale = value in `unit`
+  // A residual output (the mean of a hybrid model): "physics_mean", the input channel added back,
+  // so value = scale * network output + that channel's scale * its input (residual_output()).
+  // Empty: none.
+  std::string plus_input;
 };
+
+// The value of a residual output in its unit, from the network's output already times its scale
+// (`scaled_output`) and the added channel's input value and scale: the one place that sums them,
+// for PlumeNetwork and the tests against PyTorch alike.
+inline float residual_output(float scaled_output, float input, double input_scale) {
+  return static_cast<float>(static_cast<double>(scaled_output) + input_scale * input);
+}
 
 // What the network was trained on (header "trained_on", optional; every part optional): the
 // callers warn when a map lies outside it (PlumeNetwork::warnings), they do not refuse it.

@@ -94,13 +94,14 @@ double PlumePrediction::std_at(Vec2 p) const {
   return std.empty() ? 0.0 : sample(grid, std, map.get(), p);
 }
 
-PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& map,
-                           const cfd::WindField* wind)
-    : network_(std::move(network)), map_(std::make_shared<const Map>(map)) {
-  if (!network_) throw std::invalid_argument("PlumeNetwork: null network");
-  const ModelFile& f = network_->file();
+namespace {
+
+// The checks of PlumeNetwork's constructor that need only the model, the map and the wind: the
+// feature contract this engine builds (thesis grid 64 x 64 over the map's arena, or a physical
+// grid), the channel names, the wind a physical-grid model reads. InputError prefixed by `who`.
+void check_contract(const ModelFile& f, const Map& map, const cfd::WindField* wind,
+                    const std::string& who) {
   const FeatureContract& c = f.features;
-  const std::string who = "the surrogate model does not fit map \"" + map.name + "\": ";
   if (!c.physical() && (c.rows != surrogate::kFeatureGrid || c.cols != surrogate::kFeatureGrid)) {
     throw InputError(who + "the model's grid is " + std::to_string(c.rows) + "x" +
                      std::to_string(c.cols) + ", the dataset's features are " +
@@ -108,7 +109,7 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
                      std::to_string(surrogate::kFeatureGrid));
   }
   check_map_size(c, map);
-  const std::vector<std::string> names = feature_channel_names(c.physical());
+  const std::vector<std::string> names = feature_channel_names(c.physical(), c.has_physics());
   const int n_in = static_cast<int>(names.size());
   if (f.architecture.in_channels != n_in || static_cast<int>(c.channels.size()) != n_in) {
     std::string list;
@@ -125,7 +126,9 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
     }
   }
   if (c.has_wind() && !wind)
-    throw InputError(who + "the model takes the map's wind as an input; solve it first");
+    throw InputError(who + "the model takes the map's wind as an input" +
+                     (c.has_physics() ? " (and its physics plume in that wind)" : "") +
+                     "; solve it first");
   if (c.has_wind() && (!same_length(wind->shape().width, map.width) ||
                        !same_length(wind->shape().height, map.height)))
     throw InputError(who + "the wind given covers " + fmt(wind->shape().width) + " x " +
@@ -135,6 +138,26 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
     throw InputError(who + "source_distance form \"" + c.source_distance_form +
                      "\", this engine builds \"euclidean\" and \"inverse\"");
   }
+}
+
+cfd::AdvectionDiffusionOptions physics_options(const PhysicsChannel& p) {
+  cfd::AdvectionDiffusionOptions o;
+  o.diffusivity = p.diffusivity;
+  o.decay_rate = p.decay_rate;
+  o.release_rate = p.release_rate;
+  return o;
+}
+
+}  // namespace
+
+PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& map,
+                           const cfd::WindField* wind)
+    : network_(std::move(network)), map_(std::make_shared<const Map>(map)) {
+  if (!network_) throw std::invalid_argument("PlumeNetwork: null network");
+  const ModelFile& f = network_->file();
+  const FeatureContract& c = f.features;
+  const std::string who = "the surrogate model does not fit map \"" + map.name + "\": ";
+  check_contract(f, map, wind, who);
   mean_channel_ = std_channel_ = -1;
   for (std::size_t o = 0; o < f.outputs.size(); ++o) {
     if (f.outputs[o].name == "mean") mean_channel_ = static_cast<int>(o);
@@ -144,7 +167,7 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
   if (mean_channel_ < 0) throw InputError(who + "the model's outputs must include \"mean\"");
 
   warnings_ = training_warnings(f.trained_on, map);
-  channels_ = n_in;
+  channels_ = static_cast<int>(c.channels.size());
   if (c.physical()) {
     grid_ = surrogate::physical_grid(map, c.cell_size);
     const auto up = [&](int n) { return (n + c.multiple - 1) / c.multiple * c.multiple; };
@@ -166,9 +189,14 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
     const std::vector<float> w = surrogate::wind_features(*wind, grid_);
     planes.insert(planes.end(), w.begin(), w.end());
   }
+  // The physics plume's operator depends on the wind alone: factored once, here.
+  if (c.has_physics())
+    physics_ =
+        std::make_shared<const PhysicsFeature>(map, *wind, grid_, physics_options(c.physics));
+  const int map_channels = static_cast<int>(planes.size() / grid_.size());
   const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
-  map_features_.assign((channels_ - 1) * plane, 0.0f);
-  for (int ch = 0; ch < channels_ - 1; ++ch)
+  map_features_.assign(map_channels * plane, 0.0f);
+  for (int ch = 0; ch < map_channels; ++ch)
     for (int j = 0; j < grid_.ny; ++j)
       std::copy_n(planes.begin() + (ch * grid_.size() + grid_.index(0, j)), grid_.nx,
                   map_features_.begin() + (ch * plane + static_cast<std::size_t>(j) * cols_));
@@ -184,11 +212,22 @@ void PlumeNetwork::check_source(Vec2 source) const {
 }
 
 std::vector<float> PlumeNetwork::features(Vec2 source) const {
+  // The map's channels come first; the physics plume (a hybrid model's) and the source distance
+  // follow, in the contract's order.
   std::vector<float> x = map_features_;
-  const std::vector<float> d = surrogate::source_feature(source, grid_);
   const FeatureContract& c = network_->file().features;
-  const std::size_t first = x.size();
-  x.resize(first + static_cast<std::size_t>(rows_) * cols_, 0.0f);
+  const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
+  x.resize(channels_ * plane, 0.0f);
+  if (physics_) {
+    const Grid<double> phys = (*physics_)(source);
+    float* to = x.data() + c.physics_channel * plane;
+    for (int j = 0; j < grid_.ny; ++j)
+      for (int i = 0; i < grid_.nx; ++i)
+        to[static_cast<std::size_t>(j) * cols_ + i] =
+            static_cast<float>(phys.values[grid_.index(i, j)] / c.physics.scale);
+  }
+  const std::vector<float> d = surrogate::source_feature(source, grid_);
+  const std::size_t first = (channels_ - 1) * plane;
   const bool inverse = c.source_distance_form == "inverse";
   for (int j = 0; j < grid_.ny; ++j)
     for (int i = 0; i < grid_.nx; ++i) {
@@ -211,6 +250,8 @@ std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>
     check_source(s);
   const std::size_t cells = grid_.size();
   const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
+  const std::vector<OutputSpec>& outputs = network_->file().outputs;
+  const FeatureContract& contract = network_->file().features;
   std::vector<PlumePrediction> out;
   out.reserve(sources.size());
   for (std::size_t first = 0; first < sources.size(); first += batch_size) {
@@ -225,15 +266,20 @@ std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>
       PlumePrediction p;
       p.grid = grid_;
       p.map = map_;
-      // The map's cells of the (possibly padded) output planes.
+      // The map's cells of the (possibly padded) output planes; a residual output adds its input
+      // back first (residual_output), so the clamp applies to the sum.
       const auto crop = [&](int channel, std::vector<float>& to) {
         const float* v = y.sample_data(i) + plane * channel;
+        const bool residual = !outputs[channel].plus_input.empty();
+        const float* x =
+            residual ? input.sample_data(i) + plane * contract.physics_channel : nullptr;
         to.resize(cells);
         for (int j = 0; j < grid_.ny; ++j)
           for (int c = 0; c < grid_.nx; ++c) {
-            const std::size_t k = grid_.index(c, j);
-            to[k] = obstacle_cell_[k] ? 0.0f
-                                      : std::max(0.0f, v[static_cast<std::size_t>(j) * cols_ + c]);
+            const std::size_t k = grid_.index(c, j), q = static_cast<std::size_t>(j) * cols_ + c;
+            const float value =
+                residual ? residual_output(v[q], x[q], contract.physics.scale) : v[q];
+            to[k] = obstacle_cell_[k] ? 0.0f : std::max(0.0f, value);
           }
       };
       crop(mean_channel_, p.mean);

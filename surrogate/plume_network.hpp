@@ -58,13 +58,16 @@ class MapSizeError : public InputError {
 // callers check it before a long build (the wind) as well as PlumeNetwork does.
 void check_map_size(const FeatureContract& contract, const Map& map);
 
+class PhysicsFeature;
+
 class PlumeNetwork {
  public:
   // Builds the map-only feature channels once. Checks the model's feature contract against the map
   // and the dataset's features (a thesis model: grid 64 x 64 and the arena's size; channel names,
   // the source channel's form: euclidean or inverse, an output named mean, and optionally std);
   // InputError naming what disagrees. A model that takes the wind (a physical-grid model) needs
-  // the map's steady wind (`wind`, used only here); InputError without it.
+  // the map's steady wind (`wind`, used only here); InputError without it. A hybrid model (its
+  // inputs hold physics_mean) gets its physics plume operator factored here, once, in that wind.
   PlumeNetwork(std::shared_ptr<const Network> network, const Map& map,
                const cfd::WindField* wind = nullptr);
 
@@ -83,8 +86,9 @@ class PlumeNetwork {
   // Whether the model predicts the std of the readings (not a mean-only model).
   bool has_std() const { return std_channel_ >= 0; }
   // The network's input for one source, [channels][rows][cols] (channels as in
-  // surrogate/features.hpp; the source channel in the model's form). For a physical-grid model,
-  // the map's grid padded with zeros to input_rows() x input_cols().
+  // surrogate/features.hpp; the source channel in the model's form; a hybrid model's physics
+  // plume divided by its channel's scale). For a physical-grid model, the map's grid padded with
+  // zeros to input_rows() x input_cols().
   std::vector<float> features(Vec2 source) const;
   int input_rows() const { return rows_; }
   int input_cols() const { return cols_; }
@@ -97,9 +101,12 @@ class PlumeNetwork {
   std::shared_ptr<const Network> network_;
   std::shared_ptr<const Map> map_;
   GridShape grid_;
-  int rows_ = 0, cols_ = 0;                 // the network's input size (grid_, or padded)
-  int channels_ = 0;                        // input channels
-  std::vector<float> map_features_;         // all but the source channel, padded, [c-1][rows][cols]
+  int rows_ = 0, cols_ = 0;  // the network's input size (grid_, or padded)
+  int channels_ = 0;         // input channels
+  // The map's channels (all but the source's and the physics plume's), padded, in input order.
+  std::vector<float> map_features_;
+  // A hybrid model's physics plume, one forward solve per source; null for other models.
+  std::shared_ptr<const PhysicsFeature> physics_;
   std::vector<bool> obstacle_cell_;         // region label 0
   int mean_channel_ = 0, std_channel_ = 1;  // std_channel_ -1: a mean-only model
   std::vector<std::string> warnings_;

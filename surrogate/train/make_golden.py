@@ -12,7 +12,12 @@ import torch.nn.functional as F
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import REAL_PARAMETERS, PlumeUNet, parameter_count, pool_margin  # noqa: E402
-from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, write_model  # noqa: E402
+from model_file import DEFAULT_FEATURES, DEFAULT_OUTPUTS, v2_features, write_model  # noqa: E402
+
+# The hybrid golden model's physics channel scale and output scales: all different, so a unit slip
+# (the output's scale where the input's belongs) shows in the C++ test.
+HYBRID_INPUT_SCALE = 250.0
+HYBRID_OUTPUT_SCALES = (40.0, 20.0)
 
 
 def features(rng, n, rows, cols, arena):
@@ -93,6 +98,62 @@ def golden(out_dir, stem, model, batch, features_meta, outputs_meta, seed):
           f"output max |y| {np.abs(y).max():.4g}, smallest max-pool margin {margin:.2g}")
 
 
+def hybrid_features(cell_size, multiple):
+    """A hybrid model's contract (issue 46): the v2 channels with physics_mean, the physics plume
+    divided by its scale, with the plume's options, before the source distance."""
+    f = v2_features(cell_size, multiple)
+    f["channels"].insert(4, {"name": "physics_mean", "unit": "concentration / scale",
+                             "scale": HYBRID_INPUT_SCALE, "diffusivity": 0.05,
+                             "decay_rate": 1.0 / 28.0, "release_rate": 1000.0})
+    return f
+
+
+def hybrid_inputs(rng, n, rows, cols, cell):
+    """Six plausible channels on a physical grid: labels in patches, SDF, a wind, a plume-like blob
+    (0 on obstacle labels) in concentration / scale, and the inverse source distance."""
+    x = np.zeros((n, 6, rows, cols), dtype=np.float32)
+    yy, xx = np.meshgrid((np.arange(rows) + 0.5) * cell, (np.arange(cols) + 0.5) * cell,
+                         indexing="ij")
+    for i in range(n):
+        coarse = rng.integers(0, 5, size=(rows // 4 + 1, cols // 4 + 1))
+        x[i, 0] = np.kron(coarse, np.ones((4, 4)))[:rows, :cols]
+        x[i, 1] = rng.uniform(-0.5, 2.0, size=(rows, cols))
+        x[i, 2] = rng.uniform(0.0, 1.5, size=(rows, cols))
+        x[i, 3] = rng.uniform(-0.5, 0.5, size=(rows, cols))
+        sx, sy = rng.uniform(0, cols * cell), rng.uniform(0, rows * cell)
+        d = np.hypot(xx - sx, yy - sy)
+        plume = 0.2 * np.exp(-np.maximum(xx - sx, 0) / 4.0 - (yy - sy) ** 2 / 0.5 - d / 2.0)
+        x[i, 4] = np.where(x[i, 0] == 0, 0.0, plume)
+        x[i, 5] = 1.0 / np.maximum(d, cell / 2)
+    return x
+
+
+def golden_hybrid(out_dir, seed):
+    """A residual model: the pair's output is the network's, each output times its scale, the
+    mean plus HYBRID_INPUT_SCALE times the physics channel (float64 sum, then float32: what the
+    engine's surrogate::residual_output does)."""
+    torch.manual_seed(seed)
+    model = PlumeUNet(in_channels=6, out_channels=2, filters=(4, 4, 4, 4), kernel=3, convs=2)
+    feats = hybrid_features(0.2, 16)
+    outs = [dict(DEFAULT_OUTPUTS[0], scale=HYBRID_OUTPUT_SCALES[0], plus_input="physics_mean"),
+            dict(DEFAULT_OUTPUTS[1], scale=HYBRID_OUTPUT_SCALES[1])]
+    x = hybrid_inputs(np.random.default_rng(seed), 2, 32, 48, 0.2)
+    model.eval()
+    with torch.no_grad():
+        y = model(torch.from_numpy(x)).numpy()
+    margin = float(pool_margin(model, x).min())
+    y = y * np.array(HYBRID_OUTPUT_SCALES, dtype=np.float32)[None, :, None, None]
+    net_mean = np.abs(y[:, 0]).max()
+    y[:, 0] = (y[:, 0].astype(np.float64) + HYBRID_INPUT_SCALE * x[:, 4].astype(np.float64))
+    size = write_model(os.path.join(out_dir, "hybrid.pkcnn"), model, feats, outs,
+                       training={"note": "random initialisation, seed %d; golden test model" % seed})
+    np.save(os.path.join(out_dir, "hybrid_input.npy"), x)
+    np.save(os.path.join(out_dir, "hybrid_output.npy"), y.astype(np.float32))
+    print(f"hybrid: {parameter_count(model)} parameters, {size} bytes, input {x.shape}, "
+          f"max |network mean| {net_mean:.4g}, max |mean| {np.abs(y[:, 0]).max():.4g}, "
+          f"max |std| {np.abs(y[:, 1]).max():.4g}, smallest max-pool margin {margin:.2g}")
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     default_out = os.path.normpath(os.path.join(here, "..", "..", "tests", "data", "surrogate"))
@@ -122,6 +183,10 @@ def main():
     feats = dict(DEFAULT_FEATURES, grid=[21, 30], arena=[7.5, 5.25])
     outs = [dict(DEFAULT_OUTPUTS[0], scale=2.5), dict(DEFAULT_OUTPUTS[1])]
     golden(args.out, "odd", odd, 3, feats, outs, seed=13)
+
+    # (c) a hybrid residual model (issue 46): six channels on a physical grid, the mean adds the
+    # physics channel back.
+    golden_hybrid(args.out, seed=19)
 
 
 if __name__ == "__main__":

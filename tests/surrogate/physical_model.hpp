@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/sha256.hpp"
@@ -97,6 +98,31 @@ inline PhysicalModel physical_model(std::vector<int> filters, int kernel = 3, in
   m.data.resize(parameter_count(layers));
   for (float& v : m.data)
     v = u(rng);
+  return m;
+}
+
+// The six channels of a hybrid model (issue 46): the five above with physics_mean (its scale and
+// plume options) before the source distance.
+inline nlohmann::json hybrid_channels(double scale = 250.0) {
+  nlohmann::json c = physical_channels();
+  const nlohmann::json physics = {{"name", "physics_mean"},   {"unit", "concentration / scale"},
+                                  {"scale", scale},           {"diffusivity", 0.05},
+                                  {"decay_rate", 1.0 / 28.0}, {"release_rate", 1000.0}};
+  c.insert(c.begin() + 4, physics);
+  return c;
+}
+
+// A hybrid residual model: six inputs, the mean adds physics_mean back (plus_input), mean and std
+// scales other than the input's so a unit slip shows.
+inline PhysicalModel hybrid_model(std::vector<int> filters, int kernel = 3, int convs = 1,
+                                  double cell = 0.2, unsigned seed = 1) {
+  PhysicalModel m = physical_model(std::move(filters), kernel, convs, cell, seed, 6);
+  m.header["features"]["channels"] = hybrid_channels();
+  m.header["outputs"] = {{{"name", "mean"},
+                          {"unit", "concentration"},
+                          {"scale", 40.0},
+                          {"plus_input", "physics_mean"}},
+                         {{"name", "std"}, {"unit", "concentration"}, {"scale", 20.0}}};
   return m;
 }
 
