@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -68,6 +69,31 @@ TEST_F(Predict, WritesThePlumeNetworksPrediction) {
   const Result again = run(predict_args(out, "2.0,3.0"));
   EXPECT_EQ(again.code, 0) << again.err;
   EXPECT_NE(read_npy(out / "mean.npy").values, mean.values);
+}
+
+// A hybrid residual model (issue 46, the golden hybrid.pkcnn): the map's wind solved as the
+// command solves it, the physics plume of the source in it, the mean the network's plus that
+// plume: the files hold PlumeNetwork's prediction, finite, and the plume carries the peak.
+TEST_F(Predict, AHybridModelPredictsThePhysicsPlumePlusItsResidual) {
+  const fs::path out = dir / "hybrid";
+  const fs::path map_file = fs::path(PLUMEKIT_DATA_DIR) / "test-maps" / "test-1-block.json";
+  const fs::path hybrid = fs::path(PLUMEKIT_TEST_DATA) / "surrogate" / "hybrid.pkcnn";
+  const Result r = run(predict_args(out, "2.0,2.0", hybrid, map_file) + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["grid"], nlohmann::json::array({20, 50}));
+  const Map map = read_map(map_file);
+  const cfd::WindField wind = model_wind(map);
+  const PlumeNetwork model(std::make_shared<const Network>(Network::load(hybrid)), map, &wind);
+  const PlumePrediction p = model.predict({2.0, 2.0});
+  const NpyArray mean = read_npy(out / "mean.npy");
+  ASSERT_EQ(mean.shape, (std::vector<std::size_t>{20, 50}));
+  for (std::size_t k = 0; k < p.mean.size(); ++k) {
+    ASSERT_TRUE(std::isfinite(mean.values[k])) << k;
+    ASSERT_EQ(static_cast<float>(mean.values[k]), p.mean[k]) << k;
+  }
+  // The physics plume of a release of 1000 dominates the random network's residual (tens).
+  EXPECT_GT(j["peak_mean"].get<double>(), 500.0);
 }
 
 TEST_F(Predict, BadInputExitsTwoAndWritesNothing) {
