@@ -145,8 +145,9 @@ def golden_hybrid(out_dir, seed):
     y = y * np.array(HYBRID_OUTPUT_SCALES, dtype=np.float32)[None, :, None, None]
     net_mean = np.abs(y[:, 0]).max()
     y[:, 0] = (y[:, 0].astype(np.float64) + HYBRID_INPUT_SCALE * x[:, 4].astype(np.float64))
+    note = "random initialisation, seed %d; golden test model" % seed
     size = write_model(os.path.join(out_dir, "hybrid.pkcnn"), model, feats, outs,
-                       training={"note": "random initialisation, seed %d; golden test model" % seed})
+                       training={"note": note})
     np.save(os.path.join(out_dir, "hybrid_input.npy"), x)
     np.save(os.path.join(out_dir, "hybrid_output.npy"), y.astype(np.float32))
     print(f"hybrid: {parameter_count(model)} parameters, {size} bytes, input {x.shape}, "
