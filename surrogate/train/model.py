@@ -22,8 +22,13 @@ REAL_PARAMETERS = 600130
 
 class PlumeUNet(nn.Module):
     def __init__(self, in_channels=3, out_channels=2, filters=REAL_FILTERS, kernel=REAL_KERNEL,
-                 convs=REAL_CONVS):
+                 convs=REAL_CONVS, residual_channel=None, residual_factor=1.0):
         super().__init__()
+        # A residual model (issue 46): output 0 (the mean) is the network's plus residual_factor
+        # times input channel residual_channel (the physics plume; the factor is its input scale
+        # over the mean's output scale, 1 as train.py scales both). Not a weight, so the state
+        # dict and the model file's tensors are the plain network's.
+        self.residual_channel, self.residual_factor = residual_channel, float(residual_factor)
         assert kernel % 2 == 1 and len(filters) > 0 and convs > 0
         self.in_channels = in_channels
         self.out_channels = out_channels
@@ -66,6 +71,7 @@ class PlumeUNet(nn.Module):
         return rows
 
     def forward(self, x):
+        inputs = x
         skips, indices = [], []
         for block in self.encoder:
             for conv in block:
@@ -84,6 +90,9 @@ class PlumeUNet(nn.Module):
                     if not (b == 0 and j == self.convs - 1):
                         y = F.relu(y)
             outputs.append(y)
+        if self.residual_channel is not None:
+            c = self.residual_channel
+            outputs[0] = outputs[0] + self.residual_factor * inputs[:, c:c + 1]
         return torch.cat(outputs, dim=1)
 
 

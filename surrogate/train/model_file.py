@@ -30,10 +30,20 @@ DEFAULT_FEATURES = {
     ],
 }
 
-def v2_features(cell_size, multiple):
+def physics_channel(scale, options):
+    """A hybrid model's physics_mean channel (issue 46): the advection-diffusion plume of the source
+    with `options` (the dataset's generator.physics_mean: diffusivity, decay_rate, release_rate),
+    fed divided by `scale`."""
+    return {"name": "physics_mean", "unit": "concentration / scale", "scale": float(scale),
+            "diffusivity": float(options["diffusivity"]), "decay_rate": float(options["decay_rate"]),
+            "release_rate": float(options["release_rate"])}
+
+
+def v2_features(cell_size, multiple, physics=None):
     """The v2 feature contract (physical grid, any map size; no grid/arena keys): 5 channels, the
-    source channel in inverse form with min_distance half a cell."""
-    return {
+    source channel in inverse form with min_distance half a cell; with `physics` (a
+    physics_channel()), 6: that channel before the source distance."""
+    features = {
         "cell_size": float(cell_size),
         "multiple": int(multiple),
         "cells": "nominal cell size cell_size: a map W x H m gets round(W/cell_size) x "
@@ -50,6 +60,21 @@ def v2_features(cell_size, multiple):
              "min_distance": float(cell_size) / 2},
         ],
     }
+    if physics is not None:
+        features["channels"].insert(4, physics)
+    return features
+
+
+def residual_of(header):
+    """(input channel, factor) a residual model adds to its scaled mean (outputs[mean].plus_input;
+    the factor is that channel's scale over the mean's), or (None, 1.0)."""
+    channels = header.get("features", {}).get("channels", [])
+    names = [c["name"] for c in channels]
+    for o in header.get("outputs", []):
+        if o.get("name") == "mean" and o.get("plus_input"):
+            c = names.index(o["plus_input"])
+            return c, float(channels[c]["scale"]) / float(o["scale"])
+    return None, 1.0
 
 
 def is_v2(header):
@@ -170,7 +195,7 @@ def read_model(path):
     header = json.loads(data[16:16 + length].decode("utf-8"))
     arch = header["architecture"]
     model = PlumeUNet(arch["in_channels"], arch["out_channels"], arch["filters"], arch["kernel"],
-                      arch["convs_per_block"])
+                      arch["convs_per_block"], *residual_of(header))
     offset = 16 + length
     offset += -offset % 16
     values = np.frombuffer(data, dtype="<f4", count=header["data_bytes"] // 4, offset=offset)

@@ -9,6 +9,9 @@ hold 5 input channels (region, signed distance, wind u, wind v, Euclidean source
 map's own physical grid, round(W / C) x round(H / C) cells, so the shapes differ from shard to
 shard (one shard, one map). v2_input() turns a v2 sample into what a v2 network reads: channel 4
 as 1 / max(distance, C / 2), zero-padded on the high side up to a multiple of 2 ** levels.
+Hybrid datasets (issue 46, `--physics-input`) hold a sixth, physics_mean (the physics plume of the
+source, concentration units), before the source distance; channel_names() reads the names from
+the manifest's contract.inputs.names, and v2_input() can leave channels out and scale one.
 map_ranges() reads the maps' files for a model header's `trained_on`.
 
 The C++ reader (dataset/dataset_reader.hpp) is the format's reference: `python3 shards.py DIR INDEX`
@@ -32,7 +35,7 @@ class Shard:
         self.sources = load("sources.npy")
         self.map_ids = np.asarray(load("map_ids.npy")).astype(np.int64)
         n = self.inputs.shape[0]
-        if (self.inputs.ndim != 4 or self.inputs.shape[1] not in (3, 5) or self.targets.shape[0] != n
+        if (self.inputs.ndim != 4 or self.inputs.shape[1] not in (3, 5, 6) or self.targets.shape[0] != n
                 or self.targets.shape[1] != 2 or self.targets.shape[2:] != self.inputs.shape[2:]
                 or self.map_ids.shape != (n,)):
             raise ValueError(f"{directory}: inconsistent shard shapes {self.inputs.shape}, "
@@ -119,19 +122,39 @@ def feature_cell(directory, manifest=None):
     return 0.0
 
 
+V1_CHANNELS = ("region", "signed_distance", "source_distance")
+V2_CHANNELS = ("region", "signed_distance", "wind_u", "wind_v", "source_distance")
+PHYSICS = "physics_mean"
+
+
+def channel_names(manifest, cell):
+    """The dataset's input channel names in order: the manifest's contract.inputs.names (written
+    since issue 46), else the v1 or v2 ones by the feature cell."""
+    names = ((manifest.get("contract") or {}).get("inputs") or {}).get("names")
+    if names:
+        return tuple(names)
+    return V2_CHANNELS if cell > 0 else V1_CHANNELS
+
+
 def padded_size(n, multiple):
     return -(-int(n) // multiple) * multiple
 
 
-def v2_input(x, min_distance, rows, cols):
-    """Network input of v2 samples x [b,5,ny,nx] (dataset units): channel 4 (metres) becomes
-    1 / max(distance, min_distance), then every channel is zero-padded to [b,5,rows,cols] (extra rows
-    at the top, y > H; extra columns at the right)."""
+def v2_input(x, min_distance, rows, cols, keep=None, divide=None):
+    """Network input of v2 samples x [b,C,ny,nx] (dataset units): the channels `keep` (indices,
+    default all; the source distance last), channel k of them divided by divide[k] (a dict, e.g.
+    the physics channel by its scale), the last (metres) as 1 / max(distance, min_distance), then
+    every channel zero-padded to [b,len(keep),rows,cols] (extra rows at the top, y > H; extra
+    columns at the right)."""
     x = np.asarray(x, dtype=np.float32)
+    if keep is not None and list(keep) != list(range(x.shape[1])):
+        x = x[:, list(keep)]
     out = np.zeros(x.shape[:2] + (rows, cols), np.float32)
     out[:, :, :x.shape[2], :x.shape[3]] = x
-    d = out[:, SOURCE_CHANNEL, :x.shape[2], :x.shape[3]]
-    out[:, SOURCE_CHANNEL, :x.shape[2], :x.shape[3]] = 1.0 / np.maximum(d, np.float32(min_distance))
+    for k, by in (divide or {}).items():
+        out[:, k] /= np.float32(by)
+    d = out[:, -1, :x.shape[2], :x.shape[3]]
+    out[:, -1, :x.shape[2], :x.shape[3]] = 1.0 / np.maximum(d, np.float32(min_distance))
     return out
 
 

@@ -56,6 +56,16 @@ over the average of each sample's peak mean) as its last column. The model file'
 the v2 `features` (cell_size, multiple, 5 channels) and, for v1 and v2 alike, `trained_on` from
 the training maps' files (when the dataset has them). The golden pair is padded inputs of one
 padded shape, [k,5,H,W], and the network's scaled output over the whole padded grid.
+
+Hybrid datasets (issue 46, `plumekit dataset generate --physics-input`: 6 channels, physics_mean,
+the physics plume of the source, before the source distance) train one of three designs on the
+same data: the hybrid (all six channels; the default, `--inputs all`), the plain network
+(`--inputs plain`: the physics channel left out, the v2 model's five inputs) and the residual
+(`--residual`: six inputs, the mean predicted as the physics plume plus the network's correction).
+The physics channel is fed divided by the target scale s, so with the residual the scaled mean is
+net + physics / s. The header's physics_mean channel carries that scale and the dataset's physics
+options (generator.physics_mean), the residual's mean output "plus_input": "physics_mean", and
+training.inputs and training.residual say the design; a checkpoint resumes only with its design.
 """
 import argparse
 import csv
@@ -73,9 +83,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model import PlumeUNet, parameter_count, pick_device, pool_margin  # noqa: E402
 from model_file import (DEFAULT_FEATURES, DEFAULT_OUTPUTS, provenance_path, read_model,  # noqa: E402
                         write_model)
-from model_file import is_v2, v2_features  # noqa: E402
-from shards import (batch, feature_cell, map_summaries, open_dataset,  # noqa: E402
-                    padded_size, ranges, split_datasets, v2_input)
+from model_file import is_v2, physics_channel, v2_features  # noqa: E402
+from shards import (PHYSICS, batch, channel_names, feature_cell, map_summaries,  # noqa: E402
+                    open_dataset, padded_size, ranges, split_datasets, v2_input)
 
 
 def parse_args(argv=None):
@@ -106,6 +116,12 @@ def parse_args(argv=None):
                          "ignored when resuming). Its validation loss is scored first, so the result\n"
                          "is never worse on the validation maps than the start")
     ap.add_argument("--golden", type=int, default=2, help="samples in the golden pair")
+    ap.add_argument("--inputs", choices=["all", "plain"], default="all",
+                    help="all: every channel of the dataset; plain: leave out a hybrid dataset's\n"
+                         "physics_mean channel (the plain design on the same data)")
+    ap.add_argument("--residual", action="store_true",
+                    help="predict the mean as the physics plume plus a correction (needs a\n"
+                         "dataset made with --physics-input, and --inputs all)")
     ap.add_argument("--preload", choices=["auto", "yes", "no"], default="auto",
                     help="copy the whole dataset into the device's memory once instead of reading\n"
                          "each batch from the memory maps (auto: on CUDA only; the batches and\n"
@@ -169,8 +185,9 @@ class V2Batches:
     max(1, cells // (H * W)) of them. With preload every shard is padded once and kept in the
     device's memory; otherwise each batch reads its rows from the memory maps."""
 
-    def __init__(self, shards, device, preload, cell, multiple, cells):
+    def __init__(self, shards, device, preload, cell, multiple, cells, keep=None, divide=None):
         self.shards, self.device = shards, device
+        self.keep, self.divide = keep, divide  # the channels fed, and those divided (Design)
         self.min_distance = cell / 2
         self.raw = [tuple(int(v) for v in s.inputs.shape[2:]) for s in shards]
         self.shapes = [(padded_size(r, multiple), padded_size(c, multiple)) for r, c in self.raw]
@@ -189,7 +206,8 @@ class V2Batches:
                    for s in shards)
 
     def _inputs(self, si, rows):
-        return v2_input(self.shards[si].inputs[rows], self.min_distance, *self.shapes[si])
+        return v2_input(self.shards[si].inputs[rows], self.min_distance, *self.shapes[si],
+                        keep=self.keep, divide=self.divide)
 
     def _targets(self, si, rows):
         t = np.asarray(self.shards[si].targets[rows], dtype=np.float32)
@@ -382,9 +400,10 @@ def golden_pair_v2(model, batches, rows, count, tries=64):
 
 def open_datasets(dirs):
     """Opens the --data datasets, which must be of one kind: all v1 (3 channels) on one grid, or
-    all v2 (5 channels) with one feature cell. Returns their manifests, all their shards in order,
-    the dataset index of each shard, whether they are v2, and the v2 feature cell (0 for v1)."""
-    manifests, shards, dataset_of, kinds = [], [], [], []
+    all v2 (5 channels, or 6 with the physics) with one feature cell and the same channels.
+    Returns their manifests, all their shards in order, the dataset index of each shard, whether
+    they are v2, the v2 feature cell (0 for v1) and the channel names."""
+    manifests, shards, dataset_of, kinds, names_of = [], [], [], [], []
     seen = [os.path.realpath(d) for d in dirs]
     for k, d in enumerate(dirs):
         if seen.index(seen[k]) != k:  # its maps would be in both splits, as (j, m) and (k, m)
@@ -393,9 +412,10 @@ def open_datasets(dirs):
         channels = {int(s.inputs.shape[1]) for s in own}
         cell = feature_cell(d, manifest)
         v2 = cell > 0 or channels == {5}
-        if channels != {5 if v2 else 3}:
-            sys.exit(f"train.py: {d}: input channels {sorted(channels)}, "
-                     f"a {'v2' if v2 else 'v1'} dataset has {5 if v2 else 3}")
+        names = channel_names(manifest, cell)
+        if channels != {len(names)}:
+            sys.exit(f"train.py: {d}: input channels {sorted(channels)}, its manifest names "
+                     f"{len(names)} ({', '.join(names)})")
         if v2 and cell <= 0:
             sys.exit(f"train.py: {d}: 5-channel inputs but no generator.dataset.feature_cell "
                      "in manifest.json")
@@ -405,10 +425,14 @@ def open_datasets(dirs):
             sys.exit(f"train.py: {d} is a {kind_name(kinds[k])} dataset, but {dirs[0]} is a "
                      f"{kind_name(kinds[0])} one: the --data datasets must be of one kind (all v1 "
                      "on one grid, or all v2 with one feature cell)")
+        if k and names != names_of[0]:
+            sys.exit(f"train.py: {d} has the input channels {', '.join(names)}, {dirs[0]} "
+                     f"{', '.join(names_of[0])}: the --data datasets must have the same ones")
+        names_of.append(names)
         manifests.append(manifest)
         shards += own
         dataset_of += [k] * len(own)
-    return manifests, shards, dataset_of, kinds[0][0], kinds[0][1]
+    return manifests, shards, dataset_of, kinds[0][0], kinds[0][1], names_of[0]
 
 
 def same_kind(a, b):
@@ -422,6 +446,43 @@ def kind_name(kind):
     v2, cell, grids = kind
     return (f"v2 (feature cell {cell:g} m)" if v2
             else "v1 (grid %s)" % ", ".join("%dx%d" % g for g in grids))
+
+
+class Design:
+    """What the network is fed and predicts: the dataset's channels kept (`keep`, their `names`),
+    where the physics channel is among them (`physics`, or None), whether the mean is residual,
+    and the physics options the header records."""
+
+    def __init__(self, args, names, manifests):
+        self.dataset_names = tuple(names)
+        has_physics = PHYSICS in names
+        if args.residual and not has_physics:
+            sys.exit("train.py: --residual needs the physics channel: make the dataset with "
+                     "`plumekit dataset generate --feature-cell 0.2 --physics-input`")
+        if args.residual and args.inputs == "plain":
+            sys.exit("train.py: --residual adds the physics channel, which --inputs plain leaves out")
+        self.keep = [k for k, n in enumerate(names) if not (n == PHYSICS and args.inputs == "plain")]
+        self.names = [names[k] for k in self.keep]
+        self.physics = self.names.index(PHYSICS) if PHYSICS in self.names else None
+        self.residual = bool(args.residual)
+        self.options = None
+        if self.physics is not None:
+            found = [m.get("generator", {}).get("physics_mean") for m in manifests]
+            if any(f != found[0] for f in found) or not isinstance(found[0], dict):
+                sys.exit("train.py: the --data datasets' generator.physics_mean differ or are "
+                         "missing: every dataset's physics channel must be the same physics")
+            self.options = found[0]
+
+    @property
+    def in_channels(self):
+        return len(self.keep)
+
+    def divide(self, scale):
+        """Input channels divided by a number: the physics channel by the target scale."""
+        return {} if self.physics is None else {self.physics: scale}
+
+    def record(self):
+        return {"inputs": self.names, "residual": self.residual}
 
 
 def dataset_record(dirs, shards, dataset_of):
@@ -494,14 +555,15 @@ def target_scale(args, init_header, shards, dataset_of, val_maps_of):
     return scale
 
 
-def open_batches(args, shards, device, v2, cell, multiple, say):
+def open_batches(args, shards, device, v2, cell, multiple, design, scale, say):
     """The samples' batches, preloaded onto the device or read from the memory maps."""
     if v2:  # on the CPU too when the padded dataset takes at most a quarter of the free memory
         need = V2Batches.bytes_needed(shards, multiple)
         preload = args.preload == "yes" or (args.preload == "auto" and (
             device.type == "cuda" or need <= available_memory() // 4))
         batches = V2Batches(shards, device, preload, cell, multiple,
-                            args.batch_cells or args.batch * 64 * 64)
+                            args.batch_cells or args.batch * 64 * 64, design.keep,
+                            design.divide(scale))
         say(f"v2 dataset: cell {cell:g} m, {len(set(batches.shapes))} padded shapes "
             f"(multiple {multiple}), {'preloaded, %.0f MB' % (need / 2**20) if preload else 'memory-mapped'}")
     else:
@@ -510,10 +572,25 @@ def open_batches(args, shards, device, v2, cell, multiple, say):
     return batches
 
 
-def new_model(args, in_channels, device, init_model):
+def network(args, design):
+    """The untrained network of --filters, --kernel and --convs for `design`."""
+    return PlumeUNet(design.in_channels, 2, args.filters, args.kernel, args.convs,
+                     design.physics if design.residual else None)
+
+
+def load(path, device):
+    """torch.load of our own checkpoints, which hold the optimiser's state and the training state
+    (newer PyTorch loads weights only unless told)."""
+    try:
+        return torch.load(path, map_location=device, weights_only=False)
+    except TypeError:  # PyTorch before 1.13.1 has no weights_only
+        return torch.load(path, map_location=device)
+
+
+def new_model(args, design, device, init_model):
     """The network, seeded by --seed, with the --init model's weights when given."""
     torch.manual_seed(args.seed)
-    model = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs).to(device)
+    model = network(args, design).to(device)
     if init_model is not None:
         try:
             model.load_state_dict(init_model.state_dict())
@@ -534,9 +611,15 @@ def validate_start(args, team, model, state, validate, best_path, say):
     return [0, 0, "", f"{val_loss:.6g}", f"{val_rmse:.6g}", "0"] + [f"{v:.6g}" for v in val[2:]]
 
 
-def resume(ckpt_path, device, model, opt, several, data_record, say):
+def resume(ckpt_path, device, model, opt, several, data_record, design, say):
     """Loads the checkpoint's model, optimizer and random state; returns its training state."""
-    ckpt = torch.load(ckpt_path, map_location=device)
+    ckpt = load(ckpt_path, device)
+    # A checkpoint from before the designs (issue 46) fed every channel, without a residual.
+    if ckpt.get("design", {"inputs": None, "residual": False}) not in (
+            design.record(), {"inputs": None, "residual": design.residual}):
+        sys.exit(f"train.py: {ckpt_path} was written for the design {ckpt.get('design')}; this "
+                 f"run's is {design.record()} (--inputs, --residual). Resume with the same flags, "
+                 "or train in another --work folder")
     # A checkpoint from before checkpoints recorded their datasets had one dataset.
     if ckpt.get("data", None if several else data_record) != data_record:
         sys.exit(f"train.py: {ckpt_path} was written for --data {describe_record(ckpt.get('data'))}; "
@@ -621,7 +704,7 @@ def end_epoch(team, core, state, validate, log, log_file, t0, v2, best_path, say
 
 
 def training_record(args, dirs, manifests, dataset_of, train_rows, val_rows, val_maps_of, v2, cell,
-                    best):
+                    best, design):
     """The model header's training section: the data, the run's settings and its best epoch."""
     if len(dirs) > 1:  # each dataset's own part, and its validation maps (evaluate.py reads them)
         counts = [[sum(1 for s, _ in rows if dataset_of[s] == k) for k in range(len(dirs))]
@@ -645,30 +728,36 @@ def training_record(args, dirs, manifests, dataset_of, train_rows, val_rows, val
         training.update(loss="MSE of target/scale over both channels, on map cells only (padding "
                         "masked)", batch_cells=args.batch_cells or args.batch * 64 * 64,
                         feature_cell=cell)
+    if design.physics is not None or args.inputs != "all":
+        training.update(design.record())
     if args.init:
         training["init"] = {"model": os.path.basename(args.init),
                             "sha256": hashlib.sha256(open(args.init, "rb").read()).hexdigest()}
     return training
 
 
-def write_final(args, best_path, in_channels, scale, v2, cell, multiple, shards, dataset_of,
+def write_final(args, best_path, design, scale, v2, cell, multiple, shards, dataset_of,
                 manifests, train_rows, val_rows, val_maps_of, trained_on):
     """Writes the best epoch's model to --out, with its golden input/output pair beside it."""
     dirs = args.data
-    best = torch.load(best_path, map_location="cpu")
-    final = PlumeUNet(in_channels, 2, args.filters, args.kernel, args.convs)
+    best = load(best_path, "cpu")
+    final = network(args, design)
     final.load_state_dict(best["model"])
     final.eval()
     outputs = [dict(o, scale=scale) for o in DEFAULT_OUTPUTS]
+    if design.residual:
+        outputs[0]["plus_input"] = "physics_mean"
     if v2:
-        features = v2_features(cell, multiple)
+        physics = physics_channel(scale, design.options) if design.physics is not None else None
+        features = v2_features(cell, multiple, physics)
     else:
         features = dict(DEFAULT_FEATURES, grid=list(shards[0].inputs.shape[2:]))
     training = training_record(args, dirs, manifests, dataset_of, train_rows, val_rows, val_maps_of,
-                               v2, cell, best)
+                               v2, cell, best, design)
     size = write_model(args.out, final, features, outputs, training, trained_on)
     if v2:
-        x, y = golden_pair_v2(final, V2Batches(shards, torch.device("cpu"), False, cell, multiple, 1),
+        x, y = golden_pair_v2(final, V2Batches(shards, torch.device("cpu"), False, cell, multiple, 1,
+                                               design.keep, design.divide(scale)),
                               val_rows + train_rows, args.golden)
     else:
         x, y = golden_pair(final, shards, val_rows + train_rows, args.golden)
@@ -686,9 +775,10 @@ def main(argv=None):
     device = team.device
     say = print if team.lead else (lambda *a, **k: None)
     os.makedirs(args.work, exist_ok=True)
-    manifests, shards, dataset_of, v2, cell = open_datasets(args.data)
+    manifests, shards, dataset_of, v2, cell, names = open_datasets(args.data)
     dirs, several = args.data, len(args.data) > 1
-    in_channels, multiple = (5 if v2 else 3), 2 ** len(args.filters)
+    design = Design(args, names, manifests)
+    multiple = 2 ** len(args.filters)
     # Map m of dataset k is the map (k, m); each dataset's maps are split on their own.
     train_rows, val_rows, val_maps_of = split_datasets(shards, dataset_of, args.val_fraction, args.seed)
     val_maps = val_maps_of[0]
@@ -697,14 +787,14 @@ def main(argv=None):
     trained_on = trained_on_ranges(dirs, manifests, shards, dataset_of, val_maps_of, say)
     init_model, init_header = read_init(args, v2, cell)
     scale = target_scale(args, init_header, shards, dataset_of, val_maps_of)
-    batches = open_batches(args, shards, device, v2, cell, multiple, say)
+    batches = open_batches(args, shards, device, v2, cell, multiple, design, scale, say)
     # Late bound: a resumed run validates with the checkpoint's scale.
     if v2:
         validate = lambda m: evaluate_v2(m, batches, val_rows, scale)  # noqa: E731
     else:
         validate = lambda m: evaluate(m, batches, val_rows, scale, args.batch)  # noqa: E731
 
-    model = new_model(args, in_channels, device, init_model)
+    model = new_model(args, design, device, init_model)
     opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)
     # batch: the next batch of the current epoch; running, seen: that epoch's loss sums so far.
     state = {"epoch": 0, "step": 0, "best_val": float("inf"), "stale": 0, "scale": scale,
@@ -717,7 +807,11 @@ def main(argv=None):
         dist.barrier()
     data_record = dataset_record(dirs, shards, dataset_of)
     if resuming:
-        state = resume(ckpt_path, device, model, opt, several, data_record, say)
+        state = resume(ckpt_path, device, model, opt, several, data_record, design, say)
+        if design.physics is not None and state["scale"] != scale:  # the inputs were divided by it
+            sys.exit(f"train.py: {ckpt_path} trained with the target scale {state['scale']:.6g}, "
+                     f"this run's is {scale:.6g} (--target-scale?): the physics channel is divided "
+                     "by it, so resume with the same one")
         scale = state["scale"]
     start_row = None
     if init_model is not None and not resuming and fresh:
@@ -742,7 +836,8 @@ def main(argv=None):
             if not team.lead:
                 return
             torch.save({"model": core.state_dict(), "optimizer": opt.state_dict(),
-                        "state": state, "torch_rng": torch.get_rng_state(), "data": data_record},
+                        "state": state, "torch_rng": torch.get_rng_state(), "data": data_record,
+                        "design": design.record()},
                        ckpt_path + ".tmp")
             os.replace(ckpt_path + ".tmp", ckpt_path)
 
@@ -773,7 +868,7 @@ def main(argv=None):
     team.close()
     if not team.lead:
         return
-    write_final(args, best_path, in_channels, scale, v2, cell, multiple, shards, dataset_of,
+    write_final(args, best_path, design, scale, v2, cell, multiple, shards, dataset_of,
                 manifests, train_rows, val_rows, val_maps_of, trained_on)
 
 

@@ -17,6 +17,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/npy.hpp"
+#include "surrogate/model_file.hpp"
 #include "surrogate/network.hpp"
 
 namespace plumekit::surrogate {
@@ -37,13 +38,26 @@ Tensor to_tensor(const NpyArray& a) {
 // on this machine's PyTorch kernels, and a max-pool near-tie may send one decoder value to another
 // pixel in one engine and not the other (docs/design/surrogate.md, "Max-pool near-ties"); so all
 // but 1 % of the values must agree within 1e-4 of the largest, and the rest stay bounded.
-void expect_engine_reproduces_golden_pair(const fs::path& model) {
+// A residual model's mean adds its physics input as PlumeNetwork does (residual_output).
+void expect_engine_reproduces_golden_pair(const fs::path& model, std::size_t parameters = 600130u) {
   const Network net = Network::load(model.string());
-  EXPECT_EQ(net.parameter_count(), 600130u);
+  EXPECT_EQ(net.parameter_count(), parameters);
   const fs::path stem = model.parent_path() / model.stem();
   const Tensor input = to_tensor(read_npy(stem.string() + "_input.npy"));
   const Tensor want = to_tensor(read_npy(stem.string() + "_output.npy"));
-  const Tensor got = net.predict(input);
+  Tensor got = net.predict(input);
+  const ModelFile& f = net.file();
+  if (!f.outputs.at(0).plus_input.empty()) {
+    const std::size_t plane = static_cast<std::size_t>(input.h) * input.w;
+    for (int b = 0; b < input.n; ++b) {
+      float* mean = got.data.data() + static_cast<std::size_t>(b) * got.c * plane;
+      const float* phys =
+          input.data.data() +
+          (static_cast<std::size_t>(b) * input.c + f.features.physics_channel) * plane;
+      for (std::size_t q = 0; q < plane; ++q)
+        mean[q] = residual_output(mean[q], phys[q], f.features.physics.scale);
+    }
+  }
   double scale = 0, err = 0;
   for (float v : want.data)
     scale = std::max(scale, std::abs(double{v}));
@@ -151,6 +165,50 @@ TEST(TrainSmoke, TrainsOnADatasetTheGeneratorMade) {
                             .c_str()),
             0);
   expect_engine_reproduces_golden_pair(model);
+  fs::remove_all(dir);
+}
+
+// Issue 46's three designs on one hybrid dataset (--physics-input): the plain network leaves the
+// physics channel out (5 inputs), the hybrid takes it (6), the residual adds it to its mean; each
+// file says so, and the engine reproduces each golden pair.
+TEST(TrainSmoke, TrainsThePlainHybridAndResidualDesignsOnOneHybridDataset) {
+  const fs::path dir = fresh_dir("train-designs");
+  const std::string data = (dir / "data").string();
+  ASSERT_EQ(std::system((std::string(PLUMEKIT_EXE) +
+                         " dataset generate --maps 2 --sources 3 --seed 1 --cell 0.1"
+                         " --feature-cell 0.4 --physics-input --simulator advection-diffusion"
+                         " --out " +
+                         data + " > /dev/null")
+                            .c_str()),
+            0);
+  for (const std::string design : {"plain", "hybrid", "residual"}) {
+    const fs::path model = dir / (design + ".pkcnn");
+    const std::string flags = design == "plain"      ? " --inputs plain"
+                              : design == "residual" ? " --residual"
+                                                     : "";
+    ASSERT_EQ(std::system((kTrain + " --data " + data + " --work " + (dir / design).string() +
+                           " --out " + model.string() + " --batch 2 --threads 2 --max-steps 2" +
+                           flags + " > /dev/null")
+                              .c_str()),
+              0)
+        << design;
+    const ModelFile f = read_model_file(model);
+    EXPECT_EQ(f.features.has_physics(), design != "plain") << design;
+    EXPECT_EQ(f.architecture.in_channels, design == "plain" ? 5 : 6) << design;
+    EXPECT_EQ(f.outputs.at(0).plus_input, design == "residual" ? "physics_mean" : "") << design;
+    if (f.features.has_physics()) {  // fed divided by the target scale, the outputs' own
+      EXPECT_EQ(f.features.physics.scale, f.outputs.at(0).scale) << design;
+      EXPECT_DOUBLE_EQ(f.features.physics.decay_rate, 1.0 / 28.0) << design;
+    }
+    expect_engine_reproduces_golden_pair(model, parameter_count(f.layers));
+  }
+  // --residual needs the physics channel, and --inputs plain leaves it out.
+  EXPECT_NE(std::system((kTrain + " --data " + data + " --work " + (dir / "bad").string() +
+                         " --out " + (dir / "bad.pkcnn").string() +
+                         " --max-steps 1 --inputs plain --residual 2> /dev/null")
+                            .c_str()),
+            0);
+  EXPECT_FALSE(fs::exists(dir / "bad.pkcnn"));
   fs::remove_all(dir);
 }
 
