@@ -34,6 +34,15 @@ and every figure is over map cells only (rmse pools the squared errors of all ma
 samples). The dataset's feature_cell must be the model's cell_size. --test then takes any v2
 dataset (its maps are named from maps/*.json), and the pictures keep each map's aspect.
 
+Hybrid models and datasets (issue 46: the physics_mean channel, `plumekit dataset generate
+--physics-input`): each model is fed the channels its header names, scaled as it says (a plain
+model reads a hybrid dataset without the physics channel; a hybrid model refuses a dataset without
+it). Beside the model, each v2 test set with the physics channel gets `physics`: that channel (the
+physics plume of each source) times the one least-squares factor that fits the set best (the
+factor and the mean's figures). --floor names, for each --test in order, another realization of
+it (the same maps and sources, another --seed): `floor` scores that realization's targets as the
+prediction, the two-realization floor. Both appear as rows of evaluation.md.
+
 --json prints the result on stdout (the human lines go to stderr); --out may then be left out.
 Per-sample figures (`per_sample`: shard, row, map, rmse of the mean over map cells, peak of the true
 mean) are in the result for v2 models, and for v1 with --per-sample.
@@ -50,7 +59,8 @@ import torch
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from model_file import is_v2, output_scales, read_model  # noqa: E402
-from shards import SOURCE_CHANNEL, feature_cell, map_file, open_dataset, padded_size, v2_input  # noqa: E402
+from shards import (PHYSICS, channel_names, feature_cell, map_file, open_dataset,  # noqa: E402
+                    padded_size, v2_input)
 
 CHANNELS = ("mean", "std")
 
@@ -99,16 +109,26 @@ def load_rows(directory, keep_maps=None):
 
 class V2Set:
     """Samples of a v2 dataset as lists (shapes differ from map to map): x, y (float32, [c, ny, nx]),
-    map ids, sources and (shard name, row)."""
+    map ids, sources and (shard name, row). `keep`: the dataset's channels the model reads, in its
+    order (a plain model on a hybrid dataset leaves the physics channel out); `physics`: where the
+    dataset's physics channel is (None without one)."""
 
     def __init__(self, directory, header, keep_maps=None):
         manifest, shards = open_dataset(directory)
         cell, want = feature_cell(directory, manifest), float(header["features"]["cell_size"])
-        if any(s.inputs.shape[1] != 5 for s in shards) or cell <= 0:
-            raise ValueError(f"{directory}: not a v2 dataset (5 channels and a feature_cell), "
-                             "which the v2 model needs")
+        names = channel_names(manifest, cell)
+        if cell <= 0 or any(s.inputs.shape[1] != len(names) for s in shards):
+            raise ValueError(f"{directory}: not a v2 dataset (5 or 6 channels and a "
+                             "feature_cell), which the v2 model needs")
         if abs(cell - want) > 1e-9 * want:
             raise ValueError(f"{directory}: feature cell {cell:g} m, the model's cell_size is {want:g} m")
+        wanted = [c["name"] for c in header["features"]["channels"]]
+        missing = [n for n in wanted if n not in names]
+        if missing:
+            raise ValueError(f"{directory}: the model reads {', '.join(missing)}, which the dataset "
+                             "lacks (make it with `plumekit dataset generate --physics-input`)")
+        self.keep = [names.index(n) for n in wanted]
+        self.physics = names.index(PHYSICS) if PHYSICS in names else None
         self.directory, self.manifest = directory, manifest
         self.x, self.y, self.ids, self.sources, self.where = [], [], [], [], []
         for s in shards:
@@ -128,13 +148,16 @@ class V2Set:
         return [self.x[i] for i in sel], [self.y[i] for i in sel]
 
 
-def predict_v2(model, header, scales, xs, batch=32):
-    """Predictions [2, ny, nx] in dataset units for each v2 sample [5, ny, nx]: padded as the model's
-    features say, batched by padded shape, cropped back."""
+def predict_v2(model, header, scales, xs, keep=None, batch=32):
+    """Predictions [2, ny, nx] in dataset units for each v2 sample [c, ny, nx]: its channels `keep`
+    (V2Set.keep), padded and scaled as the model's features say, batched by padded shape, cropped
+    back."""
     features = header["features"]
     multiple = int(features["multiple"])
-    source = features["channels"][SOURCE_CHANNEL]
+    channels = features["channels"]
+    source = channels[-1]
     min_distance = float(source.get("min_distance", float(features["cell_size"]) / 2))
+    divide = {k: float(c["scale"]) for k, c in enumerate(channels) if c["name"] == PHYSICS}
     groups = {}
     for i, x in enumerate(xs):
         groups.setdefault((padded_size(x.shape[1], multiple), padded_size(x.shape[2], multiple)), []).append(i)
@@ -143,7 +166,8 @@ def predict_v2(model, header, scales, xs, batch=32):
         for (rows, cols), members in groups.items():
             for k in range(0, len(members), batch):
                 part = members[k:k + batch]
-                inp = np.concatenate([v2_input(xs[i][None], min_distance, rows, cols) for i in part])
+                inp = np.concatenate([v2_input(xs[i][None], min_distance, rows, cols, keep, divide)
+                                      for i in part])
                 p = model(torch.from_numpy(inp)).numpy() * scales[None, :, None, None]
                 for j, i in enumerate(part):
                     out[i] = p[j, :, :xs[i].shape[1], :xs[i].shape[2]]
@@ -165,6 +189,33 @@ def scores_v2(preds, truths):
                      "sse": float(np.mean(sq)),
                      "rel_l2": float(np.sqrt(sum(sq) / norm)) if norm > 0 else None,
                      "zero_rmse_rel_peak": float(np.sqrt(norm / cells)) / peak if peak > 0 else None}
+    return out
+
+
+def baselines(test, header, floor_dir=None):
+    """What the model is weighed against on one scored set (issue 46): `physics`, the dataset's
+    physics channel (the advection-diffusion plume of each source) times the one factor that fits
+    the set best in least squares (its mean figures and the factor); `floor`, with floor_dir (the
+    same maps and sources, another filament seed), that realization's targets as the prediction:
+    what two realizations of the world differ by."""
+    out = {}
+    if test.physics is not None:
+        phys = [x[test.physics].astype(np.float64) for x in test.x]
+        num = sum(float(np.sum(p * y[0])) for p, y in zip(phys, test.y))
+        den = sum(float(np.sum(p * p)) for p in phys)
+        factor = num / den if den > 0 else 0.0
+        preds = [np.stack([factor * p, np.zeros_like(p)]) for p in phys]
+        s = scores_v2(preds, test.y)
+        out["physics"] = {"samples": s["samples"], "average_peak_mean": s["average_peak_mean"],
+                          "factor": factor, "mean": s["mean"]}
+    if floor_dir:
+        floor = V2Set(floor_dir, header)
+        same = (np.array_equal(floor.ids, test.ids) and floor.sources == test.sources
+                and all(a.shape == b.shape for a, b in zip(floor.y, test.y)))
+        if not same:
+            raise ValueError(f"--floor {floor_dir}: not the maps and sources of {test.directory}")
+        out["floor"] = dict(scores_v2(floor.y, test.y), dataset=os.path.basename(
+            os.path.normpath(floor_dir)))
     return out
 
 
@@ -257,18 +308,25 @@ def markdown(result):
              "|---|---|---|---|---|---|---|---|---|---|"]
 
     def row(name, s):
-        m, d = s["mean"], s["std"]
+        m, d = s["mean"], s.get("std")
+        std = f"{d['rmse']:.2f} | {100 * d['rel_l2']:.1f} %" if d else "– | –"
         lines.append(f"| {name} | {s['samples']} | {s['average_peak_mean']:.1f} | {m['rmse']:.2f} | "
                      f"{100 * m['rmse_rel_peak']:.2f} % | {100 * m['zero_rmse_rel_peak']:.2f} % | "
-                     f"{100 * m['rel_l2']:.1f} % | {m['sse']:.4g} | {d['rmse']:.2f} | "
-                     f"{100 * d['rel_l2']:.1f} % |")
+                     f"{100 * m['rel_l2']:.1f} % | {m['sse']:.4g} | {std} |")
+
+    def set_rows(name, t):
+        row(name, t["all"])
+        if "physics" in t:
+            row(f"{name}: physics plume × {t['physics']['factor']:.3g}", t["physics"])
+        if "floor" in t:
+            row(f"{name}: two realizations ({t['floor']['dataset']})", t["floor"])
     if "held_out" in result:
         row("held-out maps", result["held_out"])
         for name, s in result["held_out"].get("datasets", {}).items():
             row(f"held-out maps of {name}", s)
     if "test_maps" in result:
         v2 = result.get("features") == "v2"
-        row("**test maps**" if v2 else "**nine test maps**", result["test_maps"]["all"])
+        set_rows("**test maps**" if v2 else "**nine test maps**", result["test_maps"])
         for name, s in result["test_maps"]["per_map"].items():
             row(name, s)
         lines.append("")
@@ -276,7 +334,7 @@ def markdown(result):
                      f"{100 * result['test_maps']['mean_of_map_rel_rmse']:.2f} %")
     if "test_sets" in result:
         for name, t in result["test_sets"].items():
-            row(f"**{name}**", t["all"])
+            set_rows(f"**{name}**", t)
             for map_name, s in t["per_map"].items():
                 row(map_name, s)
         row("**all test sets**", result["test_pooled"]["all"])
@@ -296,6 +354,9 @@ def main(argv=None):
                     help="the training dataset(s) (their validation maps are scored)")
     ap.add_argument("--test", nargs="+", metavar="DIR",
                     help="ground-truth dataset(s): the test maps' (several: each scored and pooled)")
+    ap.add_argument("--floor", nargs="+", metavar="DIR",
+                    help="v2: for each --test dataset, in order, another realization of it (the\n"
+                         "same maps and sources, another --seed): the two-realization floor")
     ap.add_argument("--out", help="folder for evaluation.json, evaluation.md and the pictures")
     ap.add_argument("--json", action="store_true", help="print the result as JSON on stdout")
     ap.add_argument("--per-sample", action="store_true",
@@ -314,6 +375,8 @@ def main(argv=None):
         os.makedirs(args.out, exist_ok=True)
     if is_v2(header):
         return main_v2(args, model, header, scales)
+    if args.floor:
+        sys.exit("evaluate.py: --floor is for physical-grid (v2) models and datasets")
     result = {"model": os.path.basename(args.model), "training": header.get("training", {})}
     say = (lambda *a: print(*a, file=sys.stderr)) if args.json else print
 
@@ -484,14 +547,14 @@ def main_v2(args, model, header, scales):
 
     def held_out(directory, val_maps):
         held = V2Set(directory, header, set(val_maps))
-        pred = predict_v2(model, header, scales, held.x)
+        pred = predict_v2(model, header, scales, held.x, held.keep)
         entry = dict(scores_v2(pred, held.y), maps=val_maps,
                      per_sample=per_sample(pred, held.y, held.ids, held.where))
         return entry, pred, held.y
 
     def test_set(directory, picture_dir):
         test = V2Set(directory, header)
-        pred = predict_v2(model, header, scales, test.x)
+        pred = predict_v2(model, header, scales, test.x, test.keep)
         per_map = {}
         for m in sorted(set(int(i) for i in test.ids)):
             path = map_file(directory, test.manifest, m)
@@ -516,7 +579,13 @@ def main_v2(args, model, header, scales):
             "mean_of_map_rel_rmse": float(np.mean(
                 [s["mean"]["rmse_rel_peak"] for s in per_map.values()])),
             "per_sample": per_sample(pred, test.y, test.ids, test.where)}
+        entry.update(baselines(test, header, floors.get(directory)))
         return entry, pred, test.y
+
+    if args.floor and len(args.floor) != len(args.test or []):
+        sys.exit(f"evaluate.py: --floor gives {len(args.floor)} datasets, --test "
+                 f"{len(args.test or [])}: one for each test set, in the same order")
+    floors = dict(zip(args.test or [], args.floor or []))
 
     pool = lambda preds, truths: scores_v2(sum(preds, []), sum(truths, []))  # noqa: E731
     try:
