@@ -84,7 +84,8 @@ PhysicsFeature::PhysicsFeature(const Map& map, const cfd::WindField& wind, const
                                const cfd::AdvectionDiffusionOptions& options)
     : ad_(std::make_unique<cfd::AdvectionDiffusion>(wind, options)),
       resampler_(std::make_unique<GridResampler>(ad_->shape(), ad_->solid_mask(), grid)),
-      in_obstacle_(grid.size()) {
+      in_obstacle_(grid.size()),
+      grid_(grid) {
   for (std::size_t k = 0; k < grid.size(); ++k)
     in_obstacle_[k] = map.obstacle_at(grid.centre(static_cast<int>(k % grid.nx),
                                                   static_cast<int>(k / grid.nx))) >= 0;
@@ -93,6 +94,11 @@ PhysicsFeature::PhysicsFeature(const Map& map, const cfd::WindField& wind, const
 PhysicsFeature::~PhysicsFeature() = default;
 
 Grid<double> PhysicsFeature::operator()(Vec2 source) const {
+  // A point of the map's free space with no free flow cell within three cells: the flow grid
+  // closed the gap around it (a narrow nook of a real floor), so no air reaches it there, and the
+  // physics plume of a release there is nothing. A model's candidate may lie there; the
+  // dataset's sources never do (they are drawn where the flow blows).
+  if (ad_->point_weights(source).empty()) return Grid<double>(grid_, 0.0);
   Grid<double> c = resampler_->apply(ad_->solve(source));
   for (std::size_t k = 0; k < c.values.size(); ++k)
     if (in_obstacle_[k]) c.values[k] = 0.0;

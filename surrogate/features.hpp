@@ -62,7 +62,8 @@ class PhysicsFeature {
   PhysicsFeature(const Map& map, const cfd::WindField& wind, const GridShape& grid,
                  const cfd::AdvectionDiffusionOptions& options);
   ~PhysicsFeature();
-  // In concentration units (the targets' units), [ny][nx]. Const: callable from many threads.
+  // In concentration units (the targets' units), [ny][nx]; all 0 for a source the flow grid
+  // leaves no air at (no free flow cell within three cells). Const: callable from many threads.
   Grid<double> operator()(Vec2 source) const;
   const cfd::AdvectionDiffusion& advection_diffusion() const { return *ad_; }
   // Whether cell k's centre lies inside an obstacle (where the channel is 0).
@@ -72,6 +73,7 @@ class PhysicsFeature {
   std::unique_ptr<cfd::AdvectionDiffusion> ad_;
   std::unique_ptr<GridResampler> resampler_;
   std::vector<char> in_obstacle_;
+  GridShape grid_;
 };
 
 // Signed distance from p to the nearest solid surface (see above).
