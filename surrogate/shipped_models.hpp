@@ -11,10 +11,12 @@ inline std::filesystem::path thesis_model(const std::filesystem::path& data_dir)
   return data_dir / "models" / "plume-unet.pkcnn";
 }
 
-// The v2 U-Net on a physical grid (issue 19), for maps of any size: what the advice on a map the
-// thesis model cannot take names.
+// The hybrid U-Net on a physical grid (issue 46: the physics plume of the source among its
+// inputs), for maps of any size: what the advice on a map the thesis model cannot take names. It
+// replaced the v2 model (issue 19, plume-unet-v2.pkcnn, still shipped) there, being better on
+// every held-out set (docs/design/surrogate.md, "Hybrid models").
 inline std::filesystem::path any_map_model(const std::filesystem::path& data_dir) {
-  return data_dir / "models" / "plume-unet-v2.pkcnn";
+  return data_dir / "models" / "plume-unet-v3.pkcnn";
 }
 
 }  // namespace plumekit::surrogate

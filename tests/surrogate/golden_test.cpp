@@ -78,6 +78,19 @@ TEST(Golden, PhysicalGridModelMatchesPyTorch) {
   EXPECT_EQ(net.parameter_count(), 600530u);  // the thesis's architecture with 5 inputs
 }
 
+// The hybrid model (issue 46): six inputs, the physics plume of the source among them; its golden
+// pair two held-out building samples of one padded shape, in concentration units (not residual:
+// the network's output is the prediction).
+TEST(Golden, HybridModelMatchesPyTorch) {
+  check_golden("plume-unet-v3", 1, kModels);
+  check_golden("plume-unet-v3", 2, kModels);
+  const Network net = Network::load(kModels + "plume-unet-v3.pkcnn");
+  EXPECT_TRUE(net.file().features.has_physics());
+  EXPECT_EQ(net.file().features.physics_channel, 4);
+  EXPECT_TRUE(net.file().outputs.at(0).plus_input.empty());
+  EXPECT_EQ(net.parameter_count(), 600730u);  // the thesis's architecture with 6 inputs
+}
+
 TEST(Golden, OddChannelsOddGridMatchesPyTorch) {
   check_golden("odd", 1);
 }
