@@ -259,8 +259,9 @@ void add_show(CLI::App* group) {
     // The one validating reader: the manifest, then the drawn shard against its checksums.
     const DatasetSample s = read_sample(a->dir, a->index);
     const Map& map = s.map;
-    // Thesis datasets have 3 input channels; physical-grid ones (--feature-cell) 5, with the wind.
-    const bool wind = s.inputs.size() == 5;
+    // Thesis datasets have 3 input channels; physical-grid ones (--feature-cell) 5, with the wind,
+    // and 6 with the physics plume (--physics-input).
+    const bool wind = s.inputs.size() >= 5;
     std::vector<FieldPanel> panels = {
         {s.inputs[0], "input 0: region label", "region label [-]"},
         {s.inputs[1], "input 1: signed distance to surfaces", "distance [m]"}};
@@ -268,6 +269,9 @@ void add_show(CLI::App* group) {
       panels.push_back({s.inputs[2], "input 2: wind u", "u [m/s]"});
       panels.push_back({s.inputs[3], "input 3: wind v", "v [m/s]"});
     }
+    if (s.inputs.size() == 6)
+      panels.push_back({s.inputs[4], "input 4: physics plume (advection-diffusion mean)",
+                        "mean [concentration units]", true});
     panels.push_back({s.inputs.back(),
                       "input " + std::to_string(s.inputs.size() - 1) + ": distance to the source",
                       "distance [m]"});

@@ -60,3 +60,16 @@ def test_a_damaged_shard_is_refused_by_its_file(cli, tmp_path):
     target.write_bytes(bytes(raw))
     with pytest.raises(Exception, match="targets.npy"):
         plumekit.read_dataset(folder)
+
+
+def test_a_hybrid_dataset_has_the_physics_channel_before_the_source(cli, tmp_path):
+    folder = generate(cli, tmp_path / "hybrid", "--feature-cell", 0.2, "--physics-input")
+    data = plumekit.read_dataset(folder)
+    for m in data["maps"]:
+        assert m["inputs"].shape[1] == 6  # region, distance, wind u and v, physics, source
+        stored = shard_arrays(folder, f"shard-{m['map_id']:05d}")
+        assert np.array_equal(m["inputs"], stored["inputs"])
+        # The simulator is advection-diffusion: the physics channel is its plume, up to the decay
+        # (the channel's is the world's, 1/28 s; the simulator's here none), so never above it.
+        assert m["inputs"][:, 4].max() > 100
+        assert np.all(m["inputs"][:, 4] <= m["targets"][:, 0] * (1 + 1e-5) + 1e-3)
