@@ -80,17 +80,23 @@ def pack_shard(dataset, entry, names, out_dir):
     np.savez_compressed(os.path.join(out_dir, entry["name"] + ".npz"), **planes)
 
 
-def pack(datasets, out):
+def write_whole(out, fill):
+    """fill(folder) into OUT.partial, renamed to OUT once complete: a refusal or a crash leaves
+    nothing partial, and an existing OUT is never touched."""
     if os.path.exists(out):
         raise PackError(f"--out {out}: exists; name a new folder")
     tmp = out + ".partial"
     shutil.rmtree(tmp, ignore_errors=True)
     try:
-        pack_into(datasets, tmp)
+        fill(tmp)
     except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)  # nothing partial is left
+        shutil.rmtree(tmp, ignore_errors=True)
         raise
     os.rename(tmp, out)
+
+
+def pack(datasets, out):
+    write_whole(out, lambda tmp: pack_into(datasets, tmp))
 
 
 def pack_into(datasets, tmp):
@@ -129,16 +135,7 @@ def unpack_shard(packed, entry, names, dataset):
 
 
 def unpack(pack_dir, out):
-    if os.path.exists(out):
-        raise PackError(f"--out {out}: exists; name a new folder")
-    tmp = out + ".partial"
-    shutil.rmtree(tmp, ignore_errors=True)
-    try:
-        unpack_into(pack_dir, tmp)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
-    os.rename(tmp, out)
+    write_whole(out, lambda tmp: unpack_into(pack_dir, tmp))
 
 
 def unpack_into(pack_dir, out):

@@ -789,10 +789,8 @@ def main(argv=None):
     scale = target_scale(args, init_header, shards, dataset_of, val_maps_of)
     batches = open_batches(args, shards, device, v2, cell, multiple, design, scale, say)
     # Late bound: a resumed run validates with the checkpoint's scale.
-    if v2:
-        validate = lambda m: evaluate_v2(m, batches, val_rows, scale)  # noqa: E731
-    else:
-        validate = lambda m: evaluate(m, batches, val_rows, scale, args.batch)  # noqa: E731
+    validate = ((lambda m: evaluate_v2(m, batches, val_rows, scale)) if v2  # noqa: E731
+                else (lambda m: evaluate(m, batches, val_rows, scale, args.batch)))
 
     model = new_model(args, design, device, init_model)
     opt = torch.optim.AdamW(model.parameters(), lr=args.lr, weight_decay=args.weight_decay)

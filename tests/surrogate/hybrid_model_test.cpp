@@ -17,19 +17,9 @@
 namespace plumekit::surrogate {
 namespace {
 
+using test::expect_refused;
 using test::hybrid_model;
 using test::PhysicalModel;
-
-void expect_refused(const PhysicalModel& m, const std::string& fault) {
-  try {
-    m.parse("bad.pkcnn");
-    ADD_FAILURE() << "accepted a file that should fail with \"" << fault << "\"";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("bad.pkcnn"), std::string::npos) << what;
-    EXPECT_NE(what.find(fault), std::string::npos) << what;
-  }
-}
 
 TEST(HybridModelFile, ReadsThePhysicsChannelAndTheResidualMean) {
   const ModelFile m = hybrid_model({4, 4}).parse();

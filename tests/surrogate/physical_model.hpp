@@ -2,6 +2,8 @@
 // Small physical-grid (v2, issue 19) model files built in C++ with random weights: the header as
 // train/model_file.py writes it (features cell_size, multiple and the five channels), the tensors
 // in layer order, the SHA-256 at the end. Tests edit the header and build the bytes again.
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -10,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/sha256.hpp"
 #include "surrogate/model_file.hpp"
 
@@ -124,6 +127,18 @@ inline PhysicalModel hybrid_model(std::vector<int> filters, int kernel = 3, int 
                           {"plus_input", "physics_mean"}},
                          {{"name", "std"}, {"unit", "concentration"}, {"scale", 20.0}}};
   return m;
+}
+
+// The file `m` makes must be refused with an InputError naming it and holding `fault`.
+inline void expect_refused(const PhysicalModel& m, const std::string& fault) {
+  try {
+    m.parse("bad.pkcnn");
+    ADD_FAILURE() << "accepted a file that should fail with \"" << fault << "\"";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("bad.pkcnn"), std::string::npos) << what;
+    EXPECT_NE(what.find(fault), std::string::npos) << what;
+  }
 }
 
 }  // namespace plumekit::surrogate::test

@@ -17,19 +17,9 @@
 namespace plumekit::surrogate {
 namespace {
 
+using test::expect_refused;
 using test::physical_model;
 using test::PhysicalModel;
-
-void expect_refused(const PhysicalModel& m, const std::string& fault) {
-  try {
-    m.parse("bad.pkcnn");
-    ADD_FAILURE() << "accepted a file that should fail with \"" << fault << "\"";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("bad.pkcnn"), std::string::npos) << what;
-    EXPECT_NE(what.find(fault), std::string::npos) << what;
-  }
-}
 
 TEST(PhysicalModelFile, ReadsTheContract) {
   const ModelFile m = physical_model({2, 3, 2, 3}).parse();  // 4 levels: multiple 16
