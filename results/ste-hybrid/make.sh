@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# STE with the hybrid plume model (data/models/plume-unet-v3.pkcnn, issue 46) against STE with the
+# physics model, the same runs: the nine test maps, three held-out 10 x 4 m maps (seed 4601), the
+# three real floors and 20 random buildings (seed 1001); the faithful world, the mox-fast sensor,
+# seed 1 (README.md here).
+#   results/ste-hybrid/make.sh [OUT] [PART...]
+#   PART: test-hybrid test-physics heldout-hybrid heldout-physics real-hybrid real-physics
+#         buildings-hybrid buildings-physics (default all)
+set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
+cd "$(dirname "$0")/../.."
+source results/make-lib.sh "$1"
+source scripts/blas-env.sh
+parts=("${@:2}")
+[[ ${#parts[@]} -gt 0 ]] || parts=(test-hybrid test-physics heldout-hybrid heldout-physics
+  real-hybrid real-physics buildings-hybrid buildings-physics)
+six=rectangle,two-rectangles,l-shape,u-shape,three-rectangles,shape-and-rectangle
+[[ -d $out/heldout-4601 ]] || "$plumekit" maps random --families "$six" --count 3 --seed 4601 \
+  --sources 10 --out "$out/heldout-4601" >/dev/null
+[[ -d $out/buildings-1001 ]] || "$plumekit" maps random --families building --count 20 \
+  --seed 1001 --sources 3 --out "$out/buildings-1001" >/dev/null
+for part in "${parts[@]}"; do
+  case ${part#*-} in
+    hybrid) model=(--plume-model surrogate --cnn data/models/plume-unet-v3.pkcnn) ;;
+    physics) model=(--plume-model physics) ;;
+    *) echo "$0: unknown part $part" >&2; exit 2 ;;
+  esac
+  case ${part%%-*} in
+    test) maps=(--map-dir data/test-maps --runs 1) ;;
+    heldout) maps=(--map-dir "$out/heldout-4601" --runs 9) ;;
+    real) maps=(--map-dir data/floors --runs 2 --cell 0.1) ;;
+    buildings) maps=(--map-dir "$out/buildings-1001" --runs 1) ;;
+    *) echo "$0: unknown part $part" >&2; exit 2 ;;
+  esac
+  "$plumekit" evaluate "${maps[@]}" "${model[@]}" --gas-sensor mox-fast --threads 2 \
+    --out "$out/$part"
+done
