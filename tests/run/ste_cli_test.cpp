@@ -601,17 +601,17 @@ TEST_F(SteCli, APhysicsSourceGridOverTheMemoryLimitIsRefusedNamingTheFlag) {
 // Issue 44: the default (fixed-grid) surrogate on a map of another size says what to type.
 TEST_F(SteCli, TheDefaultSurrogateOnAnotherMapSizeSaysWhatToType) {
   const std::string map = write_map();  // 6 x 3 m
-  const std::string v2 = std::string(PLUMEKIT_DATA_DIR) + "/models/plume-unet-v2.pkcnn";
+  const std::string any_map = std::string(PLUMEKIT_DATA_DIR) + "/models/plume-unet-v3.pkcnn";
   CliResult r = run("localize " + map + " --source 4.2,1.3");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("works only on maps of 10 x 4 m"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("map \"small\" is 6 x 3 m"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("--cnn " + v2), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--cnn " + any_map), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--plume-model physics"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("feature contract"), std::string::npos) << r.err;
   r = run("predict " + map + " --source 4.2,1.3 --out " + (dir / "p").string());
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("--cnn " + v2), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--cnn " + any_map), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("--plume-model"), std::string::npos) << "predict has no such flag";
   EXPECT_FALSE(std::filesystem::exists(dir / "p"));
 }
