@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "map/rasterize.hpp"
+#include "surrogate/model_file.hpp"
 
 namespace plumekit::surrogate {
 
@@ -71,13 +72,8 @@ std::vector<float> wind_features(const cfd::WindField& wind, const GridShape& sh
 }
 
 std::vector<std::string> input_channel_names(double feature_cell, bool physics_input) {
-  std::vector<std::string> names = {"region", "signed_distance"};
-  if (feature_cell > 0) {
-    names.insert(names.end(), {"wind_u", "wind_v"});
-    if (physics_input) names.push_back("physics_mean");
-  }
-  names.push_back("source_distance");
-  return names;
+  // The model file's contract names them (the one list); a dataset's channels are a model's inputs.
+  return feature_channel_names(feature_cell > 0, feature_cell > 0 && physics_input);
 }
 
 PhysicsFeature::PhysicsFeature(const Map& map, const cfd::WindField& wind, const GridShape& grid,
