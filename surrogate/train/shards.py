@@ -93,10 +93,6 @@ def batch(shards, rows):
     return x, y
 
 
-V2_CHANNELS = 5
-SOURCE_CHANNEL = 4  # v2: the Euclidean distance to the source, in metres
-
-
 def feature_cell(directory, manifest=None):
     """The v2 feature cell size in metres, or 0 for a v1 dataset (the key absent or 0). Looked up in
     manifest.json's generator (generator.dataset.feature_cell or generator.feature_cell), then
