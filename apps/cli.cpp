@@ -26,16 +26,26 @@ std::filesystem::path default_map() {
 }
 
 std::filesystem::path shipped_cnn() {
-  return surrogate::thesis_model(data_dir());
+  return surrogate::default_model(data_dir());
 }
 
-std::filesystem::path any_map_cnn() {
-  return surrogate::any_map_model(data_dir());
+std::string cnn_help() {
+  std::string help = "CNN model: a plumekit-cnn file, or a shipped model's name (docs/data.md): ";
+  for (const surrogate::ShippedModel& m : surrogate::shipped_models())
+    help += std::string(m.name) + " (" + m.what + "), ";
+  return help.substr(0, help.size() - 2);
+}
+
+void resolve_cnn_names(CLI::Option* cnn) {
+  // --help shows the name; the field holds the file the name stands for.
+  if (cnn->get_default_str() == shipped_cnn().string()) cnn->default_str("hybrid");
+  cnn->transform(
+      [](std::string text) { return surrogate::resolve_model(text, data_dir()).string(); }, "",
+      "shipped model");
 }
 
 std::string with_map_size_advice(const std::string& message, bool physics) {
-  return message + ". For a map of any size, use the shipped physical-grid model: --cnn " +
-         any_map_cnn().string() +
+  return message + ". For a map of any size, use the default model (--cnn hybrid)" +
          (physics ? ", or the physics plume model: --plume-model physics" : "");
 }
 

@@ -24,12 +24,14 @@ namespace plumekit::cli {
 std::filesystem::path data_dir();
 // The map commands use when none is given.
 std::filesystem::path default_map();
-// The shipped physical-grid surrogate (plume-unet-v2), which fits a map of any size.
-// The shipped plume models (surrogate/shipped_models.hpp) in this program's data folder.
+// The default plume model (surrogate::default_model, the hybrid) in this program's data folder.
 std::filesystem::path shipped_cnn();
-std::filesystem::path any_map_cnn();
+// --cnn's help: a file or a shipped model's name, each named with what it is.
+std::string cnn_help();
+// Makes the --cnn option `cnn` take a shipped model's name ("thesis") as well as a file.
+void resolve_cnn_names(CLI::Option* cnn);
 // A fixed-grid surrogate's refusal of a map's size (surrogate::MapSizeError's message) with what
-// to type instead: --cnn naming any_map_cnn(), and with `physics` also --plume-model physics.
+// to type instead: --cnn hybrid, and with `physics` also --plume-model physics.
 std::string with_map_size_advice(const std::string& message, bool physics);
 
 // Set by each command's --json flag; read when printing results and errors.

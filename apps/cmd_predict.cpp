@@ -42,8 +42,8 @@ void add_predict_commands(CLI::App& app) {
   auto a = std::make_shared<Args>();
   add_map_argument(cmd, a->map);
   add_deprecated_alias(cmd, "--map", "MAP", a->map);
-  cmd->add_option("--cnn", a->cnn, "CNN model file (plumekit-cnn/1)")->capture_default_str();
-  add_deprecated_alias(cmd, "--model", "--cnn", a->cnn);
+  resolve_cnn_names(cmd->add_option("--cnn", a->cnn, cnn_help())->capture_default_str());
+  resolve_cnn_names(add_deprecated_alias(cmd, "--model", "--cnn", a->cnn));
   cmd->add_option("--source", a->source, "Source position X,Y in metres")->required();
   cmd->add_option("--out,-o", a->out, "Output folder: new, empty, or an earlier `predict` output")
       ->required();

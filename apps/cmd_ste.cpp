@@ -48,7 +48,8 @@ void add_model_options(CLI::App* cmd, run::SteOptions& o) {
   add_table_flags(cmd, o, table, {"ste.model"});
   o.model_path = shipped_cnn().string();  // the library leaves where the shipped CNN is to us
   add_table_flags(cmd, o, table, {"ste.model_path"});
-  add_deprecated_alias(cmd, "--model", "--cnn", o.model_path);
+  resolve_cnn_names(cmd->get_option("--cnn"));
+  resolve_cnn_names(add_deprecated_alias(cmd, "--model", "--cnn", o.model_path));
   add_table_flags(cmd, o.likelihood, run::ste_likelihood_option_table());
   add_table_flags(cmd, o, table, {"ste.source_cell", "ste.table_cell"});
   add_table_flags(cmd, o.physics.advection_diffusion, cfd::advection_diffusion_option_table(),

@@ -19,6 +19,7 @@
 #include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/mission.hpp"
+#include "surrogate/plume_network.hpp"
 #include "surrogate/shipped_models.hpp"
 
 namespace plumekit::python {
@@ -31,14 +32,20 @@ using run::SteOptions;
 // The CLI's defaults the library leaves to its caller: the shipped CNN.
 run::SteOptions ste_options(const py::object& base, const py::kwargs& kw, const std::string& what) {
   run::SteOptions o = options_from<run::SteOptions>(base, kw, what);
-  if (o.model == run::PlumeModelKind::Surrogate && o.model_path.empty())
-    o.model_path = surrogate::thesis_model(data_dir()).string();
+  if (o.model == run::PlumeModelKind::Surrogate)
+    o.model_path =
+        surrogate::resolve_model(o.model_path.empty() ? "hybrid" : o.model_path, data_dir())
+            .string();
   return o;
 }
 
 std::shared_ptr<run::Scenario> make_scenario(const Map& map, const run::SteOptions& o) {
   ReleasedGil release;
-  return std::make_shared<run::Scenario>(map, o);
+  try {
+    return std::make_shared<run::Scenario>(map, o);
+  } catch (const surrogate::MapSizeError& e) {
+    throw InputError(with_any_map_advice(e.what(), "model_path") + " or plume_model=\"physics\"");
+  }
 }
 
 py::dict posterior_dict(const Map& map, const ste::Posterior& p) {

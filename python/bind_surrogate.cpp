@@ -17,10 +17,12 @@ namespace plumekit::python {
 
 namespace {
 
-// A path or str, or None for the shipped model.
+// A path or str (a file, or a shipped model's name: "hybrid", "thesis", ...), or None for the
+// default model (hybrid).
 std::filesystem::path cnn_path(const py::object& cnn) {
-  if (cnn.is_none()) return surrogate::thesis_model(data_dir());
-  return py::str(py::module_::import("os").attr("fspath")(cnn)).cast<std::string>();
+  if (cnn.is_none()) return surrogate::default_model(data_dir());
+  return surrogate::resolve_model(
+      py::str(py::module_::import("os").attr("fspath")(cnn)).cast<std::string>(), data_dir());
 }
 
 // The CLI's errors: a model that is not there, a model that does not fit the map, named.
@@ -40,6 +42,8 @@ std::unique_ptr<surrogate::PlumeNetwork> load_surrogate(const Map& map,
     if (surrogate::PlumeNetwork::takes_wind(*network))
       field = surrogate::model_wind(map, surrogate::kModelWindCell, wind);
     return std::make_unique<surrogate::PlumeNetwork>(network, map, field ? &*field : nullptr);
+  } catch (const surrogate::MapSizeError& e) {
+    throw InputError(cnn.string() + ": " + with_any_map_advice(e.what(), "cnn"));
   } catch (const InputError& e) {
     throw InputError(cnn.string() + ": " + e.what());
   }
@@ -54,6 +58,10 @@ py::dict prediction_dict(const surrogate::PlumePrediction& p, const surrogate::N
 }
 
 }  // namespace
+
+std::string with_any_map_advice(const std::string& message, const std::string& keyword) {
+  return message + ". For a map of any size, use the default model (" + keyword + "=\"hybrid\")";
+}
 
 void bind_surrogate(py::module_& m) {
   py::class_<surrogate::PlumeNetwork>(
@@ -72,7 +80,8 @@ void bind_surrogate(py::module_& m) {
            }),
            py::arg("map"), py::arg("cnn") = py::none(), py::arg("threads") = 1,
            py::arg("wind") = py::none(),
-           "`cnn`: a plumekit-cnn model file (default: the shipped model); `threads`: the "
+           "`cnn`: a plumekit-cnn model file or a shipped model's name (\"hybrid\", the "
+           "default, for any map; \"thesis\", \"v2\", \"faithful\"); `threads`: the "
            "engine's threads (0: one per core); `wind`: for a model that takes the wind, a "
            "`plumekit flow` folder of this map (default: solved here, as `plumekit predict` "
            "does).")

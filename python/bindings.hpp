@@ -37,5 +37,7 @@ void bind_tunnel(py::module_& m);  // the 3-D wind tunnel
 
 // The shipped data folder: $PLUMEKIT_DATA if set, else the source tree's data/ (as the CLI).
 std::string data_dir();
+// A fixed-grid model's refusal of a map's size with what to pass instead: `keyword`="hybrid".
+std::string with_any_map_advice(const std::string& message, const std::string& keyword);
 
 }  // namespace plumekit::python

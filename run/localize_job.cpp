@@ -72,6 +72,8 @@ LocalizeReport localize_job(const LocalizeRequest& q) {
                  {"map", provenance_path(q.map)},
                  {"plume_model", to_string(q.ste.model)},
                  {"seed", q.seed}};
+  if (q.ste.model == PlumeModelKind::Surrogate && uses_plume_model(q.ste.method.name))
+    j["cnn"] = provenance_path(q.ste.model_path);  // which network, for a result to be remade
   j.update(rep.json);
   rep.json = j;
   if (out) write_run_files(*out, q.out, !pictures.posterior.empty(), rep);

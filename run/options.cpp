@@ -116,8 +116,9 @@ const OptionTable<SteOptions>& ste_option_table() {
         "--cnn",
         &O::model_path,
         {},
-        "CNN model file of the surrogate plume model (empty: the shipped one, which the CLI and "
-        "Python fill in)"},
+        "CNN model of the surrogate plume model: a plumekit-cnn file, or a shipped model's name "
+        "(docs/data.md): hybrid (the default; any map), thesis (the thesis's 64 x 64; 10 x 4 m "
+        "maps), v2, faithful (empty: hybrid; the CLI and Python find them)"},
        {"ste.source_cell", "--source-cell",
         optional_field(&O::source_cell,
                        [] {

@@ -42,19 +42,25 @@ def test_source_in_obstacle(block, wind):
 
 def test_surrogate_matches_cli(tmp_path, block, cli):
     src = block.sources[0]
-    p = plumekit.predict(block, src)
-    assert p["mean"].shape == (64, 64) and p["mean"].dtype == np.float32
+    p = plumekit.predict(block, src)  # the default: the hybrid, on 0.2 m cells
+    assert p["mean"].shape == (20, 50) and p["mean"].dtype == np.float32
     cli("predict", plumekit.data_dir() + "/test-maps/test-1-block.json",
         "--source", f"{src[0]!r},{src[1]!r}", "--out", tmp_path / "p")
     assert np.array_equal(np.load(tmp_path / "p" / "mean.npy"), p["mean"])
     net = plumekit.Surrogate(block, threads=2)
     assert np.array_equal(net.predict(src)["std"], p["std"])
+    thesis = plumekit.predict(block, src, cnn="thesis")
+    assert thesis["mean"].shape == (64, 64)
+    named = plumekit.data_dir() + "/models/plume-unet.pkcnn"
+    assert np.array_equal(plumekit.predict(block, src, cnn=named)["mean"], thesis["mean"])
 
 
-def test_surrogate_refuses_another_arena(data):
-    floor = plumekit.read_map(data / "floors" / "depot.json")
-    with pytest.raises(plumekit.InputError, match="plume-unet.pkcnn"):
-        plumekit.Surrogate(floor)
+def test_thesis_model_refuses_another_arena(data):
+    floor = plumekit.read_map(data / "floors" / "tb3_world.json")
+    with pytest.raises(plumekit.InputError, match="plume-unet.pkcnn.*cnn=\"hybrid\""):
+        plumekit.Surrogate(floor, cnn="thesis")
+    with pytest.raises(plumekit.InputError, match="no-such.pkcnn: no such model file"):
+        plumekit.Surrogate(floor, cnn="no-such.pkcnn")
 
 
 def test_plan_goes_round_the_block(block):

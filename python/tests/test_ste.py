@@ -200,3 +200,19 @@ def test_methods_come_from_the_registry():
     assert {"surge-cast", "pf-gradient", "levy-taxis"} <= set(names)
     assert all(m["description"] and m["source"] for m in plumekit.methods())
     assert [m["name"] for m in plumekit.methods() if m["uses_plume_model"]] == ["ste"]
+
+
+def test_the_default_surrogate_is_the_hybrid_on_any_map_and_the_thesis_model_is_named(data, cli):
+    # The thesis's 64 x 64 model, named, refuses a 19.2 m floor saying what to pass instead.
+    small = plumekit.read_map(data / "floors" / "tb3_world.json")
+    with pytest.raises(plumekit.InputError, match='model_path="hybrid".*plume_model="physics"'):
+        plumekit.Scenario(small, model_path="thesis")
+    block = plumekit.read_map(data / "test-maps" / "test-1-block.json")
+    s = block.sources[0]
+    run = plumekit.localize(block, s, seed=2, stop={"max_samples": 4})
+    c = cli("localize", plumekit.data_dir() + "/test-maps/test-1-block.json", "--source",
+            f"{s[0]!r},{s[1]!r}", "--seed", 2, "--max-samples", 4)
+    assert c["cnn"] == "plume-unet-v3.pkcnn"
+    assert run["estimate"] == c["estimate"]
+    thesis = plumekit.localize(block, s, seed=2, stop={"max_samples": 4}, model_path="thesis")
+    assert thesis["estimate"] != run["estimate"]

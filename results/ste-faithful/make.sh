@@ -11,8 +11,10 @@ models=("${@:2}")
 [[ ${#models[@]} -gt 0 ]] || models=(surrogate physics gaussian surrogate-v2)
 for model in "${models[@]}"; do
   case $model in
-    surrogate-v2) flags=(--plume-model surrogate --cnn data/models/plume-unet-v2.pkcnn) ;;
-    surrogate | physics | gaussian) flags=(--plume-model "$model") ;;
+    surrogate-v2) flags=(--plume-model surrogate --cnn v2) ;;
+    # The thesis's 64 x 64 model, which was the default then (the hybrid is now).
+    surrogate) flags=(--plume-model surrogate --cnn thesis) ;;
+    physics | gaussian) flags=(--plume-model "$model") ;;
     *) echo "$0: unknown model $model" >&2; exit 2 ;;
   esac
   "$plumekit" evaluate --map-dir data/test-maps --runs 3 --seeds 2 --gas-sensor mox-fast \

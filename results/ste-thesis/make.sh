@@ -12,7 +12,9 @@ for model in "${models[@]}"; do
   case $model in
     # The physics model as it was then: the thesis's sigma_M 30, no decay, no relative error.
     physics) extra=(--sigma-m 30 --decay-rate 0 --sigma-rel 0) ;;
-    surrogate | gaussian) extra=() ;;
+    # The thesis's 64 x 64 model, which was the default then (the hybrid is now).
+    surrogate) extra=(--cnn thesis) ;;
+    gaussian) extra=() ;;
     *) echo "$0: unknown model $model" >&2; exit 2 ;;
   esac
   "$plumekit" evaluate --map-dir data/test-maps --runs 3 --plume-model "$model" "${extra[@]}" \

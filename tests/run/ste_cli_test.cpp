@@ -598,20 +598,30 @@ TEST_F(SteCli, APhysicsSourceGridOverTheMemoryLimitIsRefusedNamingTheFlag) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out"));
 }
 
-// Issue 44: the default (fixed-grid) surrogate on a map of another size says what to type.
-TEST_F(SteCli, TheDefaultSurrogateOnAnotherMapSizeSaysWhatToType) {
+// Issue 46: the default surrogate (the hybrid) runs on a map of any size, warning outside its
+// training sizes; the thesis's fixed-grid model, named, refuses another size saying what to type.
+TEST_F(SteCli, TheDefaultSurrogateTakesAnyMapAndTheThesisModelSaysWhatToType) {
   const std::string map = write_map();  // 6 x 3 m
-  const std::string any_map = std::string(PLUMEKIT_DATA_DIR) + "/models/plume-unet-v3.pkcnn";
-  CliResult r = run("localize " + map + " --source 4.2,1.3");
+  CliResult r = run("localize " + map + " --source 4.2,1.3 --max-samples 3 --json --out " +
+                    (dir / "l").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("the map is 6 x 3 m; the model was trained on maps 6.1-30 m wide"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(nlohmann::json::parse(r.out)["cnn"].get<std::string>().find("plume-unet-v3.pkcnn"),
+            std::string::npos)
+      << r.out;
+  r = run("localize " + map + " --source 4.2,1.3 --cnn thesis");
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.err.find("works only on maps of 10 x 4 m"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("map \"small\" is 6 x 3 m"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("--cnn " + any_map), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("use the default model (--cnn hybrid)"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--plume-model physics"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("feature contract"), std::string::npos) << r.err;
-  r = run("predict " + map + " --source 4.2,1.3 --out " + (dir / "p").string());
+  r = run("predict " + map + " --source 4.2,1.3 --cnn thesis --out " + (dir / "p").string());
   EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find("--cnn " + any_map), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("plume-unet.pkcnn: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--cnn hybrid"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("--plume-model"), std::string::npos) << "predict has no such flag";
   EXPECT_FALSE(std::filesystem::exists(dir / "p"));
 }

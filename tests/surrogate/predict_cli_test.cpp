@@ -140,7 +140,7 @@ TEST_F(Predict, MissingDefaultModelIsAClearError) {
   const Result r = run("predict --source 1.5,1 --out " + (dir / "out").string() + " --json");
   ::unsetenv("PLUMEKIT_DATA");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("models/plume-unet.pkcnn: no such model file (the shipped model"),
+  EXPECT_NE(r.err.find("models/plume-unet-v3.pkcnn: no such model file (the shipped model"),
             std::string::npos)
       << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["exit_code"], 2);
