@@ -8,6 +8,8 @@ EVAL_DIR holds evaluate.py --json results (results/surrogate-designs/make.sh wri
                        its `physics` entries give the physics plume's row (from the hybrid model's
                        file, whose sets hold the physics channel);
   floor.json           a model on single realizations with --floor: the two-realization row.
+A model scored on some of the sets only (the thesis's 64 x 64 models, v1*.json: not on the
+buildings) gets "-" in the other columns (null in the JSON).
 Each row gives, per test set, the relative L2 error of the mean and its RMSE over the average peak
 mean; OUT_DIR gets table.md and summary.json (the same numbers).
 """
@@ -28,7 +30,8 @@ def rows(eval_dir):
     for name in names:
         with open(os.path.join(eval_dir, name + ".json")) as f:
             r = json.load(f)
-        sets = sets or list(r["test_sets"])
+        if not name.startswith("v1"):
+            sets = sets or list(r["test_sets"])
         out.append((name, {k: figures(v["all"]) for k, v in r["test_sets"].items()}))
         if name.startswith("hybrid") and "physics" in next(iter(r["test_sets"].values())):
             physics = {k: dict(figures(v["physics"]), factor=v["physics"]["factor"])
@@ -50,10 +53,11 @@ def main(argv):
     sets, table = rows(argv[0])
     lines = ["| model | " + " | ".join(f"{s}: rel. L2 / RMSE of peak" for s in sets) + " |",
              "|---|" + "---|" * len(sets)]
+    table = [(name, {s: per.get(s) for s in sets}) for name, per in table]
     for name, per in table:
         lines.append(f"| {name} | " + " | ".join(
-            f"{100 * per[s]['rel_l2']:.1f} % / {100 * per[s]['rmse_rel_peak']:.2f} %" for s in sets)
-            + " |")
+            f"{100 * per[s]['rel_l2']:.1f} % / {100 * per[s]['rmse_rel_peak']:.2f} %"
+            if per[s] else "-" for s in sets) + " |")
     os.makedirs(argv[1], exist_ok=True)
     with open(os.path.join(argv[1], "table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")

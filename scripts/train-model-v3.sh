@@ -10,7 +10,7 @@
 #   scripts/train-model-v3.sh [WORK] [MODEL]
 # WORK (default out/train-v3) holds the data, the checkpoints and the evaluation; MODEL (default
 # WORK/plume-unet-v3-cpu.pkcnn) gets the model, its golden pair and MODEL.log.csv. Every step
-# resumes where it stopped when run again. Settings (environment): EPOCHS (8), MAX_MINUTES (95),
+# resumes where it stopped when run again. Settings (environment): EPOCHS (16), MAX_MINUTES (95),
 # BATCH (8), THREADS (nproc), PYTHON (/usr/bin/python3). The shipped model was trained on a GPU
 # instead (results/surrogate-designs/make.sh; scripts/train-on-gpu.sh).
 set -euo pipefail
@@ -28,7 +28,7 @@ mkdir -p "$(dirname "$model")"
 # From the data folder, so the model records the datasets by name (as scripts/train-on-gpu.sh).
 (cd "$work/data" && "$python" "$OLDPWD/surrogate/train/train.py" \
   --data families buildings buildings-b --work "$work/checkpoints" --out "$model" \
-  --epochs "${EPOCHS:-8}" --lr-schedule cosine --batch "${BATCH:-8}" --seed 1 \
+  --epochs "${EPOCHS:-16}" --lr-schedule cosine --batch "${BATCH:-8}" --seed 1 \
   --threads "$threads" --max-minutes "${MAX_MINUTES:-95}")
 cp "$work/checkpoints/log.csv" "${model%.pkcnn}.log.csv"
 echo "train-model-v3: trained after $(($(date +%s) - start)) s"

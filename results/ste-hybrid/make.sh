@@ -5,7 +5,10 @@
 # seed 1 (README.md here).
 #   results/ste-hybrid/make.sh [OUT] [PART...]
 #   PART: test-hybrid test-physics heldout-hybrid heldout-physics real-hybrid real-physics
-#         buildings-hybrid buildings-physics (default all)
+#         buildings-hybrid buildings-physics (default all), or tuning: the likelihood sweep that
+#         chose the hybrid's sigma_M and k on maps of its own (README.md, "The likelihood"),
+#         OUT/tuning/{families,buildings}-mSIGMA_M-kK and OUT/tuning/table.md; or predict-depot:
+#         the hybrid's plume of one source on Nav2's depot (predict-depot.png here)
 set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
 source results/make-lib.sh "$1"
@@ -18,9 +21,34 @@ six=rectangle,two-rectangles,l-shape,u-shape,three-rectangles,shape-and-rectangl
   --sources 10 --out "$out/heldout-4601" >/dev/null
 [[ -d $out/buildings-1001 ]] || "$plumekit" maps random --families building --count 20 \
   --seed 1001 --sources 3 --out "$out/buildings-1001" >/dev/null
+tuning() { # held-out maps of the likelihood's own: six-family 10 x 4 m maps and buildings
+  local t=$out/tuning
+  [[ -d $t/maps-4700 ]] || "$plumekit" maps random --families "$six" --count 6 --seed 4700 \
+    --sources 10 --out "$t/maps-4700" >/dev/null
+  [[ -d $t/buildings-2002 ]] || "$plumekit" maps random --families building --count 12 \
+    --seed 2002 --sources 2 --out "$t/buildings-2002" >/dev/null
+  local sm k
+  for sm in 200 100; do
+    for k in 0 1 2 4; do
+      [[ -f $t/families-m$sm-k$k/summary.json ]] || "$plumekit" evaluate --map-dir "$t/maps-4700" \
+        --runs 3 --cnn hybrid --gas-sensor mox-fast --threads 2 --sigma-m "$sm" --sigma-std "$k" \
+        --table-cache "$t/tables" --out "$t/families-m$sm-k$k" >/dev/null
+      [[ -f $t/buildings-m$sm-k$k/summary.json ]] || "$plumekit" evaluate --map-dir \
+        "$t/buildings-2002" --runs 1 --cnn hybrid --gas-sensor mox-fast --threads 2 \
+        --sigma-m "$sm" --sigma-std "$k" --table-cache "$t/tables" \
+        --out "$t/buildings-m$sm-k$k" >/dev/null
+    done
+  done
+  /usr/bin/python3 scripts/likelihood_table.py "$t" >"$t/table.md"
+}
 for part in "${parts[@]}"; do
+  [[ $part == tuning ]] && { tuning; continue; }
+  if [[ $part == predict-depot ]]; then
+    "$plumekit" predict data/floors/depot.json --source 2,0 --out "$out/predict-depot" >/dev/null
+    continue
+  fi
   case ${part#*-} in
-    hybrid) model=(--plume-model surrogate --cnn data/models/plume-unet-v3.pkcnn) ;;
+    hybrid) model=(--plume-model surrogate --cnn hybrid) ;;
     physics) model=(--plume-model physics) ;;
     *) echo "$0: unknown part $part" >&2; exit 2 ;;
   esac

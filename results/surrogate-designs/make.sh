@@ -42,6 +42,25 @@ for e in 45 110; do
   done
 done
 score v2 data/models/plume-unet-v2.pkcnn --test "${truth[@]}"
+# The thesis's 64 x 64 models (v1), on their own grid: the same maps and sources of the two
+# 10 x 4 m test sets, four realizations each, in v1/ under the same set names so that their
+# figures fall in the same columns (they cannot take the buildings).
+declare -A v1_maps=([test-maps]=data/test-maps [test-families]=$data/test-families/maps)
+declare -A v1_seeds=([test-maps]="1 2 5 6" [test-families]="1 4 5 6")
+v1_truth=()
+for t in test-maps test-families; do
+  runs=()
+  for s in ${v1_seeds[$t]}; do
+    [[ -f $data/v1/$t-s$s/manifest.json ]] || "$plumekit" dataset generate --threads 2 \
+      --map-dir "${v1_maps[$t]}" --seed "$s" --out "$data/v1/$t-s$s" >/dev/null
+    runs+=("$data/v1/$t-s$s")
+  done
+  [[ -d $data/v1/$t-truth4 ]] || "$python" surrogate/train/mean_of_realizations.py \
+    "$data/v1/$t-truth4" "${runs[@]}"
+  v1_truth+=("$data/v1/$t-truth4")
+done
+score v1 data/models/plume-unet.pkcnn --test "${v1_truth[@]}"
+score v1-faithful data/models/plume-unet-faithful.pkcnn --test "${v1_truth[@]}"
 score floor "$models/e110/hybrid.pkcnn" --test "$data/test-maps" "$data/test-families" \
   "$data/test-buildings" --floor "$data/test-maps-floor" "$data/test-families-floor" \
   "$data/test-buildings-floor"

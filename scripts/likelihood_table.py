@@ -1,0 +1,47 @@
+#!/usr/bin/env python3
+"""The hybrid model's likelihood sweep (results/ste-hybrid/make.sh tuning) as a Markdown table.
+
+    /usr/bin/python3 scripts/likelihood_table.py TUNING_DIR > table.md
+
+TUNING_DIR holds `evaluate` folders named SET-mSIGMA_M-kK (SET: families, buildings); one row per
+(sigma_M, k): each set's success within 0.5 m, mean error and median samples, and both pooled.
+"""
+import json
+import os
+import re
+import sys
+
+
+def main(argv):
+    if len(argv) != 1:
+        print(__doc__, file=sys.stderr)
+        return 2
+    found = {}
+    for name in os.listdir(argv[0]):
+        m = re.fullmatch(r"(families|buildings)-m([0-9.]+)-k([0-9.]+)", name)
+        summary = os.path.join(argv[0], name, "summary.json")
+        if m and os.path.exists(summary):
+            with open(summary) as f:
+                found.setdefault((float(m[2]), float(m[3])), {})[m[1]] = json.load(f)["overall"]
+    print("| σ_M | k | families: within 0.5 m / mean error / samples | buildings: same "
+          "| pooled within 0.5 m |")
+    print("|---|---|---|---|---|")
+    for (sm, k), sets in sorted(found.items(), key=lambda kv: (-kv[0][0], kv[0][1])):
+        cells, hits, runs = [], 0, 0
+        for s in ("families", "buildings"):
+            o = sets.get(s)
+            if o is None:
+                cells.append("-")
+                continue
+            n = o["runs"]
+            hit = round(o["success_0_5m"] * n)
+            hits, runs = hits + hit, runs + n
+            cells.append(f"{hit}/{n} ({100 * o['success_0_5m']:.1f} %) / "
+                         f"{o['mean_error_m']:.3f} m / {o['median_samples']:g}")
+        pooled = f"{hits}/{runs} ({100 * hits / runs:.1f} %)" if runs else "-"
+        print(f"| {sm:g} | {k:g} | {cells[0]} | {cells[1]} | {pooled} |")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
