@@ -5,10 +5,10 @@
 # seed 1 (README.md here).
 #   results/ste-hybrid/make.sh [OUT] [PART...]
 #   PART: test-hybrid test-physics heldout-hybrid heldout-physics real-hybrid real-physics
-#         buildings-hybrid buildings-physics (default all), or tuning: the likelihood sweep that
-#         chose the hybrid's sigma_M and k on maps of its own (README.md, "The likelihood"),
-#         OUT/tuning/{families,buildings}-mSIGMA_M-kK and OUT/tuning/table.md; or predict-depot:
-#         the hybrid's plume of one source on Nav2's depot (predict-depot.png here)
+#         buildings-hybrid buildings-physics (default all); also tuning, the likelihood sweep on
+#         maps of its own (results/ste-hybrid/README.md, "The likelihood"; OUT/tuning/SET-mS-kK
+#         and OUT/tuning/table.md), and predict-depot, the hybrid's plume of one source on Nav2's
+#         depot (predict-depot.png here)
 set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
 source results/make-lib.sh "$1"
