@@ -11,13 +11,6 @@ const std::vector<ShippedModel>& shipped_models() {
   return models;
 }
 
-std::string shipped_model_names() {
-  std::string names;
-  for (const ShippedModel& m : shipped_models())
-    names += (names.empty() ? "" : ", ") + std::string(m.name);
-  return names;
-}
-
 std::filesystem::path default_model(const std::filesystem::path& data_dir) {
   return resolve_model("hybrid", data_dir);
 }

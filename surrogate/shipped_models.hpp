@@ -15,8 +15,6 @@ struct ShippedModel {
 
 // hybrid (the default), thesis, v2, faithful: in that order.
 const std::vector<ShippedModel>& shipped_models();
-// "hybrid, thesis, v2, faithful".
-std::string shipped_model_names();
 
 // The hybrid U-Net on a physical grid (issue 46: the physics plume of the source among its
 // inputs), for maps of any size, the thesis's 10 x 4 m arenas included: what `localize`,
