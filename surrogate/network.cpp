@@ -91,6 +91,10 @@ Network Network::load(const std::filesystem::path& path, EngineOptions options) 
   return Network(read_model_file(path), options);
 }
 
+int Network::threads() const {
+  return threads_->size();
+}
+
 std::size_t Network::parameter_count() const {
   return surrogate::parameter_count(file_.layers);
 }

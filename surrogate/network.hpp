@@ -50,6 +50,8 @@ class Network {
   // The file's description (header, layers, contract, outputs). Its raw tensors are released once
   // converted into the layers, so `weights` and `biases` are empty here.
   const ModelFile& file() const { return file_; }
+  // The engine's threads (EngineOptions::threads resolved: at least 1).
+  int threads() const;
   std::size_t parameter_count() const;
   // Multiply-adds times two, per sample, of all convolutions at the file's grid (a thesis model)
   // or at rows x cols.

@@ -8,6 +8,7 @@
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
 #include "core/error.hpp"
+#include "core/thread_pool.hpp"
 #include "surrogate/features.hpp"
 
 namespace plumekit::surrogate {
@@ -190,9 +191,11 @@ PlumeNetwork::PlumeNetwork(std::shared_ptr<const Network> network, const Map& ma
     planes.insert(planes.end(), w.begin(), w.end());
   }
   // The physics plume's operator depends on the wind alone: factored once, here.
-  if (c.has_physics())
+  if (c.has_physics()) {
     physics_ =
         std::make_shared<const PhysicsFeature>(map, *wind, grid_, physics_options(c.physics));
+    physics_threads_ = std::make_shared<ThreadPool>(network_->threads());
+  }
   const int map_channels = static_cast<int>(planes.size() / grid_.size());
   const std::size_t plane = static_cast<std::size_t>(rows_) * cols_;
   map_features_.assign(map_channels * plane, 0.0f);
@@ -257,10 +260,17 @@ std::vector<PlumePrediction> PlumeNetwork::predict_batch(const std::vector<Vec2>
   for (std::size_t first = 0; first < sources.size(); first += batch_size) {
     const int n = static_cast<int>(std::min<std::size_t>(batch_size, sources.size() - first));
     Tensor input(n, channels_, rows_, cols_);
-    for (int i = 0; i < n; ++i) {
+    // Each sample's input on its own (a hybrid's physics solve is most of the batch's time): the
+    // same bytes whatever the thread count.
+    const auto fill = [&](std::size_t i) {
       const std::vector<float> x = features(sources[first + i]);
-      std::copy(x.begin(), x.end(), input.sample_data(i));
-    }
+      std::copy(x.begin(), x.end(), input.sample_data(static_cast<int>(i)));
+    };
+    if (physics_threads_)
+      physics_threads_->parallel_for(static_cast<std::size_t>(n), fill);
+    else
+      for (int i = 0; i < n; ++i)
+        fill(static_cast<std::size_t>(i));
     const Tensor y = network_->predict(input);
     for (int i = 0; i < n; ++i) {
       PlumePrediction p;

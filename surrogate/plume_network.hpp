@@ -105,8 +105,10 @@ class PlumeNetwork {
   int channels_ = 0;         // input channels
   // The map's channels (all but the source's and the physics plume's), padded, in input order.
   std::vector<float> map_features_;
-  // A hybrid model's physics plume, one forward solve per source; null for other models.
+  // A hybrid model's physics plume, one forward solve per source; null for other models. Its
+  // solves, the most of a batch's cost, run on threads of their own, as many as the engine's.
   std::shared_ptr<const PhysicsFeature> physics_;
+  std::shared_ptr<ThreadPool> physics_threads_;
   std::vector<bool> obstacle_cell_;         // region label 0
   int mean_channel_ = 0, std_channel_ = 1;  // std_channel_ -1: a mean-only model
   std::vector<std::string> warnings_;
