@@ -171,6 +171,10 @@ ste::LikelihoodOptions SteOptions::likelihood_options() const {
   return l;
 }
 
+bool SteOptions::uses_cnn() const {
+  return model == PlumeModelKind::Surrogate && uses_plume_model(method.name);
+}
+
 double SteOptions::source_cell_in_use() const {
   switch (model) {
     case PlumeModelKind::Surrogate:
@@ -234,7 +238,7 @@ void SteOptions::validate() const {
   if (table_cell)
     check_range("ste.table_cell", *table_cell, source_cell_in_use(), 10.0, "m",
                 "it must be at least the source cell (" + compact(source_cell_in_use()) + " m)");
-  if (model == PlumeModelKind::Surrogate && uses_plume_model(method.name)) check_model_file();
+  if (uses_cnn()) check_model_file();
 }
 
 void SteOptions::check_model_file() const {

@@ -371,7 +371,7 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
   if (eo.ste.world.filament.release_rate != world::FilamentOptions{}.release_rate)
     j["release_rate"] = eo.ste.world.filament.release_rate;
   if (eo.ste.success_radius > 0.0) j["success_radius"] = eo.ste.success_radius;
-  if (eo.ste.model == PlumeModelKind::Surrogate && uses_plume_model(eo.ste.method.name))
+  if (eo.ste.uses_cnn())
     j["cnn"] = provenance_path(eo.ste.model_path);  // which network, for a result to be remade
   if (eo.ste.team.robots > 1)
     j["team"] = {{"robots", eo.ste.team.robots},

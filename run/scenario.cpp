@@ -138,11 +138,11 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
   if (model && options.model == PlumeModelKind::Physics)
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kPhysicsBytesPerSourceCell);
-  if (model && options.model == PlumeModelKind::Surrogate)
+  if (options.uses_cnn())
     check_source_grid(map_, options.source_cell_in_use(), "ste.source_cell",
                       kSurrogateBytesPerSourceCell);
   // A fixed-grid model on a map of another size is refused before the wind is solved.
-  if (model && options.model == PlumeModelKind::Surrogate)
+  if (options.uses_cnn())
     surrogate::check_map_size(surrogate::read_model_file(options.model_path).features, map_);
   auto t0 = Clock::now();
   if (same_map) {

@@ -104,6 +104,8 @@ struct SteOptions {
 
   // The likelihood the plume model runs with (the unset sigmas filled in).
   ste::LikelihoodOptions likelihood_options() const;
+  // Whether the run reads the CNN file `model_path`: a method with a plume model, the surrogate.
+  bool uses_cnn() const;
   // The candidate source grid in use (0 for the Gaussian plume, which has none).
   double source_cell_in_use() const;
   // The surrogate's table grid in use on `map` (0 for the other models).

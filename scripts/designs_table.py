@@ -9,7 +9,7 @@ EVAL_DIR holds evaluate.py --json results (results/surrogate-designs/make.sh wri
                        file, whose sets hold the physics channel);
   floor.json           a model on single realizations with --floor: the two-realization row.
 A model scored on some of the sets only (the thesis's 64 x 64 models, v1*.json: not on the
-buildings) gets "-" in the other columns (null in the JSON).
+buildings) gets "-" in the others (null in the JSON).
 Each row gives, per test set, the relative L2 error of the mean and its RMSE over the average peak
 mean; OUT_DIR gets table.md and summary.json (the same numbers).
 """
@@ -30,8 +30,8 @@ def rows(eval_dir):
     for name in names:
         with open(os.path.join(eval_dir, name + ".json")) as f:
             r = json.load(f)
-        if not name.startswith("v1"):
-            sets = sets or list(r["test_sets"])
+        if len(r["test_sets"]) > len(sets or []):  # the columns: the most sets any model has
+            sets = list(r["test_sets"])
         out.append((name, {k: figures(v["all"]) for k, v in r["test_sets"].items()}))
         if name.startswith("hybrid") and "physics" in next(iter(r["test_sets"].values())):
             physics = {k: dict(figures(v["physics"]), factor=v["physics"]["factor"])
