@@ -76,6 +76,7 @@ void fill_record(const Scenario& scenario, RunRecord& rec) {
   rec.median_step_s = r.median_step_s;
   rec.stopped_by = r.stopped_by;
   rec.reached = r.reached;
+  rec.times = r.times;
   if (ends_on_arrival(scenario.options().method.name))
     rec.distance_overhead =
         tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
@@ -154,10 +155,42 @@ PairRange part_pairs(const std::vector<Map>& maps, const EvaluationOptions& o) {
   return p;
 }
 
+namespace {
+
+// The median of the finite values of `values` (NaN when none), and how many there are.
+double median_of_finite(const std::vector<double>& values, int& count) {
+  std::vector<double> finite;
+  for (double v : values)
+    if (std::isfinite(v)) finite.push_back(v);
+  count = static_cast<int>(finite.size());
+  return finite.empty() ? std::numeric_limits<double>::quiet_NaN() : median(finite);
+}
+
+void summarise_times(const std::vector<const RunRecord*>& runs, Stats& s) {
+  std::vector<double> detection, within_1m, within_0_5m, over;
+  int gsl = 0, with_optimum = 0;
+  for (const RunRecord* r : runs) {
+    detection.push_back(r->times.first_detection_s);
+    within_1m.push_back(r->times.within_1m_s);
+    within_0_5m.push_back(r->times.within_0_5m_s);
+    over.push_back(r->times.over_optimum());
+    gsl += r->times.gsl_bench_success();
+  }
+  s.median_first_detection_s = median_of_finite(detection, s.detected_runs);
+  s.median_within_1m_s = median_of_finite(within_1m, s.within_1m_runs);
+  s.median_within_0_5m_s = median_of_finite(within_0_5m, s.within_0_5m_runs);
+  s.median_over_optimum = median_of_finite(over, with_optimum);
+  s.gsl_bench_success_ci95 = wilson_interval(gsl, s.runs);
+  s.gsl_bench_success = gsl / static_cast<double>(s.runs);
+}
+
+}  // namespace
+
 Stats summarise(const std::vector<const RunRecord*>& runs) {
   Stats s;
   s.runs = static_cast<int>(runs.size());
   if (runs.empty()) return s;
+  summarise_times(runs, s);
   std::vector<double> err, samples, dist, step, mission, overhead;
   double sum = 0;
   for (const RunRecord* r : runs) {
@@ -317,7 +350,8 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
 std::string runs_csv(const EvaluationResult& result) {
   std::ostringstream s;
   s << "map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,estimate_y,error_m,"
-       "samples,distance_m,mission_s,stopped_by"
+       "samples,distance_m,mission_s,stopped_by,first_detection_s,within_1m_s,within_0_5m_s,"
+       "optimum_s,over_optimum,gsl_bench"
     << (result.tracking() ? ",reached,distance_overhead" : "")
     << (result.seeds > 1 ? ",seed\n" : "\n");
   s << std::setprecision(6);
@@ -332,6 +366,13 @@ std::string runs_csv(const EvaluationResult& result) {
       << ',' << start.x << ',' << start.y << ',' << estimate.x << ',' << estimate.y << ','
       << std::setprecision(6) << r.error_m << ',' << r.samples << ',' << r.distance_m << ','
       << r.mission_s << ',' << csv_field(r.stopped_by);
+    // Empty where the run never got there.
+    for (double v : {r.times.first_detection_s, r.times.within_1m_s, r.times.within_0_5m_s,
+                     r.times.optimum_s, r.times.over_optimum()}) {
+      s << ',';
+      if (std::isfinite(v)) s << v;
+    }
+    s << ',' << (r.times.gsl_bench_success() ? 1 : 0);
     if (result.tracking()) {
       s << ',' << (r.reached ? 1 : 0) << ',';
       if (std::isfinite(r.distance_overhead)) s << r.distance_overhead;

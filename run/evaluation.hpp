@@ -59,6 +59,7 @@ struct RunRecord {
   // seeds' distance overhead (NaN where there was no detection or no progress).
   bool reached = false;
   double distance_overhead = std::numeric_limits<double>::quiet_NaN();
+  MissionTimes times;         // the field's time metrics (run/mission_times.hpp)
   LocalizationResult result;  // kept for the example pictures
 };
 
@@ -74,6 +75,15 @@ struct Stats {
   // Over the runs that have one (NaN when none does), and how many do.
   double median_distance_overhead = std::numeric_limits<double>::quiet_NaN();
   int distance_overhead_runs = 0;
+  // The time metrics (run/mission_times.hpp): each median over the runs that got there (NaN when
+  // none did), and how many did; GSL-Bench's success rule over all runs.
+  double median_first_detection_s = std::numeric_limits<double>::quiet_NaN();
+  double median_within_1m_s = std::numeric_limits<double>::quiet_NaN();
+  double median_within_0_5m_s = std::numeric_limits<double>::quiet_NaN();
+  int detected_runs = 0, within_1m_runs = 0, within_0_5m_runs = 0;
+  double median_over_optimum = std::numeric_limits<double>::quiet_NaN();
+  double gsl_bench_success = 0;
+  Interval gsl_bench_success_ci95;
 };
 Stats summarise(const std::vector<const RunRecord*>& runs);
 

@@ -55,6 +55,18 @@ RunRecord parse_run_row(const ordered_json& row, const ordered_json& maps) {
     r.reached = row.at(11).get<bool>();
     if (!row.at(12).is_null()) r.distance_overhead = row.at(12).get<double>();
   }
+  if (row.size() > 17) {  // the time metrics (parts written before them have none)
+    const auto number = [](const ordered_json& v) {
+      return v.is_null() ? MissionTimes::kNever : v.get<double>();
+    };
+    r.times.first_detection_s = number(row.at(13));
+    r.times.within_1m_s = number(row.at(14));
+    r.times.within_0_5m_s = number(row.at(15));
+    r.times.declared_s = row.at(16).get<double>();
+    r.times.optimum_s = number(row.at(17));
+  } else {
+    r.times.declared_s = r.mission_s;
+  }
   return r;
 }
 

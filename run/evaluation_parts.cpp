@@ -17,12 +17,15 @@ namespace {
 // One run's figures at full precision (JSON numbers round-trip a double exactly): what the
 // summary's statistics, the box plots and timings.json are computed from.
 ordered_json run_row(const RunRecord& r) {
-  // The trackers' two criteria last (null: no overhead), so STE's rows keep their first 11.
+  // null: no overhead, or never got there. The time metrics after the trackers' two criteria,
+  // so that every earlier field keeps its place.
+  const auto number = [](double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(); };
+  const MissionTimes& t = r.times;
   return ordered_json::array({r.map_index, r.source_index, r.run, r.seed, r.error_m, r.samples,
                               r.distance_m, r.mission_s, r.stopped_by, r.compute_s, r.median_step_s,
-                              r.reached,
-                              std::isfinite(r.distance_overhead) ? ordered_json(r.distance_overhead)
-                                                                 : ordered_json(nullptr)});
+                              r.reached, number(r.distance_overhead), number(t.first_detection_s),
+                              number(t.within_1m_s), number(t.within_0_5m_s), t.declared_s,
+                              number(t.optimum_s)});
 }
 
 // The runs of all parts in run order, each map's statistics and times, and the files.

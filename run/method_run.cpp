@@ -82,14 +82,14 @@ planner::PlanResult path_to(const methods::Move& move, Vec2 robot, const planner
 
 }  // namespace
 
-void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
+std::optional<SourceDisc::Entry> SourceDisc::entry(const std::vector<Vec2>& path) const {
   double walked = 0.0;
-  for (std::size_t k = 1; k < path.path.size(); ++k) {
-    const Vec2 a = path.path[k - 1], d = path.path[k] - a;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const Vec2 a = path[k - 1], d = path[k] - a;
     const double leg = norm(d);
     // The smallest t in [0, 1] with |a + t d - source| <= radius.
-    const Vec2 f = a - disc.source;
-    const double qa = dot(d, d), qb = 2.0 * dot(f, d), qc = dot(f, f) - disc.radius * disc.radius;
+    const Vec2 f = a - source;
+    const double qa = dot(d, d), qb = 2.0 * dot(f, d), qc = dot(f, f) - radius * radius;
     double t = -1.0;
     if (qc <= 0.0) {
       t = 0.0;
@@ -100,16 +100,20 @@ void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
         if (t0 >= 0.0 && t0 <= 1.0) t = t0;
       }
     }
-    if (t >= 0.0) {
-      const Vec2 entry = a + t * d;
-      path.path.resize(k);
-      path.path.push_back(entry);
-      path.length = walked + t * leg;
-      path.goal = entry;
-      return;
-    }
+    if (t >= 0.0) return Entry{k, t, walked + t * leg};
     walked += leg;
   }
+  return std::nullopt;
+}
+
+void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
+  const std::optional<SourceDisc::Entry> e = disc.entry(path.path);
+  if (!e) return;
+  const Vec2 a = path.path[e->leg - 1], entry = a + e->t * (path.path[e->leg] - a);
+  path.path.resize(e->leg);
+  path.path.push_back(entry);
+  path.length = e->along;
+  path.goal = entry;
 }
 
 namespace {
@@ -153,6 +157,7 @@ class FloorRobot {
     step_.position = pos_;
     step_.distance_m = r_.distance_m;
     step_.path_in = std::move(path_in_);
+    step_.arrived_s = world_.time() - t_start_;
     reading_ = world_.stop(pos_);
     step_.value = reading_.gas;
     step_.wind = reading_.wind;

@@ -64,6 +64,14 @@ struct SourceDisc {
   Vec2 source;
   double radius = 0.5;
   bool contains(Vec2 p) const { return norm(p - source) <= radius; }
+  // Where `path` first enters the disc: on its leg from point `leg` - 1 to point `leg`, at the
+  // fraction `t` of it, `along` metres from the path's start (0 when it starts inside); nullopt
+  // when it never enters it.
+  struct Entry {
+    std::size_t leg = 0;
+    double t = 0.0, along = 0.0;
+  };
+  std::optional<Entry> entry(const std::vector<Vec2>& path) const;
 };
 
 // CPU time of the calling thread, s: a decision step runs on one thread, and this reads the same

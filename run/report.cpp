@@ -51,6 +51,7 @@ ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
                    {"recorded_position", point_json(f.to_frame(s.recorded))},
                    {"value", s.value},
                    {"wind", {s.wind.x, s.wind.y}},
+                   {"arrived_s", s.arrived_s},
                    {"time_s", s.time_s},
                    {"distance_m", s.distance_m},
                    {"estimate", point_json(f.to_frame(s.estimate))},
@@ -80,6 +81,21 @@ ordered_json team_json(const MapFrame& f, const LocalizationResult& r) {
           {"members", robots}};
 }
 
+ordered_json finite_or_null(double v) {
+  return std::isfinite(v) ? ordered_json(v) : ordered_json();
+}
+
+// null: the run never got there.
+ordered_json mission_times_json(const MissionTimes& t) {
+  return {{"first_detection_s", finite_or_null(t.first_detection_s)},
+          {"within_1m_s", finite_or_null(t.within_1m_s)},
+          {"within_0_5m_s", finite_or_null(t.within_0_5m_s)},
+          {"declared_s", t.declared_s},
+          {"optimum_s", finite_or_null(t.optimum_s)},
+          {"over_optimum", finite_or_null(t.over_optimum())},
+          {"gsl_bench_success", t.gsl_bench_success()}};
+}
+
 ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult& r) {
   ordered_json expected = ordered_json::object();
   if (sc.has_model()) {
@@ -103,6 +119,7 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
                  {"stopped_by", r.stopped_by},
                  {"median_step_s", r.median_step_s},
                  {"mission_s", r.time_s},
+                 {"times", mission_times_json(r.times)},
                  {"map_estimate", point_json(f.to_frame(r.map))},
                  {"source_cell", source_cell_json(sc.options())},
                  {"table_cell", cell_json(sc.table_cell())},
@@ -185,6 +202,15 @@ ordered_json stats_json(const Stats& s, bool tracking) {
                  {"median_distance_m", s.median_distance_m},
                  {"median_mission_s", s.median_mission_s},
                  {"entropy_stops", s.entropy_stops}};
+  j["median_time_to_detection_s"] = finite_or_null(s.median_first_detection_s);
+  j["detected_runs"] = s.detected_runs;
+  j["median_time_to_1m_s"] = finite_or_null(s.median_within_1m_s);
+  j["within_1m_runs"] = s.within_1m_runs;
+  j["median_time_to_0_5m_s"] = finite_or_null(s.median_within_0_5m_s);
+  j["within_0_5m_runs"] = s.within_0_5m_runs;
+  j["median_mission_over_optimum"] = finite_or_null(s.median_over_optimum);
+  j["gsl_bench_success"] = s.gsl_bench_success;
+  j["gsl_bench_success_ci95"] = {s.gsl_bench_success_ci95.lo, s.gsl_bench_success_ci95.hi};
   if (tracking) {
     j["reached_source_box"] = s.reached;
     j["reached_source_box_ci95"] = {s.reached_ci95.lo, s.reached_ci95.hi};
@@ -235,7 +261,8 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
   }
   h << std::left << std::setw(22) << "map"
     << " median_err  mean_err  ok@0.5  (95% CI)  ok@1.0  (95% CI)  samples"
-    << "  dist_m  time_s  step_ms  table_s" << (res.tracking() ? "  reached   d_o" : "") << "\n";
+    << "  dist_m  time_s  t@1m_s  x_opt  gsl300  step_ms  table_s"
+    << (res.tracking() ? "  reached   d_o" : "") << "\n";
   auto ci = [](const Interval& i) {
     return "(" + fmt(100 * i.lo, 0) + "-" + fmt(100 * i.hi, 0) + ")";
   };
@@ -245,7 +272,11 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
       << std::setw(10) << ci(s.success_0_5_ci95) << std::setw(8)
       << fmt(100 * s.success_1_0, 0) + "%" << std::setw(10) << ci(s.success_1_0_ci95)
       << std::setw(9) << fmt(s.median_samples, 0) << std::setw(8) << fmt(s.median_distance_m, 1)
-      << std::setw(8) << fmt(s.median_mission_s, 0) << std::setw(9)
+      << std::setw(8) << fmt(s.median_mission_s, 0) << std::setw(8)
+      << (std::isfinite(s.median_within_1m_s) ? fmt(s.median_within_1m_s, 0) : std::string("-"))
+      << std::setw(7)
+      << (std::isfinite(s.median_over_optimum) ? fmt(s.median_over_optimum, 1) : std::string("-"))
+      << std::setw(8) << fmt(100 * s.gsl_bench_success, 0) + "%" << std::setw(9)
       << fmt(1000 * s.median_step_s, 1) << std::setw(9)
       << (table >= 0 ? fmt(table, 1) : std::string("-"));
     if (res.tracking())

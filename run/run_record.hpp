@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "run/mission_times.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::run {
@@ -16,6 +17,7 @@ struct Step {
   double value = 0.0;       // its mean concentration
   Vec2 wind;                // the anemometer's mean wind there
   double time_s = 0.0;      // simulated time since the robot started, at the sample's end
+  double arrived_s = 0.0;   // ... when the robot arrived there and the sample began
   double distance_m = 0.0;  // travelled before it
   Vec2 estimate, map;       // posterior after it
   double entropy = 0.0;
@@ -51,6 +53,7 @@ struct LocalizationResult {
   int samples = 0;
   double distance_m = 0.0;
   double time_s = 0.0;     // simulated mission time
+  MissionTimes times;      // the field's time metrics (Scenario::run fills them)
   double compute_s = 0.0;  // total decision compute (thread CPU time)
   // Wall-clock seconds: the decisions (estimation, navigation, planning), the simulated world (its
   // plume's spin-up and steps and the sensors' readings, SimulatedWorld::busy_s; for a robot of a

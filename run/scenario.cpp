@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "cfd/flow_policy.hpp"
@@ -340,6 +341,7 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   setup.planner = planner_.get();
   setup.space = space_.get();
   LocalizationResult r = run::run_team(plume, starts, pointers, seed, setup, options_.team, o);
+  add_mission_times(r, source);
   r.plume_s += spin_up;
   r.run_s = since(t0);
   return r;
@@ -368,6 +370,7 @@ LocalizationResult Scenario::run(world::SimulatedWorld& world, Vec2 start,
   const auto t0 = Clock::now();
   const double busy = world.busy_s();
   LocalizationResult r = run_in(world, start, seed);
+  add_mission_times(r, world.source());
   r.plume_s = world.busy_s() - busy;
   r.run_s = since(t0);
   return r;
@@ -389,6 +392,42 @@ LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start,
   o.space = space_.get();
   if (stops_in_source_box(options_.method.name)) o.box = source_box(source);
   return run_method(start, *method, world, *planner_, o);
+}
+
+double Scenario::optimum_path_m(Vec2 start, Vec2 source) const {
+  const Vec2 goal = space_->contains(source) ? source : space_->nearest_free(source);
+  try {
+    return planner_->plan(check_start(start), goal).length + norm(source - goal);
+  } catch (const InputError&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+void Scenario::add_mission_times(LocalizationResult& r, Vec2 source) const {
+  const double speed = options_.world.speed;
+  const double threshold = options_.method.tracking.detection_threshold;
+  MissionTimes& t = r.times;
+  t = MissionTimes{};
+  t.declared_s = r.time_s;
+  // A team: the earliest of its robots, and the optimum of the one that starts nearest.
+  std::vector<const std::vector<Step>*> robots;
+  std::vector<Vec2> starts;
+  if (r.team.empty()) {
+    robots.push_back(&r.steps);
+    starts.push_back(r.start);
+  }
+  for (const TeamRobot& m : r.team) {
+    robots.push_back(&m.steps);
+    starts.push_back(m.start);
+  }
+  // fmin takes the number of a number and a NaN ("never").
+  for (const std::vector<Step>* steps : robots) {
+    t.first_detection_s = std::fmin(t.first_detection_s, first_detection(*steps, threshold));
+    t.within_1m_s = std::fmin(t.within_1m_s, first_within(*steps, source, kGslBenchRadius, speed));
+    t.within_0_5m_s = std::fmin(t.within_0_5m_s, first_within(*steps, source, 0.5, speed));
+  }
+  for (Vec2 s : starts)
+    t.optimum_s = std::fmin(t.optimum_s, optimum_path_m(s, source) / speed);
 }
 
 SourceBox Scenario::source_box(Vec2 source) const {

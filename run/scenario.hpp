@@ -192,6 +192,11 @@ class Scenario {
   LocalizationResult run_team(Vec2 source, const std::vector<Vec2>& starts,
                               std::uint64_t seed) const;
 
+  // The shortest collision-free way from `start` to `source` at the planner's margin (a source
+  // inside the margin is reached at the free point nearest it, then straight), m; NaN when the
+  // source cannot be reached.
+  double optimum_path_m(Vec2 start, Vec2 source) const;
+
   // The plume trackers' success box of a source: along the steady wind at the source.
   SourceBox source_box(Vec2 source) const;
 
@@ -203,6 +208,8 @@ class Scenario {
   // The piece of free space (at the planner's margin) that `p`, or the free point nearest it,
   // lies in: a start must be in its source's.
   int region_reaching(Vec2 p) const;
+  // Fills r.times (run/mission_times.hpp) for a run to `source`.
+  void add_mission_times(LocalizationResult& r, Vec2 source) const;
   // run(world, ...) without its times.
   LocalizationResult run_in(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
 

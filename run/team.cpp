@@ -82,6 +82,7 @@ struct Robot {
   Phase phase = Phase::Sense;         // where it is in the run loop (method_run.hpp)
   Vec2 pos;
   bool stopping = false;   // its stop's readings have begun
+  double arrived_s = 0.0;  // when it arrived at the stop, since the team started
   world::Reading reading;  // the stop just ended (to decide on)
   // Moving: the path, its duration and whole reading intervals, those moved so far, metres done.
   planner::PlanResult path;
@@ -173,6 +174,7 @@ class TeamRun {
     if (!r.stopping) {
       r.world->begin_stop(r.pos);
       r.stopping = true;
+      r.arrived_s = r.world->time() - t_start_;
     }
     if (!r.world->stop_reading()) return false;
     r.reading = r.world->end_stop();
@@ -190,6 +192,7 @@ class TeamRun {
     s.value = r.reading.gas;
     s.wind = r.reading.wind;
     s.time_s = r.world->time() - t_start_;
+    s.arrived_s = r.arrived_s;
     s.distance_m = r.out.distance_m;
     s.path_in = std::move(r.travelled);
     r.travelled.clear();

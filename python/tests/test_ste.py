@@ -20,9 +20,17 @@ def test_localize_is_the_cli_run(block, run, cli):
     c = cli("localize", plumekit.data_dir() + "/test-maps/test-1-block.json",
             "--source", f"{s[0]!r},{s[1]!r}", "--seed", 3, "--plume-model", "physics",
             "--max-samples", 15)
-    for key in ("estimate", "samples", "error_m", "distance_m", "start", "stopped_by"):
+    for key in ("estimate", "samples", "error_m", "distance_m", "start", "stopped_by", "times"):
         assert run[key] == c[key], key
     assert run["samples"] == len(run["steps"]) <= 15
+    # The field's time metrics: the declaration is the mission's end, and a robot within 0.5 m
+    # was within 1 m no later.
+    t = run["times"]
+    assert t["declared_s"] == run["mission_s"]
+    assert t["optimum_s"] > 0 and t["over_optimum"] == pytest.approx(run["mission_s"] / t["optimum_s"])
+    if t["within_0_5m_s"] is not None:
+        assert t["within_1m_s"] <= t["within_0_5m_s"] <= run["mission_s"]
+    assert t["gsl_bench_success"] == (t["within_1m_s"] is not None and t["within_1m_s"] <= 300)
 
 
 def test_a_mission_fed_the_runs_readings_reaches_its_estimate(block, run):

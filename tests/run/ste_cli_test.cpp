@@ -63,8 +63,9 @@ TEST_F(SteCli, LocalizeAndEvaluateRunAnyMethod) {
   EXPECT_EQ(j["method_options"]["zigzag_alpha_deg"].get<double>(), 60.0);
   const std::string csv = slurp(dir / "ev" / "runs.csv");
   EXPECT_EQ(csv.rfind("map,source_index,run,source_x,source_y,start_x,start_y,estimate_x,"
-                      "estimate_y,error_m,samples,distance_m,mission_s,stopped_by,reached,"
-                      "distance_overhead\n",
+                      "estimate_y,error_m,samples,distance_m,mission_s,stopped_by,"
+                      "first_detection_s,within_1m_s,within_0_5m_s,optimum_s,over_optimum,"
+                      "gsl_bench,reached,distance_overhead\n",
                       0),
             0u)
       << csv;
@@ -373,7 +374,7 @@ TEST_F(SteCli, EvaluateGivesIntervalsAndPoolsSeeds) {
   EXPECT_GE(ci[1].get<double>(), rate);
   EXPECT_LT(ci[1].get<double>() - ci[0].get<double>(), 1.0);
   const std::string csv = slurp(dir / "s3" / "runs.csv");
-  EXPECT_NE(csv.find("stopped_by,seed\n"), std::string::npos);
+  EXPECT_NE(csv.find(",gsl_bench,seed\n"), std::string::npos);
   // Each source's first seed-1 run is the single-seed evaluation's run.
   std::istringstream a(slurp(dir / "s1" / "runs.csv")), b(csv);
   std::string la, lb;

@@ -1,0 +1,35 @@
+#include "run/mission_times.hpp"
+
+#include <algorithm>
+
+#include "run/method_run.hpp"
+#include "run/run_record.hpp"
+
+namespace plumekit::run {
+
+double first_within(const std::vector<Step>& steps, Vec2 source, double radius, double speed) {
+  const SourceDisc disc{source, radius};
+  double left_s = 0.0;  // when the robot left its previous stop
+  for (const Step& s : steps) {
+    if (s.path_in.size() >= 2) {
+      double length = 0.0;
+      for (std::size_t k = 1; k < s.path_in.size(); ++k)
+        length += norm(s.path_in[k] - s.path_in[k - 1]);
+      // A robot kept waiting (a team's separation rule) waits before it drives.
+      const double departed_s = std::max(left_s, s.arrived_s - length / speed);
+      if (const std::optional<SourceDisc::Entry> e = disc.entry(s.path_in))
+        return std::min(departed_s + e->along / speed, s.arrived_s);
+    }
+    if (disc.contains(s.position)) return s.arrived_s;
+    left_s = s.time_s;
+  }
+  return MissionTimes::kNever;
+}
+
+double first_detection(const std::vector<Step>& steps, double threshold) {
+  for (const Step& s : steps)
+    if (s.value > threshold) return s.time_s;
+  return MissionTimes::kNever;
+}
+
+}  // namespace plumekit::run
