@@ -28,6 +28,8 @@ enum class SteStream : std::uint64_t {
   WindSpread = 0x5A0D,           // the single wind readings' direction noise (SimulatedWorld)
   TeamRobot = 0x7EA3,            // a team's robots after the first (team_robot_seed)
   Odometry = 0x0D0E,             // the odometry's drift (SimulatedWorld)
+  TransitNoise = 0x7A5E,         // the sensor noise of readings while moving (SimulatedWorld)
+  TransitPosition = 0x7A90,      // the recorded position's error of readings while moving
 };
 
 inline std::uint64_t stream_seed(std::uint64_t run_seed, SteStream stream) {

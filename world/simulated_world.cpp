@@ -46,6 +46,8 @@ SimulatedWorld::SimulatedWorld(std::unique_ptr<SharedPlume> own, SharedPlume* sh
       position_rng_(stream_seed(seed, SteStream::PositionNoise)),
       spread_rng_(stream_seed(seed, SteStream::WindSpread)),
       odometry_rng_(stream_seed(seed, SteStream::Odometry)),
+      transit_noise_rng_(stream_seed(seed, SteStream::TransitNoise)),
+      transit_position_rng_(stream_seed(seed, SteStream::TransitPosition)),
       gas_(options.sensor, 1.0 / options.sample_rate),
       time_(plume_.spinup_s()) {
   try {
@@ -108,6 +110,7 @@ void SimulatedWorld::advance(double seconds) {
 
 void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
   const Busy busy(*this);
+  const Vec2 drift_before = odometry_error_;
   if (options_.odometry_drift > 0.0 && metres > 0.0) {
     NormalSampler draw;
     const double sd = options_.odometry_drift * std::sqrt(metres);
@@ -115,21 +118,53 @@ void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
                                              normal(draw, odometry_rng_, 0.0, sd)};
   }
   const double seconds = metres / options_.speed;
-  if (!gas_.has_memory() || path.size() < 2) {
+  if (!reads_while_travelling() || path.size() < 2) {
     advance(seconds);
     return;
   }
   const double interval = reading_interval();
   const int readings = static_cast<int>(std::floor(seconds / interval));
+  leg_ = {drift_before, odometry_error_, metres, true};
   for (int k = 1; k <= readings; ++k)
     pass(path, k * interval * options_.speed);
+  leg_.active = false;
   advance(seconds - readings * interval);
 }
 
 void SimulatedWorld::pass(const std::vector<Vec2>& path, double along) {
   const Busy busy(*this);
   advance(reading_interval());
-  if (gas_.has_memory() && !path.empty()) gas_.read(exposure(plume(), point_along(path, along)));
+  if (!reads_while_travelling() || path.empty()) return;
+  const Vec2 p = point_along(path, along);
+  const double value = gas_.read(exposure(plume(), p));
+  if (options_.read_while_moving) record_transit(p, along, value);
+}
+
+void SimulatedWorld::record_transit(Vec2 p, double along, double value) {
+  TransitReading r;
+  r.position = p;
+  r.recorded = p;
+  if (options_.position_noise > 0.0)
+    r.recorded = fix(p, options_.position_noise, transit_position_rng_);
+  if (options_.odometry_drift > 0.0) {
+    // Outside travel() (a team's pass(), which runs without odometry) the drift so far.
+    Vec2 drift = odometry_error_;
+    if (leg_.active && leg_.metres > 0.0)
+      drift = leg_.from + std::clamp(along / leg_.metres, 0.0, 1.0) * (leg_.to - leg_.from);
+    r.recorded = r.recorded + drift;
+  }
+  r.time_s = time_;
+  r.value = value;
+  if (options_.noise > 0.0)
+    r.value =
+        std::max(0.0, value + normal(transit_noise_, transit_noise_rng_, 0.0, options_.noise));
+  transit_.push_back(r);
+}
+
+std::vector<TransitReading> SimulatedWorld::take_transit_readings() {
+  std::vector<TransitReading> taken;
+  taken.swap(transit_);
+  return taken;
 }
 
 std::vector<Vec2> disc_points(Vec2 centre, double radius) {
@@ -162,6 +197,15 @@ double SimulatedWorld::exposure(const world::PlumeFrame& plume, Vec2 p) const {
       ++n;
     }
   return sum / n;
+}
+
+Vec2 SimulatedWorld::fix(Vec2 p, double sd, std::mt19937_64& rng) const {
+  NormalSampler draw;
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    const Vec2 q{p.x + normal(draw, rng, 0.0, sd), p.y + normal(draw, rng, 0.0, sd)};
+    if (map_.is_free(q)) return q;
+  }
+  return p;
 }
 
 Reading SimulatedWorld::stop(Vec2 p) {
@@ -225,16 +269,7 @@ Reading SimulatedWorld::end_stop() {
     const double sd = options_.position_noise_per_fix
                           ? options_.position_noise / std::sqrt(static_cast<double>(n))
                           : options_.position_noise;
-    // Redrawn until free: a robot does not believe itself inside a wall it can see.
-    NormalSampler draw;
-    for (int attempt = 0; attempt < 1000; ++attempt) {
-      const Vec2 q{p.x + normal(draw, position_rng_, 0.0, sd),
-                   p.y + normal(draw, position_rng_, 0.0, sd)};
-      if (map_.is_free(q)) {
-        r.position = q;
-        break;
-      }
-    }
+    r.position = fix(p, sd, position_rng_);
   }
   if (options_.odometry_drift > 0.0) r.position = r.position + odometry_error_;
   return r;

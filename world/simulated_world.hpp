@@ -8,6 +8,17 @@
 // sensor noise (clipped at 0: a sensor reads no negative concentration).
 // A sensor with memory also reads on the way between stops, so it arrives
 // with what the path left in it; the ideal one only reads at stops.
+//
+// Readings while moving (issue 47; WorldOptions::read_while_moving): every
+// sensor, the ideal one included, then reads at its own rate along every path,
+// and the world records each reading (TransitReading, take_transit_readings).
+// Where: the point the robot has reached at the end of each reading interval
+// of travel (pass(); travel() is pass() for each whole interval of the path,
+// then a wait for the rest). When: the world's time() then, the plume step the
+// reading is of. What: the sensor's response to the exposure there (so the
+// sensor's lag is part of the record) plus Gaussian noise of `noise` clipped at
+// 0, as a stop's single readings, but drawn from a stream of its own
+// (SteStream::TransitNoise), so the stops draw exactly what they drew without.
 #include <cstdint>
 #include <memory>
 #include <random>
@@ -55,6 +66,10 @@ struct WorldOptions {
   // §4.4's rotor disturbance (0.5 m, the drone's downwash mixing the air under it before the
   // sensor model). 0: the concentration at the sensor's point.
   double rotor_disc = 0.0;
+  // Record a reading at every reading interval of travel, whatever the sensor (see above). Off by
+  // default: the committed results were made without, and off, every draw, plume step and reading
+  // is as it was (a sensor with memory still reads on the way, unrecorded).
+  bool read_while_moving = false;
   // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
@@ -86,6 +101,20 @@ struct Reading {
   Vec2 position;  // where the robot records the stop: its position plus position noise
 };
 
+// One reading taken on the way between stops (read_while_moving), at the end of a reading
+// interval of travel.
+struct TransitReading {
+  Vec2 position;  // the true point the robot had reached
+  // Where the robot records it: the true point plus, with position_noise, one fix's error (std
+  // position_noise per axis, independent from reading to reading, redrawn until free, from
+  // SteStream::TransitPosition), plus with odometry_drift the drift so far: the drift before the
+  // leg and the share of the leg's drift (travel() draws it whole) that the metres covered stand
+  // for, the random walk's mean given both ends.
+  Vec2 recorded;
+  double time_s = 0.0;  // SimulatedWorld::time() at the reading
+  double value = 0.0;   // the gas sensor's reading, with its noise (>= 0)
+};
+
 class SimulatedWorld {
  public:
   // A world of its own: the plume of `source` seeded by `seed`, spun up.
@@ -115,9 +144,12 @@ class SimulatedWorld {
   bool stop_reading();
   // What the stop's readings report (the direction and position errors drawn now).
   Reading end_stop();
-  // One reading interval of travel: a sensor with memory reads at the point `along` metres along
-  // `path` at its end.
+  // One reading interval of travel: a sensor with memory (any sensor, with read_while_moving)
+  // reads at the point `along` metres along `path` at its end; with read_while_moving the
+  // reading is recorded.
   void pass(const std::vector<Vec2>& path, double along);
+  // The readings recorded on the way since the last call, oldest first; forgets them.
+  std::vector<TransitReading> take_transit_readings();
   // Time passes; the robot reads nothing.
   void wait(double seconds) { advance(seconds); }
   double reading_interval() const { return 1.0 / options_.sample_rate; }
@@ -125,8 +157,9 @@ class SimulatedWorld {
   long long steps() const { return steps_; }
   // The plume step the robot will be at after `seconds` more (what wait(seconds) leads to).
   long long steps_after(double seconds) const;
-  // Whether the gas sensor reads on the way (one with memory): pass() then reads the plume.
-  bool reads_while_travelling() const { return gas_.has_memory(); }
+  // Whether the gas sensor reads on the way (one with memory, or any with read_while_moving):
+  // pass() then reads the plume.
+  bool reads_while_travelling() const { return gas_.has_memory() || options_.read_while_moving; }
   const WorldOptions& options() const { return options_; }
   double time() const { return time_; }                  // simulated seconds since release
   double spinup_s() const { return plume_.spinup_s(); }  // before the robot started
@@ -146,6 +179,11 @@ class SimulatedWorld {
   // The concentration the gas sensor is exposed to at p: at the point, or the rotor disc's mean
   // over its free points.
   double exposure(const world::PlumeFrame& plume, Vec2 p) const;
+  // p plus a fix's error of std `sd` per axis from `rng`, redrawn until free: a robot does not
+  // believe itself inside a wall it can see (p if 1000 draws are not).
+  Vec2 fix(Vec2 p, double sd, std::mt19937_64& rng) const;
+  // Records the reading `value` the sensor gave at p, `along` metres into the path.
+  void record_transit(Vec2 p, double along, double value);
   // Adds the wall time of the outermost timed call to busy_s_ (stop() calls stop_reading()).
   class Busy;
   double busy_s_ = 0.0;
@@ -157,11 +195,23 @@ class SimulatedWorld {
   WorldOptions options_;
   const Map& map_;
   std::mt19937_64 noise_rng_, wind_rng_, position_rng_, spread_rng_, odometry_rng_;
+  // The readings on the way draw from streams of their own, so the stops' draws are the same
+  // with read_while_moving on and off.
+  std::mt19937_64 transit_noise_rng_, transit_position_rng_;
+  NormalSampler transit_noise_;
+  std::vector<TransitReading> transit_;  // since take_transit_readings()
   world::GasSensor gas_;
   long long steps_ = 0;  // of the plume's dt since the spin-up
   double time_ = 0.0;    // summed step by step, as the plume sums its own
   double debt_ = 0.0;    // seconds not yet stepped (travel times are not multiples of dt)
   Vec2 odometry_error_;  // the recorded position's drift so far (odometry_drift)
+  // The leg travel() is on, for the drift a reading on the way records: the drift before it and
+  // after it, and its metres.
+  struct Leg {
+    Vec2 from, to;
+    double metres = 0.0;
+    bool active = false;
+  } leg_;
   // The stop under way (begin_stop .. end_stop).
   struct StopState {
     Vec2 p;
