@@ -129,8 +129,10 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
                  ->default_str(
                      default_text(world::world_option_table().entry("ste.world.position_noise"))),
              "ste.world.position_noise");
-  add_table_flags(cmd, o.world, world::world_option_table(),
-                  {"ste.world.odometry_drift", "ste.world.rotor_disc"});
+  add_table_flags(
+      cmd, o.world, world::world_option_table(),
+      {"ste.world.odometry_drift", "ste.world.rotor_disc", "ste.world.read_while_moving"});
+  add_table_flags(cmd, o, run::ste_option_table(), {"ste.passing_window_s"});
 }
 
 // A team of robots (seed 004 ch. 13; run/team.hpp).

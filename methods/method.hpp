@@ -27,6 +27,15 @@ struct Posterior3;  // ste/ste_3d.hpp
 
 namespace plumekit::methods {
 
+// A gas reading taken on the way between stops (the world's read_while_moving): where the robot
+// recorded it, when (since the mission started, s) and what it read.
+template <class P>
+struct BasicPassing {
+  P position;
+  double time_s = 0.0;
+  double gas = 0.0;
+};
+
 // What the sensors report for one stop (or, for a method that reads while it moves, for the last
 // decision interval).
 template <class P>
@@ -41,6 +50,9 @@ struct BasicObservation {
   // The robot did not reach the goal it was sent to: an obstacle stopped it on its straight way
   // there (a method without a map, Move::straight).
   bool blocked = false;
+  // The readings taken on the way here since the last stop, oldest first; empty when the robot
+  // reads only at stops. A method that does not use them may ignore them.
+  std::vector<BasicPassing<P>> on_the_way{};
 };
 using Observation = BasicObservation<Vec2>;
 using Observation3 = BasicObservation<Vec3>;
@@ -133,9 +145,12 @@ class Teammate {
   struct Sample {
     Vec2 position;
     double gas = 0.0;
+    double weight = 1.0;  // below 1: readings on the way, worth that share of a stop's sample
   };
   // Teammates' samples, added before the next observation's own, in order.
   virtual void share(const std::vector<Sample>& samples) = 0;
+  // What its last observation made of its readings on the way, to share (weights below 1).
+  virtual std::vector<Sample> passing_samples() const { return {}; }
   // next(), planned as if samples had been taken at `virtual_points`, reading what its belief
   // predicts there: it does not plan to learn what its teammates are about to learn.
   virtual Move next_beside(Vec2 robot, const std::vector<Vec2>& virtual_points) = 0;

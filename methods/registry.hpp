@@ -16,6 +16,7 @@
 #include "methods/method.hpp"
 #include "planner/planner.hpp"
 #include "ste/navigation.hpp"
+#include "ste/passing_readings.hpp"
 #include "ste/posterior.hpp"
 #include "ste/ste_3d.hpp"
 #include "ste/stop_rule.hpp"
@@ -63,6 +64,8 @@ struct PlumeModelParts {
   const planner::Planner* planner = nullptr;
   const ste::Navigator* navigator = nullptr;
   const ste::StopOptions* stop = nullptr;
+  // How STE takes the readings on the way (null: it ignores them).
+  const ste::PassingOptions* passing = nullptr;
 };
 // A fresh method with a plume model, from the scenario's parts.
 using PlumeModelFactory =

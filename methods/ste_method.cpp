@@ -17,7 +17,14 @@ methods::Move move_along(planner::PlanResult p) {
 }  // namespace
 
 void SteMethod::observe(const methods::Observation& o) {
-  mission_.add(o.position, o.gas, shared_);
+  partial_.clear();
+  if (passing_ != nullptr && !o.on_the_way.empty()) {
+    std::vector<ste::PassingReading> readings;
+    for (const methods::BasicPassing<Vec2>& r : o.on_the_way)
+      readings.push_back({r.position, r.time_s, r.gas});
+    partial_ = ste::partial_samples(readings, *passing_);
+  }
+  mission_.add(o.position, o.gas, shared_, partial_);
   shared_.clear();
 }
 
@@ -27,7 +34,14 @@ methods::Move SteMethod::next(Vec2 robot) {
 
 void SteMethod::share(const std::vector<Sample>& samples) {
   for (const Sample& s : samples)
-    shared_.push_back({s.position, s.gas});
+    shared_.push_back({s.position, s.gas, s.weight});
+}
+
+std::vector<Teammate::Sample> SteMethod::passing_samples() const {
+  std::vector<Sample> out;
+  for (const ste::PartialSample& s : partial_)
+    out.push_back({s.position, s.value, s.weight});
+  return out;
 }
 
 methods::Move SteMethod::next_beside(Vec2 robot, const std::vector<Vec2>& virtual_points) {
@@ -49,7 +63,7 @@ MethodSpec ste_spec() {
           {},
           [](const PlumeModelParts& parts) {
             return std::make_unique<SteMethod>(parts.estimator(), *parts.planner, *parts.navigator,
-                                               *parts.stop);
+                                               *parts.stop, parts.passing);
           }};
 }
 

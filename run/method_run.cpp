@@ -116,6 +116,24 @@ void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path) {
   path.goal = entry;
 }
 
+std::vector<PassingRecord> passing_records(const std::vector<world::TransitReading>& readings,
+                                           double t_start) {
+  std::vector<PassingRecord> out;
+  out.reserve(readings.size());
+  for (const world::TransitReading& r : readings)
+    out.push_back({r.position, r.recorded, r.time_s - t_start, r.value});
+  return out;
+}
+
+std::vector<methods::BasicPassing<Vec2>> passing_observations(
+    const std::vector<PassingRecord>& records) {
+  std::vector<methods::BasicPassing<Vec2>> out;
+  out.reserve(records.size());
+  for (const PassingRecord& r : records)
+    out.push_back({r.recorded, r.time_s, r.value});
+  return out;
+}
+
 namespace {
 
 // The method's state after a stop, into the step's record (a method with a posterior adds its).
@@ -157,6 +175,7 @@ class FloorRobot {
     step_.position = pos_;
     step_.distance_m = r_.distance_m;
     step_.path_in = std::move(path_in_);
+    step_.on_the_way = passing_records(world_.take_transit_readings(), t_start_);
     step_.arrived_s = world_.time() - t_start_;
     reading_ = world_.stop(pos_);
     step_.value = reading_.gas;
@@ -169,7 +188,7 @@ class FloorRobot {
   bool decide() {
     const double t0 = thread_cpu_s(), w0 = wall_clock_s();
     method_.observe({reading_.position, reading_.gas, reading_.wind, reading_.wind_variance,
-                     step_.time_s, blocked_});
+                     step_.time_s, blocked_, passing_observations(step_.on_the_way)});
     record_state(method_, step_, r_);
     r_.stopped_by = stop_reason(method_, pos_, static_cast<int>(r_.steps.size()) + 1, options_);
     path_ = {};

@@ -80,6 +80,13 @@ double thread_cpu_s();
 // Wall-clock seconds (a steady clock): the times a run's report adds up (LocalizationResult).
 double wall_clock_s();
 
+// The world's readings on the way as a run records them (times since `t_start`, the robot's
+// start), and as a method observes them (at their recorded points).
+std::vector<PassingRecord> passing_records(const std::vector<world::TransitReading>& readings,
+                                           double t_start);
+std::vector<methods::BasicPassing<Vec2>> passing_observations(
+    const std::vector<PassingRecord>& records);
+
 // `path` cut at its first point in `disc` (unchanged when it never enters it): a run ends where
 // its robot enters the disc.
 void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path);

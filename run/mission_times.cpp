@@ -27,8 +27,11 @@ double first_within(const std::vector<Step>& steps, Vec2 source, double radius, 
 }
 
 double first_detection(const std::vector<Step>& steps, double threshold) {
-  for (const Step& s : steps)
+  for (const Step& s : steps) {
+    for (const PassingRecord& r : s.on_the_way)
+      if (r.value > threshold) return r.time_s;
     if (s.value > threshold) return s.time_s;
+  }
   return MissionTimes::kNever;
 }
 

@@ -18,8 +18,8 @@ inline constexpr double kGslBenchTimeout = 300.0;  // s
 // Seconds since the mission started; NaN where the run never got there.
 struct MissionTimes {
   static constexpr double kNever = std::numeric_limits<double>::quiet_NaN();
-  // The first stop whose mean reading is above the detection threshold (--detection-threshold),
-  // at the stop's end, when the robot has the reading.
+  // The first reading above the detection threshold (--detection-threshold): one taken on the
+  // way, or a stop's mean at the stop's end.
   double first_detection_s = kNever;
   // The first moment a robot (any of a team) is within 1 m and within 0.5 m of the source.
   double within_1m_s = kNever, within_0_5m_s = kNever;
@@ -38,7 +38,8 @@ struct MissionTimes {
 // stop's path_in at `speed` m/s, arriving at the stop's arrived_s, and stood there until its
 // time_s. NaN when it never did.
 double first_within(const std::vector<Step>& steps, Vec2 source, double radius, double speed);
-// The end of the first stop whose reading is above `threshold`; NaN when none is.
+// The first reading above `threshold`: one taken on the way (Step::on_the_way), or the end of a
+// stop whose mean is; NaN when none is.
 double first_detection(const std::vector<Step>& steps, double threshold);
 
 }  // namespace plumekit::run

@@ -158,8 +158,21 @@ const OptionTable<SteOptions>& ste_option_table() {
        {"ste.success_radius", "--success-radius", &O::success_radius, non_negative(100.0, "m"),
         "End a run as soon as the robot comes this close to the source, on its way too, m "
         "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
-        "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m"}}};
+        "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m"},
+       {"ste.passing_window_s", "--passing-window", &O::passing_window_s,
+        real_range(0.0, 60.0, "s", true),
+        "STE averages the readings taken on the way (--read-while-moving) over stretches of "
+        "this long, each counting as its share of a stop, s (ste/passing_readings.hpp)"}}};
   return table;
+}
+
+ste::PassingOptions SteOptions::passing_options() const {
+  ste::PassingOptions p;
+  p.window_s = passing_window_s;
+  p.reading_s = 1.0 / world.sample_rate;
+  p.stop_s = world.sample_s;
+  p.lag_s = world.sensor.mean_delay_s();
+  return p;
 }
 
 ste::LikelihoodOptions SteOptions::likelihood_options() const {

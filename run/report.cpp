@@ -46,7 +46,7 @@ ordered_json source_cell_json(const SteOptions& o) {
 // Every position a report holds is in the map's frame (MapFrame).
 ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
   ordered_json out = ordered_json::array();
-  for (const Step& s : steps)
+  for (const Step& s : steps) {
     out.push_back({{"position", point_json(f.to_frame(s.position))},
                    {"recorded_position", point_json(f.to_frame(s.recorded))},
                    {"value", s.value},
@@ -57,6 +57,15 @@ ordered_json steps_json(const MapFrame& f, const std::vector<Step>& steps) {
                    {"estimate", point_json(f.to_frame(s.estimate))},
                    {"entropy", s.entropy},
                    {"compute_s", s.compute_s}});
+    // The readings on the way here, each [x, y, recorded x, recorded y, time_s, value].
+    if (s.on_the_way.empty()) continue;
+    ordered_json passing = ordered_json::array();
+    for (const PassingRecord& r : s.on_the_way) {
+      const Vec2 p = f.to_frame(r.position), q = f.to_frame(r.recorded);
+      passing.push_back({p.x, p.y, q.x, q.y, r.time_s, r.value});
+    }
+    out.back()["on_the_way"] = std::move(passing);
+  }
   return out;
 }
 

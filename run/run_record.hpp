@@ -11,6 +11,14 @@
 
 namespace plumekit::run {
 
+// A reading taken on the way to a stop (WorldOptions::read_while_moving).
+struct PassingRecord {
+  Vec2 position;        // the true point
+  Vec2 recorded;        // where the robot recorded it
+  double time_s = 0.0;  // since the robot started
+  double value = 0.0;
+};
+
 struct Step {
   Vec2 position;            // where the sample was taken
   Vec2 recorded;            // where the robot recorded it (position noise), what the estimator saw
@@ -21,8 +29,9 @@ struct Step {
   double distance_m = 0.0;  // travelled before it
   Vec2 estimate, map;       // posterior after it
   double entropy = 0.0;
-  double compute_s = 0.0;     // estimation + navigation + planning after this sample
-  std::vector<Vec2> path_in;  // the path that led here (empty for the first)
+  double compute_s = 0.0;                 // estimation + navigation + planning after this sample
+  std::vector<Vec2> path_in;              // the path that led here (empty for the first)
+  std::vector<PassingRecord> on_the_way;  // the readings taken along it, oldest first
 };
 
 // One robot of a team (run/team.hpp).

@@ -132,7 +132,7 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario& sa
     : Scenario(map, options, &same_map) {}
 
 Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* same_map)
-    : map_(map), options_(options) {
+    : map_(map), options_(options), passing_(options.passing_options()) {
   options.validate();
   options_.navigation.candidates = resolve_candidates(options.navigation.candidates, map);
   const bool model = uses_plume_model(options.method.name);
@@ -326,7 +326,8 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   for (std::size_t k = 0; k < starts.size(); ++k) {
     const std::uint64_t robot_seed = world::team_robot_seed(seed, static_cast<int>(k));
     const methods::PlumeModelParts model{[this, robot_seed] { return make_estimator(robot_seed); },
-                                         planner_.get(), navigator_.get(), &options_.stop};
+                                         planner_.get(), navigator_.get(), &options_.stop,
+                                         passing()};
     members.push_back(make_method(options_.method, {&map_},
                                   world::stream_seed(robot_seed, world::SteStream::Method),
                                   &model));
@@ -386,7 +387,7 @@ LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start,
   else if (find_method(options_.method.name).traits.ends == methods::RunEnd::SourceDisc)
     o.disc = SourceDisc{source};
   const methods::PlumeModelParts model{[this, seed] { return make_estimator(seed); },
-                                       planner_.get(), navigator_.get(), &options_.stop};
+                                       planner_.get(), navigator_.get(), &options_.stop, passing()};
   const std::unique_ptr<methods::LocalizationMethod> method = make_method(
       options_.method, {&map_}, world::stream_seed(seed, world::SteStream::Method), &model);
   o.space = space_.get();

@@ -101,9 +101,14 @@ struct SteOptions {
   // m: a run ends as soon as the robot comes this close to the source, on its way too (seed 004
   // ch. 15's benchmark protocol: 0.5 m; SourceDisc). 0: never, but levy-taxis always ends at 0.5 m.
   double success_radius = 0.0;
+  // s: STE's stretches of readings taken on the way (world.read_while_moving; passing_options).
+  double passing_window_s = 1.0;
 
   // The likelihood the plume model runs with (the unset sigmas filled in).
   ste::LikelihoodOptions likelihood_options() const;
+  // How STE takes the readings on the way: the window, and from the world the reading interval,
+  // the stop's length and the gas sensor's mean delay.
+  ste::PassingOptions passing_options() const;
   // Whether the run reads the CNN file `model_path`: a method with a plume model, the surrogate.
   bool uses_cnn() const;
   // The candidate source grid in use (0 for the Gaussian plume, which has none).
@@ -208,6 +213,10 @@ class Scenario {
   // The piece of free space (at the planner's margin) that `p`, or the free point nearest it,
   // lies in: a start must be in its source's.
   int region_reaching(Vec2 p) const;
+  // How STE takes the readings on the way, when the robot reads while moving; else null.
+  const ste::PassingOptions* passing() const {
+    return options_.world.read_while_moving ? &passing_ : nullptr;
+  }
   // Fills r.times (run/mission_times.hpp) for a run to `source`.
   void add_mission_times(LocalizationResult& r, Vec2 source) const;
   // run(world, ...) without its times.
@@ -218,6 +227,7 @@ class Scenario {
 
   Map map_;
   SteOptions options_;
+  ste::PassingOptions passing_;  // options_.passing_options()
   cfd::WindField wind_;
   std::unique_ptr<ste::ForwardModel> model_;
   std::unique_ptr<planner::Planner> planner_;

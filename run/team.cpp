@@ -81,9 +81,10 @@ struct Robot {
   methods::Teammate* mate = nullptr;  // the same method, as a team member
   Phase phase = Phase::Sense;         // where it is in the run loop (method_run.hpp)
   Vec2 pos;
-  bool stopping = false;   // its stop's readings have begun
-  double arrived_s = 0.0;  // when it arrived at the stop, since the team started
-  world::Reading reading;  // the stop just ended (to decide on)
+  bool stopping = false;               // its stop's readings have begun
+  double arrived_s = 0.0;              // when it arrived at the stop, since the team started
+  std::vector<PassingRecord> passing;  // its readings on the way there
+  world::Reading reading;              // the stop just ended (to decide on)
   // Moving: the path, its duration and whole reading intervals, those moved so far, metres done.
   planner::PlanResult path;
   double seconds = 0.0;
@@ -175,6 +176,7 @@ class TeamRun {
       r.world->begin_stop(r.pos);
       r.stopping = true;
       r.arrived_s = r.world->time() - t_start_;
+      r.passing = passing_records(r.world->take_transit_readings(), t_start_);
     }
     if (!r.world->stop_reading()) return false;
     r.reading = r.world->end_stop();
@@ -193,6 +195,8 @@ class TeamRun {
     s.wind = r.reading.wind;
     s.time_s = r.world->time() - t_start_;
     s.arrived_s = r.arrived_s;
+    s.on_the_way = std::move(r.passing);
+    r.passing.clear();
     s.distance_m = r.out.distance_m;
     s.path_in = std::move(r.travelled);
     r.travelled.clear();
@@ -201,11 +205,15 @@ class TeamRun {
       r.inbox.clear();
     }
     r.method->observe({r.reading.position, r.reading.gas, r.reading.wind, r.reading.wind_variance,
-                       s.time_s, false});
-    if (team_.shares_samples())
+                       s.time_s, false, passing_observations(s.on_the_way)});
+    if (team_.shares_samples()) {
+      // Its readings on the way as it took them in, then the stop's sample.
+      std::vector<methods::Teammate::Sample> sent = r.mate->passing_samples();
+      sent.push_back({r.reading.position, r.reading.gas});
       for (Robot& o : robots_)
         if (o.index != r.index && o.phase != Phase::Done)
-          o.inbox.push_back({r.reading.position, r.reading.gas});
+          o.inbox.insert(o.inbox.end(), sent.begin(), sent.end());
+    }
     const ste::Posterior& post = posterior(r);
     s.estimate = post.expected_source();
     s.map = post.map;

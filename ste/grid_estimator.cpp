@@ -94,21 +94,27 @@ std::vector<double> GridEstimator::spreads_at(Vec2 p) const {
 }
 
 void GridEstimator::accumulate(Sums& sums, const std::vector<double>& r,
-                               const std::vector<double>& spread, double value) const {
+                               const std::vector<double>& spread, double value,
+                               double weight) const {
   const double s_ref = 0.5 * (scale_lo_ + scale_hi_);
   for (std::size_t k = 0; k < r.size(); ++k) {
     const double var = likelihood_.variance(s_ref * r[k], spread.empty() ? 0.0 : s_ref * spread[k]);
-    const double w = 1.0 / var;
+    const double w = weight / var;
     sums.a[k] += w * r[k] * r[k];
     sums.b[k] += w * r[k] * value;
     sums.c[k] += w * value * value;
-    sums.h[k] += std::log(var);
+    sums.h[k] += weight * std::log(var);
   }
 }
 
 void GridEstimator::add(Vec2 p, double value) {
   accumulate(sums_, model_.readings_at(p), spreads_at(p), value);
   ++samples_;
+}
+
+void GridEstimator::add_partial(Vec2 p, double value, double weight) {
+  check_weight(weight);
+  accumulate(sums_, model_.readings_at(p), spreads_at(p), value, weight);
 }
 
 std::vector<double> GridEstimator::log_weights(const Sums& sums) const {

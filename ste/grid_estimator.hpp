@@ -24,6 +24,7 @@ class GridEstimator final : public Estimator {
   GridEstimator(const SourceTableModel& model, const LikelihoodOptions& likelihood,
                 const GridShape& bins);
   void add(Vec2 p, double value) override;
+  void add_partial(Vec2 p, double value, double weight) override;
   int samples() const override { return samples_; }
   Posterior posterior() override;
   std::unique_ptr<Estimator> clone() const override {
@@ -61,9 +62,9 @@ class GridEstimator final : public Estimator {
   Sums sums_;
   int samples_ = 0;
   // Adds a sample reading `value` where the cells read r and their readings scatter by `spread`
-  // (unit release; spread empty: none).
+  // (unit release; spread empty: none), its log-likelihood times `weight`.
   void accumulate(Sums& sums, const std::vector<double>& r, const std::vector<double>& spread,
-                  double value) const;
+                  double value, double weight = 1.0) const;
   // The reading the expected parameters predict where the cells read r (unit release).
   double predicted_from(const std::vector<double>& r, const Posterior& current) const;
   // The model's predicted std of the readings at p, when the likelihood uses it.

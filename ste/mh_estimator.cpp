@@ -53,6 +53,15 @@ int MhEstimator::bin_of(double x, double y) const {
 void MhEstimator::add(Vec2 p, double value) {
   points_.push_back(p);
   values_.push_back(value);
+  weights_.push_back(1.0);
+  ++samples_;
+}
+
+void MhEstimator::add_partial(Vec2 p, double value, double weight) {
+  check_weight(weight);
+  points_.push_back(p);
+  values_.push_back(value);
+  weights_.push_back(weight);
 }
 
 double MhEstimator::log_posterior(const std::vector<double>& m) const {
@@ -62,7 +71,8 @@ double MhEstimator::log_posterior(const std::vector<double>& m) const {
   if (!map_.is_free({m[0], m[1]})) return -kInf;
   double l = 0.0;
   for (std::size_t i = 0; i < points_.size(); ++i)
-    l += likelihood_.log_likelihood(values_[i], model_.predict_at(m.data(), points_[i]));
+    l += weights_[i] *
+         likelihood_.log_likelihood(values_[i], model_.predict_at(m.data(), points_[i]));
   return l;
 }
 

@@ -28,7 +28,8 @@ class MhEstimator final : public Estimator {
   MhEstimator(const ForwardModel& model, const Map& map, const LikelihoodOptions& likelihood,
               const GridShape& bins, const MhOptions& options, std::uint64_t seed);
   void add(Vec2 p, double value) override;
-  int samples() const override { return static_cast<int>(points_.size()); }
+  void add_partial(Vec2 p, double value, double weight) override;
+  int samples() const override { return samples_; }
   Posterior posterior() override;
   std::unique_ptr<Estimator> clone() const override { return std::make_unique<MhEstimator>(*this); }
   double predicted_reading(Vec2 p, const Posterior& current) const override;
@@ -47,6 +48,8 @@ class MhEstimator final : public Estimator {
   std::mt19937_64 rng_;
   std::vector<Vec2> points_;
   std::vector<double> values_;
+  std::vector<double> weights_;  // 1 for a stop's sample, less for a partial one
+  int samples_ = 0;              // the stops' samples
   std::vector<double> state_;
   std::vector<std::vector<double>> chain_;  // the summarised states of the last run
   double acceptance_ = 0.0;

@@ -28,14 +28,24 @@ const Posterior& Mission::add(Vec2 p, double value) {
   return add(p, value, {});
 }
 
-const Posterior& Mission::add(Vec2 p, double value, const std::vector<Sample>& shared) {
-  for (const Sample& s : shared)
-    check_sample(s.position, s.value);
+const Posterior& Mission::add(Vec2 p, double value, const std::vector<Sample>& shared,
+                              const std::vector<PartialSample>& on_the_way) {
+  for (const std::vector<Sample>* samples : {&shared, &on_the_way})
+    for (const Sample& s : *samples) {
+      check_sample(s.position, s.value);
+      check_weight(s.weight);
+    }
   check_sample(p, value);
   for (const Sample& s : shared) {
+    if (s.weight < 1.0) {
+      estimator_.add_partial(s.position, s.value, s.weight);
+      continue;
+    }
     estimator_.add(s.position, s.value);
     ++shared_;
   }
+  for (const PartialSample& s : on_the_way)
+    estimator_.add_partial(s.position, s.value, s.weight);
   estimator_.add(p, value);
   posterior_ = estimator_.posterior();
   stopped_by_ = stop_reason(posterior_, own_samples(), stop_);

@@ -8,6 +8,7 @@
 
 #include "planner/planner.hpp"
 #include "ste/navigation.hpp"
+#include "ste/passing_readings.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::ste {
@@ -24,13 +25,13 @@ class Mission {
   // the stop rule; returns the posterior. InputError for a point or value that is not finite.
   const Posterior& add(Vec2 p, double value);
   // The same after teammates' samples `shared` (run/team.hpp: cooperative teams share every
-  // sample), which are added first, in order, with one posterior update for all. The sample
-  // budget (max_samples) counts this robot's own samples only: the thesis's per-robot timeout.
-  struct Sample {
-    Vec2 position;
-    double value = 0.0;
-  };
-  const Posterior& add(Vec2 p, double value, const std::vector<Sample>& shared);
+  // sample; a weight below 1 is a partial sample of readings on the way) and this robot's own
+  // partial samples `on_the_way` here (ste/passing_readings.hpp), which are added first, in that
+  // order, with one posterior update for all. The sample budget (max_samples) counts this
+  // robot's own stops only: the thesis's per-robot timeout.
+  using Sample = PartialSample;
+  const Posterior& add(Vec2 p, double value, const std::vector<Sample>& shared,
+                       const std::vector<PartialSample>& on_the_way = {});
   // Where to sample next, seen from `robot`, and the planner's path there. InputError when the
   // mission has stopped or has no sample yet.
   planner::PlanResult next(Vec2 robot) const;

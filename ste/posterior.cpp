@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "core/error.hpp"
 
@@ -12,6 +13,12 @@ GridShape make_bins(const Map& map, const BinOptions& b) {
   return GridShape{std::max(1, static_cast<int>(std::lround(map.width / b.x))),
                    std::max(1, static_cast<int>(std::lround(map.height / b.y))), map.width,
                    map.height};
+}
+
+void check_weight(double weight) {
+  if (!(weight > 0.0 && weight <= 1.0))
+    throw InputError("ste.sample.weight: " + std::to_string(weight) +
+                     " is not a share of a stop's sample (0 < weight <= 1)");
 }
 
 double entropy_on_bins(const Grid<double>& marginal, const GridShape& bins) {

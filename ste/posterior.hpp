@@ -76,6 +76,9 @@ struct Posterior {
   Vec2 expected_source() const { return {expected.at(0), expected.at(1)}; }
 };
 
+// InputError unless 0 < weight <= 1: what Estimator::add_partial takes.
+void check_weight(double weight);
+
 // Aggregates a marginal onto bins (by cell centre) and returns its entropy in nats.
 double entropy_on_bins(const Grid<double>& marginal, const GridShape& bins);
 
@@ -84,6 +87,12 @@ class Estimator {
   virtual ~Estimator() = default;
   // A sample: the mean concentration measured at p.
   virtual void add(Vec2 p, double value) = 0;
+  // A reading that counts as `weight` (0 < weight <= 1) of a sample: the mean of a stretch of
+  // readings taken on the way, shorter than a stop (Mission::add). Its log-likelihood is the
+  // sample's times `weight` (a tempered likelihood: the readings along a path are no more
+  // independent of one another than a stop's are, so a second of them counts as a second of a
+  // stop). Not counted in samples(), which counts stops.
+  virtual void add_partial(Vec2 p, double value, double weight) = 0;
   virtual int samples() const = 0;
   // The posterior given all samples so far.
   virtual Posterior posterior() = 0;

@@ -90,6 +90,11 @@ double GasSensorModel::settling_s() const {
   return std::max(dead_rise_s + 5.0 * std::max(rise_s, rise_slow_s), dead_decay_s + 5.0 * decay_s);
 }
 
+double GasSensorModel::mean_delay_s() const {
+  const double rise = dead_rise_s + fast_share * rise_s + (1.0 - fast_share) * rise_slow_s;
+  return 0.5 * (rise + dead_decay_s + decay_s);
+}
+
 void GasSensor::settle(double concentration) {
   inputs_.assign(static_cast<std::size_t>(std::max(rise_delay_, decay_delay_)) + 1, concentration);
   fast_ = slow_ = concentration;

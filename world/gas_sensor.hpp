@@ -40,6 +40,10 @@ struct GasSensorModel {
   // How long it takes to forget where it started: the longer dead time plus
   // five of the slowest time constant on that side (0 for the ideal sensor).
   double settling_s() const;
+  // How late it reports what it meets, on average over rising and falling: each side's dead time
+  // plus its mean time constant (a first-order stage's mean delay), s. STE places a reading taken
+  // on the way where the robot was this long before (ste/passing_readings.hpp).
+  double mean_delay_s() const;
 };
 
 // The presets by name: ideal; catalytic, electrochemical, infrared (seed 000,

@@ -53,7 +53,13 @@ const OptionTable<WorldOptions>& world_option_table() {
        {"ste.world.rotor_disc", "--rotor-disc", &O::rotor_disc, non_negative(10.0, "m"),
         "Each gas reading averages the concentration over a disc of this radius, m (seed 000's "
         "rotor disturbance: 0.5; 0: at the sensor's point)",
-        "0 reads at a point; seed 000's rotor disturbance is 0.5 m"}}};
+        "0 reads at a point; seed 000's rotor disturbance is 0.5 m"},
+       {"ste.world.read_while_moving",
+        "--read-while-moving",
+        &O::read_while_moving,
+        {},
+        "The gas sensor reads at its rate along every path too, and the method gets those "
+        "readings with each stop's (issue 47; STE averages them over --passing-window)"}}};
   return table;
 }
 

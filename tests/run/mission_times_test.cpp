@@ -2,7 +2,9 @@
 // whole run through Scenario::run.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "run/mission_times.hpp"
 #include "run/run_record.hpp"
@@ -10,6 +12,17 @@
 
 namespace plumekit::run {
 namespace {
+
+// The distance from p to the nearest point of `path`.
+double distance_to_path(const std::vector<Vec2>& path, Vec2 p) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const Vec2 a = path[k - 1], d = path[k] - a;
+    const double t = std::clamp(dot(p - a, d) / std::max(dot(d, d), 1e-300), 0.0, 1.0);
+    best = std::min(best, norm(a + t * d - p));
+  }
+  return best;
+}
 
 // A robot that stood at (0, 0) from 0 to 5 s, then drove to (10, 0) at 0.5 m/s (20 s), arriving
 // at `arrived` (later than 25 s when it was kept waiting before it left), and sampled 5 s there.
@@ -105,6 +118,44 @@ TEST(MissionTimes, TheOptimumGoesAroundObstaclesAndARunsTimesFollowItsSteps) {
   // The stops' arrivals: each a sample's length before its end.
   for (const Step& s : r.steps)
     EXPECT_NEAR(s.time_s - s.arrived_s, o.world.sample_s, 1e-6);
+}
+
+TEST(MissionTimes, ARobotThatReadsWhileMovingRecordsEachReadingOnItsPathInTime) {
+  const Map map = block_map();
+  SteOptions o;
+  o.model = PlumeModelKind::Physics;
+  o.world.read_while_moving = true;
+  o.world.sensor = world::gas_sensor_preset("mox-fast");
+  const Scenario sc(map, o);
+  const LocalizationResult r = sc.run({4.5, 1.5}, {1.0, 1.5}, 7);
+  ASSERT_GT(r.steps.size(), 2u);
+  std::size_t readings = 0;
+  for (std::size_t k = 1; k < r.steps.size(); ++k) {
+    const Step &before = r.steps[k - 1], &s = r.steps[k];
+    double length = 0.0;
+    for (std::size_t i = 1; i < s.path_in.size(); ++i)
+      length += norm(s.path_in[i] - s.path_in[i - 1]);
+    // One reading per whole reading interval of the drive, each between the stops, on the path.
+    EXPECT_EQ(s.on_the_way.size(),
+              static_cast<std::size_t>(std::floor(length / o.world.speed * o.world.sample_rate)))
+        << k;
+    for (const PassingRecord& p : s.on_the_way) {
+      EXPECT_GT(p.time_s, before.time_s);
+      EXPECT_LE(p.time_s, s.arrived_s + 1e-9);
+      EXPECT_LT(distance_to_path(s.path_in, p.position), 1e-6);
+      EXPECT_EQ(p.recorded, p.position);  // no position noise here
+      EXPECT_GE(p.value, 0.0);
+    }
+    readings += s.on_the_way.size();
+  }
+  EXPECT_GT(readings, 10u);
+  // The first detection counts a reading on the way: no later than the first stop above it.
+  const double threshold = o.method.tracking.detection_threshold;
+  for (const Step& s : r.steps)
+    if (s.value > threshold) {
+      EXPECT_LE(r.times.first_detection_s, s.time_s);
+      break;
+    }
 }
 
 }  // namespace
