@@ -103,6 +103,11 @@ const OptionTable<SteLikelihood>& ste_likelihood_option_table() {
   return table;
 }
 
+constexpr const char* kCnnHelp =
+    "CNN model of the surrogate plume model: a plumekit-cnn file, or a shipped model's name "
+    "(docs/data.md): hybrid (the default; any map), thesis (the thesis's 64 x 64; 10 x 4 m "
+    "maps), v2, faithful (empty: hybrid; the CLI and Python find them)";
+
 const OptionTable<SteOptions>& ste_option_table() {
   using O = SteOptions;
   static const OptionTable<O> table{
@@ -112,13 +117,7 @@ const OptionTable<SteOptions>& ste_option_table() {
         enum_field(&O::model, &to_string, &parse_plume_model_kind, "surrogate, gaussian, physics"),
         {},
         "STE's plume model: surrogate (the CNN), gaussian or physics"},
-       {"ste.model_path",
-        "--cnn",
-        &O::model_path,
-        {},
-        "CNN model of the surrogate plume model: a plumekit-cnn file, or a shipped model's name "
-        "(docs/data.md): hybrid (the default; any map), thesis (the thesis's 64 x 64; 10 x 4 m "
-        "maps), v2, faithful (empty: hybrid; the CLI and Python find them)"},
+       {"ste.model_path", "--cnn", &O::model_path, {}, kCnnHelp},
        {"ste.source_cell", "--source-cell",
         optional_field(&O::source_cell,
                        [] {
@@ -161,8 +160,8 @@ const OptionTable<SteOptions>& ste_option_table() {
         "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m"},
        {"ste.passing_window_s", "--passing-window", &O::passing_window_s,
         real_range(0.0, 60.0, "s", true),
-        "STE averages the readings taken on the way (--read-while-moving) over stretches of "
-        "this long, each counting as its share of a stop, s (ste/passing_readings.hpp)"}}};
+        "STE averages readings on the way over stretches this long, s "
+        "(ste/passing_readings.hpp)"}}};
   return table;
 }
 
