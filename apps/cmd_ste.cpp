@@ -131,7 +131,8 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
              "ste.world.position_noise");
   add_table_flags(
       cmd, o.world, world::world_option_table(),
-      {"ste.world.odometry_drift", "ste.world.rotor_disc", "ste.world.read_while_moving"});
+      {"ste.world.odometry_drift", "ste.world.rotor_disc", "ste.world.read_while_moving",
+       "ste.world.adaptive_stop", "ste.world.stop_min_s", "ste.world.stop_tolerance"});
   add_table_flags(cmd, o, run::ste_option_table(), {"ste.passing_window_s"});
 }
 

@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """The hybrid model's likelihood sweep (results/ste-hybrid/make.sh tuning) as a Markdown table.
 
-    /usr/bin/python3 scripts/likelihood_table.py TUNING_DIR > table.md
+    /usr/bin/python3 scripts/likelihood_table.py [--mission] TUNING_DIR > table.md
 
 TUNING_DIR holds `evaluate` folders named SET-mSIGMA_M-kK (SET: families, buildings); one row per
-(sigma_M, k): each set's success within 0.5 m, mean error and median samples, and both pooled.
+(sigma_M, k): each set's success within 0.5 m, mean error and median samples (with --mission also
+the median mission time), and both pooled.
 """
 import json
 import os
@@ -13,6 +14,8 @@ import sys
 
 
 def main(argv):
+    mission = "--mission" in argv
+    argv = [a for a in argv if a != "--mission"]
     if len(argv) != 1:
         print(__doc__, file=sys.stderr)
         return 2
@@ -23,8 +26,8 @@ def main(argv):
         if m and os.path.exists(summary):
             with open(summary) as f:
                 found.setdefault((float(m[2]), float(m[3])), {})[m[1]] = json.load(f)["overall"]
-    print("| σ_M | k | families: within 0.5 m / mean error / samples | buildings: same "
-          "| pooled within 0.5 m |")
+    what = "within 0.5 m / mean error / samples" + (" / mission" if mission else "")
+    print(f"| σ_M | k | families: {what} | buildings: same | pooled within 0.5 m |")
     print("|---|---|---|---|---|")
     for (sm, k), sets in sorted(found.items(), key=lambda kv: (-kv[0][0], kv[0][1])):
         cells, hits, runs = [], 0, 0
@@ -37,7 +40,8 @@ def main(argv):
             hit = round(o["success_0_5m"] * n)
             hits, runs = hits + hit, runs + n
             cells.append(f"{hit}/{n} ({100 * o['success_0_5m']:.1f} %) / "
-                         f"{o['mean_error_m']:.3f} m / {o['median_samples']:g}")
+                         f"{o['mean_error_m']:.3f} m / {o['median_samples']:g}"
+                         + (f" / {o['median_mission_s']:.0f} s" if mission else ""))
         pooled = f"{hits}/{runs} ({100 * hits / runs:.1f} %)" if runs else "-"
         print(f"| {sm:g} | {k:g} | {cells[0]} | {cells[1]} | {pooled} |")
     return 0

@@ -233,6 +233,7 @@ bool SimulatedWorld::stop_reading() {
   if (options_.noise > 0.0)
     c = std::max(0.0, c + normal(stop_.noise, noise_rng_, 0.0, options_.noise));
   stop_.sum += c;
+  if (options_.adaptive_stop) stop_.values.push_back(c);
   const Vec2 w = plume_now.wind_at(p);
   stop_.wind_sum = stop_.wind_sum + w;
   if (options_.wind_variance_noise_deg > 0.0) {
@@ -244,7 +245,30 @@ bool SimulatedWorld::stop_reading() {
     stop_.direction_sum = stop_.direction_sum + (1.0 / speed) * w;
   }
   advance(reading_interval());
-  return ++stop_.taken == stop_.readings;
+  if (++stop_.taken == stop_.readings) return true;
+  if (!options_.adaptive_stop || !stop_settled()) return false;
+  stop_.readings = stop_.taken;  // the stop ends here: its mean is of the readings taken
+  return true;
+}
+
+bool SimulatedWorld::stop_settled() const {
+  const int per_second = std::max(1, static_cast<int>(std::lround(options_.sample_rate)));
+  if (stop_.taken % per_second != 0 ||
+      stop_.taken * reading_interval() < options_.stop_min_s - 1e-9)
+    return false;
+  const std::size_t per_half = static_cast<std::size_t>(std::max(1, per_second / 2));
+  const std::size_t m = stop_.values.size() / per_half;
+  if (m < 2) return false;
+  std::vector<double> means(m, 0.0);
+  for (std::size_t k = 0; k < m * per_half; ++k)
+    means[k / per_half] += stop_.values[k] / static_cast<double>(per_half);
+  double mean = 0.0, ss = 0.0;
+  for (double x : means)
+    mean += x / static_cast<double>(m);
+  for (double x : means)
+    ss += (x - mean) * (x - mean);
+  const double standard_error = std::sqrt(ss / static_cast<double>(m - 1) / static_cast<double>(m));
+  return standard_error <= options_.stop_tolerance;
 }
 
 Reading SimulatedWorld::end_stop() {

@@ -70,6 +70,14 @@ struct WorldOptions {
   // default: the committed results were made without, and off, every draw, plume step and reading
   // is as it was (a sensor with memory still reads on the way, unrecorded).
   bool read_while_moving = false;
+  // Adaptive stops (issue 47): a stop lasts from stop_min_s to sample_s, and ends at the first
+  // whole second from stop_min_s on when its mean is known to within stop_tolerance: the standard
+  // error of its mean, from the spread of its half-second means, is at most that (more readings
+  // would not move the mean by more). In clean air that is stop_min_s; where the plume comes and
+  // goes, up to sample_s. Off: every stop lasts sample_s.
+  bool adaptive_stop = false;
+  double stop_min_s = 1.0;       // s
+  double stop_tolerance = 20.0;  // concentration units
   // OptionError naming the field (docs/methods.md, "Options"); ste/options.cpp.
   void validate() const;
 };
@@ -140,7 +148,7 @@ class SimulatedWorld {
   // travel() is pass() for each reading interval of the path, then wait() for the rest.
   void begin_stop(Vec2 p);
   // Takes the stop's next reading now, then lets one reading interval pass; true once the stop's
-  // readings are all taken.
+  // readings are all taken (with adaptive_stop, once its mean is settled).
   bool stop_reading();
   // What the stop's readings report (the direction and position errors drawn now).
   Reading end_stop();
@@ -182,6 +190,8 @@ class SimulatedWorld {
   // p plus a fix's error of std `sd` per axis from `rng`, redrawn until free: a robot does not
   // believe itself inside a wall it can see (p if 1000 draws are not).
   Vec2 fix(Vec2 p, double sd, std::mt19937_64& rng) const;
+  // Whether the stop under way may end now (adaptive_stop): see WorldOptions.
+  bool stop_settled() const;
   // Records the reading `value` the sensor gave at p, `along` metres into the path.
   void record_transit(Vec2 p, double along, double value);
   // Adds the wall time of the outermost timed call to busy_s_ (stop() calls stop_reading()).
@@ -217,6 +227,7 @@ class SimulatedWorld {
     Vec2 p;
     int readings = 0, taken = 0;
     double sum = 0.0;
+    std::vector<double> values;   // each reading's, with adaptive_stop
     Vec2 wind_sum;                // the wind that carries the gas at p, at each reading
     Vec2 direction_sum;           // their unit vectors: the circular variance
     NormalSampler noise, spread;  // a fresh pair per sample, as the committed results were drawn
