@@ -2,22 +2,16 @@
 // between stop_min_s and sample_s, and its reading is then the mean of the readings it took.
 #include <gtest/gtest.h>
 
-#include "support/uniform_wind.hpp"
+#include "support/axis_plume.hpp"
 #include "world/simulated_world.hpp"
 
 namespace plumekit::world {
 namespace {
 
-// A plume along y = 2 from (2, 2) in a uniform 1 m/s wind, with a short spin-up for a test.
-struct PlumeWorld {
-  Map map = default_arena(10.0, 4.0);
-  cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  Vec2 source{2.0, 2.0};
+// The axis plume (test::AxisPlume), its stops adaptive or not.
+struct PlumeWorld : test::AxisPlume {
   WorldOptions options(bool adaptive) const {
-    WorldOptions o;
-    o.filament.release_per_second = 100.0;
-    o.filament.min_spinup = 2.0;
-    o.filament.max_spinup = 6.0;
+    WorldOptions o = quick_options();
     o.adaptive_stop = adaptive;
     return o;
   }

@@ -9,26 +9,18 @@
 #include <vector>
 
 #include "core/error.hpp"
-#include "support/uniform_wind.hpp"
+#include "support/axis_plume.hpp"
 #include "world/shared_plume.hpp"
 #include "world/simulated_world.hpp"
 
 namespace plumekit::ste {
 namespace {
 
-// A plume along y = 2 from (2, 2) in a uniform 1 m/s wind, in the faithful world (unsteady wind,
-// occlusion), short enough a spin-up for a test.
-struct PlumeWorld {
-  Map map = default_arena(10.0, 4.0);
-  cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  Vec2 source{2.0, 2.0};
+// The axis plume in the faithful world (unsteady wind, occlusion), with wind and position noise.
+struct PlumeWorld : test::AxisPlume {
   std::uint64_t seed = 29;
   world::WorldOptions options(const std::string& sensor) const {
-    world::WorldOptions o;
-    o.filament.release_per_second = 100.0;
-    o.filament.min_spinup = 2.0;
-    o.filament.max_spinup = 6.0;
-    o.sensor = world::gas_sensor_preset(sensor);
+    world::WorldOptions o = quick_options(sensor);
     o.wind_direction_noise_deg = 10.0;
     o.position_noise = 0.1;
     return o;

@@ -9,24 +9,17 @@
 #include <thread>
 #include <vector>
 
-#include "support/uniform_wind.hpp"
+#include "support/axis_plume.hpp"
 #include "world/shared_plume.hpp"
 #include "world/simulated_world.hpp"
 
 namespace plumekit::ste {
 namespace {
 
-// A plume along y = 2 from (2, 2) in a uniform 1 m/s wind, with a short spin-up for a test.
-struct PlumeWorld {
-  Map map = default_arena(10.0, 4.0);
-  cfd::WindField wind = test::uniform_wind(10.0, 4.0, 0.05, 1.0);
-  Vec2 source{2.0, 2.0};
+// The axis plume (test::AxisPlume), its robot reading on the way unless told.
+struct PlumeWorld : test::AxisPlume {
   world::WorldOptions options(const std::string& sensor, bool read_while_moving = true) const {
-    world::WorldOptions o;
-    o.filament.release_per_second = 100.0;
-    o.filament.min_spinup = 2.0;
-    o.filament.max_spinup = 6.0;
-    o.sensor = world::gas_sensor_preset(sensor);
+    world::WorldOptions o = quick_options(sensor);
     o.read_while_moving = read_while_moving;
     return o;
   }
