@@ -88,6 +88,18 @@ Vec2 sample_point(const Map& map, const py::handle& p, const std::string& field)
   return a;
 }
 
+// Readings taken on the way, [(point, time_s, reading), ...] in the map's frame.
+std::vector<ste::PassingReading> passing_readings(const Map& map, const py::list& readings) {
+  std::vector<ste::PassingReading> out;
+  for (const py::handle& r : readings) {
+    const py::tuple t = r.cast<py::tuple>();
+    if (t.size() != 3) throw InputError("on_the_way: each reading is (point, time_s, reading)");
+    out.push_back({map.from_frame(to_point(t[0], "on_the_way point")), t[1].cast<double>(),
+                   t[2].cast<double>()});
+  }
+  return out;
+}
+
 // A mission on a scenario, kept alive together.
 struct PyMission {
   std::shared_ptr<const run::Scenario> scenario;
@@ -103,7 +115,8 @@ void bind_mission(py::module_& m) {
       "One thread at a time.")
       .def(
           "add",
-          [](PyMission& pm, const py::handle& p, double reading, const py::list& shared) {
+          [](PyMission& pm, const py::handle& p, double reading, const py::list& shared,
+             const py::list& on_the_way) {
             const Map& map = pm.scenario->map();
             const Vec2 a = sample_point(map, p, "p");
             std::vector<ste::Mission::Sample> others;
@@ -112,21 +125,27 @@ void bind_mission(py::module_& m) {
               if (t.size() != 2) throw InputError("shared: each sample is (point, reading)");
               others.push_back({sample_point(map, t[0], "shared point"), t[1].cast<double>()});
             }
+            const std::vector<ste::PartialSample> partial = ste::partial_samples(
+                passing_readings(map, on_the_way), pm.scenario->options().passing_options());
             const ste::Posterior* post = nullptr;
             {
               ReleasedGil release;
-              post = &pm.mission->add(a, reading, others);
+              post = &pm.mission->add(a, reading, others, partial);
             }
             return posterior_dict(map, *post);
           },
           py::arg("p"), py::arg("reading"), py::arg("shared") = py::list(),
+          py::arg("on_the_way") = py::list(),
           "A sample; returns the posterior: 'estimate' (the expected source), 'map', "
           "'entropy', 'max_entropy', 'seen_mass', 'expected' (every parameter) and 'marginal' "
           "[ny, nx] over the arena. `shared`: teammates' samples since the last, [(point, "
           "reading), ...], added first; they do not count against this robot's max_samples. A "
           "point "
           "outside the arena or inside an obstacle raises OptionError (a ValueError), as the "
-          "command line refuses such a source")
+          "command line refuses such a source. `on_the_way`: the readings taken while moving "
+          "here, [(point, time_s, reading), ...] oldest first; averaged over the scenario's "
+          "passing_window_s into partial samples (docs/design/ste.md, 'Readings on the way'), "
+          "which do not count as samples")
       .def(
           "next",
           [](const PyMission& pm, const py::handle& robot, const py::list& teammates) {

@@ -59,6 +59,24 @@ def test_a_mission_fed_the_runs_readings_reaches_its_estimate(block, run):
     assert marginal.sum() == pytest.approx(1.0)
 
 
+def test_a_mission_fed_the_readings_on_the_way_follows_the_run(block):
+    moving = {"plume_model": "physics", "stop": {"max_samples": 8},
+              "world": {"read_while_moving": True}}
+    run = plumekit.localize(block, block.sources[0], seed=3, **moving)
+    mission = plumekit.Scenario(block, **moving).mission(seed=3)
+    taken = 0
+    for step in run["steps"]:
+        way = [((r[2], r[3]), r[4], r[5]) for r in step.get("on_the_way", [])]
+        taken += len(way)
+        post = mission.add(step["recorded_position"], step["value"], on_the_way=way)
+        assert list(post["estimate"]) == pytest.approx(step["estimate"], abs=1e-12)
+        assert post["entropy"] == pytest.approx(step["entropy"], abs=1e-12)
+    assert taken > 10
+    assert mission.samples == run["samples"]  # readings on the way are no samples
+    with pytest.raises(plumekit.InputError, match="on_the_way: each reading"):
+        mission.add(run["start"], 0.0, on_the_way=[((1.0, 1.0), 0.5)])
+
+
 def test_options_reach_the_library(block):
     o = plumekit.SteOptions()
     assert o.plume_model == "surrogate" and o.stop.max_samples == 0
