@@ -74,7 +74,9 @@ struct WorldOptions {
   // whole second from stop_min_s on when its mean is known to within stop_tolerance: the standard
   // error of its mean, from the spread of its half-second means, is at most that (more readings
   // would not move the mean by more). In clean air that is stop_min_s; where the plume comes and
-  // goes, up to sample_s. Off: every stop lasts sample_s.
+  // goes, up to sample_s. A stop lasts whole seconds, at least one (two half-second means), so a
+  // pass-through is not offered: a decision needs its stop's reading. Off: every stop lasts
+  // sample_s.
   bool adaptive_stop = false;
   double stop_min_s = 1.0;       // s
   double stop_tolerance = 20.0;  // concentration units
