@@ -133,7 +133,7 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
       cmd, o.world, world::world_option_table(),
       {"ste.world.odometry_drift", "ste.world.rotor_disc", "ste.world.read_while_moving",
        "ste.world.adaptive_stop", "ste.world.stop_min_s", "ste.world.stop_tolerance"});
-  add_table_flags(cmd, o, run::ste_option_table(), {"ste.passing_window_s"});
+  add_table_flags(cmd, o, run::ste_option_table(), {"ste.passing_window_s", "ste.path_scoring"});
 }
 
 // A team of robots (seed 004 ch. 13; run/team.hpp).

@@ -45,8 +45,9 @@ GridRoadmap::GridRoadmap(const FreeSpace& space, double spacing)
   }
 }
 
-std::vector<double> GridRoadmap::distances_from(Vec2 from) const {
+std::vector<double> GridRoadmap::distances_from(Vec2 from, std::vector<int>* previous) const {
   std::vector<double> dist(nodes_.size(), kUnreachable);
+  if (previous) previous->assign(nodes_.size(), -1);
   using Item = std::pair<double, int>;
   std::priority_queue<Item, std::vector<Item>, std::greater<>> open;
   // Seeds: the nodes of the lattice cells around `from` that it sees free.
@@ -66,7 +67,10 @@ std::vector<double> GridRoadmap::distances_from(Vec2 from) const {
     if (d > dist[k]) continue;
     for (int e = link_begin_[k]; e < link_begin_[k + 1]; ++e) {
       const Link& l = links_[e];
-      if (d + l.length < dist[l.to]) open.emplace(dist[l.to] = d + l.length, l.to);
+      if (d + l.length < dist[l.to]) {
+        open.emplace(dist[l.to] = d + l.length, l.to);
+        if (previous) (*previous)[l.to] = k;
+      }
     }
   }
   return dist;

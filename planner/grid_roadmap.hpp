@@ -30,8 +30,9 @@ class GridRoadmap {
 
   // Travel distance from `from` to every node: the straight segment to the
   // nearest nodes it sees free (up to one lattice cell away), then the
-  // roadmap. Unreachable nodes get infinity.
-  std::vector<double> distances_from(Vec2 from) const;
+  // roadmap. Unreachable nodes get infinity. With `previous`, each node's predecessor on its
+  // shortest way (-1 for a node reached straight from `from`, or unreached).
+  std::vector<double> distances_from(Vec2 from, std::vector<int>* previous = nullptr) const;
 
   static constexpr double kUnreachable = std::numeric_limits<double>::infinity();
 

@@ -103,6 +103,10 @@ const OptionTable<SteLikelihood>& ste_likelihood_option_table() {
   return table;
 }
 
+constexpr const char* kPassingWindowHelp =
+    "STE averages readings on the way over stretches this long, s (ste/passing_readings.hpp)";
+constexpr const char* kPathScoringHelp =
+    "With --read-while-moving, STE scores the floor's goals with the gains along their paths";
 constexpr const char* kCnnHelp =
     "CNN model of the surrogate plume model: a plumekit-cnn file, or a shipped model's name "
     "(docs/data.md): hybrid (the default; any map), thesis (the thesis's 64 x 64; 10 x 4 m "
@@ -159,10 +163,16 @@ const OptionTable<SteOptions>& ste_option_table() {
         "(seed 004 ch. 15's benchmark: 0.5; 0: never, but levy-taxis ends at 0.5)",
         "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m"},
        {"ste.passing_window_s", "--passing-window", &O::passing_window_s,
-        real_range(0.0, 60.0, "s", true),
-        "STE averages readings on the way over stretches this long, s "
-        "(ste/passing_readings.hpp)"}}};
+        real_range(0.0, 60.0, "s", true), kPassingWindowHelp},
+       {"ste.path_scoring", "--path-scoring", &O::path_scoring, {}, kPathScoringHelp}}};
   return table;
+}
+
+ste::MissionPace SteOptions::mission_pace() const {
+  ste::MissionPace pace{world.speed, world.sample_s};
+  if (world.read_while_moving && path_scoring)
+    pace.passing_weight_per_m = 1.0 / (world.speed * world.sample_s);
+  return pace;
 }
 
 ste::PassingOptions SteOptions::passing_options() const {

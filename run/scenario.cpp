@@ -166,9 +166,8 @@ Scenario::Scenario(const Map& map, const SteOptions& options, const Scenario* sa
   space_ = std::make_unique<planner::FreeSpace>(map_, po.margin, po.arc_segments);
   if (space_->empty()) throw InputError("map " + map_.name + ": no free space at the margin");
   bins_ = ste::make_bins(map_, options.bins);
-  navigator_ = std::make_unique<ste::Navigator>(
-      *space_, bins_, options_.navigation,
-      ste::MissionPace{options.world.speed, options.world.sample_s});
+  navigator_ =
+      std::make_unique<ste::Navigator>(*space_, bins_, options_.navigation, options.mission_pace());
   options_.stop.max_samples =
       ste::resolve_max_samples(options.stop.max_samples, navigator_->floor_goals().size(),
                                options_.navigation.floor_spacing);

@@ -103,12 +103,18 @@ struct SteOptions {
   double success_radius = 0.0;
   // s: STE's stretches of readings taken on the way (world.read_while_moving; passing_options).
   double passing_window_s = 1.0;
+  // With readings on the way, the floor's goals are scored with the gains along their paths
+  // (ste::MissionPace::passing_weight_per_m).
+  bool path_scoring = false;
 
   // The likelihood the plume model runs with (the unset sigmas filled in).
   ste::LikelihoodOptions likelihood_options() const;
   // How STE takes the readings on the way: the window, and from the world the reading interval,
   // the stop's length and the gas sensor's mean delay.
   ste::PassingOptions passing_options() const;
+  // What a move costs and reads, for the navigator: the world's speed and stop, and with
+  // readings on the way and path_scoring the share of a stop each metre reads.
+  ste::MissionPace mission_pace() const;
   // Whether the run reads the CNN file `model_path`: a method with a plume model, the surrogate.
   bool uses_cnn() const;
   // The candidate source grid in use (0 for the Gaussian plume, which has none).

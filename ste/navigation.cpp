@@ -96,19 +96,23 @@ Decision Navigator::decide_on_floor(Vec2 robot, const Estimator& estimator,
   // The floor's goals, reached along the roadmap.
   std::vector<Vec2> goals;
   std::vector<double> travel;
-  const std::vector<double> roadmap = roadmap_->distances_from(robot);
+  std::vector<int> node, previous;
+  const std::vector<double> roadmap = roadmap_->distances_from(robot, &previous);
   for (std::size_t g = 0; g < floor_goals_.size(); ++g) {
     const double t = roadmap[floor_goal_node_[g]];
     if (t == planner::GridRoadmap::kUnreachable || norm(floor_goals_[g] - robot) < kSamePlace)
       continue;
     goals.push_back(floor_goals_[g]);
     travel.push_back(t);
+    node.push_back(floor_goal_node_[g]);
   }
   const std::vector<double> g = gains(goals, estimator, posterior, options_.floor_gain_cells);
+  const std::vector<double> on_the_way = gains_along_paths(
+      node, g, previous, std::min(1.0, pace_.passing_weight_per_m * options_.floor_spacing));
   double best = 0.0;
   Vec2 away = robot;
   for (std::size_t c = 0; c < goals.size(); ++c) {
-    const double r = rate(g[c], travel[c]);
+    const double r = rate(g[c] + on_the_way[c], travel[c]);
     if (r > best) best = r, away = goals[c];
   }
   d.candidates.insert(d.candidates.end(), goals.begin(), goals.end());
@@ -171,6 +175,20 @@ Decision Navigator::decide_on_lattice(Vec2 robot, const Estimator& estimator,
   if (space_.region_of(goal) != home) goal = d.candidates.empty() ? robot : d.kld_target;
   d.goal = goal;
   return d;
+}
+
+std::vector<double> gains_along_paths(const std::vector<int>& node, const std::vector<double>& gain,
+                                      const std::vector<int>& previous, double weight) {
+  std::vector<double> sums(node.size(), 0.0);
+  if (weight <= 0.0) return sums;
+  std::vector<double> at(previous.size(), 0.0);  // per roadmap node: its goal's gain
+  for (std::size_t c = 0; c < node.size(); ++c)
+    at[static_cast<std::size_t>(node[c])] = gain[c];
+  for (std::size_t c = 0; c < node.size(); ++c)
+    for (int k = previous[static_cast<std::size_t>(node[c])]; k >= 0;
+         k = previous[static_cast<std::size_t>(k)])
+      sums[c] += weight * at[static_cast<std::size_t>(k)];
+  return sums;
 }
 
 const char* to_string(NavigationOptions::Reward reward) {

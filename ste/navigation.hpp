@@ -73,6 +73,11 @@ struct Decision {
 struct MissionPace {
   double speed = 0.5;     // m/s
   double sample_s = 5.0;  // s per sample
+  // The share of a stop's sample each metre of travel reads (readings on the way, issue 47:
+  // 1 / (speed sample_s)); 0: the robot reads only at stops. With it a floor goal is scored by
+  // its path too: the gains of the floor goals its roadmap path passes, each worth this share of
+  // a stop per metre of path it stands for (floor_spacing), are added to the goal's own.
+  double passing_weight_per_m = 0.0;
 };
 
 class Navigator {
@@ -109,6 +114,13 @@ class Navigator {
   std::vector<Vec2> floor_goals_;
   std::vector<int> floor_goal_node_;  // per floor goal: its roadmap node
 };
+
+// Per goal c (at roadmap node node[c], with its gain gain[c]): the gains of the other goals on its
+// roadmap path from the robot (`previous`: each node's predecessor, -1 at the root), each times
+// `weight`, the share of a stop the path's readings there are worth (path scoring, issue 47). An
+// upper bound of the path's information: gains of samples taken one after another do not add.
+std::vector<double> gains_along_paths(const std::vector<int>& node, const std::vector<double>& gain,
+                                      const std::vector<int>& previous, double weight);
 
 const char* to_string(NavigationOptions::Reward reward);
 // "kl", "expected"; OptionError on ste.navigation.reward otherwise.

@@ -12,7 +12,7 @@ cd "$(dirname "$0")/../.."
 source results/make-lib.sh "$1"
 source scripts/blas-env.sh
 variants=(today today-physics moving lean moving-lean short moving-short moving-lean-short
-  adaptive moving-adaptive moving-lean-adaptive moving-k1-adaptive)
+  adaptive moving-adaptive moving-lean-adaptive moving-k1-adaptive moving-k1-adaptive-paths)
 variant() { # the flags of a variant: what it changes from the defaults
   case $1 in
     today) flags=() ;;                              # the defaults before issue 47 (the hybrid model)
@@ -27,16 +27,18 @@ variant() { # the flags of a variant: what it changes from the defaults
     moving-adaptive) flags=(--read-while-moving --adaptive-stops) ;;
     moving-lean-adaptive) flags=(--read-while-moving --sigma-m 100 --sigma-std 1 --adaptive-stops) ;;
     moving-k1-adaptive) flags=(--read-while-moving --sigma-std 1 --adaptive-stops) ;; # tuning's pick
+    moving-k1-adaptive-paths) flags=(--read-while-moving --sigma-std 1 --adaptive-stops --path-scoring) ;;
     *) echo "$0: unknown variant $1" >&2; exit 2 ;;
   esac
 }
 parts=("${@:2}")
 if [[ ${#parts[@]} -eq 0 ]]; then # what README.md shows: every variant on the test maps, the
   # telling ones on the buildings and the real floors, and the tuning
-  for v in "${variants[@]}"; do parts+=("test-$v"); done
+  # (path scoring changes nothing on the test maps: their navigator is the thesis's lattice)
+  for v in "${variants[@]}"; do [[ $v == *-paths ]] || parts+=("test-$v"); done
   for set in buildings real; do
     for v in today today-physics moving-short moving-lean-short adaptive moving-adaptive \
-      moving-lean-adaptive moving-k1-adaptive; do parts+=("$set-$v"); done
+      moving-lean-adaptive moving-k1-adaptive moving-k1-adaptive-paths; do parts+=("$set-$v"); done
   done
   parts+=(tuning)
 fi

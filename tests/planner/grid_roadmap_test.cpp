@@ -35,6 +35,33 @@ TEST(GridRoadmap, OpenFloorDistancesAreWithinTheLatticeBoundOfStraightLines) {
   }
 }
 
+TEST(GridRoadmap, EachNodesPredecessorsWalkItsShortestWayBack) {
+  const FreeSpace space(two_rooms(), 0.15, 8);
+  const GridRoadmap roadmap(space, 0.25);
+  const Vec2 from{2.0, 0.5};
+  std::vector<int> previous;
+  const std::vector<double> d = roadmap.distances_from(from, &previous);
+  EXPECT_EQ(d, roadmap.distances_from(from));  // the same distances with the tree
+  const std::size_t across = nearest_node(roadmap, {6.0, 0.5});
+  // Back along the predecessors: each link adds its length, and the first node is reached
+  // straight from `from`.
+  double walked = 0.0;
+  int k = static_cast<int>(across), hops = 0;
+  bool through_door = false;
+  while (previous[static_cast<std::size_t>(k)] >= 0) {
+    const int p = previous[static_cast<std::size_t>(k)];
+    walked +=
+        norm(roadmap.node(static_cast<std::size_t>(k)) - roadmap.node(static_cast<std::size_t>(p)));
+    through_door = through_door || roadmap.node(static_cast<std::size_t>(k)).y > 3.0;
+    k = p;
+    ++hops;
+  }
+  EXPECT_GT(hops, 10);
+  EXPECT_TRUE(through_door);  // the wall's end is at y = 3 (test_maps.hpp)
+  walked += norm(roadmap.node(static_cast<std::size_t>(k)) - from);
+  EXPECT_NEAR(walked, d[across], 1e-9);
+}
+
 TEST(GridRoadmap, TheWayIntoTheNextRoomGoesThroughTheDoor) {
   const FreeSpace space(two_rooms(), 0.15, 8);
   const GridRoadmap roadmap(space, 0.25);

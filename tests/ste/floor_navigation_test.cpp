@@ -238,3 +238,25 @@ TEST(FloorGain, ResampledSupportKeepsTheMassAndApproximatesTheExactGain) {
 
 }  // namespace
 }  // namespace plumekit::ste
+
+namespace plumekit::ste {
+namespace {
+
+TEST(PathScoring, AGoalGainsWhatItsPathPassesTimesTheShareOfAStop) {
+  // Roadmap nodes 0 <- 1 <- 2 <- 3 (0 the root) and 4 <- 1; goals at nodes 1, 2, 3 and 4.
+  const std::vector<int> previous{-1, 0, 1, 2, 1};
+  const std::vector<int> node{1, 2, 3, 4};
+  const std::vector<double> gain{0.4, 0.2, 0.1, 0.8};
+  const std::vector<double> s = gains_along_paths(node, gain, previous, 0.5);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_DOUBLE_EQ(s[0], 0.0);                // nothing before node 1 but the root
+  EXPECT_DOUBLE_EQ(s[1], 0.5 * 0.4);          // passes node 1
+  EXPECT_DOUBLE_EQ(s[2], 0.5 * (0.2 + 0.4));  // passes 2 and 1
+  EXPECT_DOUBLE_EQ(s[3], 0.5 * 0.4);          // its own branch passes 1 only
+  // Without readings on the way a path reads nothing.
+  for (double x : gains_along_paths(node, gain, previous, 0.0))
+    EXPECT_EQ(x, 0.0);
+}
+
+}  // namespace
+}  // namespace plumekit::ste
