@@ -1,7 +1,6 @@
 #include "run/evaluation_parts.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
@@ -19,13 +18,12 @@ namespace {
 ordered_json run_row(const RunRecord& r) {
   // null: no overhead, or never got there. The time metrics after the trackers' two criteria,
   // so that every earlier field keeps its place.
-  const auto number = [](double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(); };
   const MissionTimes& t = r.times;
-  return ordered_json::array({r.map_index, r.source_index, r.run, r.seed, r.error_m, r.samples,
-                              r.distance_m, r.mission_s, r.stopped_by, r.compute_s, r.median_step_s,
-                              r.reached, number(r.distance_overhead), number(t.first_detection_s),
-                              number(t.within_1m_s), number(t.within_0_5m_s), t.declared_s,
-                              number(t.optimum_s)});
+  return ordered_json::array(
+      {r.map_index, r.source_index, r.run, r.seed, r.error_m, r.samples, r.distance_m, r.mission_s,
+       r.stopped_by, r.compute_s, r.median_step_s, r.reached, finite_or_null(r.distance_overhead),
+       finite_or_null(t.first_detection_s), finite_or_null(t.within_1m_s),
+       finite_or_null(t.within_0_5m_s), t.declared_s, finite_or_null(t.optimum_s)});
 }
 
 // The runs of all parts in run order, each map's statistics and times, and the files.

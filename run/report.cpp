@@ -17,6 +17,10 @@ namespace plumekit::run {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
+ordered_json finite_or_null(double v) {
+  return std::isfinite(v) ? ordered_json(v) : ordered_json();
+}
+
 namespace {
 
 std::string fmt(double v, int digits = 2) {
@@ -81,17 +85,12 @@ ordered_json team_json(const MapFrame& f, const LocalizationResult& r) {
                       {"entropy", t.entropy},
                       {"swaps", t.swaps},
                       {"waited_s", t.waited_s},
-                      {"closest_m", std::isfinite(t.closest_m) ? ordered_json(t.closest_m)
-                                                               : ordered_json(nullptr)},
+                      {"closest_m", finite_or_null(t.closest_m)},
                       {"steps", steps_json(f, t.steps)}});
   return {{"robots", r.team.size()},
           {"strategy", r.strategy},
           {"declared_by", r.declared_by},
           {"members", robots}};
-}
-
-ordered_json finite_or_null(double v) {
-  return std::isfinite(v) ? ordered_json(v) : ordered_json();
 }
 
 // null: the run never got there.
@@ -223,9 +222,7 @@ ordered_json stats_json(const Stats& s, bool tracking) {
   if (tracking) {
     j["reached_source_box"] = s.reached;
     j["reached_source_box_ci95"] = {s.reached_ci95.lo, s.reached_ci95.hi};
-    j["median_distance_overhead"] = std::isfinite(s.median_distance_overhead)
-                                        ? ordered_json(s.median_distance_overhead)
-                                        : ordered_json(nullptr);
+    j["median_distance_overhead"] = finite_or_null(s.median_distance_overhead);
     j["distance_overhead_runs"] = s.distance_overhead_runs;
   }
   return j;

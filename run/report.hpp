@@ -53,6 +53,9 @@ MapFolder read_map_folder(const std::filesystem::path& dir);
 // The run of a map whose error is the median one (the lower of the two middle runs for an even
 // count): the map's typical trajectory.
 const RunRecord& median_run(const std::vector<RunRecord>& runs);
+// A number as JSON, or null where it is not finite: a time the run never reached, an overhead
+// without a detection, a team robot alone.
+nlohmann::ordered_json finite_or_null(double v);
 // Why that run is the one drawn, for its picture's title: "median run of N; map median X m".
 // The title states the drawn run's own error; with an even count the map's median is the mean
 // of two runs and no run's error, so both are said.

@@ -16,11 +16,8 @@ namespace {
 // The distance from p to the nearest point of `path`.
 double distance_to_path(const std::vector<Vec2>& path, Vec2 p) {
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const Vec2 a = path[k - 1], d = path[k] - a;
-    const double t = std::clamp(dot(p - a, d) / std::max(dot(d, d), 1e-300), 0.0, 1.0);
-    best = std::min(best, norm(a + t * d - p));
-  }
+  for (std::size_t k = 1; k < path.size(); ++k)
+    best = std::min(best, distance_to_segment(p, path[k - 1], path[k]));
   return best;
 }
 
