@@ -90,7 +90,8 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
           "The true source's release rate in the world, concentration units * m^2/s (the plume "
           "models' nominal is 1000; --release-scale lets STE estimate another)",
           "plume.release_rate");
-  add_table_flags(cmd, o, run::ste_option_table(), {"ste.success_radius"});
+  // First: the preset's callback runs before the flags that override its halves.
+  add_table_flags(cmd, o, run::ste_option_table(), {"ste.protocol", "ste.success_radius"});
   add_table_flags(
       cmd, o.world, world::world_option_table(),
       {"ste.world.noise", "ste.world.speed", "ste.world.sample_s", "ste.world.sample_rate"});
@@ -133,7 +134,8 @@ void add_robot_world_options(CLI::App* cmd, run::SteOptions& o) {
       cmd, o.world, world::world_option_table(),
       {"ste.world.odometry_drift", "ste.world.rotor_disc", "ste.world.read_while_moving",
        "ste.world.adaptive_stop", "ste.world.stop_min_s", "ste.world.stop_tolerance"});
-  add_table_flags(cmd, o, run::ste_option_table(), {"ste.passing_window_s", "ste.path_scoring"});
+  add_table_flags(cmd, o, run::ste_option_table(),
+                  {"ste.passing_window_s", "ste.path_scoring", "ste.approach"});
 }
 
 // A team of robots (seed 004 ch. 13; run/team.hpp).

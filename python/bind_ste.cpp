@@ -199,6 +199,9 @@ void bind_scenario(py::module_& m) {
            py::arg("map"), py::arg("options") = py::none())
       .def_property_readonly("map", [](const run::Scenario& sc) { return sc.map(); })
       .def_property_readonly(
+          "options", [](const run::Scenario& sc) { return sc.options(); },
+          "The SteOptions it was built with (a copy)")
+      .def_property_readonly(
           "wind",
           [](const run::Scenario& sc) {
             auto w = std::make_shared<Wind>();

@@ -2,6 +2,9 @@
 
 #include <pybind11/stl.h>
 
+#include <utility>
+#include <vector>
+
 namespace plumekit::python {
 
 Vec2 to_point(const py::handle& value, const char* what) {
@@ -34,7 +37,13 @@ void set_gas_sensor(world::GasSensorModel& sensor, const std::string& name) {
 }
 
 void set_options(py::object options, const py::dict& values, const std::string& what) {
-  for (const auto& item : values) {
+  // A preset first, whatever the order given: the fields given with it override their part of it.
+  std::vector<std::pair<py::handle, py::handle>> items;
+  for (const auto& item : values)
+    if (py::str(item.first).cast<std::string>() == "protocol") items.emplace_back(item);
+  for (const auto& item : values)
+    if (py::str(item.first).cast<std::string>() != "protocol") items.emplace_back(item);
+  for (const auto& item : items) {
     const std::string name = py::str(item.first);
     if (!py::hasattr(options, name.c_str()) || name.rfind('_', 0) == 0)
       throw py::type_error(what + ": no option named '" + name + "'");

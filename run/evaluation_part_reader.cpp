@@ -67,6 +67,7 @@ RunRecord parse_run_row(const ordered_json& row, const ordered_json& maps) {
   } else {
     r.times.declared_s = r.mission_s;
   }
+  r.times.ended_s = r.mission_s;
   return r;
 }
 

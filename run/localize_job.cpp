@@ -72,6 +72,7 @@ LocalizeReport localize_job(const LocalizeRequest& q) {
                  {"map", provenance_path(q.map)},
                  {"plume_model", to_string(q.ste.model)},
                  {"seed", q.seed}};
+  sampling_json(q.ste, j);
   if (q.ste.uses_cnn())
     j["cnn"] = provenance_path(q.ste.model_path);  // which network, for a result to be remade
   j.update(rep.json);

@@ -212,7 +212,25 @@ class FloorRobot {
     return true;
   }
 
+  // The drive to the estimate after the method stopped (MethodRunOptions::approach).
+  void approach() {
+    const std::optional<Vec2> estimate = method_.estimate();
+    if (!options_.approach || r_.stopped_by == "reached" || !estimate) return;
+    bool blocked = false;
+    const planner::PlanResult p =
+        path_to(methods::Move::to(*estimate), pos_, planner_, options_, blocked);
+    if (p.length <= 0.0) return;
+    const double t0 = world_.time();
+    world_.travel(p.path, p.length);
+    world_.take_transit_readings();  // read on the way, but nobody decides on them any more
+    r_.distance_m += p.length;
+    r_.approach = p.path;
+    r_.approach_s = world_.time() - t0;
+    pos_ = p.goal;
+  }
+
   LocalizationResult finish() {
+    approach();
     r_.reached = r_.stopped_by == "reached";
     if (std::optional<Grid<double>> belief = method_.belief_map(world_.map()))
       r_.posterior.marginal = std::move(*belief);

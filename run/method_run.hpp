@@ -99,6 +99,10 @@ struct MethodRunOptions {
   const planner::FreeSpace* space = nullptr;
   // A guard on every method (each has its own budget below this): no run is longer.
   int max_stops = 2000;
+  // After the method stops (other than by reaching the source), the robot drives to its estimate,
+  // when it has one, and the mission ends there: a robot that has found a leak goes to it, and
+  // GSL-Bench scores where the robot is (issue 47; SteOptions::approach).
+  bool approach = false;
 };
 
 // Why a run ends at its `stops`-th stop, made at `pos`: the method's own reason, or the runner's

@@ -7,7 +7,8 @@
 
 namespace plumekit::run {
 
-double first_within(const std::vector<Step>& steps, Vec2 source, double radius, double speed) {
+double first_within(const std::vector<Step>& steps, Vec2 source, double radius, double speed,
+                    const std::vector<Vec2>& approach) {
   const SourceDisc disc{source, radius};
   double left_s = 0.0;  // when the robot left its previous stop
   for (const Step& s : steps) {
@@ -23,6 +24,8 @@ double first_within(const std::vector<Step>& steps, Vec2 source, double radius, 
     if (disc.contains(s.position)) return s.arrived_s;
     left_s = s.time_s;
   }
+  if (const std::optional<SourceDisc::Entry> e = disc.entry(approach))
+    return left_s + e->along / speed;
   return MissionTimes::kNever;
 }
 

@@ -23,21 +23,24 @@ struct MissionTimes {
   double first_detection_s = kNever;
   // The first moment a robot (any of a team) is within 1 m and within 0.5 m of the source.
   double within_1m_s = kNever, within_0_5m_s = kNever;
-  // The declaration: the mission's end (LocalizationResult::time_s).
-  double declared_s = 0.0;
+  // The declaration, and the mission's end (LocalizationResult::time_s): the same, unless the robot
+  // then drove to its estimate (--approach).
+  double declared_s = 0.0, ended_s = 0.0;
   // The shortest collision-free way from the start to the source at the robot's speed (a
   // team's: its nearest robot's): the optimum a search is compared with. NaN when none.
   double optimum_s = kNever;
-  // The mission over the optimum; NaN without an optimum.
-  double over_optimum() const { return optimum_s > 0.0 ? declared_s / optimum_s : kNever; }
+  // The whole mission over the optimum; NaN without an optimum.
+  double over_optimum() const { return optimum_s > 0.0 ? ended_s / optimum_s : kNever; }
   // GSL-Bench's rule: within 1 m within 300 s.
   bool gsl_bench_success() const { return within_1m_s <= kGslBenchTimeout; }
 };
 
 // When a robot whose stops were `steps` first came within `radius` of `source`: it drove each
 // stop's path_in at `speed` m/s, arriving at the stop's arrived_s, and stood there until its
-// time_s. NaN when it never did.
-double first_within(const std::vector<Step>& steps, Vec2 source, double radius, double speed);
+// time_s; then, leaving its last stop, it drove `approach` (its way to its estimate after the
+// method stopped; MethodRunOptions::approach). NaN when it never did.
+double first_within(const std::vector<Step>& steps, Vec2 source, double radius, double speed,
+                    const std::vector<Vec2>& approach = {});
 // The first reading above `threshold`: one taken on the way (Step::on_the_way), or the end of a
 // stop whose mean is; NaN when none is.
 double first_detection(const std::vector<Step>& steps, double threshold);

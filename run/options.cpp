@@ -60,13 +60,17 @@ const OptionTable<EvaluationOptions>& evaluation_option_table() {
 namespace {
 
 // "200 for the surrogate, 150 for physics, 30 for gaussian": what an unset likelihood field
-// is with each plume model (default_likelihood).
+// is with each plume model (default_likelihood), and with the thesis's protocol where it differs.
 std::string per_model(double ste::LikelihoodOptions::*field) {
   std::string text;
   for (PlumeModelKind kind :
-       {PlumeModelKind::Surrogate, PlumeModelKind::Physics, PlumeModelKind::Gaussian})
-    text += (text.empty() ? "" : ", ") + option_number(default_likelihood(kind).*field) + " for " +
+       {PlumeModelKind::Surrogate, PlumeModelKind::Physics, PlumeModelKind::Gaussian}) {
+    const double moving = default_likelihood(kind).*field,
+                 thesis = default_likelihood(kind, SamplingProtocol::Thesis).*field;
+    text += (text.empty() ? "" : ", ") + option_number(moving) + " for " +
             (kind == PlumeModelKind::Surrogate ? "the surrogate" : to_string(kind));
+    if (thesis != moving) text += " (" + option_number(thesis) + " with --protocol thesis)";
+  }
   return text;
 }
 
@@ -107,16 +111,46 @@ constexpr const char* kPassingWindowHelp =
     "STE averages readings on the way over stretches this long, s (ste/passing_readings.hpp)";
 constexpr const char* kPathScoringHelp =
     "With --read-while-moving, STE scores the floor's goals with the gains along their paths";
+constexpr const char* kApproachHelp =
+    "After it stops, the robot (alone, not a team) drives to its estimate and the mission ends "
+    "when it arrives (GSL-Bench scores where the robot is)";
 constexpr const char* kCnnHelp =
     "CNN model of the surrogate plume model: a plumekit-cnn file, or a shipped model's name "
     "(docs/data.md): hybrid (the default; any map), thesis (the thesis's 64 x 64; 10 x 4 m "
     "maps), v2, faithful (empty: hybrid; the CLI and Python find them)";
 
+constexpr const char* kProtocolHelp =
+    "How the robot samples and ends: moving (the sensor reads along every path too, a stop "
+    "lasts --stop-min-s to --stop-s until its mean is settled, STE also declares by the "
+    "confidence rule, and the robot then drives to its estimate: --read-while-moving true "
+    "--adaptive-stops true --confidence-radius 0.3 --confidence-mass 0.95 --approach true) or "
+    "thesis (stop, sample --stop-s, decide, move; declare by entropy and stay: false, false, 0, "
+    "false; every result made before issue 47). Each of those flags overrides its part "
+    "(docs/design/ste.md, \"Readings on the way\")";
+
+namespace {
+
+// --protocol: a preset, so setting it sets the world's halves too (set_protocol).
+OptionEntry<SteOptions> protocol_entry() {
+  using O = SteOptions;
+  return {"ste.protocol",
+          "--protocol",
+          EnumField<O>{
+              [](const O& o) { return std::string(to_string(o.protocol)); },
+              [](O& o, const std::string& name) { set_protocol(o, parse_sampling_protocol(name)); },
+              "moving, thesis"},
+          {},
+          kProtocolHelp};
+}
+
+}  // namespace
+
 const OptionTable<SteOptions>& ste_option_table() {
   using O = SteOptions;
   static const OptionTable<O> table{
       "Localization (run::SteOptions)",
-      {{"ste.model",
+      {protocol_entry(),
+       {"ste.model",
         "--plume-model",
         enum_field(&O::model, &to_string, &parse_plume_model_kind, "surrogate, gaussian, physics"),
         {},
@@ -164,7 +198,8 @@ const OptionTable<SteOptions>& ste_option_table() {
         "0 ends no run on arrival; seed 004 ch. 15 uses 0.5 m"},
        {"ste.passing_window_s", "--passing-window", &O::passing_window_s,
         real_range(0.0, 60.0, "s", true), kPassingWindowHelp},
-       {"ste.path_scoring", "--path-scoring", &O::path_scoring, {}, kPathScoringHelp}}};
+       {"ste.path_scoring", "--path-scoring", &O::path_scoring, {}, kPathScoringHelp},
+       {"ste.approach", "--approach", &O::approach, {}, kApproachHelp}}};
   return table;
 }
 
@@ -185,7 +220,7 @@ ste::PassingOptions SteOptions::passing_options() const {
 }
 
 ste::LikelihoodOptions SteOptions::likelihood_options() const {
-  ste::LikelihoodOptions l = default_likelihood(model);
+  ste::LikelihoodOptions l = default_likelihood(model, protocol);
   l.sigma_m = likelihood.sigma_m.value_or(l.sigma_m);
   l.sigma_d = likelihood.sigma_d;
   l.sigma_rel = likelihood.sigma_rel.value_or(l.sigma_rel);

@@ -129,6 +129,7 @@ Picture draw_trajectory(const Map& map, const Grid<double>& mean_plume, const Ru
   for (std::size_t k = 0; k < robots.size(); ++k)
     for (const Step& s : *robots[k].steps)
       if (!s.path_in.empty()) canvas.draw_path(s.path_in, robot_track(k), 2);
+  if (r.approach.size() >= 2) canvas.draw_path(r.approach, robot_track(0), 2);
   canvas.draw_source(run.source, source_label(run));
   // Samples on the plume's colour scale with a thin grey rim (no white halo, so a
   // low reading shows the colour map's dark end, as the plume under it does); a team's have

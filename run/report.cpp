@@ -143,6 +143,12 @@ ordered_json run_json(const Scenario& sc, Vec2 source, const LocalizationResult&
   // A team's samples and distance are summed over its robots, its mission time runs to the
   // declaration, and "steps" are those of the robot whose estimate it declares.
   if (!r.team.empty()) j["team"] = team_json(f, r);
+  if (!r.approach.empty()) {  // the drive to the estimate after the last step (--approach)
+    ordered_json way = ordered_json::array();
+    for (Vec2 p : r.approach)
+      way.push_back(point_json(f.to_frame(p)));
+    j["drive_to_estimate"] = {{"path", way}, {"drive_s", r.approach_s}};
+  }
   return j;
 }
 
@@ -174,6 +180,20 @@ std::string times_text(const RunTimes& t) {
   return text + " other " + shown(total - sum);
 }
 
+// "mission 112 s, 6.6 times the shortest way's 17 s; within 1 m of the source after 60 s": the
+// field's time metrics (issue 47), in words; with an approach, the drive after the declaration.
+std::string mission_time_text(const LocalizationResult& r) {
+  const MissionTimes& t = r.times;
+  std::string text = "mission " + fmt(t.declared_s, 0) + " s";
+  if (r.approach_s > 0.0) text += " (then " + fmt(r.approach_s, 0) + " s to its estimate)";
+  if (std::isfinite(t.over_optimum()))
+    text +=
+        ", " + fmt(t.over_optimum(), 1) + " times the shortest way's " + fmt(t.optimum_s, 0) + " s";
+  return text + (std::isnan(t.within_1m_s)
+                     ? "; never within 1 m of the source"
+                     : "; within 1 m of the source after " + fmt(t.within_1m_s, 0) + " s");
+}
+
 std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& r,
                      const RunTimes& times) {
   const MapFrame& f = sc.map().frame;
@@ -183,7 +203,8 @@ std::string run_text(const Scenario& sc, Vec2 source, const LocalizationResult& 
     << ", start " << fmt(f.to_frame(r.start)) << "\n"
     << "estimate " << fmt(f.to_frame(r.estimate)) << ", error " << fmt(norm(r.estimate - source))
     << " m after " << r.samples << " samples and " << fmt(r.distance_m, 1) << " m (stopped by "
-    << r.stopped_by << ")\n";
+    << r.stopped_by << ")\n"
+    << mission_time_text(r) << "\n";
   if (!r.team.empty()) {
     h << r.team.size() << " " << r.strategy << " robots (samples and metres summed; robot "
       << r.declared_by + 1 << "'s estimate, at " << fmt(r.time_s, 0) << " s):";
@@ -384,6 +405,22 @@ AfterMap trajectory_pictures(const fs::path& dir, const std::vector<std::string>
   };
 }
 
+void sampling_json(const SteOptions& o, ordered_json& j) {
+  SteOptions thesis;
+  set_protocol(thesis, SamplingProtocol::Thesis);
+  if (o.protocol == SamplingProtocol::Thesis &&
+      o.world.read_while_moving == thesis.world.read_while_moving &&
+      o.world.adaptive_stop == thesis.world.adaptive_stop &&
+      o.stop.confidence_radius == thesis.stop.confidence_radius && o.approach == thesis.approach)
+    return;
+  j["protocol"] = to_string(o.protocol);
+  j["read_while_moving"] = o.world.read_while_moving;
+  j["adaptive_stops"] = o.world.adaptive_stop;
+  j["confidence_radius"] = o.stop.confidence_radius;
+  j["confidence_mass"] = o.stop.confidence_mass;
+  j["approach"] = o.approach;
+}
+
 ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& map_dir) {
   const ste::LikelihoodOptions l = eo.ste.likelihood_options();
   ordered_json j{{"ok", true},
@@ -408,6 +445,7 @@ ordered_json evaluation_settings(const EvaluationOptions& eo, const fs::path& ma
   if (eo.ste.world.filament.release_rate != world::FilamentOptions{}.release_rate)
     j["release_rate"] = eo.ste.world.filament.release_rate;
   if (eo.ste.success_radius > 0.0) j["success_radius"] = eo.ste.success_radius;
+  sampling_json(eo.ste, j);
   if (eo.ste.uses_cnn())
     j["cnn"] = provenance_path(eo.ste.model_path);  // which network, for a result to be remade
   if (eo.ste.team.robots > 1)

@@ -65,6 +65,12 @@ std::string median_run_note(const std::vector<RunRecord>& runs);
 AfterMap trajectory_pictures(const std::filesystem::path& dir,
                              const std::vector<std::string>& picture_names);
 
+// How the robot sampled and ended (--protocol: "protocol", "read_while_moving", "adaptive_stops",
+// "confidence_radius", "confidence_mass", "approach"), into `j`, unless it was the thesis's
+// protocol: a summary without these keys was made with the thesis's (every one before issue 47) and
+// keeps its bytes when remade.
+void sampling_json(const SteOptions& options, nlohmann::ordered_json& j);
+
 // What was evaluated and how: summary.json's keys before "overall" (the options that shape the
 // results; never the threads or a time; the plume model's only for STE). `map_dir` is the folder
 // the maps came from, as the user named it.

@@ -61,8 +61,12 @@ struct LocalizationResult {
   Vec2 map;
   int samples = 0;
   double distance_m = 0.0;
-  double time_s = 0.0;     // simulated mission time
-  MissionTimes times;      // the field's time metrics (Scenario::run fills them)
+  double time_s = 0.0;  // simulated mission time (with an approach, until it arrives)
+  MissionTimes times;   // the field's time metrics (Scenario::run fills them)
+  // After the method stopped, the robot's way to its estimate (MethodRunOptions::approach, issue
+  // 47) and how long it drove; empty and 0 without one.
+  std::vector<Vec2> approach;
+  double approach_s = 0.0;
   double compute_s = 0.0;  // total decision compute (thread CPU time)
   // Wall-clock seconds: the decisions (estimation, navigation, planning), the simulated world (its
   // plume's spin-up and steps and the sensors' readings, SimulatedWorld::busy_s; for a robot of a

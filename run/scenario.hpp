@@ -41,6 +41,17 @@ const char* to_string(PlumeModelKind kind);
 // "surrogate", "gaussian", "physics"; InputError naming the value otherwise.
 PlumeModelKind parse_plume_model_kind(const std::string& name);
 
+// How the robot samples and ends (--protocol; docs/design/ste.md, "Readings on the way"). moving,
+// the default since issue 47: the gas sensor reads along every path too, a stop lasts only as long
+// as its mean is unsettled (world.read_while_moving, world.adaptive_stop), STE may also declare by
+// the confidence rule (stop.confidence_radius) and the robot then drives to its estimate
+// (approach). thesis: the thesis's stop, sample 5 s, decide, move, read only while standing,
+// declare by entropy and stay: every result made before issue 47.
+enum class SamplingProtocol { Moving, Thesis };
+const char* to_string(SamplingProtocol protocol);
+// "moving", "thesis"; OptionError naming ste.protocol otherwise.
+SamplingProtocol parse_sampling_protocol(const std::string& name);
+
 // The sample error each model runs with unless told otherwise: the thesis's sigma_M = 30 for the
 // Gaussian baseline. For the physics model, sigma_M = 150: a 5 s mean of the filament world
 // scatters about its steady mean by about 100 near a plume's axis; chosen on held-out random maps
@@ -50,8 +61,18 @@ PlumeModelKind parse_plume_model_kind(const std::string& name);
 // For the surrogate, sigma_M = 200 (about the shipped model's RMSE on the test maps) plus twice the
 // CNN's own predicted std of the readings (sigma_std), since a 5 s sample departs from the mean,
 // and the CNN errs, most where the plume is intermittent; chosen on held-out random maps
-// (docs/design/ste.md).
-ste::LikelihoodOptions default_likelihood(PlumeModelKind kind);
+// (docs/design/ste.md). With the moving protocol, the CNN's std once (sigma_std 1): short stops
+// and readings on the way, chosen on the same held-out sets (results/ste-time, "The likelihood of
+// the moving protocol").
+ste::LikelihoodOptions default_likelihood(PlumeModelKind kind,
+                                          SamplingProtocol protocol = SamplingProtocol::Moving);
+
+// The world's options with `protocol`'s sampling: readings on the way and adaptive stops for
+// moving, neither for thesis; the rest at their defaults.
+world::WorldOptions protocol_world(SamplingProtocol protocol);
+// The stop rule of `protocol`: the thesis's entropy rule, and for moving the confidence rule too
+// (0.95 of the posterior within 0.3 m, chosen on held-out sets: results/ste-time).
+ste::StopOptions protocol_stop(SamplingProtocol protocol);
 
 // The likelihood's settings in SteOptions. sigma_m, sigma_rel and sigma_std follow the plume model
 // unless set (default_likelihood): the same number cannot suit a CNN and an exact model.
@@ -59,7 +80,8 @@ struct SteLikelihood {
   std::optional<double> sigma_m;  // unset: 200 for the surrogate, 150 for physics, 30 for gaussian
   double sigma_d = 0.0;
   std::optional<double> sigma_rel;  // unset: 0.15 for physics, 0 otherwise
-  std::optional<double> sigma_std;  // unset: 2 for the surrogate, 0 otherwise (surrogate only)
+  // unset: for the surrogate 1 (moving protocol) or 2 (thesis), 0 otherwise (surrogate only)
+  std::optional<double> sigma_std;
 };
 
 // Every option of a localization, with its default (docs/methods.md, "Options"). The default plume
@@ -69,14 +91,17 @@ struct SteOptions {
   // The localization method (--method): plumekit's STE, or one of the seeds' trackers and
   // particle filters, which use no plume model (the model's options below are then unused).
   MethodOptions method;
+  // How the robot samples (--protocol); set it with set_protocol, which sets the world's half too.
+  // The surrogate's unset sigma_std follows it (default_likelihood).
+  SamplingProtocol protocol = SamplingProtocol::Moving;
   PlumeModelKind model = PlumeModelKind::Surrogate;
   std::string model_path;  // the surrogate's CNN file (plumekit-cnn)
   SteLikelihood likelihood;
   ste::BinOptions bins;
   ste::MhOptions mh;
   ste::NavigationOptions navigation;
-  ste::StopOptions stop;
-  world::WorldOptions world;
+  ste::StopOptions stop = protocol_stop(protocol);
+  world::WorldOptions world = protocol_world(protocol);
   // A team of robots instead of one (--robots, --team; run/team.hpp).
   TeamOptions team;
   // The wind every run of a map shares (the flow's defaults: 5 cm cells).
@@ -106,6 +131,9 @@ struct SteOptions {
   // With readings on the way, the floor's goals are scored with the gains along their paths
   // (ste::MissionPace::passing_weight_per_m).
   bool path_scoring = false;
+  // After it stops, a robot alone drives to its estimate and the mission ends there
+  // (MethodRunOptions::approach). A team does not (its robots stop where they declare).
+  bool approach = protocol == SamplingProtocol::Moving;
 
   // The likelihood the plume model runs with (the unset sigmas filled in).
   ste::LikelihoodOptions likelihood_options() const;
@@ -128,6 +156,11 @@ struct SteOptions {
  private:
   void check_model_file() const;
 };
+
+// Applies the preset `protocol` (--protocol): the field, the world's read_while_moving and
+// adaptive_stop, the stop rule's confidence_radius and confidence_mass, and approach. Flags given
+// with it override their part of it (the CLI and Python apply it first).
+void set_protocol(SteOptions& options, SamplingProtocol protocol);
 
 // The surrogate's default table cell on `map` for candidates of `source_cell`: the source cell
 // itself, or on maps with over kSurrogateTableArea of free space the cell (rounded up to 5 cm,

@@ -221,7 +221,9 @@ class TeamRun {
 
     const std::string stopped =
         stop_reason(*r.method, r.pos, static_cast<int>(r.out.steps.size()) + 1, options_);
-    if (stopped == "entropy" || stopped == "reached") {
+    // A declaration (either stop rule of STE's) or the source reached ends the team's mission;
+    // a robot out of budget only leaves.
+    if (stopped == "entropy" || stopped == "confident" || stopped == "reached") {
       over_ = true;
       declared_by_ = r.index;
       stopped_by_ = stopped;

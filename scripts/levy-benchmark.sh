@@ -22,7 +22,7 @@ for condition in A:0.2:500 B:0.2:1000 C:0.9:500 D:0.9:1000; do
     maps="$out/maps/$name-$start"
     [[ -d $maps ]] || /usr/bin/python3 scripts/levy_maps.py "$maps" "$speed" "$start"
     "$plumekit" evaluate --map-dir "$maps" --method ste,levy-taxis --runs "$runs" \
-      --world thesis --plume-model physics --release-rate "$rate" --release-scale 0.25,2 \
+      --world thesis --protocol thesis --plume-model physics --release-rate "$rate" --release-scale 0.25,2 \
       --success-radius 0.5 --threads 0 --out "$out/$name-$start" >/dev/null
     echo "condition $name ($speed m/s, release $rate), start $start: done"
   done

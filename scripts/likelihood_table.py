@@ -2,10 +2,12 @@
 """The hybrid model's likelihood sweep (results/ste-hybrid/make.sh tuning) as a Markdown table.
 
     /usr/bin/python3 scripts/likelihood_table.py [--mission] TUNING_DIR > table.md
+    /usr/bin/python3 scripts/likelihood_table.py --stop TUNING_DIR > stop-table.md
 
 TUNING_DIR holds `evaluate` folders named SET-mSIGMA_M-kK (SET: families, buildings); one row per
 (sigma_M, k): each set's success within 0.5 m, mean error and median samples (with --mission also
-the median mission time), and both pooled.
+the median mission time), and both pooled. With --stop, folders SET-rRADIUS-pMASS instead (the
+confidence stop rule, results/ste-time/make.sh stop-tuning), with the mission time.
 """
 import json
 import os
@@ -14,22 +16,27 @@ import sys
 
 
 def main(argv):
-    mission = "--mission" in argv
-    argv = [a for a in argv if a != "--mission"]
+    stop = "--stop" in argv
+    mission = "--mission" in argv or stop
+    argv = [a for a in argv if a not in ("--mission", "--stop")]
+    pattern = r"(families|buildings)-r([0-9.]+)-p([0-9.]+)" if stop else \
+        r"(families|buildings)-m([0-9.]+)-k([0-9.]+)"
+    heads = ("radius m", "mass") if stop else ("σ_M", "k")
     if len(argv) != 1:
         print(__doc__, file=sys.stderr)
         return 2
     found = {}
     for name in os.listdir(argv[0]):
-        m = re.fullmatch(r"(families|buildings)-m([0-9.]+)-k([0-9.]+)", name)
+        m = re.fullmatch(pattern, name)
         summary = os.path.join(argv[0], name, "summary.json")
         if m and os.path.exists(summary):
             with open(summary) as f:
                 found.setdefault((float(m[2]), float(m[3])), {})[m[1]] = json.load(f)["overall"]
     what = "within 0.5 m / mean error / samples" + (" / mission" if mission else "")
-    print(f"| σ_M | k | families: {what} | buildings: same | pooled within 0.5 m |")
+    print(f"| {heads[0]} | {heads[1]} | families: {what} | buildings: same | pooled within 0.5 m |")
     print("|---|---|---|---|---|")
-    for (sm, k), sets in sorted(found.items(), key=lambda kv: (-kv[0][0], kv[0][1])):
+    order = (lambda kv: kv[0]) if stop else (lambda kv: (-kv[0][0], kv[0][1]))
+    for (sm, k), sets in sorted(found.items(), key=order):
         cells, hits, runs = [], 0, 0
         for s in ("families", "buildings"):
             o = sets.get(s)

@@ -20,7 +20,7 @@ maps="$out/maps"
 [[ -d $maps ]] || /usr/bin/python3 scripts/levy_maps.py "$maps" 0.9 crosswind 10 1 20 >/dev/null
 evaluate() {
   "$plumekit" evaluate --map-dir "${maps:?}" --runs "$runs" --world thesis --release-rate 500 \
-    --threads 0 "$@" >/dev/null
+    --protocol thesis --threads 0 "$@" >/dev/null
 }
 wall="$out/wall.txt"
 # wall.txt is this script's own line; any other file of that name is left alone.

@@ -39,7 +39,7 @@ run_configs() {  # SETTING MAP_DIR EVALUATE_FLAGS...
   for config in $configs; do
     IFS=: read -r strategy robots <<<"$config"
     "$plumekit" evaluate --map-dir "$maps" --robots "$robots" --team "$strategy" \
-      --threads 0 --out "$out/$setting/$strategy-$robots" "$@" >/dev/null
+      --protocol thesis --threads 0 --out "$out/$setting/$strategy-$robots" "$@" >/dev/null
   done
   echo "$setting: $(($(date +%s) - start)) s" | tee -a "$wall"
 }

@@ -12,7 +12,7 @@ trap 'rm -rf "$work"' EXIT
 mkdir "$work/maps"
 cp "$root/data/test-maps/test-1-block.json" "$work/maps/"
 evaluate() {
-  "$plumekit" evaluate --map-dir "$work/maps" --sources 4 --runs 1 --max-steps "$3" --threads 0 \
+  "$plumekit" evaluate --map-dir "$work/maps" --sources 4 --runs 1 --max-steps "$3" --threads 0 --protocol thesis \
     --out "$work/$1" --method "$2" > /dev/null
 }
 # On this map, surge-cast reaches two of the four sources' boxes in 40 stops.

@@ -27,7 +27,7 @@ seeds=(--world neumann --stop-s 20 --stop-rate 1 --speed 1 --track-step 1 --wind
 run() {
   local name=$1 n=$2
   shift 2
-  "$plumekit" evaluate --runs "$n" --out "$out/$name" "${seeds[@]}" "$@"
+  "$plumekit" evaluate --protocol thesis --runs "$n" --out "$out/$name" "${seeds[@]}" "$@"
 }
 # The particle filter, source (8, 4); the seeds' best (alpha, beta) are the defaults.
 run pf-sweep "$runs" --map-dir data/seeds/pf-sweep --method pf-sweep

@@ -144,7 +144,15 @@ const OptionTable<StopOptions>& stop_option_table() {
        {"ste.stop.seen_mass", "--seen-mass", &O::seen_mass, non_negative(1.0, ""),
         "Stop on entropy only with this share of the posterior on sources the samples could "
         "tell from no source (0: also declare sources whose plume reached no sample)",
-        "the default is {default}; 0 declares unseen sources too"}}};
+        "the default is {default}; 0 declares unseen sources too"},
+       {"ste.stop.confidence_radius", "--confidence-radius", &O::confidence_radius,
+        non_negative(100.0, "m"),
+        "Also stop once --confidence-mass of the posterior lies within this radius of the "
+        "estimate, m (with --seen-mass as the entropy rule; 0: off, the thesis's rule alone)",
+        "0 means off"},
+       {"ste.stop.confidence_mass", "--confidence-mass", &O::confidence_mass,
+        real_range(0.0, 1.0, "", true),
+        "The share of the posterior --confidence-radius asks for"}}};
   return table;
 }
 

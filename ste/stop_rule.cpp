@@ -5,10 +5,22 @@
 
 namespace plumekit::ste {
 
+double mass_within(const Posterior& posterior, double radius) {
+  const GridShape& g = posterior.marginal.shape;
+  const Vec2 e = posterior.expected_source();
+  double mass = 0.0;
+  for (int j = 0; j < g.ny; ++j)
+    for (int i = 0; i < g.nx; ++i)
+      if (norm(g.centre(i, j) - e) <= radius) mass += posterior.marginal(i, j);
+  return mass;
+}
+
 std::string stop_reason(const Posterior& posterior, int samples, const StopOptions& stop) {
-  if (posterior.entropy < stop.entropy_fraction * posterior.max_entropy &&
-      posterior.seen_mass >= stop.seen_mass)
-    return "entropy";
+  const bool seen = posterior.seen_mass >= stop.seen_mass;
+  if (seen && posterior.entropy < stop.entropy_fraction * posterior.max_entropy) return "entropy";
+  if (seen && stop.confidence_radius > 0.0 &&
+      mass_within(posterior, stop.confidence_radius) >= stop.confidence_mass)
+    return "confident";
   return samples >= stop.max_samples_in_use() ? "max_samples" : "";
 }
 

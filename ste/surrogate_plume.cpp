@@ -144,6 +144,16 @@ struct Taps {
   }
 };
 
+// How many candidates' (or anchors') table reads a lookup asks the memory for ahead of using them.
+constexpr std::size_t kLookahead = 64;
+
+void prefetch_taps(const Taps& taps, const float* t) {
+  __builtin_prefetch(t + taps.k00);
+  __builtin_prefetch(t + taps.k10);
+  __builtin_prefetch(t + taps.k01);
+  __builtin_prefetch(t + taps.k11);
+}
+
 void print_note(const std::string& note) {
   std::cerr << "plumekit: note: " << note << "\n";
 }
@@ -316,15 +326,41 @@ std::vector<double> SurrogatePlume::lookup(const std::vector<float>& table, Vec2
   const auto plume = [&](int row) {
     return table.data() + static_cast<std::size_t>(row) * grid_.size();
   };
-  if (shifted_) {
-    for (std::size_t c = 0; c < out.size(); ++c)
-      for (std::size_t a = first_anchor_[c]; a < first_anchor_[c + 1]; ++a)
-        out[c] += anchors_[a].weight * Taps(grid_, p - anchors_[a].shift)(plume(anchors_[a].row));
+  if (!shifted_) {
+    const Taps taps(grid_, p);
+    const auto touch = [&](std::size_t c) {
+      if (row_[c] >= 0) prefetch_taps(taps, plume(row_[c]));
+    };
+    for (std::size_t c = 0; c < std::min(kLookahead, out.size()); ++c)
+      touch(c);
+    for (std::size_t c = 0; c < out.size(); ++c) {
+      if (c + kLookahead < out.size()) touch(c + kLookahead);
+      if (row_[c] >= 0) out[c] = taps(plume(row_[c]));
+    }
     return out;
   }
-  const Taps taps(grid_, p);
-  for (std::size_t c = 0; c < out.size(); ++c)
-    if (row_[c] >= 0) out[c] = taps(plume(row_[c]));
+  // Each anchor reads four floats of its own row, a table's size apart: the loads miss the cache,
+  // so a chunk's taps are computed and prefetched before they are summed (in the same order, so
+  // the sums are the same bytes).
+  std::vector<Taps> taps;
+  taps.reserve(kLookahead);
+  for (std::size_t c0 = 0; c0 < out.size();) {
+    std::size_t c1 = c0;
+    taps.clear();
+    const auto anchors = [&](std::size_t c) { return first_anchor_[c + 1] - first_anchor_[c]; };
+    while (c1 < out.size() && (c1 == c0 || taps.size() + anchors(c1) <= kLookahead)) {
+      for (std::size_t a = first_anchor_[c1]; a < first_anchor_[c1 + 1]; ++a) {
+        taps.emplace_back(grid_, p - anchors_[a].shift);
+        prefetch_taps(taps.back(), plume(anchors_[a].row));
+      }
+      ++c1;
+    }
+    const Taps* t = taps.data();
+    for (std::size_t c = c0; c < c1; ++c)
+      for (std::size_t a = first_anchor_[c]; a < first_anchor_[c + 1]; ++a, ++t)
+        out[c] += anchors_[a].weight * (*t)(plume(anchors_[a].row));
+    c0 = c1;
+  }
   return out;
 }
 

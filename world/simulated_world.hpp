@@ -66,9 +66,10 @@ struct WorldOptions {
   // §4.4's rotor disturbance (0.5 m, the drone's downwash mixing the air under it before the
   // sensor model). 0: the concentration at the sensor's point.
   double rotor_disc = 0.0;
-  // Record a reading at every reading interval of travel, whatever the sensor (see above). Off by
-  // default: the committed results were made without, and off, every draw, plume step and reading
-  // is as it was (a sensor with memory still reads on the way, unrecorded).
+  // Record a reading at every reading interval of travel, whatever the sensor (see above). Off
+  // here, every draw, plume step and reading is as it was before issue 47 (a sensor with memory
+  // still reads on the way, unrecorded); localize and evaluate turn it on (run::SteOptions'
+  // protocol, moving by default).
   bool read_while_moving = false;
   // Adaptive stops (issue 47): a stop lasts from stop_min_s to sample_s, and ends at the first
   // whole second from stop_min_s on when its mean is known to within stop_tolerance: the standard
@@ -76,7 +77,7 @@ struct WorldOptions {
   // would not move the mean by more). In clean air that is stop_min_s; where the plume comes and
   // goes, up to sample_s. A stop lasts whole seconds, at least one (two half-second means), so a
   // pass-through is not offered: a decision needs its stop's reading. Off: every stop lasts
-  // sample_s.
+  // sample_s. Off here; on in localize and evaluate (their moving protocol).
   bool adaptive_stop = false;
   double stop_min_s = 1.0;       // s
   double stop_tolerance = 20.0;  // concentration units

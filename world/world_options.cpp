@@ -16,13 +16,15 @@ std::vector<OptionEntry<WorldOptions>> protocol_entries() {
            &O::read_while_moving,
            {},
            "The gas sensor reads at its rate along every path too, and the method gets those "
-           "readings with each stop's (issue 47; STE averages them over --passing-window)"},
+           "readings with each stop's (issue 47; STE averages them over --passing-window; "
+           "localize and evaluate: --protocol, true unless thesis)"},
           {"ste.world.adaptive_stop",
            "--adaptive-stops",
            &O::adaptive_stop,
            {},
            "A stop lasts from --stop-min-s to --stop-s: until its mean is known to within "
-           "--stop-tolerance (issue 47; world/simulated_world.hpp)"},
+           "--stop-tolerance (issue 47; world/simulated_world.hpp; localize and evaluate: "
+           "--protocol, true unless thesis)"},
           {"ste.world.stop_min_s", "--stop-min-s", &O::stop_min_s, positive(3600.0, "s"),
            "Adaptive stops: the shortest stop, s"},
           {"ste.world.stop_tolerance", "--stop-tolerance", &O::stop_tolerance,

@@ -17,7 +17,8 @@ import plumekit
 
 log = Path(sys.argv[1] if len(sys.argv) > 1 else Path(__file__).parent / "data" / "robot-log.csv")
 arena = plumekit.read_map(Path(plumekit.data_dir()) / "test-maps" / "test-1-block.json")
-scenario = plumekit.Scenario(arena, plume_model="physics")  # wind and plume model, built once
+# Wind and plume model, built once; the log's stops were 5 s each, read only while standing.
+scenario = plumekit.Scenario(arena, plume_model="physics", protocol="thesis")
 mission = scenario.mission(seed=1)
 
 with open(log) as f:

@@ -12,14 +12,14 @@ def block(data):
 @pytest.fixture(scope="module")
 def run(block):
     return plumekit.localize(block, block.sources[0], seed=3, plume_model="physics",
-                             stop={"max_samples": 15})
+                             stop={"max_samples": 15}, protocol="thesis")
 
 
 def test_localize_is_the_cli_run(block, run, cli):
     s = block.sources[0]
     c = cli("localize", plumekit.data_dir() + "/test-maps/test-1-block.json",
             "--source", f"{s[0]!r},{s[1]!r}", "--seed", 3, "--plume-model", "physics",
-            "--max-samples", 15)
+            "--max-samples", 15, "--protocol", "thesis")
     for key in ("estimate", "samples", "error_m", "distance_m", "start", "stopped_by", "times"):
         assert run[key] == c[key], key
     assert run["samples"] == len(run["steps"]) <= 15
@@ -34,7 +34,8 @@ def test_localize_is_the_cli_run(block, run, cli):
 
 
 def test_a_mission_fed_the_runs_readings_reaches_its_estimate(block, run):
-    sc = plumekit.Scenario(block, plume_model="physics", stop={"max_samples": 15})
+    sc = plumekit.Scenario(block, plume_model="physics", stop={"max_samples": 15},
+                           protocol="thesis")
     mission = sc.mission(seed=3)
     with pytest.raises(plumekit.InputError, match="no sample yet"):
         mission.next(run["start"])
@@ -60,8 +61,7 @@ def test_a_mission_fed_the_runs_readings_reaches_its_estimate(block, run):
 
 
 def test_a_mission_fed_the_readings_on_the_way_follows_the_run(block):
-    moving = {"plume_model": "physics", "stop": {"max_samples": 8},
-              "world": {"read_while_moving": True}}
+    moving = {"plume_model": "physics", "stop": {"max_samples": 8}}  # the default protocol
     run = plumekit.localize(block, block.sources[0], seed=3, **moving)
     mission = plumekit.Scenario(block, **moving).mission(seed=3)
     taken = 0
@@ -75,6 +75,24 @@ def test_a_mission_fed_the_readings_on_the_way_follows_the_run(block):
     assert mission.samples == run["samples"]  # readings on the way are no samples
     with pytest.raises(plumekit.InputError, match="on_the_way: each reading"):
         mission.add(run["start"], 0.0, on_the_way=[((1.0, 1.0), 0.5)])
+
+
+def test_the_protocol_is_a_preset_whose_halves_can_be_set(block):
+    o = plumekit.SteOptions()
+    assert o.protocol == "moving" and o.world.read_while_moving and o.world.adaptive_stop
+    assert o.stop.confidence_radius == 0.3 and o.approach
+    # Applied first, whatever the keywords' order: the half given wins.
+    sc = plumekit.Scenario(block, plume_model="physics", world={"adaptive_stop": True},
+                           protocol="thesis")
+    assert sc.options.protocol == "thesis"
+    assert not sc.options.world.read_while_moving and sc.options.world.adaptive_stop
+    assert sc.options.stop.confidence_radius == 0.0 and not sc.options.approach
+    thesis = plumekit.localize(block, block.sources[0], seed=3, plume_model="physics",
+                               stop={"max_samples": 3}, protocol="thesis")
+    assert all("on_the_way" not in step for step in thesis["steps"])
+    with pytest.raises(plumekit.OptionError) as e:
+        plumekit.Scenario(block, plume_model="physics", protocol="drive-by")
+    assert e.value.field == "ste.protocol"
 
 
 def test_options_reach_the_library(block):

@@ -18,5 +18,5 @@ for model in "${models[@]}"; do
     *) echo "$0: unknown model $model" >&2; exit 2 ;;
   esac
   "$plumekit" evaluate --map-dir data/test-maps --runs 3 --seeds 2 --gas-sensor mox-fast \
-    "${flags[@]}" --threads 2 --out "$out/$model"
+    --protocol thesis "${flags[@]}" --threads 2 --out "$out/$model"
 done

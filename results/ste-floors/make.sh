@@ -29,7 +29,7 @@ for part in "${parts[@]}"; do
     buildings-surrogate-v2) flags=(--map-dir "$buildings" --runs 1 "${v2[@]}") ;;
     *) echo "$0: unknown part $part" >&2; exit 2 ;;
   esac
-  "$plumekit" evaluate "${flags[@]}" --out "$out/$part"
+  "$plumekit" evaluate --protocol thesis "${flags[@]}" --out "$out/$part"
   # The committed picture of the depot's median run.
   if [[ $part == real ]]; then cp "$out/real/trajectories/depot.png" "$out/real/trajectory-depot.png"; fi
 done

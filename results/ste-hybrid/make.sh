@@ -32,10 +32,10 @@ tuning() { # held-out maps of the likelihood's own: six-family 10 x 4 m maps and
     for k in 0 1 2 4; do
       [[ -f $t/families-m$sm-k$k/summary.json ]] || "$plumekit" evaluate --map-dir "$t/maps-4700" \
         --runs 3 --cnn hybrid --gas-sensor mox-fast --threads 2 --sigma-m "$sm" --sigma-std "$k" \
-        --table-cache "$t/tables" --out "$t/families-m$sm-k$k" >/dev/null
+        --protocol thesis --table-cache "$t/tables" --out "$t/families-m$sm-k$k" >/dev/null
       [[ -f $t/buildings-m$sm-k$k/summary.json ]] || "$plumekit" evaluate --map-dir \
         "$t/buildings-2002" --runs 1 --cnn hybrid --gas-sensor mox-fast --threads 2 \
-        --sigma-m "$sm" --sigma-std "$k" --table-cache "$t/tables" \
+        --sigma-m "$sm" --sigma-std "$k" --protocol thesis --table-cache "$t/tables" \
         --out "$t/buildings-m$sm-k$k" >/dev/null
     done
   done
@@ -60,5 +60,5 @@ for part in "${parts[@]}"; do
     *) echo "$0: unknown part $part" >&2; exit 2 ;;
   esac
   "$plumekit" evaluate "${maps[@]}" "${model[@]}" --gas-sensor mox-fast --threads 2 \
-    --out "$out/$part"
+    --protocol thesis --out "$out/$part"
 done

@@ -18,5 +18,5 @@ for model in "${models[@]}"; do
     *) echo "$0: unknown model $model" >&2; exit 2 ;;
   esac
   "$plumekit" evaluate --map-dir data/test-maps --runs 3 --plume-model "$model" "${extra[@]}" \
-    --threads 2 --world thesis --out "$out/$model"
+    --threads 2 --world thesis --protocol thesis --out "$out/$model"
 done

@@ -62,6 +62,17 @@ TEST(MissionTimes, APathOfSeveralLegsCountsTheLegsBeforeTheEntry) {
   EXPECT_NEAR(first_within(steps, {7.0, 4.3}, 0.5, 0.5), 30.0 + 6.6 / 0.5, 1e-9);
 }
 
+// The drive to the estimate after the last stop (--approach): it leaves when that stop ends.
+TEST(MissionTimes, TheApproachAfterTheLastStopCountsFromItsEnd) {
+  const std::vector<Step> steps = straight_run(25.0);  // the last stop ends at 30 s at (10, 0)
+  const std::vector<Vec2> approach{{10.0, 0.0}, {10.0, 3.0}};
+  // 1 m about (10, 3.5): entered 2.5 m up, 5 s after leaving; never without the approach.
+  EXPECT_NEAR(first_within(steps, {10.0, 3.5}, 1.0, 0.5, approach), 30.0 + 5.0, 1e-9);
+  EXPECT_TRUE(std::isnan(first_within(steps, {10.0, 3.5}, 1.0, 0.5)));
+  // Reached before the approach: the approach changes nothing.
+  EXPECT_NEAR(first_within(steps, {6.0, 0.6}, 1.0, 0.5, approach), 5.0 + 10.4, 1e-9);
+}
+
 TEST(MissionTimes, DetectionIsTheEndOfTheFirstStopAboveTheThreshold) {
   std::vector<Step> steps = straight_run(25.0);
   steps[0].value = 10.0;
@@ -78,7 +89,8 @@ TEST(MissionTimes, GslBenchWantsOneMetreWithinThreeHundredSeconds) {
   EXPECT_TRUE(t.gsl_bench_success());
   t.within_1m_s = 300.5;
   EXPECT_FALSE(t.gsl_bench_success());
-  t.declared_s = 120.0;
+  t.declared_s = 100.0;
+  t.ended_s = 120.0;                          // the whole mission, with the drive to the estimate
   EXPECT_TRUE(std::isnan(t.over_optimum()));  // no optimum
   t.optimum_s = 40.0;
   EXPECT_EQ(t.over_optimum(), 3.0);
@@ -95,6 +107,7 @@ Map block_map() {
 TEST(MissionTimes, TheOptimumGoesAroundObstaclesAndARunsTimesFollowItsSteps) {
   const Map map = block_map();
   SteOptions o;
+  set_protocol(o, SamplingProtocol::Thesis);  // every stop --stop-s long
   o.model = PlumeModelKind::Physics;
   const Scenario sc(map, o);
   // Straight it is 3.5 m; around the block (0.15 m margin) it is longer than via its corners'
@@ -119,9 +132,8 @@ TEST(MissionTimes, TheOptimumGoesAroundObstaclesAndARunsTimesFollowItsSteps) {
 
 TEST(MissionTimes, ARobotThatReadsWhileMovingRecordsEachReadingOnItsPathInTime) {
   const Map map = block_map();
-  SteOptions o;
+  SteOptions o;  // the default protocol reads while moving
   o.model = PlumeModelKind::Physics;
-  o.world.read_while_moving = true;
   o.world.sensor = world::gas_sensor_preset("mox-fast");
   const Scenario sc(map, o);
   const LocalizationResult r = sc.run({4.5, 1.5}, {1.0, 1.5}, 7);
@@ -153,6 +165,32 @@ TEST(MissionTimes, ARobotThatReadsWhileMovingRecordsEachReadingOnItsPathInTime) 
       EXPECT_LE(r.times.first_detection_s, s.time_s);
       break;
     }
+}
+
+// A run with --approach: after it stops the robot drives to its estimate; the declaration is the
+// last stop's end, the mission ends on arrival, and the drive is in the distance.
+TEST(MissionTimes, ARobotThatApproachesItsEstimateEndsThere) {
+  const Map map = block_map();
+  SteOptions o;
+  o.model = PlumeModelKind::Physics;
+  o.stop.max_samples = 3;  // stopped early, far from its estimate
+  o.approach = false;
+  const Scenario sc(map, o);
+  const LocalizationResult plain = sc.run({4.5, 1.5}, {1.0, 1.5}, 7);
+  o.approach = true;
+  const LocalizationResult r = Scenario(map, o).run({4.5, 1.5}, {1.0, 1.5}, 7);
+  EXPECT_TRUE(plain.approach.empty());
+  EXPECT_EQ(plain.approach_s, 0.0);
+  ASSERT_GE(r.approach.size(), 2u);
+  EXPECT_EQ(r.estimate, plain.estimate);  // the same stops and decisions
+  EXPECT_EQ(r.samples, plain.samples);
+  EXPECT_LT(norm(r.approach.back() - r.estimate), 0.2);  // there, or at the margin's edge
+  EXPECT_NEAR(r.approach.front().x, r.steps.back().position.x, 1e-9);
+  // The world moves the robot in whole reading intervals (0.1 s).
+  EXPECT_NEAR(r.approach_s, (r.distance_m - plain.distance_m) / o.world.speed, 0.1);
+  EXPECT_NEAR(r.times.declared_s, plain.time_s, 1e-9);
+  EXPECT_NEAR(r.times.ended_s, r.time_s, 1e-9);
+  EXPECT_NEAR(r.time_s, plain.time_s + r.approach_s, 1e-9);
 }
 
 }  // namespace

@@ -102,7 +102,7 @@ TEST(SteOptions, DefaultsAreTheSurrogatesAndFollowTheModel) {
   EXPECT_EQ(o.model, run::PlumeModelKind::Surrogate);
   EXPECT_EQ(o.threads, kDefaultThreads);
   EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 200.0);
-  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 2.0);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 1.0);  // the moving protocol's
   EXPECT_DOUBLE_EQ(o.source_cell_in_use(), 0.2);
   o.model = run::PlumeModelKind::Physics;
   EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 150.0);
@@ -128,6 +128,41 @@ TEST(SteOptions, DefaultsAreTheSurrogatesAndFollowTheModel) {
   o.stop.seen_mass = 1.5;
   expect_option_error([&] { o.stop.validate(); }, "ste.stop.seen_mass", "got 1.5");
   expect_option_error([] { run::parse_plume_model_kind("kriging"); }, "ste.model", "'kriging'");
+}
+
+// Issue 47: the default protocol reads on the way and stops adaptively; the thesis's preset turns
+// both off and brings back its likelihood; either half can be set over the preset.
+TEST(SteOptions, TheProtocolPresetSetsTheWorldsHalvesAndTheLikelihood) {
+  run::SteOptions o;
+  EXPECT_EQ(o.protocol, run::SamplingProtocol::Moving);
+  EXPECT_TRUE(o.world.read_while_moving);
+  EXPECT_TRUE(o.world.adaptive_stop);
+  EXPECT_DOUBLE_EQ(o.stop.confidence_radius, 0.3);
+  EXPECT_DOUBLE_EQ(o.stop.confidence_mass, 0.95);
+  EXPECT_TRUE(o.approach);
+  EXPECT_FALSE(world::WorldOptions{}.read_while_moving);        // the world alone reads where told
+  EXPECT_DOUBLE_EQ(ste::StopOptions{}.confidence_radius, 0.0);  // STE alone: the thesis's rule
+  run::set_protocol(o, run::parse_sampling_protocol("thesis"));
+  EXPECT_FALSE(o.world.read_while_moving);
+  EXPECT_FALSE(o.world.adaptive_stop);
+  EXPECT_DOUBLE_EQ(o.stop.confidence_radius, 0.0);
+  EXPECT_FALSE(o.approach);
+  EXPECT_EQ(o.stop.max_samples, ste::StopOptions{}.max_samples);  // the rest untouched
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 2.0);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, 200.0);
+  o.likelihood.sigma_std = 1.5;  // a value given wins over the protocol's
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_std, 1.5);
+  o.world.adaptive_stop = true;
+  run::set_protocol(o, run::SamplingProtocol::Moving);
+  EXPECT_TRUE(o.world.read_while_moving && o.world.adaptive_stop);
+  EXPECT_STREQ(run::to_string(o.protocol), "moving");
+  // Only the surrogate's likelihood depends on it.
+  o.model = run::PlumeModelKind::Physics;
+  const double physics_moving = o.likelihood_options().sigma_m;
+  run::set_protocol(o, run::SamplingProtocol::Thesis);
+  EXPECT_DOUBLE_EQ(o.likelihood_options().sigma_m, physics_moving);
+  expect_option_error([] { run::parse_sampling_protocol("drive-by"); }, "ste.protocol",
+                      "'drive-by'");
 }
 
 TEST(EvaluationOptions, CountsAreCheckedBeforeAnyWork) {

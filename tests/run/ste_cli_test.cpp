@@ -420,15 +420,19 @@ TEST_F(SteCli, WorldSensorPresetsAndRefusals) {
     EXPECT_NE(r.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "refused")) << bad;
   }
-  // The stop is a setting: seed 000's 20 s at 1 Hz make the mission longer than 5 s at 10 Hz.
+  // The stop is a setting: seed 000's 20 s at 1 Hz make the mission longer than 5 s at 10 Hz
+  // (the thesis's protocol: every stop lasts --stop-s; the default's adaptive stops end sooner).
   auto mission = [&](const std::string& stop, const std::string& out) {
-    const CliResult m = run("localize " + map + " --source 1.5,1 --plume-model physics " + stop +
-                            " --max-samples 1 --json --out " + (dir / out).string());
+    const CliResult m =
+        run("localize " + map + " --source 1.5,1 --plume-model physics --protocol thesis " + stop +
+            " --max-samples 1 --json --out " + (dir / out).string());
     EXPECT_EQ(m.code, 0) << m.err;
     return json::parse(m.out)["mission_s"].get<double>();
   };
   EXPECT_NEAR(mission("--stop-s 20 --stop-rate 1", "long"), 20.0, 1e-6);  // one stop, no travel
   EXPECT_NEAR(mission("", "short"), 5.0, 1e-6);
+  EXPECT_NEAR(mission("--adaptive-stops true", "adaptive"), 1.0,
+              1e-6);  // clean air: settled at once
   // Each step reports the anemometer's wind and the position the robot recorded.
   r = run("localize " + map +
           " --source 1.5,1 --plume-model physics --wind-noise table35 --position-noise gps "

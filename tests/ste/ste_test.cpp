@@ -17,6 +17,7 @@
 #include "ste/mh_estimator.hpp"
 #include "ste/mission.hpp"
 #include "ste/physics_plume.hpp"
+#include "ste/stop_rule.hpp"
 #include "ste/surrogate_plume.hpp"
 #include "support/uniform_wind.hpp"
 #include "surrogate/network.hpp"
@@ -258,7 +259,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
   const Vec2 source{4.5, 0.5};
   const run::LocalizationResult r = sc.run(source, {1.0, 2.5}, world::run_seed(3, 0, 0, 0));
   EXPECT_LT(norm(r.estimate - source), 0.5) << "estimate " << to_string(r.estimate);
-  EXPECT_EQ(r.stopped_by, "entropy");
+  EXPECT_EQ(r.stopped_by, "confident");  // declared (the moving protocol's rule), not out of budget
   EXPECT_LT(r.samples, o.stop.max_samples_in_use());
   EXPECT_GT(r.distance_m, 1.0);
   // Every sample is taken in free space, every path stays in it.
@@ -282,6 +283,7 @@ TEST(Localize, SucceedsOnASmallMapAndPathsKeepTheMargin) {
 TEST(Localize, AMissionFedARunsReadingsRetracesIt) {
   const Map map = small_map();
   run::SteOptions o;
+  run::set_protocol(o, run::SamplingProtocol::Thesis);  // the stops' readings only
   o.model = run::PlumeModelKind::Physics;
   const run::Scenario sc(map, o);
   const run::LocalizationResult r = sc.run({4.5, 0.5}, {1.0, 2.5}, world::run_seed(3, 0, 0, 0));
@@ -325,6 +327,34 @@ TEST(Localize, EntropyStopTriggersAtTheThreshold) {
   const run::LocalizationResult r = sc.run({4.2, 1.3}, {0.8, 2.2}, 5);
   EXPECT_EQ(r.samples, 1);
   EXPECT_EQ(r.stopped_by, "entropy");
+}
+
+// The confidence rule (the moving protocol's): mass within a radius of the expected source, counted
+// by cell centre, against a posterior built by hand: 0.65 on one cell, 0.3 on its neighbour 0.1 m
+// away and 0.05 two metres off, so the expected source is at x = 1.18, 0.03 m from the second.
+TEST(StopRule, ConfidenceCountsTheMassWithinTheRadiusOfTheEstimate) {
+  Posterior p;
+  p.marginal = Grid<double>(GridShape{40, 20, 4.0, 2.0}, 0.0);  // 0.1 m cells
+  p.marginal(10, 10) = 0.65;                                    // (1.05, 1.05)
+  p.marginal(11, 10) = 0.3;                                     // (1.15, 1.05)
+  p.marginal(30, 10) = 0.05;                                    // (3.05, 1.05)
+  p.expected = {0.65 * 1.05 + 0.3 * 1.15 + 0.05 * 3.05, 1.05};
+  p.entropy = p.max_entropy = 5.0;  // the entropy rule says go on
+  EXPECT_NEAR(mass_within(p, 0.5), 0.95, 1e-12);
+  EXPECT_NEAR(mass_within(p, 0.1), 0.3, 1e-12);
+  EXPECT_NEAR(mass_within(p, 2.0), 1.0, 1e-12);
+  StopOptions stop;
+  stop.max_samples = 10;
+  EXPECT_EQ(stop_reason(p, 3, stop), "");  // off by default
+  stop.confidence_radius = 0.5;
+  stop.confidence_mass = 0.9;
+  EXPECT_EQ(stop_reason(p, 3, stop), "confident");
+  stop.confidence_mass = 0.97;
+  EXPECT_EQ(stop_reason(p, 3, stop), "");
+  stop.confidence_mass = 0.9;
+  p.seen_mass = 0.5;  // a posterior on sources no sample could see declares nothing
+  EXPECT_EQ(stop_reason(p, 3, stop), "");
+  EXPECT_EQ(stop_reason(p, 10, stop), "max_samples");
 }
 
 TEST(Scenario, RejectsBadSourcesAndStarts) {
