@@ -181,11 +181,13 @@ std::string times_text(const RunTimes& t) {
 }
 
 // "mission 112 s, 6.6 times the shortest way's 17 s; within 1 m of the source after 60 s": the
-// field's time metrics (issue 47), in words; with an approach, the drive after the declaration.
+// field's time metrics (issue 47), in words; with an approach, the declaration and the arrival.
 std::string mission_time_text(const LocalizationResult& r) {
   const MissionTimes& t = r.times;
-  std::string text = "mission " + fmt(t.declared_s, 0) + " s";
-  if (r.approach_s > 0.0) text += " (then " + fmt(r.approach_s, 0) + " s to its estimate)";
+  std::string text = r.approach_s > 0.0
+                         ? "declared after " + fmt(t.declared_s, 0) + " s, at its estimate after " +
+                               fmt(t.ended_s, 0) + " s"
+                         : "mission " + fmt(t.ended_s, 0) + " s";
   if (std::isfinite(t.over_optimum()))
     text +=
         ", " + fmt(t.over_optimum(), 1) + " times the shortest way's " + fmt(t.optimum_s, 0) + " s";

@@ -5,7 +5,8 @@
 #   results/ste-time/make.sh [OUT] [PART...]
 #   PART: SET-VARIANT, SET one of test buildings real, VARIANT one of the names in `variant`
 #         below; or tuning: the likelihood of the moving protocol chosen on maps of its own
-#         (OUT/tuning/SET-mS-kK, OUT/tuning/table.md). Default: the parts README.md shows.
+#         (OUT/tuning/SET-mS-kK, OUT/tuning/table.md); or stop-tuning: its confidence stop rule
+#         (OUT/tuning/SET-rR-pP, OUT/tuning/stop-table.md). Default: the parts README.md shows.
 # Then `scripts/time_table.py OUT` makes table.md.
 set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
@@ -13,7 +14,7 @@ source results/make-lib.sh "$1"
 source scripts/blas-env.sh
 variants=(today today-physics moving lean moving-lean short moving-short moving-lean-short
   adaptive moving-adaptive moving-lean-adaptive moving-k1-adaptive moving-k1-adaptive-paths
-  moving-k1-adaptive-confident moving-k1-adaptive-confident-approach default)
+  moving-k1-adaptive-confident moving-k1-adaptive-confident-approach default default-paths)
 variant() { # the flags of a variant: what it changes from the thesis's protocol (the defaults
   # before issue 47, with the hybrid plume model); `default`: today's defaults, no flag
   local t=(--protocol thesis) m=(--read-while-moving true) a=(--adaptive-stops true)
@@ -36,6 +37,7 @@ variant() { # the flags of a variant: what it changes from the thesis's protocol
     moving-k1-adaptive-confident-approach)
       flags=("${t[@]}" "${m[@]}" --sigma-std 1 "${a[@]}" "${c[@]}" --approach) ;;
     default) flags=() ;; # --protocol moving, the defaults since issue 47
+    default-paths) flags=(--path-scoring) ;;
     *) echo "$0: unknown variant $1" >&2; exit 2 ;;
   esac
 }
@@ -43,14 +45,15 @@ parts=("${@:2}")
 if [[ ${#parts[@]} -eq 0 ]]; then # what README.md shows: every variant on the test maps, the
   # telling ones on the buildings and the real floors, and the tuning
   # (path scoring changes nothing on the test maps: their navigator is the thesis's lattice)
-  for v in "${variants[@]}"; do [[ $v == *-paths ]] || parts+=("test-$v"); done
+  for v in "${variants[@]}"; do [[ $v == *-paths || $v == *-approach ]] || parts+=("test-$v"); done
   for set in buildings real; do
     for v in today today-physics moving-short moving-lean-short adaptive moving-adaptive \
-      moving-lean-adaptive moving-k1-adaptive moving-k1-adaptive-paths default; do
+      moving-lean-adaptive moving-k1-adaptive moving-k1-adaptive-paths \
+      moving-k1-adaptive-confident default; do
       parts+=("$set-$v")
     done
   done
-  parts+=(tuning)
+  parts+=(real-moving-k1-adaptive-confident-approach real-default-paths tuning stop-tuning)
 fi
 [[ -d $out/buildings-1001 ]] || "$plumekit" maps random --families building --count 20 \
   --seed 1001 --sources 3 --out "$out/buildings-1001" >/dev/null
