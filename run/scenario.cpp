@@ -461,11 +461,11 @@ void Scenario::add_mission_times(LocalizationResult& r, Vec2 source) const {
   // fmin takes the number of a number and a NaN ("never").
   for (const std::vector<Step>* steps : robots) {
     t.first_detection_s = std::fmin(t.first_detection_s, first_detection(*steps, threshold));
-    const std::vector<Vec2>& approach = r.team.empty() ? r.approach : std::vector<Vec2>{};
+    // The drive to the estimate after the last step (empty for a team, which does not approach).
     t.within_1m_s =
-        std::fmin(t.within_1m_s, first_within(*steps, source, kGslBenchRadius, speed, approach));
+        std::fmin(t.within_1m_s, first_within(*steps, source, kGslBenchRadius, speed, r.approach));
     t.within_0_5m_s =
-        std::fmin(t.within_0_5m_s, first_within(*steps, source, 0.5, speed, approach));
+        std::fmin(t.within_0_5m_s, first_within(*steps, source, 0.5, speed, r.approach));
   }
   for (Vec2 s : starts)
     t.optimum_s = std::fmin(t.optimum_s, optimum_path_m(s, source) / speed);
