@@ -55,6 +55,8 @@ void SharedPlume::advance_to(long long step, std::unique_lock<std::mutex>& g) {
     const bool every = need_.size() > 1;
     for (long long s = step_ + 1; s <= to; ++s) {
       sim_.step();
+      if (watcher_ != nullptr && s % watcher_->every_steps() == 0)
+        watcher_->plume_at(s, sim_.time(), sim_);
       if (every || s == to) sim_.capture(ring_[static_cast<std::size_t>(s % frames)]);
     }
     g.lock();
@@ -95,6 +97,15 @@ void SharedPlume::leave(int robot) {
   need_.at(static_cast<std::size_t>(robot)) = kGone;
   // A robot waiting for this one's steps to pass steps the plume itself when it wakes.
   moved_.notify_all();
+}
+
+void SharedPlume::watch(PlumeWatcher* watcher) {
+  std::unique_lock<std::mutex> g(lock_);
+  while (stepping_)
+    moved_.wait(g);
+  watcher_ = watcher;
+  if (watcher_ != nullptr && step_ % watcher_->every_steps() == 0)
+    watcher_->plume_at(step_, sim_.time(), sim_);
 }
 
 }  // namespace plumekit::world

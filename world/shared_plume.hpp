@@ -25,6 +25,16 @@
 
 namespace plumekit::world {
 
+// Something that watches a plume step by step (run/replay_recorder.hpp records a replay): told
+// the simulation at every `every_steps()`-th step since the spin-up (step 0 included), on the
+// thread that steps it. Watching changes nothing of the plume.
+class PlumeWatcher {
+ public:
+  virtual ~PlumeWatcher() = default;
+  virtual long long every_steps() const = 0;
+  virtual void plume_at(long long step, double time_s, const world::FilamentSimulation& sim) = 0;
+};
+
 class SharedPlume {
  public:
   // Builds the plume of `source` (seeded by `seed`) and spins it up
@@ -51,6 +61,9 @@ class SharedPlume {
   void promise(int robot, long long step);
   // The robot reads no more: the plume no longer waits for it.
   void leave(int robot);
+  // Lets `watcher` (null: none) watch the steps from now on; it is told the step the plume is at
+  // when that is one of its steps.
+  void watch(PlumeWatcher* watcher);
 
  private:
   // Steps the plume to `step`, capturing every frame on the way; called with the lock held,
@@ -63,6 +76,7 @@ class SharedPlume {
   long long step_ = 0;                   // the plume's steps since the spin-up: the newest frame's
   std::vector<world::PlumeFrame> ring_;  // frame of step s at s % ring size
   bool stepping_ = false;
+  PlumeWatcher* watcher_ = nullptr;
   std::mutex lock_;
   std::condition_variable moved_;
   // Per robot, the earliest step it may still read (its last request); "gone" once it left.

@@ -103,9 +103,25 @@ void SimulatedWorld::advance(double seconds) {
   debt_ += seconds;
   const double dt = options_.filament.dt;
   const long long steps = take_steps(debt_, dt);
-  steps_ += steps;
-  for (long long k = 0; k < steps; ++k)  // summed step by step, as the plume sums its own time
+  for (long long k = 0; k < steps; ++k) {  // summed step by step, as the plume sums its own time
     time_ += dt;
+    ++steps_;
+    if (watcher_ != nullptr && steps_ % watcher_->every_steps() == 0) notify_watcher();
+  }
+}
+
+void SimulatedWorld::watch(WorldWatcher* watcher, Vec2 where) {
+  watcher_ = watcher;
+  where_ = where;
+  if (own_) own_->watch(watcher);
+  if (watcher_ != nullptr && steps_ % watcher_->every_steps() == 0) notify_watcher();
+}
+
+void SimulatedWorld::notify_watcher() {
+  Vec2 at = where_;
+  if (way_.path != nullptr)
+    at = point_along(*way_.path, std::min(way_.metres, (time_ - way_.set_off) * options_.speed));
+  watcher_->robot_at(robot_, steps_, time_, at);
 }
 
 void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
@@ -118,21 +134,25 @@ void SimulatedWorld::travel(const std::vector<Vec2>& path, double metres) {
                                              normal(draw, odometry_rng_, 0.0, sd)};
   }
   const double seconds = metres / options_.speed;
+  if (!path.empty()) way_ = {&path, metres, time_};
   if (!reads_while_travelling() || path.size() < 2) {
     advance(seconds);
-    return;
+  } else {
+    const double interval = reading_interval();
+    const int readings = static_cast<int>(std::floor(seconds / interval));
+    leg_ = {drift_before, odometry_error_, metres, true};
+    for (int k = 1; k <= readings; ++k)
+      pass(path, k * interval * options_.speed);
+    leg_.active = false;
+    advance(seconds - readings * interval);
   }
-  const double interval = reading_interval();
-  const int readings = static_cast<int>(std::floor(seconds / interval));
-  leg_ = {drift_before, odometry_error_, metres, true};
-  for (int k = 1; k <= readings; ++k)
-    pass(path, k * interval * options_.speed);
-  leg_.active = false;
-  advance(seconds - readings * interval);
+  if (!path.empty()) where_ = path.back();
+  way_ = {};
 }
 
 void SimulatedWorld::pass(const std::vector<Vec2>& path, double along) {
   const Busy busy(*this);
+  if (way_.path == nullptr && !path.empty()) where_ = point_along(path, along);  // a team's
   advance(reading_interval());
   if (!reads_while_travelling() || path.empty()) return;
   const Vec2 p = point_along(path, along);
@@ -217,6 +237,7 @@ Reading SimulatedWorld::stop(Vec2 p) {
 }
 
 void SimulatedWorld::begin_stop(Vec2 p) {
+  where_ = p;
   stop_ = StopState{};
   stop_.p = p;
   stop_.readings =

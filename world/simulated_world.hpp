@@ -126,6 +126,15 @@ struct TransitReading {
   double value = 0.0;   // the gas sensor's reading, with its noise (>= 0)
 };
 
+// Something that watches a robot as its world's time passes, for a replay of the run
+// (run/replay_recorder.hpp): told where the robot truly is at every `every_steps()`-th plume step
+// since the spin-up that its time reaches (step 0 included), and, as a PlumeWatcher, the plume at
+// those steps. Watching changes nothing of the run.
+class WorldWatcher : public PlumeWatcher {
+ public:
+  virtual void robot_at(int robot, long long step, double time_s, Vec2 where) = 0;
+};
+
 class SimulatedWorld {
  public:
   // A world of its own: the plume of `source` seeded by `seed`, spun up.
@@ -179,6 +188,10 @@ class SimulatedWorld {
   // Wall-clock seconds spent in travel(), pass(), stop() and stop_reading(): the plume's steps
   // and the sensors' readings (with a shared plume, waits for the other robots too).
   double busy_s() const { return busy_s_; }
+  // Lets `watcher` (null: none) watch the robot, which is at `where` now (and the plume, in a
+  // world of its own; a shared plume is watched through SharedPlume::watch). It is told the
+  // step the world is at first, when that is one of its steps.
+  void watch(WorldWatcher* watcher, Vec2 where);
 
  private:
   // One of `own` (a world of its own) and `shared`.
@@ -197,6 +210,8 @@ class SimulatedWorld {
   bool stop_settled() const;
   // Records the reading `value` the sensor gave at p, `along` metres into the path.
   void record_transit(Vec2 p, double along, double value);
+  // Tells the watcher where the robot is at step steps_ (time_).
+  void notify_watcher();
   // Adds the wall time of the outermost timed call to busy_s_ (stop() calls stop_reading()).
   class Busy;
   double busy_s_ = 0.0;
@@ -218,6 +233,13 @@ class SimulatedWorld {
   double time_ = 0.0;    // summed step by step, as the plume sums its own
   double debt_ = 0.0;    // seconds not yet stepped (travel times are not multiples of dt)
   Vec2 odometry_error_;  // the recorded position's drift so far (odometry_drift)
+  // For a watcher: where the robot is, or the path travel() is covering and when it set off.
+  WorldWatcher* watcher_ = nullptr;
+  Vec2 where_;
+  struct Way {
+    const std::vector<Vec2>* path = nullptr;
+    double metres = 0.0, set_off = 0.0;
+  } way_;
   // The leg travel() is on, for the drift a reading on the way records: the drift before it and
   // after it, and its metres.
   struct Leg {
