@@ -242,7 +242,7 @@ void add_localize(CLI::App& app) {
       "localize",
       "Find a gas source with a simulated robot (source term estimation, or any --method)");
   struct Args {
-    std::string map, source, start, out;
+    std::string map, source, start, out, animate;
     std::uint64_t seed = kDefaultSeed;
     run::SteOptions ste;
   };
@@ -261,6 +261,11 @@ void add_localize(CLI::App& app) {
              "ste.start");
   add_seed_flag(cmd, a->seed, "Seed of the plume, noise and random start");
   cmd->add_option("--out,-o", a->out, "Write run.json, trajectory.png, posterior.png here");
+  cmd->add_option("--animate", a->animate,
+                  "Write a replay of the mission: FILE.mp4 (a video) or FILE.png (an animated "
+                  "PNG); with --out, the run's replay files too, for `plumekit replay` "
+                  "(docs/replay.md)")
+      ->type_name("FILE");
   add_ste_options(cmd, a->ste);
   cmd->add_option("--wind", a->ste.wind_dir, cfd::kWindHelp)->check(CLI::ExistingDirectory);
   add_threads_flag(cmd, a->ste.threads, "ste.threads",
@@ -270,9 +275,15 @@ void add_localize(CLI::App& app) {
     if (cmd->got_subcommand("tunnel")) return;  // `localize tunnel` did the work
     if (a->source.empty()) throw CLI::RequiredError("--source");
     // Points are typed in the map's frame (its file's coordinates).
-    run::LocalizeRequest q{
-        a->map, parse_point(a->source, "--source"), std::nullopt, a->seed, a->ste, a->out};
+    run::LocalizeRequest q;
+    q.map = a->map;
+    q.source = parse_point(a->source, "--source");
+    q.seed = a->seed;
+    q.ste = a->ste;
+    q.out = a->out;
     if (!a->start.empty()) q.start = parse_point(a->start, "--start");
+    q.animate = a->animate;
+    q.progress = !output().json;
     const run::LocalizeReport r = localize(q);
     report_run(r.report, r.requested_start, r.start, r.start_moved);
   });

@@ -16,5 +16,6 @@ void add_gdm_commands(CLI::App& app);
 // `options --markdown`: the option reference, docs/options.md
 void add_options_commands(CLI::App& app);
 void add_methods_commands(CLI::App& app);  // the registry
+void add_replay_commands(CLI::App& app);   // a recorded run drawn again
 
 }  // namespace plumekit::cli

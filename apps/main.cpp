@@ -93,6 +93,7 @@ int main(int argc, char** argv) {
   plumekit::cli::add_gdm_commands(app);
   plumekit::cli::add_options_commands(app);
   plumekit::cli::add_methods_commands(app);
+  plumekit::cli::add_replay_commands(app);
 
   try {
     app.parse(argc, argv);

@@ -610,6 +610,49 @@ void write_output_file(const fs::path& target, std::string_view bytes) {
   write_file_atomic(abs, bytes);
 }
 
+std::string mp4_mark() {
+  return std::string(kPngKeyword) + '\0' + kPngText;
+}
+
+namespace {
+
+// Whether an MP4 file (an "ftyp" box first) has a top-level "free" box holding mp4_mark().
+bool mp4_has_mark(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string mark = mp4_mark();
+  const auto end = static_cast<std::uint64_t>(fs::file_size(file));
+  std::uint64_t at = 0;
+  for (int box = 0; at + 8 <= end && box < 100000; ++box) {
+    unsigned char head[16];
+    in.seekg(static_cast<std::streamoff>(at));
+    if (!in.read(reinterpret_cast<char*>(head), 8)) return false;
+    std::uint64_t size =
+        (std::uint64_t{head[0]} << 24) | (head[1] << 16) | (head[2] << 8) | head[3];
+    const std::string type(reinterpret_cast<char*>(head) + 4, 4);
+    if (box == 0 && type != "ftyp") return false;
+    std::uint64_t header = 8;
+    if (size == 1) {  // a 64-bit size follows
+      if (!in.read(reinterpret_cast<char*>(head + 8), 8)) return false;
+      size = 0;
+      for (int k = 8; k < 16; ++k)
+        size = (size << 8) | head[k];
+      header = 16;
+    } else if (size == 0) {
+      size = end - at;  // to the end of the file
+    }
+    if (size < header || at + size > end) return false;
+    if (type == "free" && size - header == mark.size()) {
+      std::string payload(mark.size(), '\0');
+      if (in.read(payload.data(), static_cast<std::streamsize>(payload.size())) && payload == mark)
+        return true;
+    }
+    at += size;
+  }
+  return false;
+}
+
+}  // namespace
+
 bool written_by_plumekit(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return false;
@@ -617,6 +660,7 @@ bool written_by_plumekit(const fs::path& file) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(in.gcount()));
   if (png_has_mark(head)) return true;
+  if (head.size() >= 8 && head.compare(4, 4, "ftyp") == 0) return mp4_has_mark(file);
   // A JSON document (a map) whose top-level "generated_by" names plumekit.
   const std::size_t first = head.find_first_not_of(" \t\r\n");
   if (first == std::string::npos || head[first] != '{') return false;

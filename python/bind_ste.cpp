@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include "core/animation.hpp"
 #include "core/error.hpp"
 #include "core/seed.hpp"
 #include "python/bindings.hpp"
@@ -16,6 +17,8 @@
 #include "run/evaluate_job.hpp"
 #include "run/evaluation.hpp"
 #include "run/localize_job.hpp"
+#include "run/replay.hpp"
+#include "run/replay_render.hpp"
 #include "run/report.hpp"
 #include "run/scenario.hpp"
 #include "ste/mission.hpp"
@@ -62,19 +65,61 @@ py::dict posterior_dict(const Map& map, const ste::Posterior& p) {
 
 // The run `localize` makes (run::localize_once: its seeds, so that the same seed gives the same
 // run), summarised as run.json is without the command's keys.
+// With `animate` (a path), the mission's replay is drawn there too (`localize --animate`).
 py::object run_once(const run::Scenario& sc, const py::handle& source, const py::object& start,
-                    std::uint64_t seed) {
+                    std::uint64_t seed, const py::object& animate) {
   const Map& map = sc.map();
   // Python objects are read before the GIL is released.
   const Vec2 s = map.from_frame(to_point(source, "source"));
   const std::optional<Vec2> requested =
       start.is_none() ? std::nullopt
                       : std::optional<Vec2>(map.from_frame(to_point(start, "start")));
+  const std::string animation = animate.is_none() ? "" : py::str(animate).cast<std::string>();
+  if (!animation.empty()) check_animation_target(animation, "animate");
   nlohmann::ordered_json j;
   {
     ReleasedGil release;
-    const run::LocalizeRun r = run::localize_once(sc, s, requested, seed);
+    std::optional<run::ReplayRecorder> recorder;
+    if (!animation.empty())
+      recorder.emplace(map, std::max(1, sc.options().team.robots), 1.0,
+                       sc.options().world.filament.dt);
+    const run::LocalizeRun r =
+        run::localize_once(sc, s, requested, seed, recorder ? &*recorder : nullptr);
     j = run::run_report(sc, r.source, r.result).json;
+    if (recorder) {
+      const run::Replay replay =
+          recorder->finish(r.result, r.source, run::replay_title(sc, r.source, seed));
+      const AnimationWriter::Written w = run::animate_replay(replay, animation, "animate");
+      j["animation"] = {{"file", w.file.string()}, {"format", w.format}, {"frames", w.frames}};
+      if (!w.note.empty()) j["animation"]["note"] = w.note;
+    }
+  }
+  return from_json(j);
+}
+
+// `plumekit replay RUN_DIR --out FILE`.
+py::object replay_run(const std::string& run_dir, const std::string& out, double fps,
+                      const py::object& size) {
+  run::AnimateOptions o;
+  o.fps = fps;
+  if (!size.is_none()) {
+    const py::tuple t = size.cast<py::tuple>();
+    if (t.size() != 2) throw InputError("size: expected (width, height) in pixels");
+    o.size = {t[0].cast<int>(), t[1].cast<int>()};
+    if (o.size.width < 640 || o.size.height < 360 || o.size.width % 2 || o.size.height % 2)
+      throw InputError("size: each side even, at least (640, 360)");
+  }
+  check_animation_target(out, "out");
+  nlohmann::ordered_json j;
+  {
+    ReleasedGil release;
+    const run::Replay replay = run::read_replay(run_dir);
+    const AnimationWriter::Written w = run::animate_replay(replay, out, "out", o);
+    j = {{"title", replay.title},
+         {"file", w.file.string()},
+         {"format", w.format},
+         {"frames", w.frames}};
+    if (!w.note.empty()) j["note"] = w.note;
   }
   return from_json(j);
 }
@@ -211,8 +256,9 @@ void bind_scenario(py::module_& m) {
           },
           "The scenario's wind (a copy)")
       .def("run", &run_once, py::arg("source"), py::arg("start") = py::none(),
-           py::arg("seed") = kDefaultSeed,
-           "One simulated localization (`plumekit localize --json`'s summary as a dict)")
+           py::arg("seed") = kDefaultSeed, py::arg("animate") = py::none(),
+           "One simulated localization (`plumekit localize --json`'s summary as a dict); "
+           "animate='run.mp4' (or .png) draws its replay there (docs/replay.md)")
       .def(
           "mission",
           [](std::shared_ptr<run::Scenario> sc, std::uint64_t seed) {
@@ -293,14 +339,21 @@ void bind_ste(py::module_& m) {
   m.def(
       "localize",
       [](const Map& map, const py::handle& source, const py::object& start, std::uint64_t seed,
-         const py::object& options, const py::kwargs& kw) {
+         const py::object& options, const py::object& animate, const py::kwargs& kw) {
         const auto sc = make_scenario(map, ste_options(options, kw, "localize"));
-        return run_once(*sc, source, start, seed);
+        return run_once(*sc, source, start, seed, animate);
       },
       py::arg("map"), py::arg("source"), py::arg("start") = py::none(),
       py::arg("seed") = kDefaultSeed, py::arg("options") = py::none(),
+      py::arg("animate") = py::none(),
       "A simulated robot localizes the source (`plumekit localize`; the same seed gives the same "
-      "run). Returns its summary dict: 'estimate', 'error_m', 'samples', 'steps', ...");
+      "run). Returns its summary dict: 'estimate', 'error_m', 'samples', 'steps', ...; "
+      "animate='run.mp4' (or .png) draws the mission's replay there ('animation' in the dict)");
+  m.def("replay", &replay_run, py::arg("run_dir"), py::arg("out"), py::arg("fps") = 10.0,
+        py::arg("size") = py::none(),
+        "Draws a run's recorded replay again (`plumekit replay RUN_DIR --out FILE`): the folder "
+        "of `plumekit localize --out DIR --animate FILE`; out is FILE.mp4 or FILE.png. Returns "
+        "{'title', 'file', 'format', 'frames', ('note')}.");
   m.def("evaluate", &evaluate_maps, py::arg("maps"), py::arg("runs") = 3,
         py::arg("seed") = kDefaultSeed, py::arg("seeds") = 1, py::arg("threads") = 0,
         py::arg("source_count") = 0, py::arg("progress") = py::none(),

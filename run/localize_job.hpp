@@ -10,6 +10,7 @@
 #include "core/geometry.hpp"
 #include "core/report.hpp"
 #include "core/seed.hpp"
+#include "run/replay_recorder.hpp"
 #include "run/scenario.hpp"
 
 namespace plumekit::run {
@@ -22,7 +23,11 @@ struct LocalizeRun {
   LocalizationResult result;
 };
 LocalizeRun localize_once(const Scenario& scenario, Vec2 source, const std::optional<Vec2>& start,
-                          std::uint64_t seed);
+                          std::uint64_t seed, ReplayRecorder* recorder = nullptr);
+
+// The replay's title for a run of `scenario`: the map, the method (and its plume model), the
+// source in the map's frame and the seed.
+std::string replay_title(const Scenario& scenario, Vec2 source, std::uint64_t seed);
 
 struct LocalizeRequest {
   std::filesystem::path map;
@@ -31,6 +36,10 @@ struct LocalizeRequest {
   std::uint64_t seed = kDefaultSeed;
   SteOptions ste;
   std::filesystem::path out;  // empty: no files; else run.json, trajectory.png, posterior.png
+  // A replay of the mission as a video (.mp4) or animated PNG (.png); empty: none. With `out`,
+  // the run's replay files go there too (run/replay.hpp), for `plumekit replay`.
+  std::filesystem::path animate;
+  bool progress = false;  // a progress bar while the replay is drawn
 };
 
 // What `localize` reports: the summary (JSON and text; "out" and the "wrote" line when it wrote

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/statistics.hpp"
+#include "run/replay_recorder.hpp"
 
 namespace plumekit::run {
 
@@ -168,6 +169,7 @@ class FloorRobot {
     r_.method = method.name();
     r_.start = start;
     t_start_ = world.time();
+    if (options.recorder != nullptr) world.watch(options.recorder, start);
   }
 
   bool sense() {
@@ -190,6 +192,7 @@ class FloorRobot {
     method_.observe({reading_.position, reading_.gas, reading_.wind, reading_.wind_variance,
                      step_.time_s, blocked_, passing_observations(step_.on_the_way)});
     record_state(method_, step_, r_);
+    if (options_.recorder != nullptr) options_.recorder->belief(0, step_.time_s, method_);
     r_.stopped_by = stop_reason(method_, pos_, static_cast<int>(r_.steps.size()) + 1, options_);
     path_ = {};
     if (r_.stopped_by.empty())
@@ -231,6 +234,7 @@ class FloorRobot {
 
   LocalizationResult finish() {
     approach();
+    if (options_.recorder != nullptr) world_.watch(nullptr, pos_);
     r_.reached = r_.stopped_by == "reached";
     if (std::optional<Grid<double>> belief = method_.belief_map(world_.map()))
       r_.posterior.marginal = std::move(*belief);

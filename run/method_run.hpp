@@ -91,6 +91,8 @@ std::vector<methods::BasicPassing<Vec2>> passing_observations(
 // its robot enters the disc.
 void cut_at_entry(const SourceDisc& disc, planner::PlanResult& path);
 
+class ReplayRecorder;  // run/replay_recorder.hpp
+
 struct MethodRunOptions {
   std::optional<SourceBox> box;    // stop a run whose stop lies in it
   std::optional<SourceDisc> disc;  // stop a run where it enters it
@@ -103,6 +105,8 @@ struct MethodRunOptions {
   // when it has one, and the mission ends there: a robot that has found a leak goes to it, and
   // GSL-Bench scores where the robot is (issue 47; SteOptions::approach).
   bool approach = false;
+  // Records the run's replay (the world's frames and each decision's belief); null: none.
+  ReplayRecorder* recorder = nullptr;
 };
 
 // Why a run ends at its `stops`-th stop, made at `pos`: the method's own reason, or the runner's

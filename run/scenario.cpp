@@ -350,7 +350,7 @@ std::vector<Vec2> Scenario::team_starts(Vec2 first, Vec2 source) const {
 }
 
 LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& starts,
-                                      std::uint64_t seed) const {
+                                      std::uint64_t seed, ReplayRecorder* recorder) const {
   check_source(source);
   const auto t0 = Clock::now();
   world::SharedPlume plume(map_, wind_, source, options_.world.filament, seed,
@@ -370,6 +370,7 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   }
   MethodRunOptions o;
   if (options_.success_radius > 0.0) o.disc = SourceDisc{source, options_.success_radius};
+  o.recorder = recorder;
   TeamSetup setup;
   setup.map = &map_;
   setup.source = source;
@@ -383,37 +384,38 @@ LocalizationResult Scenario::run_team(Vec2 source, const std::vector<Vec2>& star
   return r;
 }
 
-LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed) const {
+LocalizationResult Scenario::run(Vec2 source, Vec2 start, std::uint64_t seed,
+                                 ReplayRecorder* recorder) const {
   const auto t0 = Clock::now();
   check_source(source);
   start = check_start(start);
   if (options_.team.robots > 1) {
-    LocalizationResult r = run_team(source, team_starts(start, source), seed);
+    LocalizationResult r = run_team(source, team_starts(start, source), seed, recorder);
     r.run_s = since(t0);
     return r;
   }
   const auto t1 = Clock::now();
   world::SimulatedWorld world(map_, wind_, source, options_.world, seed);  // spins the plume up
   const double spin_up = since(t1);
-  LocalizationResult r = run(world, start, seed);
+  LocalizationResult r = run(world, start, seed, recorder);
   r.plume_s += spin_up;
   r.run_s = since(t0);
   return r;
 }
 
-LocalizationResult Scenario::run(world::SimulatedWorld& world, Vec2 start,
-                                 std::uint64_t seed) const {
+LocalizationResult Scenario::run(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed,
+                                 ReplayRecorder* recorder) const {
   const auto t0 = Clock::now();
   const double busy = world.busy_s();
-  LocalizationResult r = run_in(world, start, seed);
+  LocalizationResult r = run_in(world, start, seed, recorder);
   add_mission_times(r, world.source());
   r.plume_s = world.busy_s() - busy;
   r.run_s = since(t0);
   return r;
 }
 
-LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start,
-                                    std::uint64_t seed) const {
+LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed,
+                                    ReplayRecorder* recorder) const {
   const Vec2 source = check_source(world.source());
   start = check_start(start);
   MethodRunOptions o;
@@ -427,6 +429,7 @@ LocalizationResult Scenario::run_in(world::SimulatedWorld& world, Vec2 start,
       options_.method, {&map_}, world::stream_seed(seed, world::SteStream::Method), &model);
   o.space = space_.get();
   o.approach = options_.approach;
+  o.recorder = recorder;
   if (stops_in_source_box(options_.method.name)) o.box = source_box(source);
   return run_method(start, *method, world, *planner_, o);
 }

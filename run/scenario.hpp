@@ -26,6 +26,8 @@
 
 namespace plumekit::run {
 
+class ReplayRecorder;  // run/replay_recorder.hpp
+
 // The methods' options and the registry's lookups, as the run layer names them.
 using methods::ends_on_arrival;
 using methods::find_method;
@@ -220,11 +222,13 @@ class Scenario {
 
   // One localization run with the options' method (a team's when options.team.robots > 1, its
   // first robot at `start`: team_starts); `seed` drives the plume, the sensor noise, MH and the
-  // particle filter.
-  LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed) const;
+  // particle filter. A `recorder` records the run's replay (run/replay_recorder.hpp).
+  LocalizationResult run(Vec2 source, Vec2 start, std::uint64_t seed,
+                         ReplayRecorder* recorder = nullptr) const;
   // The same run in `world`, which holds the plume of `source` and `seed` (a robot of a shared
   // plume: world/shared_plume.hpp).
-  LocalizationResult run(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
+  LocalizationResult run(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed,
+                         ReplayRecorder* recorder = nullptr) const;
 
   // The starts of a team whose first robot starts at `first`: the team is deployed together, its
   // other robots on the free points nearest `first` of a lattice of the team's separation
@@ -233,8 +237,8 @@ class Scenario {
   std::vector<Vec2> team_starts(Vec2 first, Vec2 source) const;
   // A team's run (options.team.robots robots) from `starts`; `seed` drives the plume, each
   // robot's sensors and MH (team_robot_seed).
-  LocalizationResult run_team(Vec2 source, const std::vector<Vec2>& starts,
-                              std::uint64_t seed) const;
+  LocalizationResult run_team(Vec2 source, const std::vector<Vec2>& starts, std::uint64_t seed,
+                              ReplayRecorder* recorder = nullptr) const;
 
   // The shortest collision-free way from `start` to `source` at the planner's margin (a source
   // inside the margin is reached at the free point nearest it, then straight), m; NaN when the
@@ -259,7 +263,8 @@ class Scenario {
   // Fills r.times (run/mission_times.hpp) for a run to `source`.
   void add_mission_times(LocalizationResult& r, Vec2 source) const;
   // run(world, ...) without its times.
-  LocalizationResult run_in(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed) const;
+  LocalizationResult run_in(world::SimulatedWorld& world, Vec2 start, std::uint64_t seed,
+                            ReplayRecorder* recorder) const;
 
   // The wind of `same_map`, or solved when it is null.
   Scenario(const Map& map, const SteOptions& options, const Scenario* same_map);

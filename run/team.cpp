@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "methods/method.hpp"
+#include "run/replay_recorder.hpp"
 #include "world/random_streams.hpp"
 
 namespace plumekit::run {
@@ -123,6 +124,11 @@ class TeamRun {
       robots_.push_back(std::move(r));
     }
     t_start_ = robots_.front().world->time();
+    if (options_.recorder != nullptr) {
+      plume_.watch(options_.recorder);
+      for (Robot& r : robots_)
+        r.world->watch(options_.recorder, r.pos);
+    }
   }
 
   LocalizationResult run() {
@@ -214,6 +220,7 @@ class TeamRun {
         if (o.index != r.index && o.phase != Phase::Done)
           o.inbox.insert(o.inbox.end(), sent.begin(), sent.end());
     }
+    if (options_.recorder != nullptr) options_.recorder->belief(r.index, s.time_s, *r.method);
     const ste::Posterior& post = posterior(r);
     s.estimate = post.expected_source();
     s.map = post.map;
@@ -460,6 +467,11 @@ class TeamRun {
   }
 
   LocalizationResult result() {
+    if (options_.recorder != nullptr) {
+      plume_.watch(nullptr);
+      for (Robot& r : robots_)
+        r.world->watch(nullptr, r.pos);
+    }
     LocalizationResult res;
     res.strategy = to_string(team_.strategy);
     res.start = robots_.front().out.start;

@@ -27,6 +27,8 @@ packages=(
   libompl-dev libboost-filesystem-dev libboost-serialization-dev libboost-system-dev
   # images, PNG, ROS map_server files (YAML + PGM/PNG)
   libopencv-dev libyaml-cpp-dev libpng-dev
+  # replays as H.264 video (core/video_plugin.cpp): FFmpeg's libraries and x264
+  libavformat-dev libavcodec-dev libswscale-dev libavutil-dev pkg-config
   # file formats and the command line
   nlohmann-json3-dev libcli11-dev
   # SHA-256 of shards, model and wind files: OpenSSL's EVP (docs/own-code.md)

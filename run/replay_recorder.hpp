@@ -1,0 +1,52 @@
+#pragma once
+// Records a run's replay (run/replay.hpp) while the run goes: the world tells it where each robot
+// is and what the plume is at every frame (world::WorldWatcher), the run loop hands it the
+// method's belief after each decision, and the run's result gives the stops, the readings and the
+// end. Recording reads what the run computes anyway plus one concentration grid per frame; the
+// run itself is the same with or without it.
+#include <mutex>
+#include <vector>
+
+#include "methods/method.hpp"
+#include "run/replay.hpp"
+#include "run/run_record.hpp"
+#include "world/simulated_world.hpp"
+
+namespace plumekit::run {
+
+// The replay's plume grid on `map`: cells of at least 0.1 m, at most about 10,000 of them (a
+// grid a second costs the world's time; finer than a video's pixels shows no more).
+GridShape replay_plume_grid(const Map& map);
+
+class ReplayRecorder : public world::WorldWatcher {
+ public:
+  // Frames every `every_s` simulated seconds (rounded to whole plume steps of `dt`), from the
+  // world's step 0, where the robots start.
+  ReplayRecorder(const Map& map, int robots, double every_s, double dt);
+
+  long long every_steps() const override { return every_steps_; }
+  void plume_at(long long step, double time_s, const world::FilamentSimulation& sim) override;
+  void robot_at(int robot, long long step, double time_s, Vec2 where) override;
+  // Robot `robot`'s method after its decision at `time_s` (since the robots started).
+  void belief(int robot, double time_s, const methods::LocalizationMethod& method);
+
+  // The replay of the finished run `result` with its true `source`; `title` says which run.
+  Replay finish(const LocalizationResult& result, Vec2 source, const std::string& title);
+
+ private:
+  const Map& map_;
+  int robots_;
+  long long every_steps_;
+  double every_s_;
+  GridShape plume_grid_;
+  std::mutex lock_;  // a plume shared with other robots may step on another thread
+  std::vector<std::vector<float>> plume_;                // per frame; empty: not seen
+  std::vector<std::vector<std::optional<Vec2>>> where_;  // per frame, per robot
+  std::vector<double> scratch_;
+  GridShape belief_grid_;
+  std::vector<ReplayBelief> beliefs_;
+  std::vector<std::uint8_t> belief_cells_;
+  bool has_estimate_ = false;
+};
+
+}  // namespace plumekit::run

@@ -1,0 +1,351 @@
+#include "run/replay_render.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
+#include <opencv2/imgproc.hpp>
+
+#include "core/progress.hpp"
+#include "map/map_render.hpp"
+
+namespace plumekit::run {
+
+namespace {
+
+// A team's robots (BGR), as trajectory.png colours them after the first.
+const cv::Scalar kRobots[] = {{40, 40, 40},   {20, 120, 230}, {200, 130, 0},
+                              {160, 40, 160}, {40, 40, 200},  {60, 160, 60}};
+cv::Scalar robot_colour(int k) {
+  return kRobots[static_cast<std::size_t>(k) % (sizeof(kRobots) / sizeof(kRobots[0]))];
+}
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+// A colour map's 256 colours, level 0 white (no gas, no belief): a 256 x 1 BGR lookup table.
+// `root`: level k takes the colour of sqrt(k / 255), so that a belief's tails show beside its peak.
+cv::Mat colour_table(int colormap, bool reverse, bool root = false) {
+  cv::Mat levels(1, 256, CV_8U);
+  for (int k = 0; k < 256; ++k) {
+    const int v = root ? static_cast<int>(std::lround(255.0 * std::sqrt(k / 255.0))) : k;
+    levels.at<uchar>(0, k) = static_cast<uchar>(reverse ? 255 - v : v);
+  }
+  cv::Mat table;
+  cv::applyColorMap(levels, table, colormap);
+  // Gas fades in from white: a faint trace is a pale tint of the colour map's first colour.
+  for (int k = 0; k < 256; ++k) {
+    const double a = k == 0 ? 0.0 : std::min(1.0, 0.25 + 0.75 * k / 64.0);
+    cv::Vec3b& c = table.at<cv::Vec3b>(0, k);
+    for (int ch = 0; ch < 3; ++ch)
+      c[ch] = static_cast<uchar>(std::lround(255.0 * (1.0 - a) + c[ch] * a));
+  }
+  return table;
+}
+
+// One map panel: the map drawn once (free space, obstacles, axes, title, legend), fitted into
+// its box, and where its arena's free space lies.
+struct MapPanel {
+  std::unique_ptr<MapCanvas> canvas;
+  cv::Mat background;  // the panel, scaled to fit its box
+  double scale = 1.0;  // panel pixels per canvas pixel
+  cv::Rect arena;      // in the panel
+  cv::Mat free;        // over the arena: 255 where the free space shows
+  cv::Point2d px(Vec2 p) const {
+    const cv::Point2d c = canvas->to_px(p);
+    return {c.x * scale, c.y * scale};
+  }
+};
+
+MapPanel map_panel(const Map& map, cv::Size box, const Frame& frame) {
+  MapPanel panel;
+  double ppm = std::clamp(std::min(box.width / map.width, box.height / map.height), 20.0, 400.0);
+  for (int attempt = 0;; ++attempt) {
+    panel.canvas = std::make_unique<MapCanvas>(map, RenderOptions{ppm}, frame);
+    panel.canvas->draw_free_space();
+    const cv::Rect a = panel.canvas->arena_rect();
+    const cv::Mat bare = panel.canvas->image()(a).clone();
+    panel.canvas->draw_obstacles();
+    panel.canvas->draw_walls_and_openings();
+    cv::Mat same;
+    cv::compare(bare.reshape(1), panel.canvas->image()(a).reshape(1), same, cv::CMP_EQ);
+    cv::Mat free = same.reshape(3);
+    std::vector<cv::Mat> ch;
+    cv::split(free, ch);
+    cv::bitwise_and(ch[0], ch[1], panel.free);
+    cv::bitwise_and(panel.free, ch[2], panel.free);
+    const Picture p = panel.canvas->finish();
+    const double fit = std::min(static_cast<double>(box.width) / p.image.cols,
+                                static_cast<double>(box.height) / p.image.rows);
+    if (fit >= 1.0 || ppm <= 20.0 || attempt >= 8) {
+      panel.scale = std::min(1.0, fit);
+      if (panel.scale < 1.0) {
+        cv::resize(p.image, panel.background, cv::Size(), panel.scale, panel.scale, cv::INTER_AREA);
+        cv::resize(panel.free, panel.free, cv::Size(), panel.scale, panel.scale, cv::INTER_NEAREST);
+        panel.arena = cv::Rect(cv::Point(static_cast<int>(std::lround(a.x * panel.scale)),
+                                         static_cast<int>(std::lround(a.y * panel.scale))),
+                               panel.free.size());
+      } else {
+        panel.background = p.image;
+        panel.arena = a;
+      }
+      return panel;
+    }
+    ppm = std::max(20.0, ppm * fit * 0.98);
+  }
+}
+
+// `levels` (a grid of 8-bit levels, row 0 at y = 0) through `table` over the panel's free space.
+void paint_levels(cv::Mat& image, const MapPanel& panel, const std::uint8_t* levels,
+                  const GridShape& g, const cv::Mat& table) {
+  cv::Mat grid(g.ny, g.nx, CV_8U);
+  for (int j = 0; j < g.ny; ++j)
+    std::copy_n(levels + g.index(0, j), g.nx, grid.ptr<uchar>(g.ny - 1 - j));
+  cv::Mat scaled, grey3, colour;
+  cv::resize(grid, scaled, panel.arena.size(), 0, 0, cv::INTER_LINEAR);
+  cv::cvtColor(scaled, grey3, cv::COLOR_GRAY2BGR);
+  cv::LUT(grey3, table, colour);
+  colour.copyTo(image(panel.arena), panel.free);
+}
+
+cv::Point fixed_point(cv::Point2d p) {
+  return {static_cast<int>(std::lround(p.x * 16)), static_cast<int>(std::lround(p.y * 16))};
+}
+
+void dot(cv::Mat& image, cv::Point2d p, int radius, const cv::Scalar& fill, const cv::Scalar& rim) {
+  cv::circle(image, fixed_point(p), radius * 16, fill, cv::FILLED, cv::LINE_AA, 4);
+  cv::circle(image, fixed_point(p), radius * 16, rim, 1, cv::LINE_AA, 4);
+}
+
+void cross(cv::Mat& image, cv::Point2d p, int half, const cv::Scalar& colour, int thickness) {
+  const cv::Point2d a(half, half), b(half, -half);
+  cv::line(image, fixed_point(p - a), fixed_point(p + a), colour, thickness, cv::LINE_AA, 4);
+  cv::line(image, fixed_point(p - b), fixed_point(p + b), colour, thickness, cv::LINE_AA, 4);
+}
+
+}  // namespace
+
+class ReplayPainter::Panels {
+ public:
+  Panels(const Replay& r, cv::Size size) : r_(r), size_(size) {
+    header_ = std::max(48, size.height / 13);
+    const int half = size.width / 2, body = size.height - header_;
+    const cv::Size world_box(half, body);
+    std::vector<LegendEntry> legend = {
+        {LegendEntry::Symbol::Dot, robot_colour(0), r.robots > 1 ? "robots" : "robot"},
+        {LegendEntry::Symbol::Dot, cv::Scalar(255, 255, 255), "stop (coloured by its reading)"},
+        {LegendEntry::Symbol::Cross, colours::kEstimate, "estimate"}};
+    Map with_source = r.map;
+    with_source.sources = {r.source};
+    world_ = map_panel(with_source, world_box,
+                       Frame{"the world: gas (log scale) and robots", std::nullopt, legend, true});
+    // The readings over time go under both maps where a wide map leaves room, else under the
+    // belief.
+    const int below = body - world_.background.rows;
+    cv::Size belief_box(size.width - half, body * 62 / 100);
+    if (below >= body * 3 / 10) {
+      belief_box.height = world_.background.rows;
+      series_ = cv::Rect(0, header_ + world_.background.rows, size.width, below);
+    } else {
+      series_ =
+          cv::Rect(half, header_ + belief_box.height, size.width - half, body - belief_box.height);
+    }
+    belief_ =
+        map_panel(with_source, belief_box, Frame{"the method's belief", std::nullopt, {}, false});
+    world_at_ = {(world_box.width - world_.background.cols) / 2, header_};
+    belief_at_ = {half + (belief_box.width - belief_.background.cols) / 2, header_};
+    gas_ = colour_table(cv::COLORMAP_INFERNO, true);
+    belief_table_ = colour_table(cv::COLORMAP_VIRIDIS, true, true);
+    for (const ReplayStop& s : r.stops)
+      top_reading_ = std::max(top_reading_, s.value);
+    for (const ReplayReading& s : r.readings)
+      top_reading_ = std::max(top_reading_, s.value);
+    top_reading_ = std::max(top_reading_, 1.0);
+  }
+
+  cv::Mat frame(int k) {
+    cv::Mat image(size_, CV_8UC3, cv::Scalar(255, 255, 255));
+    const double t = r_.time_of(k);
+    draw_world(image, k, t);
+    draw_belief(image, t);
+    draw_series(image, t);
+    draw_header(image, t);
+    return image;
+  }
+
+ private:
+  // Colour of a reading on the gas scale.
+  cv::Scalar reading_colour(double v) const {
+    const int level = r_.plume_level(v);
+    const cv::Vec3b c = gas_.at<cv::Vec3b>(0, std::max(level, 40));
+    return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
+  }
+
+  void draw_world(cv::Mat& image, int k, double t) {
+    cv::Mat panel = world_.background.clone();
+    const std::size_t cells = r_.plume_grid.size();
+    paint_levels(panel, world_, r_.plume.data() + static_cast<std::size_t>(k) * cells,
+                 r_.plume_grid, gas_);
+    // Each robot's way so far, from the frames' positions.
+    for (int robot = 0; robot < r_.robots; ++robot) {
+      std::vector<cv::Point> way;
+      for (int f = 0; f <= k; ++f)
+        way.push_back(fixed_point(world_.px(r_.positions[f][robot])));
+      cv::polylines(panel, std::vector<std::vector<cv::Point>>{way}, false, robot_colour(robot), 1,
+                    cv::LINE_AA, 4);
+    }
+    for (const ReplayReading& s : r_.readings) {
+      if (s.time_s > t) break;
+      cv::circle(panel, fixed_point(world_.px(s.position)), 2 * 16, reading_colour(s.value),
+                 cv::FILLED, cv::LINE_AA, 4);
+    }
+    for (const ReplayStop& s : r_.stops)
+      if (s.arrived_s <= t)
+        dot(panel, world_.px(s.position), 5, reading_colour(s.value), robot_colour(s.robot));
+    const cv::Point2d source = world_.px(r_.source);
+    cross(panel, source, 6, colours::kSource, 2);
+    if (const ReplayStop* last = last_stop(t); last && r_.has_estimate)
+      cross(panel, world_.px(last->estimate), 6, colours::kEstimate, 2);
+    for (int robot = 0; robot < r_.robots; ++robot)
+      dot(panel, world_.px(r_.positions[k][robot]), 7, robot_colour(robot),
+          cv::Scalar(255, 255, 255));
+    panel.copyTo(image(cv::Rect(world_at_, panel.size())));
+  }
+
+  void draw_belief(cv::Mat& image, double t) {
+    cv::Mat panel = belief_.background.clone();
+    int latest = -1;
+    for (std::size_t b = 0; b < r_.beliefs.size() && r_.beliefs[b].time_s <= t; ++b)
+      latest = static_cast<int>(b);
+    TextPainter text(0.45, 1);
+    if (latest >= 0) {
+      paint_levels(panel, belief_, r_.belief_cells.data() + latest * r_.belief_grid.size(),
+                   r_.belief_grid, belief_table_);
+      if (r_.robots > 1)
+        text.put_on_white(panel, "robot " + std::to_string(r_.beliefs[latest].robot + 1) + "'s",
+                          belief_.arena.tl() + cv::Point(4, 4));
+    } else {
+      text.put_on_white(panel,
+                        r_.beliefs.empty() ? r_.method + " holds no belief" : "no reading yet",
+                        belief_.arena.tl() + cv::Point(4, 4));
+    }
+    cross(panel, belief_.px(r_.source), 5, colours::kSource, 2);
+    if (const ReplayStop* last = last_stop(t); last && r_.has_estimate)
+      cross(panel, belief_.px(last->estimate), 5, colours::kEstimate, 2);
+    panel.copyTo(image(cv::Rect(belief_at_, panel.size())));
+  }
+
+  // The readings over time: stops as dots, readings on the way as small ones, now as a line.
+  void draw_series(cv::Mat& image, double t) {
+    TextPainter text(0.4, 1);
+    const cv::Rect box(series_.x + 56, series_.y + 24, series_.width - 72, series_.height - 60);
+    cv::rectangle(image, box, cv::Scalar(120, 120, 120), 1);
+    text.put(image, "readings over time", {series_.x + 56, series_.y + 4});
+    const double end = std::max(r_.ended_s, r_.time_of(r_.frames() - 1));
+    auto at = [&](double time, double v) {
+      const double x = box.x + box.width * std::clamp(time / std::max(end, 1.0), 0.0, 1.0);
+      const double y =
+          box.y + box.height * (1.0 - std::log1p(std::max(v, 0.0)) / std::log1p(top_reading_));
+      return cv::Point2d(x, y);
+    };
+    for (const ReplayReading& s : r_.readings) {
+      if (s.time_s > t) break;
+      cv::circle(image, fixed_point(at(s.time_s, s.value)), 16 + 8, cv::Scalar(150, 150, 150),
+                 cv::FILLED, cv::LINE_AA, 4);
+    }
+    for (const ReplayStop& s : r_.stops)
+      if (s.time_s <= t)
+        dot(image, at(s.time_s, s.value), 4, reading_colour(s.value), robot_colour(s.robot));
+    auto vertical = [&](double time, const cv::Scalar& colour) {
+      const int x = static_cast<int>(std::lround(at(time, 0.0).x));
+      cv::line(image, {x, box.y}, {x, box.y + box.height}, colour, 1);
+    };
+    if (!r_.stopped_by.empty() && t >= r_.declared_s) vertical(r_.declared_s, colours::kEstimate);
+    vertical(t, cv::Scalar(40, 40, 200));
+    const std::string top = fixed(top_reading_, 0);
+    text.put(image, top, {box.x - 6 - text.size(top).width, box.y - 2});
+    text.put(image, "0", {box.x - 6 - text.size("0").width, box.y + box.height - 12});
+    text.put_vertical(image, "reading (log)", {series_.x + 2, box.y + box.height / 2 - 40});
+    text.put(image, "0", {box.x, box.y + box.height + 4});
+    const std::string last = fixed(end, 0);
+    text.put(image, last, {box.x + box.width - text.size(last).width, box.y + box.height + 4});
+    text.put(image, "time [s]",
+             {box.x + box.width / 2 - text.size("time [s]").width / 2, box.y + box.height + 4});
+  }
+
+  void draw_header(cv::Mat& image, double t) {
+    TextPainter text(0.55, 1);
+    text.put(image, r_.title, {12, 6});
+    std::string status = "t = " + fixed(t, 0) + " s";
+    int stops = 0;
+    for (const ReplayStop& s : r_.stops)
+      stops += s.time_s <= t;
+    status += "   stops " + std::to_string(stops);
+    const int robot = 0;  // a tracker's distance: the first robot's
+    if (!r_.has_estimate) {
+      const int k = std::min(r_.frames() - 1, static_cast<int>(std::lround(t / r_.every_s)));
+      status += "   " + fixed(norm(r_.positions[k][robot] - r_.source), 2) +
+                " m from the source (" + r_.method + " holds no estimate)";
+    } else if (const ReplayStop* last = last_stop(t)) {
+      const Vec2 e = r_.map.to_frame(last->estimate);
+      status += "   estimate (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + "), error " +
+                fixed(norm(last->estimate - r_.source), 2) + " m";
+    }
+    if (t >= r_.declared_s - 1e-9 && !r_.stopped_by.empty())
+      status += "   stopped (" + r_.stopped_by + ") at " + fixed(r_.declared_s, 0) + " s";
+    if (!r_.approach.empty() && t >= r_.declared_s - 1e-9)
+      status += t < r_.ended_s ? ", driving to its estimate" : ", at its estimate";
+    text.put(image, status, {12, 6 + text.size(r_.title).height + 8});
+  }
+
+  const ReplayStop* last_stop(double t) const {
+    const ReplayStop* last = nullptr;
+    for (const ReplayStop& s : r_.stops)
+      if (s.time_s <= t) last = &s;
+    return last;
+  }
+
+  const Replay& r_;
+  cv::Size size_;
+  int header_ = 48;
+  MapPanel world_, belief_;
+  cv::Point world_at_, belief_at_;
+  cv::Rect series_;
+  cv::Mat gas_, belief_table_;
+  double top_reading_ = 1.0;
+};
+
+ReplayPainter::ReplayPainter(const Replay& replay, cv::Size size) : replay_(replay), size_(size) {
+  if (size.width < 640 || size.height < 360 || size.width % 2 != 0 || size.height % 2 != 0)
+    throw std::logic_error("ReplayPainter: frames of even sides, at least 640 x 360");
+  panels_ = std::make_unique<Panels>(replay, size);
+}
+
+ReplayPainter::~ReplayPainter() = default;
+
+cv::Mat ReplayPainter::frame(int k) {
+  if (k < 0 || k >= replay_.frames()) throw std::out_of_range("ReplayPainter: no such frame");
+  return panels_->frame(k);
+}
+
+AnimationWriter::Written animate_replay(const Replay& replay, const std::filesystem::path& target,
+                                        const std::string& flag, const AnimateOptions& options) {
+  if (replay.frames() == 0) throw std::logic_error("animate_replay: a replay without frames");
+  AnimationWriter writer(target, options.fps, flag);
+  ReplayPainter painter(replay, options.size);
+  std::optional<ProgressBar> bar;
+  if (options.progress) bar.emplace("drawing the replay");
+  for (int k = 0; k < replay.frames(); ++k) {
+    writer.add(painter.frame(k));
+    if (bar) bar->update(static_cast<double>(k + 1) / replay.frames());
+  }
+  if (bar) bar->finish();
+  return writer.finish();
+}
+
+}  // namespace plumekit::run

@@ -1,0 +1,46 @@
+#pragma once
+// A replay drawn as an animation (docs/replay.md): per frame, the world as a person would see it
+// (the plume's concentration over the map, every robot with its path so far, each stop coloured by
+// its reading and each reading on the way), the method's belief as it stood then, the readings
+// over time, and a header with the clock, the estimate and its error.
+#include <filesystem>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "core/animation.hpp"
+#include "run/replay.hpp"
+
+namespace plumekit::run {
+
+class ReplayPainter {
+ public:
+  // Frames of `size` pixels (each side even, at least 640 x 360).
+  ReplayPainter(const Replay& replay, cv::Size size = {1280, 720});
+  ~ReplayPainter();
+  ReplayPainter(const ReplayPainter&) = delete;
+  ReplayPainter& operator=(const ReplayPainter&) = delete;
+  // Frame `k` of the replay (0 .. replay.frames() - 1).
+  cv::Mat frame(int k);
+
+  class Panels;
+
+ private:
+  const Replay& replay_;
+  cv::Size size_;
+  std::unique_ptr<Panels> panels_;
+};
+
+struct AnimateOptions {
+  double fps = 10.0;  // video frames per second; one replay frame each
+  cv::Size size{1280, 720};
+  bool progress = false;  // a progress bar on stderr
+};
+
+// Draws every frame of `replay` into `target` (core/animation.hpp: .mp4, or .png/.apng);
+// `flag` names the option that gave the target, for its errors.
+AnimationWriter::Written animate_replay(const Replay& replay, const std::filesystem::path& target,
+                                        const std::string& flag,
+                                        const AnimateOptions& options = {});
+
+}  // namespace plumekit::run
