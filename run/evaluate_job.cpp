@@ -8,6 +8,7 @@
 #include "core/atomic_file.hpp"
 #include "core/output_target.hpp"
 #include "core/sha256.hpp"
+#include "run/comparison.hpp"
 #include "run/evaluation_parts.hpp"
 #include "run/report.hpp"
 
@@ -155,8 +156,24 @@ Report evaluate_job(const EvaluateRequest& q, const JobProgress& progress) {
   for (std::size_t m = 0; m < kinds.size(); ++m)
     reports.push_back(write_method(q, maps, results[m], kinds[m], *o.dirs[m], o.outs[m]));
   if (kinds.size() == 1) return reports.front();
+  if (q.part) {  // parts are compared once merged
+    o.whole->commit();
+    return methods_total(kinds, results, reports);
+  }
+  // The methods side by side, in OUT itself.
+  std::vector<MethodRow> rows;
+  for (std::size_t m = 0; m < kinds.size(); ++m)
+    rows.push_back({reports[m].json, results[m].overall.median_step_s, results[m].model_build_s(),
+                    results[m].decisions_s});
+  const Comparison comparison = compare_methods(rows);
+  write_file_atomic(o.whole->open() / "comparison.md", comparison.markdown);
+  write_file_atomic(o.whole->open() / "comparison.csv", comparison.csv);
   o.whole->commit();
-  return methods_total(kinds, results, reports);
+  Report total = methods_total(kinds, results, reports);
+  total.json["comparison"] = comparison.rows;
+  total.text += "\n\n" + comparison.markdown + "wrote " + (q.out / "comparison.md").string() +
+                ", comparison.csv";
+  return total;
 }
 
 Report merge_job(const std::vector<fs::path>& parts, const fs::path& out) {

@@ -259,13 +259,6 @@ std::vector<std::vector<double>> per_map(const EvaluationResult& res, bool error
   return groups;
 }
 
-// "STE (physics)", or the method's name ("surge-cast"); summaries written before --method were
-// STE's.
-std::string summary_label(const ordered_json& settings) {
-  const std::string method = settings.value("method", std::string("ste"));
-  return method == "ste" ? "STE (" + settings.at("plume_model").get<std::string>() + ")" : method;
-}
-
 // The options of a method other than STE, for its summary: the step and detection threshold
 // they share, the method's own (its registry entry's options_json), the step budget.
 ordered_json method_options_json(const MethodOptions& m) {
@@ -325,6 +318,11 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
 }
 
 }  // namespace
+
+std::string summary_label(const ordered_json& settings) {
+  const std::string method = settings.value("method", std::string("ste"));
+  return method == "ste" ? "STE (" + settings.at("plume_model").get<std::string>() + ")" : method;
+}
 
 RunTimes run_times(const Scenario& scenario, const LocalizationResult& result, double total_s) {
   RunTimes t;

@@ -88,6 +88,9 @@ Report evaluation_report(const EvaluationResult& result, const EvaluationOptions
 // timings.json: the threads used, the wall time, and the measured compute, wind and table
 // build times overall and per map.
 nlohmann::ordered_json evaluation_timings(const EvaluationResult& result);
+// "STE (physics)", or the method's name ("surge-cast"), from a summary's settings; summaries
+// written before --method were STE's.
+std::string summary_label(const nlohmann::ordered_json& settings);
 
 struct EvaluationFiles {
   std::string runs_csv, timings_csv;

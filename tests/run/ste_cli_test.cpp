@@ -148,6 +148,23 @@ TEST_F(SteCli, SeveralMethodsInOneWorldWriteWhatEachWritesAlone) {
   ASSERT_EQ(j["methods"].size(), 3u);
   EXPECT_EQ(j["methods"][1]["method"], "zigzag");
   EXPECT_TRUE(j["methods"][1]["result"]["overall"].contains("reached_source_box"));
+  // One table of all of them (issue 48), each row its method's own summary and time.
+  ASSERT_EQ(j["comparison"].size(), 3u);
+  const std::string table = slurp(dir / "all" / "comparison.md");
+  const std::string csv = slurp(dir / "all" / "comparison.csv");
+  for (std::size_t m = 0; m < 3; ++m) {
+    const json& row = j["comparison"][m];
+    const json& own = j["methods"][m];
+    EXPECT_EQ(row["success_0_5m"], own["result"]["overall"]["success_0_5m"]) << m;
+    EXPECT_EQ(row["median_mission_s"], own["result"]["overall"]["median_mission_s"]) << m;
+    EXPECT_DOUBLE_EQ(row["decisions_s"].get<double>(), own["decisions_s"].get<double>()) << m;
+    const std::string name = row["method"], runs = std::to_string(row["runs"].get<int>());
+    EXPECT_EQ(runs, "4");  // 2 runs of each of the map's 2 sources
+    EXPECT_NE(table.find("| " + name + " | " + runs + " | "), std::string::npos) << table;
+    EXPECT_NE(csv.find("\n" + name + "," + runs + ","), std::string::npos) << csv;
+  }
+  EXPECT_EQ(j["comparison"][0]["method"], "STE (gaussian)");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
   for (const std::string m : {"ste", "zigzag", "pf-sweep"}) {
     r = run("evaluate --map-dir " + maps + common + " --method " + m + " --out " +
             (dir / ("one-" + m)).string());
