@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <opencv2/core.hpp>
@@ -13,10 +15,12 @@
 #include "apps/commands.hpp"
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
+#include "core/animation.hpp"
 #include "core/atomic_file.hpp"
 #include "core/npy.hpp"
 #include "core/output_target.hpp"
 #include "core/progress.hpp"
+#include "core/vti.hpp"
 #include "dataset/dataset_reader.hpp"
 #include "dataset/generator.hpp"
 #include "dataset/map_set.hpp"
@@ -26,6 +30,7 @@
 #include "dataset/reports.hpp"
 #include "map/map_json.hpp"
 #include "map/map_render.hpp"
+#include "run/replay_render.hpp"
 #include "surrogate/features.hpp"
 #include "world/option_tables.hpp"
 
@@ -121,14 +126,37 @@ void add_maps_random(CLI::App& app) {
   });
 }
 
+// The plume over time as a ParaView time series: DIR/plume.pvd over DIR/series/plume-NNNN.vti
+// (the concentration per cell, the map frame's coordinates), a frame a second.
+void write_series(const fs::path& dir, const Map& map, const SinglePlume::Series& series) {
+  fs::create_directories(dir / "series");
+  std::ostringstream pvd;
+  pvd << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n";
+  for (std::size_t k = 0; k < series.frames.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "plume-%04zu.vti", k);
+    write_file_atomic(dir / "series" / name,
+                      vti_cell_data(series.grid, {{"concentration", 1, series.frames[k]}}, "",
+                                    "concentration", map.to_frame({0.0, 0.0})));
+    pvd << "    <DataSet timestep=\"" << static_cast<double>(k) * series.every_s
+        << "\" group=\"\" part=\"0\" file=\"series/" << name << "\"/>\n";
+  }
+  pvd << "  </Collection>\n</VTKFile>\n";
+  write_file_atomic(dir / "plume.pvd", pvd.str());
+}
+
 void add_plume(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "plume", "One source's plume on the 64x64 sensor grid: mean.npy, std.npy, plume.png");
   struct Args {
-    std::string map, source, out, wind;
+    std::string map, source, out, wind, animate;
     std::uint64_t seed = kDefaultSeed;
     PlumeOptions p;
     cfd::FlowOptions flow;
+    double seconds = 60.0;
+    bool series = false;
   };
   auto a = std::make_shared<Args>();
   add_map_argument(cmd, a->map);
@@ -141,15 +169,32 @@ void add_plume(CLI::App& app) {
   add_table_flags(cmd, a->flow, cfd::flow_option_table(), {"flow.cell"});
   cmd->add_option("--wind", a->wind, cfd::kWindHelp)->check(CLI::ExistingDirectory);
   add_plume_options(cmd, a->p);
+  cmd->add_option("--animate", a->animate,
+                  "Also write the filament plume as it moves, a frame a second after the spin-up: "
+                  "FILE.mp4 (a video) or FILE.png (an animated PNG; docs/replay.md)")
+      ->type_name("FILE");
+  cmd->add_option("--seconds", a->seconds, "How long --animate and --series follow the plume, s")
+      ->capture_default_str()
+      ->check(CLI::Range(1.0, 3600.0));
+  cmd->add_flag("--series", a->series,
+                "Also write the plume over time as a ParaView time series: plume.pvd over "
+                "series/plume-NNNN.vti, a frame a second");
   add_common_flags(cmd);
   cmd->callback([a] {
     const Map map = read_map(a->map);
     const Vec2 src =
         map.from_frame(parse_point(a->source, "--source"));  // typed in the map's frame
     check_source(map, src);                                  // before the output folder is checked
+    const bool over_time = a->series || !a->animate.empty();
+    if (over_time && a->p.model != PlumeSimulator::Filament)
+      throw InputError(
+          "--animate and --series follow the filament plume; the advection-diffusion "
+          "plume is steady (--simulator filament)");
+    if (!a->animate.empty()) check_animation_target(a->animate, "--animate");
     OutputDirectory out(a->out, "plume", {a->map, a->wind});
     a->p.filament.threads = 0;  // one plume: every core (it does not depend on the count)
-    const SinglePlume plume = single_plume(map, src, a->p, a->flow, a->seed, a->wind);
+    const SinglePlume plume =
+        single_plume(map, src, a->p, a->flow, a->seed, a->wind, over_time ? a->seconds : 0.0);
     const PlumeTargets& t = plume.targets;
     const Picture img =
         draw_plume(map, t.mean, t.std, src, std::string(to_string(a->p.model)) + " plume", "");
@@ -157,9 +202,32 @@ void add_plume(CLI::App& app) {
     write_file_atomic(dir / "mean.npy", npy_float32(t.mean.values, {64, 64}));
     write_file_atomic(dir / "std.npy", npy_float32(t.std.values, {64, 64}));
     write_png(img, dir / "plume.png");
+    if (a->series) write_series(dir, map, plume.series);
+    std::optional<AnimationWriter::Written> video;
+    if (!a->animate.empty()) {
+      const Vec2 s = map.to_frame(src);
+      std::ostringstream title;
+      title << std::fixed << std::setprecision(2) << (map.name.empty() ? "map" : map.name)
+            << ": filament plume of (" << s.x << ", " << s.y << "), seed " << a->seed;
+      run::AnimateOptions o;
+      o.progress = !output().json;
+      video = run::animate_plume(map, src, plume.series.grid, plume.series.frames,
+                                 plume.series.every_s, title.str(), a->animate, "--animate", o);
+    }
     out.commit();
     const PlumeRun run{a->map, a->out, map.to_frame(src), a->p.model, plume.flow_s, plume.plume_s};
-    const Report r = plume_report(run, t);
+    Report r = plume_report(run, t);
+    if (a->series) {
+      r.json["series"] = (fs::path(a->out) / "plume.pvd").string();
+      r.text += "\nwrote " + (fs::path(a->out) / "plume.pvd").string() + " (" +
+                std::to_string(plume.series.frames.size()) + " frames in series/)";
+    }
+    if (video) {
+      r.json["animation"] = {
+          {"file", video->file.string()}, {"format", video->format}, {"frames", video->frames}};
+      r.text += "\nwrote " + video->file.string() + " (" + std::to_string(video->frames) +
+                " frames)" + (video->note.empty() ? "" : "; " + video->note);
+    }
     report(r.json, r.text);
   });
 }

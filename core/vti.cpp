@@ -36,7 +36,8 @@ std::string vti_cell_data(const GridShape& shape, const std::vector<VtiArray>& a
     << origin.x << ' ' << origin.y << " 0\" Spacing=\"" << shape.dx() << ' ' << shape.dy()
     << " 1\">\n"
     << "    <Piece Extent=\"0 " << shape.nx << " 0 " << shape.ny << " 0 0\">\n"
-    << "      <CellData Vectors=\"" << vectors << "\" Scalars=\"" << scalars << "\">\n";
+    << "      <CellData" << (vectors.empty() ? std::string() : " Vectors=\"" + vectors + "\"")
+    << (scalars.empty() ? std::string() : " Scalars=\"" + scalars + "\"") << ">\n";
   for (const VtiArray& a : arrays) {
     const auto size = static_cast<std::uint32_t>(a.values.size() * sizeof(float));
     std::string block(sizeof size + size, '\0');

@@ -1,6 +1,8 @@
 #include "dataset/plume.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "cfd/flow_policy.hpp"
 #include "cfd/wind_file.hpp"
@@ -77,9 +79,30 @@ cfd::AdvectionDiffusionOptions filament_world_mean() {
   return o;
 }
 
+std::vector<std::vector<float>> plume_series(const Map& map, const cfd::WindField& wind,
+                                             Vec2 source, const world::FilamentOptions& options,
+                                             std::uint64_t seed, const GridShape& grid,
+                                             double seconds, double every_s) {
+  world::FilamentSimulation sim(map, wind, source, options, seed);
+  world::spin_up(sim, options);
+  const long long steps = std::max(1LL, std::llround(every_s / options.dt));
+  const int frames = static_cast<int>(std::floor(seconds / every_s + 1e-9)) + 1;
+  std::vector<std::vector<float>> out;
+  std::vector<double> c;
+  for (int f = 0; f < frames; ++f) {
+    if (f > 0)
+      for (long long s = 0; s < steps; ++s)
+        sim.step();
+    c.assign(grid.size(), 0.0);
+    sim.concentration(grid, c);
+    out.emplace_back(c.begin(), c.end());
+  }
+  return out;
+}
+
 SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
                          const cfd::FlowOptions& flow, std::uint64_t seed,
-                         const std::filesystem::path& wind_dir) {
+                         const std::filesystem::path& wind_dir, double series_s) {
   using Clock = std::chrono::steady_clock;
   check_source(map, source);  // before the flow is solved
   SinglePlume r;
@@ -89,6 +112,17 @@ SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& option
   const auto t1 = Clock::now();
   const MapPlumes plumes(map, wind, surrogate::feature_grid(map), options);
   r.targets = plumes.run(source, seed);
+  if (series_s > 0.0) {
+    if (options.model != PlumeSimulator::Filament)
+      throw InputError(
+          "the advection-diffusion plume is steady: a plume over time needs "
+          "--simulator filament");
+    // About 10,000 cells of at least 0.1 m, as a run's replay (run/replay_recorder.hpp).
+    r.series.grid = GridShape::with_cell(
+        map.width, map.height, std::max(0.1, std::sqrt(map.width * map.height / 10000.0)));
+    r.series.frames = plume_series(map, wind, source, options.filament, seed, r.series.grid,
+                                   series_s, r.series.every_s);
+  }
   r.flow_s = std::chrono::duration<double>(t1 - t0).count();
   r.plume_s = std::chrono::duration<double>(Clock::now() - t1).count();
   return r;

@@ -83,12 +83,26 @@ class MapPlumes {
 // `plumekit plume`: one source's plume in a map whose wind is solved by the flow policy
 // (cfd::solve_wind), or read from `wind_dir` (a `plumekit flow` output for this map,
 // cfd/wind_file.hpp) when one is given, with the time each part took.
+// With `series_s` > 0, also the filament plume as it moves (plume_series), for that many seconds.
 struct SinglePlume {
   PlumeTargets targets;
   double flow_s = 0.0, plume_s = 0.0;
+  struct Series {
+    GridShape grid;
+    double every_s = 1.0;
+    std::vector<std::vector<float>> frames;  // frame k at k * every_s after the spin-up
+  } series;
 };
 SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& options,
                          const cfd::FlowOptions& flow, std::uint64_t seed,
-                         const std::filesystem::path& wind_dir = {});
+                         const std::filesystem::path& wind_dir = {}, double series_s = 0.0);
+
+// The filament plume of `source` (seeded by `seed`) as it moves: spun up as the dataset's, then
+// its concentration on `grid` (the sensors' line of sight to each filament) every `every_s` for
+// `seconds`, frame 0 at the spin-up's end.
+std::vector<std::vector<float>> plume_series(const Map& map, const cfd::WindField& wind,
+                                             Vec2 source, const world::FilamentOptions& options,
+                                             std::uint64_t seed, const GridShape& grid,
+                                             double seconds, double every_s);
 
 }  // namespace plumekit::dataset

@@ -67,9 +67,9 @@ void add_steps(Replay& r, int robot, const std::vector<Step>& steps) {
   }
 }
 
-// The top of the log scale: the 99.9th percentile of the frames' concentrations above the floor
-// (the cells at the source would otherwise squeeze the whole plume into a few levels).
-double plume_top(const std::vector<std::vector<float>>& frames) {
+}  // namespace
+
+double replay_plume_top(const std::vector<std::vector<float>>& frames) {
   std::vector<float> seen;
   for (const std::vector<float>& f : frames)
     for (float c : f)
@@ -79,8 +79,6 @@ double plume_top(const std::vector<std::vector<float>>& frames) {
   std::nth_element(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(k), seen.end());
   return std::max(10.0 * kReplayPlumeFloor, static_cast<double>(seen[k]));
 }
-
-}  // namespace
 
 Replay ReplayRecorder::finish(const LocalizationResult& result, Vec2 source,
                               const std::string& title) {
@@ -109,7 +107,7 @@ Replay ReplayRecorder::finish(const LocalizationResult& result, Vec2 source,
   for (std::size_t f = 0; f < frames.size(); ++f)
     if (frames[f].empty())
       frames[f] = f > 0 ? frames[f - 1] : std::vector<float>(plume_grid_.size(), 0.0f);
-  r.plume_top = plume_top(frames);
+  r.plume_top = replay_plume_top(frames);
   r.plume.reserve(frames.size() * plume_grid_.size());
   for (const std::vector<float>& f : frames)
     for (float c : f)

@@ -18,6 +18,11 @@ namespace plumekit::run {
 // grid a second costs the world's time; finer than a video's pixels shows no more).
 GridShape replay_plume_grid(const Map& map);
 
+// The top of the replay's log scale for these concentration frames: the 99.9th percentile of
+// the concentrations above kReplayPlumeFloor (one hot cell at the source would otherwise squeeze
+// the whole plume into a few levels), at least 10 floors.
+double replay_plume_top(const std::vector<std::vector<float>>& frames);
+
 class ReplayRecorder : public world::WorldWatcher {
  public:
   // Frames every `every_s` simulated seconds (rounded to whole plume steps of `dt`), from the

@@ -10,6 +10,7 @@
 
 #include "core/progress.hpp"
 #include "map/map_render.hpp"
+#include "run/replay_recorder.hpp"
 
 namespace plumekit::run {
 
@@ -345,6 +346,44 @@ AnimationWriter::Written animate_replay(const Replay& replay, const std::filesys
     if (bar) bar->update(static_cast<double>(k + 1) / replay.frames());
   }
   if (bar) bar->finish();
+  return writer.finish();
+}
+
+AnimationWriter::Written animate_plume(const Map& map, Vec2 source, const GridShape& grid,
+                                       const std::vector<std::vector<float>>& frames,
+                                       double every_s, const std::string& title,
+                                       const std::filesystem::path& target, const std::string& flag,
+                                       const AnimateOptions& options) {
+  if (frames.empty()) throw std::logic_error("animate_plume: no frames");
+  AnimationWriter writer(target, options.fps, flag);
+  Replay scale;  // the replay's log levels
+  scale.plume_top = replay_plume_top(frames);
+  Map with_source = map;
+  with_source.sources = {source};
+  const int header = std::max(48, options.size.height / 13);
+  const MapPanel panel =
+      map_panel(with_source, {options.size.width, options.size.height - header},
+                Frame{"gas (log scale, up to " + fixed(scale.plume_top, 0) + " units)",
+                      std::nullopt,
+                      {},
+                      true});
+  const cv::Point at((options.size.width - panel.background.cols) / 2, header);
+  const cv::Mat gas = colour_table(cv::COLORMAP_INFERNO, true);
+  std::vector<std::uint8_t> levels(grid.size());
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    for (std::size_t c = 0; c < levels.size(); ++c)
+      levels[c] = scale.plume_level(frames[k][c]);
+    cv::Mat image(options.size, CV_8UC3, cv::Scalar(255, 255, 255));
+    cv::Mat p = panel.background.clone();
+    paint_levels(p, panel, levels.data(), grid, gas);
+    cross(p, panel.px(source), 6, colours::kSource, 2);
+    p.copyTo(image(cv::Rect(at, p.size())));
+    TextPainter text(0.55, 1);
+    text.put(image, title, {12, 6});
+    text.put(image, "t = " + fixed(static_cast<double>(k) * every_s, 0) + " s after the spin-up",
+             {12, 6 + text.size(title).height + 8});
+    writer.add(image);
+  }
   return writer.finish();
 }
 

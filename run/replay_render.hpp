@@ -5,6 +5,7 @@
 // over time, and a header with the clock, the estimate and its error.
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -42,5 +43,14 @@ struct AnimateOptions {
 AnimationWriter::Written animate_replay(const Replay& replay, const std::filesystem::path& target,
                                         const std::string& flag,
                                         const AnimateOptions& options = {});
+
+// A plume alone as it moves (`plumekit plume --animate`): the map, the gas on a replay's log scale,
+// the source, a clock. frames[k] holds the concentration on `grid` (row 0 at y = 0) at
+// k * every_s.
+AnimationWriter::Written animate_plume(const Map& map, Vec2 source, const GridShape& grid,
+                                       const std::vector<std::vector<float>>& frames,
+                                       double every_s, const std::string& title,
+                                       const std::filesystem::path& target, const std::string& flag,
+                                       const AnimateOptions& options = {});
 
 }  // namespace plumekit::run

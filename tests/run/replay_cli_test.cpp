@@ -95,5 +95,37 @@ TEST_F(ReplayCli, BadInputExitsTwoAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir / "x.mp4"));
 }
 
+// `plume --animate --series`: the filament plume as it moves, a frame a second, as a video and as
+// a ParaView time series; the steady advection-diffusion plume is refused.
+TEST_F(ReplayCli, APlumeOverTimeAsAnAnimationAndAParaViewSeries) {
+  const std::string map = write_small_map(dir);
+  CliResult r =
+      run("plume " + map + " --source 4.5,0.5 --seconds 5 --series --animate " +
+          (dir / "plume.png").string() + " --out " + (dir / "plume").string() + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["animation"]["frames"], 6);
+  EXPECT_EQ(j["animation"]["format"], "apng");
+  const std::string pvd = slurp(dir / "plume" / "plume.pvd");
+  std::string first, last;
+  for (int k = 0; k <= 5; ++k) {
+    const std::string name = "series/plume-000" + std::to_string(k) + ".vti";
+    EXPECT_NE(pvd.find("timestep=\"" + std::to_string(k) + "\" group=\"\" part=\"0\" file=\"" +
+                       name + "\""),
+              std::string::npos)
+        << pvd;
+    const std::string vti = slurp(dir / "plume" / name);
+    EXPECT_NE(vti.find("Name=\"concentration\""), std::string::npos) << name;
+    (k == 0 ? first : last) = vti;
+  }
+  EXPECT_NE(first, last);  // the plume moves
+  EXPECT_FALSE(fs::exists(dir / "plume" / "series" / "plume-0006.vti"));
+  r = run("plume " + map + " --source 4.5,0.5 --simulator advection-diffusion --series --out " +
+          (dir / "steady").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--simulator filament"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "steady"));
+}
+
 }  // namespace
 }  // namespace plumekit::test
