@@ -172,6 +172,7 @@ class ReplayPainter::Panels {
   cv::Mat frame(int k) {
     cv::Mat image(size_, CV_8UC3, cv::Scalar(255, 255, 255));
     const double t = r_.time_of(k);
+    add_readings(t);
     draw_world(image, k, t);
     draw_belief(image, t);
     draw_series(image, t);
@@ -200,11 +201,7 @@ class ReplayPainter::Panels {
       cv::polylines(panel, std::vector<std::vector<cv::Point>>{way}, false, robot_colour(robot), 1,
                     cv::LINE_AA, 4);
     }
-    for (const ReplayReading& s : r_.readings) {
-      if (s.time_s > t) break;
-      cv::circle(panel, fixed_point(world_.px(s.position)), 2 * 16, reading_colour(s.value),
-                 cv::FILLED, cv::LINE_AA, 4);
-    }
+    world_dots_.copyTo(panel, world_dots_mask_);
     for (const ReplayStop& s : r_.stops)
       if (s.arrived_s <= t)
         dot(panel, world_.px(s.position), 5, reading_colour(s.value), robot_colour(s.robot));
@@ -241,24 +238,50 @@ class ReplayPainter::Panels {
     panel.copyTo(image(cv::Rect(belief_at_, panel.size())));
   }
 
+  // The readings over time's plot area, and where a reading at `time` of `v` lies in it.
+  cv::Rect series_box() const {
+    return {series_.x + 56, series_.y + 24, series_.width - 72, series_.height - 60};
+  }
+  cv::Point2d series_at(double time, double v) const {
+    const cv::Rect box = series_box();
+    const double end = std::max(r_.ended_s, r_.time_of(r_.frames() - 1));
+    const double x = box.x + box.width * std::clamp(time / std::max(end, 1.0), 0.0, 1.0);
+    const double y =
+        box.y + box.height * (1.0 - std::log1p(std::max(v, 0.0)) / std::log1p(top_reading_));
+    return {x, y};
+  }
+
+  // The readings on the way up to `t` into their layers, which only grow with time (a long
+  // mission has thousands; each frame copies the layers instead of drawing them all again).
+  void add_readings(double t) {
+    if (world_dots_.empty() || t < dots_until_) {
+      world_dots_ = cv::Mat(world_.background.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+      world_dots_mask_ = cv::Mat(world_.background.size(), CV_8U, cv::Scalar(0));
+      series_dots_ = cv::Mat(size_, CV_8UC3, cv::Scalar(0, 0, 0));
+      series_dots_mask_ = cv::Mat(size_, CV_8U, cv::Scalar(0));
+      dots_drawn_ = 0;
+    }
+    dots_until_ = t;
+    for (; dots_drawn_ < r_.readings.size() && r_.readings[dots_drawn_].time_s <= t;
+         ++dots_drawn_) {
+      const ReplayReading& s = r_.readings[dots_drawn_];
+      const cv::Point p = world_.px(s.position), q = series_at(s.time_s, s.value);
+      cv::circle(world_dots_, p, 2, reading_colour(s.value), cv::FILLED);
+      cv::circle(world_dots_mask_, p, 2, cv::Scalar(255), cv::FILLED);
+      cv::circle(series_dots_, q, 1, cv::Scalar(150, 150, 150), cv::FILLED);
+      cv::circle(series_dots_mask_, q, 1, cv::Scalar(255), cv::FILLED);
+    }
+  }
+
   // The readings over time: stops as dots, readings on the way as small ones, now as a line.
   void draw_series(cv::Mat& image, double t) {
     TextPainter text(0.4, 1);
-    const cv::Rect box(series_.x + 56, series_.y + 24, series_.width - 72, series_.height - 60);
+    const cv::Rect box = series_box();
     cv::rectangle(image, box, cv::Scalar(120, 120, 120), 1);
     text.put(image, "readings over time", {series_.x + 56, series_.y + 4});
     const double end = std::max(r_.ended_s, r_.time_of(r_.frames() - 1));
-    auto at = [&](double time, double v) {
-      const double x = box.x + box.width * std::clamp(time / std::max(end, 1.0), 0.0, 1.0);
-      const double y =
-          box.y + box.height * (1.0 - std::log1p(std::max(v, 0.0)) / std::log1p(top_reading_));
-      return cv::Point2d(x, y);
-    };
-    for (const ReplayReading& s : r_.readings) {
-      if (s.time_s > t) break;
-      cv::circle(image, fixed_point(at(s.time_s, s.value)), 16 + 8, cv::Scalar(150, 150, 150),
-                 cv::FILLED, cv::LINE_AA, 4);
-    }
+    auto at = [&](double time, double v) { return series_at(time, v); };
+    series_dots_.copyTo(image, series_dots_mask_);
     for (const ReplayStop& s : r_.stops)
       if (s.time_s <= t)
         dot(image, at(s.time_s, s.value), 4, reading_colour(s.value), robot_colour(s.robot));
@@ -319,6 +342,11 @@ class ReplayPainter::Panels {
   cv::Rect series_;
   cv::Mat gas_, belief_table_;
   double top_reading_ = 1.0;
+  // The readings on the way drawn so far (add_readings): up to time dots_until_, the first
+  // dots_drawn_ of them.
+  cv::Mat world_dots_, world_dots_mask_, series_dots_, series_dots_mask_;
+  std::size_t dots_drawn_ = 0;
+  double dots_until_ = -1.0;
 };
 
 ReplayPainter::ReplayPainter(const Replay& replay, cv::Size size) : replay_(replay), size_(size) {
