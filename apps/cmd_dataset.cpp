@@ -222,12 +222,7 @@ void add_plume(CLI::App& app) {
       r.text += "\nwrote " + (fs::path(a->out) / "plume.pvd").string() + " (" +
                 std::to_string(plume.series.frames.size()) + " frames in series/)";
     }
-    if (video) {
-      r.json["animation"] = {
-          {"file", video->file.string()}, {"format", video->format}, {"frames", video->frames}};
-      r.text += "\nwrote " + video->file.string() + " (" + std::to_string(video->frames) +
-                " frames)" + (video->note.empty() ? "" : "; " + video->note);
-    }
+    if (video) run::report_animation(*video, r.json, r.text);
     report(r.json, r.text);
   });
 }

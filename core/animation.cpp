@@ -2,7 +2,6 @@
 
 #include <dlfcn.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <cmath>
 #include <cstdint>
@@ -78,28 +77,9 @@ const VideoApi& video_api() {
   return api;
 }
 
-void put_be32(std::string& s, std::uint32_t v) {
-  for (int shift = 24; shift >= 0; shift -= 8)
-    s.push_back(static_cast<char>((v >> shift) & 0xff));
-}
 void put_be16(std::string& s, std::uint16_t v) {
   s.push_back(static_cast<char>(v >> 8));
   s.push_back(static_cast<char>(v & 0xff));
-}
-std::uint32_t get_be32(const std::string& s, std::size_t at) {
-  std::uint32_t v = 0;
-  for (int k = 0; k < 4; ++k)
-    v = (v << 8) | static_cast<unsigned char>(s[at + k]);
-  return v;
-}
-
-// A PNG chunk: length, type, data, CRC of type and data.
-void put_chunk(std::string& out, const std::string& type, const std::string& data) {
-  put_be32(out, static_cast<std::uint32_t>(data.size()));
-  const std::string typed = type + data;
-  out += typed;
-  put_be32(out, static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(typed.data()),
-                                                 static_cast<uInt>(typed.size()))));
 }
 
 // An animated PNG built frame by frame (the APNG extension: acTL, then per frame an fcTL and its
@@ -127,25 +107,25 @@ class ApngBuilder {
     put_be16(control, static_cast<std::uint16_t>(std::lround(std::min(655.0, fps_) * 100.0)));
     control.push_back(0);  // dispose: none
     control.push_back(0);  // blend: source (each frame is whole)
-    put_chunk(body_, "fcTL", control);
+    body_ += png_chunk("fcTL", control);
     if (frames_ == 0) {
-      put_chunk(body_, "IDAT", data);
+      body_ += png_chunk("IDAT", data);
     } else {
       std::string fdat;
       put_be32(fdat, sequence_++);
-      put_chunk(body_, "fdAT", fdat + data);
+      body_ += png_chunk("fdAT", fdat + data);
     }
     ++frames_;
   }
   std::string bytes() const {
     std::string out("\x89PNG\r\n\x1a\n", 8);
-    put_chunk(out, "IHDR", ihdr_);
+    out += png_chunk("IHDR", ihdr_);
     std::string control;
     put_be32(control, static_cast<std::uint32_t>(frames_));
     put_be32(control, 0);  // plays: forever
-    put_chunk(out, "acTL", control);
+    out += png_chunk("acTL", control);
     out += body_;
-    put_chunk(out, "IEND", "");
+    out += png_chunk("IEND", "");
     return mark_png(std::move(out));
   }
 
@@ -272,7 +252,7 @@ AnimationWriter::Written AnimationWriter::finish() {
                                std::to_string(m.frames) + " written; nothing was written");
     bytes = read_file(m.video_file->path());
     // plumekit's mark: a top-level "free" box, which players skip (output_target.hpp).
-    const std::string mark = mp4_mark();
+    const std::string mark = plumekit_mark();
     put_be32(bytes, static_cast<std::uint32_t>(8 + mark.size()));
     bytes += "free" + mark;
     m.video_file.reset();

@@ -1,6 +1,7 @@
 #include "core/image_io.hpp"
 
 #include <png.h>
+#include <zlib.h>
 
 #include <cctype>
 #include <csetjmp>
@@ -181,6 +182,29 @@ cv::Mat read_gray_image(const std::filesystem::path& path) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), std::fclose);
   if (!file) return {};
   return read_png(file.get());
+}
+
+void put_be32(std::string& out, std::uint32_t value) {
+  for (int shift = 24; shift >= 0; shift -= 8)
+    out.push_back(static_cast<char>((value >> shift) & 0xff));
+}
+
+std::uint32_t get_be32(std::string_view bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  for (std::size_t k = 0; k < 4; ++k)
+    v = (v << 8) | static_cast<unsigned char>(bytes[at + k]);
+  return v;
+}
+
+std::string png_chunk(std::string_view type, std::string_view data) {
+  std::string out;
+  put_be32(out, static_cast<std::uint32_t>(data.size()));
+  std::string typed(type);
+  typed += data;
+  out += typed;
+  put_be32(out, static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(typed.data()),
+                                                 static_cast<uInt>(typed.size()))));
+  return out;
 }
 
 }  // namespace plumekit

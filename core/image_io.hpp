@@ -4,8 +4,10 @@
 // about 150 shared libraries (GDAL, GDCM, poppler, HDF5, ...), whose loading
 // and relocation cost ~50 ms at every process start, longer than a 5 cm
 // flow solve's coarse grids.
+#include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include <opencv2/core.hpp>
 
@@ -23,5 +25,11 @@ std::string encode_png(const cv::Mat& image);
 // byte, PGM with a maxval below 255 rescaled to 0..255). An empty image when
 // the file is missing or is neither format.
 cv::Mat read_gray_image(const std::filesystem::path& path);
+
+// Big-endian 32-bit words and PNG chunks (length, type, data, the CRC-32 of type and data): what
+// plumekit's own edits of PNG bytes (its mark, animated PNGs) are read and written with.
+void put_be32(std::string& out, std::uint32_t value);
+std::uint32_t get_be32(std::string_view bytes, std::size_t at);
+std::string png_chunk(std::string_view type, std::string_view data);
 
 }  // namespace plumekit

@@ -4,7 +4,6 @@
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <zlib.h>
 
 #include <fcntl.h>
 #include <algorithm>
@@ -21,6 +20,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/image_io.hpp"
 #include "core/sha256.hpp"
 #include "core/temporary_files.hpp"
 
@@ -324,25 +324,14 @@ bool same_file_kind_or_new(const fs::path& target) {
   return false;
 }
 
-std::uint32_t be32(const unsigned char* p) {
-  return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) |
-         std::uint32_t(p[3]);
-}
-
-void put_be32(std::string& s, std::uint32_t v) {
-  for (int shift = 24; shift >= 0; shift -= 8)
-    s.push_back(static_cast<char>((v >> shift) & 0xff));
-}
-
 const char kPngSignature[8] = {'\x89', 'P', 'N', 'G', '\r', '\n', '\x1a', '\n'};
 
 bool png_has_mark(const std::string& bytes) {
   if (bytes.size() < 8 || bytes.compare(0, 8, std::string(kPngSignature, 8)) != 0) return false;
-  const std::string want = std::string(kPngKeyword) + '\0' + kPngText;
+  const std::string want = plumekit_mark();
   std::size_t at = 8;
   while (at + 12 <= bytes.size()) {
-    const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
-    const std::uint32_t length = be32(p);
+    const std::uint32_t length = get_be32(bytes, at);
     const std::string type = bytes.substr(at + 4, 4);
     if (length > bytes.size() - at - 12) return false;
     if (type == "tEXt" && bytes.compare(at + 8, length, want) == 0) return true;
@@ -610,16 +599,16 @@ void write_output_file(const fs::path& target, std::string_view bytes) {
   write_file_atomic(abs, bytes);
 }
 
-std::string mp4_mark() {
+std::string plumekit_mark() {
   return std::string(kPngKeyword) + '\0' + kPngText;
 }
 
 namespace {
 
-// Whether an MP4 file (an "ftyp" box first) has a top-level "free" box holding mp4_mark().
+// Whether an MP4 file (an "ftyp" box first) has a top-level "free" box holding plumekit_mark().
 bool mp4_has_mark(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
-  const std::string mark = mp4_mark();
+  const std::string mark = plumekit_mark();
   const auto end = static_cast<std::uint64_t>(fs::file_size(file));
   std::uint64_t at = 0;
   for (int box = 0; at + 8 <= end && box < 100000; ++box) {
@@ -675,15 +664,8 @@ bool written_by_plumekit(const fs::path& file) {
 
 std::string mark_png(std::string png) {
   if (png.size() < 33 || png.compare(0, 8, std::string(kPngSignature, 8)) != 0) return png;
-  const std::string data = std::string(kPngKeyword) + '\0' + kPngText;
-  std::string chunk;
-  put_be32(chunk, static_cast<std::uint32_t>(data.size()));
-  const std::string typed = "tEXt" + data;
-  chunk += typed;
-  put_be32(chunk, static_cast<std::uint32_t>(crc32(0L, reinterpret_cast<const Bytef*>(typed.data()),
-                                                   static_cast<uInt>(typed.size()))));
   // After the signature (8) and the IHDR chunk (4 + 4 + 13 + 4).
-  png.insert(33, chunk);
+  png.insert(33, png_chunk("tEXt", plumekit_mark()));
   return png;
 }
 

@@ -19,7 +19,7 @@
 //   take it shared, since the parts of a split run may write one folder at once.
 // - Output files (PNG pictures, map JSON, videos) carry their mark inside: a
 //   PNG "Software" text chunk, a map's "generated_by" key, an MP4's top-level
-//   "free" box holding mp4_mark() (players skip it). An empty file counts as
+//   "free" box holding plumekit_mark() (players skip it). An empty file counts as
 //   new.
 // - The output may not be the current folder or contain it, be an input, lie
 //   inside an input folder or contain an input; a file is never taken for a
@@ -120,8 +120,9 @@ void write_output_file(const std::filesystem::path& target, std::string_view byt
 bool written_by_plumekit(const std::filesystem::path& file);
 // PNG bytes with a "Software: plumekit" text chunk after the header chunk.
 std::string mark_png(std::string png);
-// The payload of the "free" box that marks an MP4 plumekit wrote (core/animation.cpp).
-std::string mp4_mark();
+// The mark's text, "Software\0plumekit": a PNG's tEXt chunk holds it, and the "free" box that
+// marks an MP4 plumekit wrote (core/animation.cpp).
+std::string plumekit_mark();
 
 // How an input is named in a file plumekit writes (provenance): relative to
 // the current folder when inside it, else its last component, so that no

@@ -79,6 +79,11 @@ cfd::AdvectionDiffusionOptions filament_world_mean() {
   return o;
 }
 
+GridShape plume_series_grid(const Map& map) {
+  const double cell = std::max(0.1, std::sqrt(map.width * map.height / 10000.0));
+  return GridShape::with_cell(map.width, map.height, cell);
+}
+
 std::vector<std::vector<float>> plume_series(const Map& map, const cfd::WindField& wind,
                                              Vec2 source, const world::FilamentOptions& options,
                                              std::uint64_t seed, const GridShape& grid,
@@ -117,9 +122,7 @@ SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& option
       throw InputError(
           "the advection-diffusion plume is steady: a plume over time needs "
           "--simulator filament");
-    // About 10,000 cells of at least 0.1 m, as a run's replay (run/replay_recorder.hpp).
-    r.series.grid = GridShape::with_cell(
-        map.width, map.height, std::max(0.1, std::sqrt(map.width * map.height / 10000.0)));
+    r.series.grid = plume_series_grid(map);
     r.series.frames = plume_series(map, wind, source, options.filament, seed, r.series.grid,
                                    series_s, r.series.every_s);
   }

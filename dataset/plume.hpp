@@ -97,6 +97,11 @@ SinglePlume single_plume(const Map& map, Vec2 source, const PlumeOptions& option
                          const cfd::FlowOptions& flow, std::uint64_t seed,
                          const std::filesystem::path& wind_dir = {}, double series_s = 0.0);
 
+// The grid a plume over time is shown on (plume_series, a run's replay): cells of at least 0.1 m,
+// at most about 10,000 of them (a grid a second costs the world's time; finer than a video's
+// pixels shows no more).
+GridShape plume_series_grid(const Map& map);
+
 // The filament plume of `source` (seeded by `seed`) as it moves: spun up as the dataset's, then
 // its concentration on `grid` (the sensors' line of sight to each filament) every `every_s` for
 // `seconds`, frame 0 at the spin-up's end.

@@ -90,8 +90,8 @@ py::object run_once(const run::Scenario& sc, const py::handle& source, const py:
       const run::Replay replay =
           recorder->finish(r.result, r.source, run::replay_title(sc, r.source, seed));
       const AnimationWriter::Written w = run::animate_replay(replay, animation, "animate");
-      j["animation"] = {{"file", w.file.string()}, {"format", w.format}, {"frames", w.frames}};
-      if (!w.note.empty()) j["animation"]["note"] = w.note;
+      std::string text;  // the command's line; Python takes the dict
+      run::report_animation(w, j, text);
     }
   }
   return from_json(j);

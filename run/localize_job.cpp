@@ -108,14 +108,7 @@ LocalizeReport localize_job(const LocalizeRequest& q) {
   j.update(rep.json);
   rep.json = j;
   if (out) write_run_files(*out, q.out, !pictures.posterior.empty(), rep);
-  if (animation) {
-    rep.json["animation"] = {{"file", animation->file.string()},
-                             {"format", animation->format},
-                             {"frames", animation->frames}};
-    rep.text += "\nwrote " + animation->file.string() + " (" + std::to_string(animation->frames) +
-                " frames)";
-    if (!animation->note.empty()) rep.text += "; " + animation->note;
-  }
+  if (animation) report_animation(*animation, rep.json, rep.text);
   LocalizeReport result{rep, std::nullopt, map.to_frame(r.start)};
   if (requested) {
     result.requested_start = map.to_frame(*requested);

@@ -4,21 +4,17 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "dataset/plume.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::run {
-
-GridShape replay_plume_grid(const Map& map) {
-  const double cell = std::max(0.1, std::sqrt(map.width * map.height / 10000.0));
-  return GridShape::with_cell(map.width, map.height, cell);
-}
 
 ReplayRecorder::ReplayRecorder(const Map& map, int robots, double every_s, double dt)
     : map_(map),
       robots_(robots),
       every_steps_(std::max(1LL, std::llround(every_s / dt))),
       every_s_(static_cast<double>(every_steps_) * dt),
-      plume_grid_(replay_plume_grid(map)) {}
+      plume_grid_(dataset::plume_series_grid(map)) {}
 
 void ReplayRecorder::plume_at(long long step, double, const world::FilamentSimulation& sim) {
   const std::size_t frame = static_cast<std::size_t>(step / every_steps_);

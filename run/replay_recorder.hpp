@@ -14,10 +14,6 @@
 
 namespace plumekit::run {
 
-// The replay's plume grid on `map`: cells of at least 0.1 m, at most about 10,000 of them (a
-// grid a second costs the world's time; finer than a video's pixels shows no more).
-GridShape replay_plume_grid(const Map& map);
-
 // The top of the replay's log scale for these concentration frames: the 99.9th percentile of
 // the concentrations above kReplayPlumeFloor (one hot cell at the source would otherwise squeeze
 // the whole plume into a few levels), at least 10 floors.

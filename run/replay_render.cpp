@@ -377,6 +377,14 @@ AnimationWriter::Written animate_replay(const Replay& replay, const std::filesys
   return writer.finish();
 }
 
+void report_animation(const AnimationWriter::Written& w, nlohmann::ordered_json& json,
+                      std::string& text) {
+  json["animation"] = {{"file", w.file.string()}, {"format", w.format}, {"frames", w.frames}};
+  if (!w.note.empty()) json["animation"]["note"] = w.note;
+  text += "\nwrote " + w.file.string() + " (" + std::to_string(w.frames) + " frames)" +
+          (w.note.empty() ? "" : "; " + w.note);
+}
+
 AnimationWriter::Written animate_plume(const Map& map, Vec2 source, const GridShape& grid,
                                        const std::vector<std::vector<float>>& frames,
                                        double every_s, const std::string& title,

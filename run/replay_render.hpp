@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
 #include "core/animation.hpp"
@@ -43,6 +44,11 @@ struct AnimateOptions {
 AnimationWriter::Written animate_replay(const Replay& replay, const std::filesystem::path& target,
                                         const std::string& flag,
                                         const AnimateOptions& options = {});
+
+// An animation in a command's report: {"file", "format", "frames"} (and "note" when an MP4 became
+// an animated PNG) for the JSON, "wrote FILE (N frames)[; note]" for the text.
+void report_animation(const AnimationWriter::Written& written, nlohmann::ordered_json& json,
+                      std::string& text);
 
 // A plume alone as it moves (`plumekit plume --animate`): the map, the gas on a replay's log scale,
 // the source, a clock. frames[k] holds the concentration on `grid` (row 0 at y = 0) at

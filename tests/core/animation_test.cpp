@@ -125,7 +125,7 @@ TEST(Animation, AVideoIsReadBackAndMarked) {
   EXPECT_EQ(bytes.substr(4, 4), "ftyp");
   EXPECT_TRUE(written_by_plumekit(file));
   // A video someone else made (the same bytes without the mark) is not plumekit's.
-  const std::string mark = mp4_mark();
+  const std::string mark = plumekit_mark();
   std::ofstream(file, std::ios::binary | std::ios::trunc)
       << bytes.substr(0, bytes.size() - 8 - mark.size());
   EXPECT_FALSE(written_by_plumekit(file));
