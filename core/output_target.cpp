@@ -347,8 +347,6 @@ bool png_has_mark(const std::string& bytes) {
 
 namespace {
 
-constexpr const char* kLockText = "plumekit-lock/1\n";
-
 fs::path lock_file_of(const fs::path& target) {
   const fs::path t = fs::absolute(target).lexically_normal();
   const fs::path file = t.has_filename() ? t : t.parent_path();
@@ -359,12 +357,12 @@ fs::path lock_file_of(const fs::path& target) {
 // empty); does nothing if one appeared meanwhile.
 void create_lock_file(const fs::path& file) {
   const Temporary tmp(file);
-  write_file_atomic(tmp.path(), kLockText);
+  write_file_atomic(tmp.path(), kLockFileText);
   if (::link(tmp.path().c_str(), file.c_str()) == 0 || errno == EEXIST) return;
   // A file system without hard links: create and fill it (then briefly empty).
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) return;  // exists by now, or fails again when opened
-  const ssize_t n = ::write(fd, kLockText, std::strlen(kLockText));
+  const ssize_t n = ::write(fd, kLockFileText, std::strlen(kLockFileText));
   (void)n;
   ::close(fd);
 }
@@ -385,6 +383,17 @@ bool same_file(int fd, const fs::path& file) {
 }  // namespace
 
 OutputLock::OutputLock(const fs::path& target, bool shared) : file_(lock_file_of(target)) {
+  // Registered before it may be created, so that an interrupt while it is made removes it too.
+  register_lock(file_, -1);
+  try {
+    acquire(target, shared);
+  } catch (...) {
+    forget_lock(file_);
+    throw;
+  }
+}
+
+void OutputLock::acquire(const fs::path& target, bool shared) {
   for (int attempt = 0; attempt < 200; ++attempt) {
     const int fd = ::open(file_.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0 && errno == ENOENT) {
@@ -405,7 +414,7 @@ OutputLock::OutputLock(const fs::path& target, bool shared) : file_(lock_file_of
     }
     struct stat st {};
     const std::string text = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) ? read_fd(fd) : "?";
-    if (text == kLockText) {
+    if (text == kLockFileText) {
       fd_ = fd;
       register_lock(file_, fd_);
       return;

@@ -53,6 +53,8 @@ class OutputLock {
   void release();
 
  private:
+  void acquire(const std::filesystem::path& target, bool shared);
+
   std::filesystem::path file_;
   int fd_ = -1;
 };

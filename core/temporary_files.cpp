@@ -1,5 +1,6 @@
 #include "core/temporary_files.hpp"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <unistd.h>
@@ -208,8 +209,21 @@ void clean_up(Registry& r) {
   for (const std::string& p : r.temporaries)
     fs::remove_all(p, ec);
   // A lock another run shares (dataset parts) stays for it.
-  for (const auto& [path, fd] : r.locks)
-    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) ::unlink(path.c_str());
+  for (const auto& [path, fd] : r.locks) {
+    if (fd >= 0) {
+      if (::flock(fd, LOCK_EX | LOCK_NB) == 0) ::unlink(path.c_str());
+      continue;
+    }
+    // Being made: ours to remove only while nobody holds it and it is a lock file.
+    const int own = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (own < 0) continue;
+    char buf[32];
+    const ssize_t n = ::pread(own, buf, sizeof buf, 0);
+    if (::flock(own, LOCK_EX | LOCK_NB) == 0 && n > 0 &&
+        std::string(buf, static_cast<std::size_t>(n)) == kLockFileText)
+      ::unlink(path.c_str());
+    ::close(own);
+  }
   for (auto it = r.created_folders.rbegin(); it != r.created_folders.rend(); ++it)
     fs::remove(*it, ec);  // only if empty
 }

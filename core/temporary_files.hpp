@@ -50,8 +50,12 @@ int remove_stale_temporaries(const std::filesystem::path& target);
 // Removes the stale temporaries of any target in `dir`; returns how many.
 int remove_stale_temporaries_in(const std::filesystem::path& dir);
 
+// The whole text of an output lock file (core/output_target.hpp).
+inline constexpr const char* kLockFileText = "plumekit-lock/1\n";
 // An output lock (an open, flock'd file descriptor and its path): on an
-// interrupt it is removed if no other process holds it too.
+// interrupt it is removed if no other process holds it too. Registered with
+// fd -1 before the file is created, it is removed on an interrupt if it holds
+// kLockFileText and nobody holds it (an interrupt while it is being made).
 void register_lock(const std::filesystem::path& lock_file, int fd);
 void forget_lock(const std::filesystem::path& lock_file);
 // A folder a run created for its output: removed on an interrupt if empty.

@@ -3,7 +3,10 @@
 #include "core/output_target.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <filesystem>
 #include <fstream>
@@ -349,6 +352,30 @@ TEST_F(OutputTargetTest, SecondWriterOfAnOutputIsRefusedAtOnce) {
   EXPECT_NE(e.find("runs/run.plumekit-lock: exists beside the output"), std::string::npos) << e;
   EXPECT_EQ(slurp("runs/run.plumekit-lock"), "my notes");
   EXPECT_EQ(slurp("runs/run/result.txt"), "second");
+}
+
+// CI once found a lock left behind by a Ctrl-C that came while the lock file
+// was being made, before it was held: a lock is registered before it exists.
+TEST_F(OutputTargetTest, AnInterruptWhileALockIsMadeRemovesItButNotAUsersFile) {
+  auto interrupted_child = [](const fs::path& lock_file, bool make_it) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+      install_interrupt_cleanup();
+      register_lock(lock_file, -1);
+      if (make_it) put(lock_file, kLockFileText);
+      ::raise(SIGINT);
+      ::pause();
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  EXPECT_EQ(interrupted_child(dir / "out.plumekit-lock", true), 130);
+  EXPECT_FALSE(fs::exists(dir / "out.plumekit-lock"));
+  put(dir / "mine.plumekit-lock", "my notes");
+  EXPECT_EQ(interrupted_child(dir / "mine.plumekit-lock", false), 130);
+  EXPECT_EQ(slurp(dir / "mine.plumekit-lock"), "my notes");
 }
 
 TEST_F(OutputTargetTest, PartsShareAnInPlaceFolderButNotWithAWholeWriter) {
