@@ -294,9 +294,9 @@ void add_localize(CLI::App& app) {
 // threads, the table cache and the memory limit change no result; the map folder and the CNN are
 // compared by their files' SHA-256, which the job adds.
 ordered_json result_options(const CLI::App* cmd) {
-  static const std::set<std::string> not_results{"--out",  "--shard",      "--threads",
-                                                 "--json", "--max-memory", "--table-cache",
-                                                 "--help", "--map-dir",    "--cnn"};
+  static const std::set<std::string> not_results{
+      "--out",         "--shard", "--threads", "--json", "--max-memory",
+      "--table-cache", "--help",  "--map-dir", "--cnn",  "--replays"};
   ordered_json j = ordered_json::object();
   for (const CLI::Option* opt : cmd->get_options()) {
     const std::string name = opt->get_name();
@@ -318,7 +318,7 @@ void add_evaluate_merge(CLI::App* evaluate) {
       ->required();
   cmd->add_option("--out,-o", a->out,
                   "Output folder (new, empty, or an earlier `evaluate` output, which is "
-                  "replaced): runs.csv, summary.json, timings, box plots")
+                  "replaced): report.html, runs.csv, summary.json, timings, tracks.json, box plots")
       ->required();
   add_common_flags(cmd);
   cmd->callback([a] {
@@ -330,7 +330,7 @@ void add_evaluate_merge(CLI::App* evaluate) {
 
 struct EvaluateArgs {
   std::string map_dir, out = "out/evaluate";
-  bool part = false;
+  bool part = false, replays = false;
   run::EvaluationOptions eval;
   std::vector<std::string> methods;  // --method with several: one world per run
 };
@@ -360,8 +360,12 @@ void add_evaluate(CLI::App& app) {
   add_seed_flag(cmd, a->eval.seed, "Seed of plumes, noise and starts");
   cmd->add_option("--out,-o", a->out,
                   "Output folder (new, empty, or an earlier `evaluate` output, which is "
-                  "replaced): runs.csv, summary.json, timings, box plots, trajectories/")
+                  "replaced): report.html, runs.csv, summary.json, timings, tracks.json, box "
+                  "plots, trajectories/")
       ->capture_default_str();
+  cmd->add_flag("--replays", a->replays,
+                "Record every run's replay into replays/ (report.html plays them; `plumekit "
+                "replay` draws one as a video); the runs take longer, their results are the same");
   add_ste_options(cmd, a->eval.ste, &a->methods);
   add_common_flags(cmd);
   add_evaluate_merge(cmd);
@@ -379,6 +383,7 @@ void add_evaluate(CLI::App& app) {
 // Evaluates the method or methods of `args` and writes each one's folder.
 void run_evaluate(const EvaluateArgs& args, const CLI::App* cmd) {
   run::EvaluateRequest q{args.map_dir, args.out, args.eval, args.methods, args.part};
+  q.replays = args.replays;
   if (args.part) q.result_options = result_options(cmd);
   ProgressBar bar("evaluate");
   const Report rep = run::evaluate_job(

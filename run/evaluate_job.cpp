@@ -9,8 +9,11 @@
 #include "core/output_target.hpp"
 #include "core/sha256.hpp"
 #include "run/comparison.hpp"
+#include "run/evaluation_html.hpp"
 #include "run/evaluation_parts.hpp"
+#include "run/replay.hpp"
 #include "run/report.hpp"
+#include "run/run_tracks.hpp"
 
 namespace plumekit::run {
 
@@ -51,10 +54,36 @@ struct Outputs {
   }
 };
 
+// A run's replay folder in its method's folder (evaluate --replays): replays/MAPFILE-sK-rN, and
+// -seedS where several seeds are pooled.
+std::string replay_folder(const MapFolder& maps, const RunRecord& r, int seeds) {
+  const std::string& picture = maps.picture_names.at(static_cast<std::size_t>(r.map_index));
+  std::string id = fs::path(picture).stem().string() + "-s" + std::to_string(r.source_index) +
+                   "-r" + std::to_string(r.run);
+  if (seeds > 1) id += "-seed" + std::to_string(r.seed);
+  return "replays/" + id;
+}
+
+// Writes each run's replay into its method's folder as it ends (on the run's thread), with
+// replay.js beside it: the same JSON as a script, which report.html can load from a file://
+// page where reading a file is not allowed.
+ReplaySink replay_writer(const MapFolder& maps, const EvaluationOptions& eo, Outputs& o) {
+  for (const std::unique_ptr<OutputDirectory>& dir : o.dirs)
+    fs::create_directories(dir->open() / "replays");
+  return [&maps, &o, seeds = eo.seeds](std::size_t m, const RunRecord& rec, const Replay& replay) {
+    const fs::path folder = o.dirs[m]->open() / replay_folder(maps, rec, seeds);
+    fs::create_directory(folder);
+    write_replay(replay, folder);
+    write_file_atomic(folder / "replay.js",
+                      "plumekitReplay(" + read_file(folder / kReplayFile) + ");\n");
+  };
+}
+
 // Every method on the same runs, each map's median trajectory drawn into its method's folder.
-std::vector<EvaluationResult> run_methods(const MapFolder& maps, const EvaluationOptions& eo,
+std::vector<EvaluationResult> run_methods(const EvaluateRequest& q, const MapFolder& maps,
                                           const std::vector<std::string>& kinds, Outputs& o,
                                           const JobProgress& progress) {
+  const EvaluationOptions& eo = q.options;
   std::vector<AfterMap> pictures;
   for (const std::unique_ptr<OutputDirectory>& dir : o.dirs)
     pictures.push_back(trajectory_pictures(dir->open(), maps.picture_names));
@@ -69,34 +98,49 @@ std::vector<EvaluationResult> run_methods(const MapFolder& maps, const Evaluatio
       },
       [&](std::size_t m, const Scenario& sc, const std::vector<RunRecord>& records) {
         pictures[m](sc, records);
-      });
+      },
+      q.replays ? replay_writer(maps, eo, o) : ReplaySink());
+}
+
+// Each run's replay folder relative to `prefix` (none without --replays).
+std::vector<std::string> replay_links(const EvaluateRequest& q, const MapFolder& maps,
+                                      const EvaluationResult& res, const std::string& prefix) {
+  std::vector<std::string> links;
+  if (q.replays)
+    for (const RunRecord& r : res.runs)
+      links.push_back(prefix + replay_folder(maps, r, res.seeds));
+  return links;
 }
 
 // The part folder of `evaluate --shard K/N`: part.json, runs.csv, timings.csv, and the
 // trajectory pictures of this part's median runs.
 Report write_part(OutputDirectory& dir, const EvaluationResult& res, const EvaluationOptions& eo,
-                  const PartIdentity& id, const fs::path& out) {
+                  const PartIdentity& id, const ordered_json& tracks, const fs::path& out) {
   EvaluationFiles files;
   files.runs_csv = runs_csv(res);
   files.timings_csv = timings_csv(res);
+  files.tracks = tracks;
   write_file_atomic(dir.open() / "runs.csv", files.runs_csv);
   write_file_atomic(dir.open() / "timings.csv", files.timings_csv);
+  write_file_atomic(dir.open() / kTracksFile, files.tracks.dump() + "\n");
   write_file_atomic(dir.open() / kPartFile, part_json(res, eo, id, files).dump(2) + "\n");
   dir.commit();
   const std::string part = std::to_string(eo.part_k) + "/" + std::to_string(eo.part_n);
   const ordered_json j{{"ok", true},           {"part", eo.part_k},
                        {"parts", eo.part_n},   {"runs", res.runs.size()},
                        {"wall_s", res.wall_s}, {"out", out.string()}};
-  return {j, "evaluated part " + part + ": " + std::to_string(res.runs.size()) + " runs (pairs " +
-                 std::to_string(res.pairs.first) + ".." + std::to_string(res.pairs.end) + " of " +
-                 std::to_string(res.pairs.total) + " map sources)\nwrote " + out.string() +
-                 "/{part.json, runs.csv, timings.csv, trajectories/}; join the parts with "
-                 "`plumekit evaluate merge PART_DIR... --out DIR`"};
+  return {
+      j, "evaluated part " + part + ": " + std::to_string(res.runs.size()) + " runs (pairs " +
+             std::to_string(res.pairs.first) + ".." + std::to_string(res.pairs.end) + " of " +
+             std::to_string(res.pairs.total) + " map sources)\nwrote " + out.string() +
+             "/{part.json, runs.csv, timings.csv, tracks.json, trajectories/}; join the parts with "
+             "`plumekit evaluate merge PART_DIR... --out DIR`"};
 }
 
 // Method m's folder: its part, or its summary, runs, timings and box plots.
 Report write_method(const EvaluateRequest& q, const MapFolder& maps, const EvaluationResult& res,
-                    const std::string& method, OutputDirectory& dir, const fs::path& out) {
+                    const ordered_json& tracks, const std::string& method, OutputDirectory& dir,
+                    const fs::path& out) {
   EvaluationOptions each = q.options;
   each.ste.method.name = method;
   if (q.part) {
@@ -107,11 +151,12 @@ Report write_method(const EvaluateRequest& q, const MapFolder& maps, const Evalu
       options["cnn_sha256"] = sha256_file(each.ste.model_path);
     options["--method"] = method;  // as the part of a single method
     const PartIdentity id{evaluation_settings(each, q.map_dir), options, map_files_json(maps)};
-    return write_part(dir, res, each, id, out);
+    return write_part(dir, res, each, id, tracks, out);
   }
   Report rep = method_report(res, q.options, method, q.map_dir, out);
   write_evaluation_files(dir.open(), res,
-                         {runs_csv(res), timings_csv(res), rep.json, evaluation_timings(res)});
+                         {runs_csv(res), timings_csv(res), rep.json, evaluation_timings(res),
+                          tracks, replay_links(q, maps, res, "")});
   dir.commit();
   // On stdout the times go with the summary (they are apart only in the files).
   rep.json["timings"] = evaluation_timings(res);
@@ -151,10 +196,14 @@ Report evaluate_job(const EvaluateRequest& q, const JobProgress& progress) {
   const MapFolder maps = read_map_folder(q.map_dir);
   const std::vector<std::string> kinds = evaluated_methods(q.options, q.methods);
   Outputs o(q, kinds);
-  const std::vector<EvaluationResult> results = run_methods(maps, q.options, kinds, o, progress);
+  const std::vector<EvaluationResult> results = run_methods(q, maps, kinds, o, progress);
+  std::vector<ordered_json> tracks;
   std::vector<Report> reports;
-  for (std::size_t m = 0; m < kinds.size(); ++m)
-    reports.push_back(write_method(q, maps, results[m], kinds[m], *o.dirs[m], o.outs[m]));
+  for (std::size_t m = 0; m < kinds.size(); ++m) {
+    tracks.push_back(tracks_json(results[m], maps.maps));
+    reports.push_back(
+        write_method(q, maps, results[m], tracks[m], kinds[m], *o.dirs[m], o.outs[m]));
+  }
   if (kinds.size() == 1) return reports.front();
   if (q.part) {  // parts are compared once merged
     o.whole->commit();
@@ -168,11 +217,16 @@ Report evaluate_job(const EvaluateRequest& q, const JobProgress& progress) {
   const Comparison comparison = compare_methods(rows);
   write_file_atomic(o.whole->open() / "comparison.md", comparison.markdown);
   write_file_atomic(o.whole->open() / "comparison.csv", comparison.csv);
+  std::vector<ReportMethod> page;
+  for (std::size_t m = 0; m < kinds.size(); ++m)
+    page.push_back({kinds[m], reports[m].json, &results[m], &tracks[m],
+                    replay_links(q, maps, results[m], kinds[m] + "/")});
+  write_file_atomic(o.whole->open() / kReportFile, evaluation_html(page));
   o.whole->commit();
   Report total = methods_total(kinds, results, reports);
   total.json["comparison"] = comparison.rows;
   total.text += "\n\n" + comparison.markdown + "wrote " + (q.out / "comparison.md").string() +
-                ", comparison.csv";
+                ", comparison.csv, report.html";
   return total;
 }
 

@@ -22,6 +22,9 @@ struct EvaluateRequest {
   // `--method NAME --out OUT/NAME` writes. Empty or one: options.ste.method.
   std::vector<std::string> methods;
   bool part = false;  // options' part_k/part_n: each method's part folder, for `evaluate merge`
+  // Every run's replay (docs/replay.md) into each method's replays/ folder, linked from
+  // report.html: recording costs time, so only when asked.
+  bool replays = false;
   // A part's record of every flag that shapes the results, flag -> value as given or its default
   // (PartIdentity::options); the job adds "cnn_sha256" (the surrogate's file) and the method.
   nlohmann::ordered_json result_options = nlohmann::ordered_json::object();

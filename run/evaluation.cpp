@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/statistics.hpp"
 #include "methods/plume_tracking.hpp"
+#include "run/replay_recorder.hpp"
 #include "world/shared_plume.hpp"
 
 namespace plumekit::run {
@@ -82,25 +83,54 @@ void fill_record(const Scenario& scenario, RunRecord& rec) {
         tracking_overhead(r, rec.source, scenario.options().method.tracking.detection_threshold);
 }
 
+// The run's replay recorder for `scenario`'s robots, when replays are wanted.
+// `slot`: the method's robot's number in a plume several methods share.
+std::unique_ptr<ReplayRecorder> recorder_for(const Scenario& scenario, const ReplaySink& replays,
+                                             int slot = 0) {
+  if (!replays) return nullptr;
+  return std::make_unique<ReplayRecorder>(scenario.map(),
+                                          std::max(1, scenario.options().team.robots), 1.0,
+                                          scenario.options().world.filament.dt, slot);
+}
+
+// Hands method m's replay of `rec` to the sink.
+void hand_replay(const ReplaySink& replays, std::size_t m, const Scenario& scenario,
+                 ReplayRecorder* recorder, const RunRecord& rec) {
+  if (!recorder) return;
+  std::ostringstream title;
+  title << std::fixed << std::setprecision(2) << rec.map << ": " << scenario.options().method.name
+        << ", source " << rec.source_index << " (" << rec.source.x << ", " << rec.source.y
+        << "), run " << rec.run << ", seed " << rec.seed;
+  replays(m, rec, recorder->finish(rec.result, rec.source, title.str()));
+}
+
 // Run k of every method (records[m][k] with scenarios[m]), from the map's starts or its seeded
 // random start. Several methods share the run's plume, each robot on its own thread
 // (world/shared_plume.hpp): each reads what it would alone.
 void run_one(const std::vector<std::unique_ptr<Scenario>>& scenarios,
-             std::vector<std::vector<RunRecord>>& records, std::size_t k) {
+             std::vector<std::vector<RunRecord>>& records, std::size_t k,
+             const ReplaySink& replays) {
   const Scenario& first = *scenarios.front();
   RunRecord& head = records.front()[k];
   const std::uint64_t s = world::run_seed(head.seed, head.map_index, head.source_index, head.run);
   const Vec2 start =
       first.run_start(head.source, head.run, world::stream_seed(s, world::SteStream::Start));
   if (scenarios.size() == 1) {
+    const std::unique_ptr<ReplayRecorder> recorder = recorder_for(first, replays);
     head.start = start;
-    head.result = first.run(head.source, start, s);
+    head.result = first.run(head.source, start, s, recorder.get());
     fill_record(first, head);
+    hand_replay(replays, 0, first, recorder.get(), head);
     return;
   }
   first.check_source(head.source);
   world::SharedPlume plume(first.map(), first.wind(), head.source, first.options().world.filament,
                            s, static_cast<int>(scenarios.size()));
+  // The first method's recorder watches the plume for all (it steps to the longest mission).
+  std::vector<std::unique_ptr<ReplayRecorder>> recorders;
+  for (std::size_t m = 0; m < scenarios.size(); ++m)
+    recorders.push_back(recorder_for(*scenarios[m], replays, static_cast<int>(m)));
+  if (recorders.front()) plume.watch(recorders.front().get());
   std::vector<std::exception_ptr> failed(scenarios.size());
   auto robot = [&](std::size_t m) {
     try {
@@ -108,7 +138,7 @@ void run_one(const std::vector<std::unique_ptr<Scenario>>& scenarios,
       world::SimulatedWorld world(plume, static_cast<int>(m), first.map(), rec.source,
                                   scenarios[m]->options().world, s);
       rec.start = start;
-      rec.result = scenarios[m]->run(world, start, s);
+      rec.result = scenarios[m]->run(world, start, s, recorders[m].get());
       fill_record(*scenarios[m], rec);
     } catch (...) {
       failed[m] = std::current_exception();
@@ -128,8 +158,13 @@ void run_one(const std::vector<std::unique_ptr<Scenario>>& scenarios,
   robot(0);
   for (std::thread& t : others)
     t.join();
+  plume.watch(nullptr);
   for (const std::exception_ptr& e : failed)
     if (e) std::rethrow_exception(e);
+  for (std::size_t m = 0; m < scenarios.size(); ++m) {
+    if (recorders[m]) recorders[m]->copy_plume_frames(*recorders.front());
+    hand_replay(replays, m, *scenarios[m], recorders[m].get(), records[m][k]);
+  }
 }
 
 std::vector<const RunRecord*> pointers(const std::vector<RunRecord>& records) {
@@ -289,7 +324,8 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
                                                const EvaluationOptions& o,
                                                const std::vector<std::string>& kinds,
                                                const std::function<void(int, int)>& progress,
-                                               const AfterMethodMap& after_map) {
+                                               const AfterMethodMap& after_map,
+                                               const ReplaySink& replays) {
   o.validate();
   if (kinds.empty()) throw std::logic_error("evaluate_methods: no method");
   const auto t_all = Clock::now();
@@ -319,7 +355,7 @@ std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
     }
     const std::vector<std::unique_ptr<Scenario>> scenarios = method_scenarios(maps[mi], ste);
     pool.parallel_for(records.front().size(), [&](std::size_t k) {
-      run_one(scenarios, records, k);
+      run_one(scenarios, records, k, replays);
       std::lock_guard<std::mutex> g(lock);
       ++done;
       if (progress) progress(done, total);

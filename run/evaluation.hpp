@@ -14,6 +14,7 @@
 #include "core/statistics.hpp"
 #include "core/thread_pool.hpp"
 #include "map/map.hpp"
+#include "run/replay.hpp"
 #include "run/scenario.hpp"
 
 namespace plumekit::run {
@@ -136,11 +137,15 @@ EvaluationResult evaluate(const std::vector<Map>& maps, const EvaluationOptions&
 // the shared ones.
 using AfterMethodMap =
     std::function<void(std::size_t method, const Scenario&, const std::vector<RunRecord>&)>;
+// Given, every run's replay is recorded (run/replay_recorder.hpp: the same run, slower) and handed
+// over on the run's thread, method by method, as soon as the run ends (`evaluate --replays`).
+using ReplaySink = std::function<void(std::size_t method, const RunRecord&, const Replay&)>;
 std::vector<EvaluationResult> evaluate_methods(const std::vector<Map>& maps,
                                                const EvaluationOptions& options,
                                                const std::vector<std::string>& kinds,
                                                const std::function<void(int, int)>& progress = {},
-                                               const AfterMethodMap& after_map = {});
+                                               const AfterMethodMap& after_map = {},
+                                               const ReplaySink& replays = {});
 
 // CSV of all runs (one header line, one line per run): what each run found, the same bytes
 // whatever the threads, the machine or the --shard split. The measured compute times are in

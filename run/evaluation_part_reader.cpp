@@ -7,6 +7,7 @@
 #include "core/csv.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
+#include "run/run_tracks.hpp"
 
 namespace plumekit::run {
 
@@ -171,6 +172,11 @@ EvaluationPart read_evaluation_part(const fs::path& dir) {
       p.runs.push_back(parse_run_row(row, p.j.at("maps")));
     p.runs_csv = read_csv(dir, "runs.csv", p.j.at("files"), p.runs.size());
     p.timings_csv = read_csv(dir, "timings.csv", p.j.at("files"), p.runs.size());
+    const std::string tracks = read_file(dir / kTracksFile);
+    if (sha256_hex(tracks) != p.j.at("files").at(kTracksFile).get<std::string>())
+      throw InputError((dir / kTracksFile).string() + ": does not match its checksum in " +
+                       file.string() + "; rerun that part");
+    p.tracks = parse_tracks(tracks, dir / kTracksFile, p.runs.size());
   } catch (const nlohmann::json::exception& e) {
     throw InputError(file.string() + ": not a well-formed evaluate part (" + e.what() + ")");
   } catch (const InputError& e) {

@@ -28,6 +28,7 @@ struct EvaluationPart {
   int k = 0, n = 1;
   std::vector<RunRecord> runs;
   CsvParts runs_csv, timings_csv;
+  nlohmann::ordered_json tracks;  // its tracks.json (run/run_tracks.hpp)
 };
 
 // The SHA-256 of part.json's content without its own "sha256" key.
@@ -35,7 +36,8 @@ std::string part_body_sha256(nlohmann::ordered_json j);
 
 // Reads and checks one part folder: a well-formed part.json that matches its own checksum, holds
 // every key the merge reads and names a part K of N, and the CSV files it lists, which match their
-// checksums and hold a header and one record per run. InputError naming the file otherwise.
+// checksums and hold a header and one record per run, and its tracks.json, which matches its
+// checksum and holds one track per run. InputError naming the file otherwise.
 EvaluationPart read_evaluation_part(const std::filesystem::path& dir);
 
 // The parts must come from one evaluation: one split, one set of options and maps. InputError

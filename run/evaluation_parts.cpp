@@ -5,6 +5,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/sha256.hpp"
+#include "run/run_tracks.hpp"
 
 namespace plumekit::run {
 
@@ -73,6 +74,10 @@ MergedEvaluation join(const std::vector<EvaluationPart>& parts) {
   m.files.timings = evaluation_timings(res);
   m.files.timings.erase("threads");  // per part, below
   m.files.timings["parts"] = part_times;
+  std::vector<ordered_json> tracks;
+  for (const EvaluationPart& p : parts)
+    tracks.push_back(p.tracks);
+  m.files.tracks = join_tracks(tracks);
   m.parts = static_cast<int>(parts.size());
   return m;
 }
@@ -110,7 +115,9 @@ ordered_json part_json(const EvaluationResult& res, const EvaluationOptions& o,
       {"options", id.options},
       {"maps", id.maps},
       {"files",
-       {{"runs.csv", sha256_hex(files.runs_csv)}, {"timings.csv", sha256_hex(files.timings_csv)}}},
+       {{"runs.csv", sha256_hex(files.runs_csv)},
+        {"timings.csv", sha256_hex(files.timings_csv)},
+        {kTracksFile, sha256_hex(files.tracks.dump() + "\n")}}},
       {"threads", res.threads},
       {"wall_s", res.wall_s},
       {"map_times", times},

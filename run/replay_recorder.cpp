@@ -9,9 +9,11 @@
 
 namespace plumekit::run {
 
-ReplayRecorder::ReplayRecorder(const Map& map, int robots, double every_s, double dt)
+ReplayRecorder::ReplayRecorder(const Map& map, int robots, double every_s, double dt,
+                               int first_robot)
     : map_(map),
       robots_(robots),
+      first_robot_(first_robot),
       every_steps_(std::max(1LL, std::llround(every_s / dt))),
       every_s_(static_cast<double>(every_steps_) * dt),
       plume_grid_(dataset::plume_series_grid(map)) {}
@@ -30,7 +32,13 @@ void ReplayRecorder::robot_at(int robot, long long step, double, Vec2 where) {
   const std::lock_guard<std::mutex> g(lock_);
   if (where_.size() <= frame)
     where_.resize(frame + 1, std::vector<std::optional<Vec2>>(static_cast<std::size_t>(robots_)));
-  where_[frame].at(static_cast<std::size_t>(robot)) = where;
+  where_[frame].at(static_cast<std::size_t>(robot - first_robot_)) = where;
+}
+
+void ReplayRecorder::copy_plume_frames(const ReplayRecorder& other) {
+  if (&other == this) return;
+  std::scoped_lock g(lock_, other.lock_);
+  plume_ = other.plume_;
 }
 
 void ReplayRecorder::belief(int robot, double time_s, const methods::LocalizationMethod& method) {

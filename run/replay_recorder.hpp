@@ -22,12 +22,16 @@ double replay_plume_top(const std::vector<std::vector<float>>& frames);
 class ReplayRecorder : public world::WorldWatcher {
  public:
   // Frames every `every_s` simulated seconds (rounded to whole plume steps of `dt`), from the
-  // world's step 0, where the robots start.
-  ReplayRecorder(const Map& map, int robots, double every_s, double dt);
+  // world's step 0, where the robots start. The world numbers the robots from `first_robot` (a
+  // method's robot in a plume several methods share is its method's slot there).
+  ReplayRecorder(const Map& map, int robots, double every_s, double dt, int first_robot = 0);
 
   long long every_steps() const override { return every_steps_; }
   void plume_at(long long step, double time_s, const world::FilamentSimulation& sim) override;
   void robot_at(int robot, long long step, double time_s, Vec2 where) override;
+  // The plume's frames `other` recorded, as this one's (the robots of several methods in one
+  // shared plume, which only one recorder watches: evaluate --method a,b --replays).
+  void copy_plume_frames(const ReplayRecorder& other);
   // Robot `robot`'s method after its decision at `time_s` (since the robots started).
   void belief(int robot, double time_s, const methods::LocalizationMethod& method);
 
@@ -36,11 +40,11 @@ class ReplayRecorder : public world::WorldWatcher {
 
  private:
   const Map& map_;
-  int robots_;
+  int robots_, first_robot_;
   long long every_steps_;
   double every_s_;
   GridShape plume_grid_;
-  std::mutex lock_;  // a plume shared with other robots may step on another thread
+  mutable std::mutex lock_;  // a plume shared with other robots may step on another thread
   std::vector<std::vector<float>> plume_;                // per frame; empty: not seen
   std::vector<std::vector<std::optional<Vec2>>> where_;  // per frame, per robot
   std::vector<double> scratch_;

@@ -10,7 +10,9 @@
 #include "core/output_target.hpp"
 #include "map/map_json.hpp"
 #include "map/map_render.hpp"
+#include "run/evaluation_html.hpp"
 #include "run/render.hpp"
+#include "run/run_tracks.hpp"
 
 namespace plumekit::run {
 
@@ -311,8 +313,8 @@ std::string evaluation_table(const EvaluationResult& res, const std::string& lab
     line(mr.name, mr.stats, mr.table_build_s);
   line("overall", res.overall, -1);
   h << "wrote " << out.string()
-    << "/{runs.csv, summary.json, timings.csv, timings.json, boxplot-error.png, "
-       "boxplot-samples.png"
+    << "/{report.html, runs.csv, summary.json, timings.csv, timings.json, tracks.json, "
+       "boxplot-error.png, boxplot-samples.png"
     << (pictures ? ", trajectories/}" : "}");
   return h.str();
 }
@@ -505,6 +507,10 @@ void write_evaluation_files(const fs::path& dir, const EvaluationResult& res,
   write_file_atomic(dir / "summary.json", files.summary.dump(2) + "\n");
   write_file_atomic(dir / "timings.csv", files.timings_csv);
   write_file_atomic(dir / "timings.json", files.timings.dump(2) + "\n");
+  write_file_atomic(dir / kTracksFile, files.tracks.dump() + "\n");
+  write_file_atomic(
+      dir / kReportFile,
+      evaluation_html({{res.method, files.summary, &res, &files.tracks, files.replays}}));
   write_png(draw_box_plot(per_map(res, true), labels, "error [m]",
                           label + " localization error per map", 0.5),
             dir / "boxplot-error.png");

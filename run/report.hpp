@@ -95,8 +95,12 @@ std::string summary_label(const nlohmann::ordered_json& settings);
 struct EvaluationFiles {
   std::string runs_csv, timings_csv;
   nlohmann::ordered_json summary, timings;
+  nlohmann::ordered_json tracks;  // tracks.json (run/run_tracks.hpp)
+  // Each run's replay folder relative to the output (evaluate --replays), or none at all.
+  std::vector<std::string> replays;
 };
-// Writes runs.csv, summary.json, timings.csv, timings.json and the two box plots into `dir`.
+// Writes runs.csv, summary.json, timings.csv, timings.json, tracks.json, the two box plots and
+// report.html (run/evaluation_html.hpp) into `dir`.
 void write_evaluation_files(const std::filesystem::path& dir, const EvaluationResult& result,
                             const EvaluationFiles& files);
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs every Debian package plumekit needs to build, test and run, or,
-# given package names as arguments, just those (the benchmarks' extras).
+# Installs every Debian package plumekit needs to build, test and run, then the browser test's
+# npm package (tests/browser: `npm ci`, as the invoking user, never through sudo); or, given
+# package names as arguments, just those Debian packages (the benchmarks' extras).
 # Idempotent: when all packages are present it changes nothing and exits 0.
-# Works as root, or as a user with sudo.
+# Works as root, or as a user with sudo (for apt).
 set -euo pipefail
 
 packages=(
@@ -50,35 +51,59 @@ packages=(
   # scale-out (scripts/scaleout/README.md): a single-node Slurm with munge, started by its test,
   # and GNU parallel
   slurm-wlm munge parallel
+  # report.html's browser test (tests/browser/README.md): headless Chromium, driven by the npm package
+  # playwright-core (tests/browser/package-lock.json): 1.61.1, the last release that runs on Debian 12's
+  # Node.js 18 (later ones need Node.js 20) and drives its chromium. NodeSource's
+  # nodejs brings its own npm and conflicts with Debian's npm package: an npm on the PATH counts as it.
+  chromium nodejs npm
 )
 # Optional, never needed by the build: libtorch-dev for bench/surrogate_vs_libtorch
 # (bench/libtorch/run.sh passes it as an argument).
 
+npm_step=true
 if [[ $# -gt 0 ]]; then
   packages=("$@")
+  npm_step=false
 fi
 
 missing=()
 for p in "${packages[@]}"; do
   status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
-  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+  [[ "$status" == "install ok installed" ]] && continue
+  # NodeSource's nodejs includes npm and conflicts with Debian's npm package.
+  [[ "$p" == npm ]] && command -v npm >/dev/null 2>&1 && continue
+  missing+=("$p")
 done
 
 if [[ ${#missing[@]} -eq 0 ]]; then
   echo "install-deps: all ${#packages[@]} packages present"
-  exit 0
-fi
-
-if [[ $(id -u) -eq 0 ]]; then
-  sudo=()
-elif command -v sudo >/dev/null 2>&1; then
-  sudo=(sudo)
 else
-  echo "install-deps: need root or sudo to install: ${missing[*]}" >&2
-  exit 1
+  if [[ $(id -u) -eq 0 ]]; then
+    sudo=()
+  elif command -v sudo >/dev/null 2>&1; then
+    sudo=(sudo)
+  else
+    echo "install-deps: need root or sudo to install: ${missing[*]}" >&2
+    exit 1
+  fi
+
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo[@]}" apt-get update -q
+  "${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-"${sudo[@]}" apt-get update -q
-"${sudo[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+[[ "$npm_step" == true ]] || exit 0
+
+# The browser test's npm package, at the version its lock file holds; skipped when it is there.
+browser_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/browser"
+locked=$(node -p 'require(process.argv[1]).packages["node_modules/playwright-core"].version' \
+  "$browser_dir/package-lock.json")
+installed=$(node -p 'try { require(process.argv[1]).version } catch (e) { "" }' \
+  "$browser_dir/node_modules/playwright-core/package.json")
+if [[ "$installed" == "$locked" ]]; then
+  echo "install-deps: playwright-core $locked present (tests/browser)"
+else
+  echo "install-deps: installing playwright-core $locked into tests/browser/node_modules"
+  npm ci --prefix "$browser_dir" --no-audit --no-fund
+fi

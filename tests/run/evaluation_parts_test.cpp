@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/sha256.hpp"
 #include "run/evaluation_part_reader.hpp"
+#include "run/run_tracks.hpp"
 
 namespace plumekit::ste {
 namespace {
@@ -25,7 +26,8 @@ fs::path write_part(const std::string& name, int k, int n, long long total,
                        ("plumekit-parts-test-" + std::to_string(::getpid()) + "-" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const std::string runs = "map,source_index,run\n", timings = "map,source_index,run\n";
+  const std::string runs = "map,source_index,run\n", timings = "map,source_index,run\n",
+                    tracks = R"({"format":"plumekit-tracks/1","maps":[],"runs":[]})";
   nlohmann::ordered_json j{
       {"format", run::kPartFormat},
       {"part", k},
@@ -34,7 +36,10 @@ fs::path write_part(const std::string& name, int k, int n, long long total,
       {"settings", {{"runs_per_source", 1}, {"seeds", 1}, {"plume_model", "gaussian"}}},
       {"options", nlohmann::ordered_json::object()},
       {"maps", {{{"name", "m"}}}},
-      {"files", {{"runs.csv", sha256_hex(runs)}, {"timings.csv", sha256_hex(timings)}}},
+      {"files",
+       {{"runs.csv", sha256_hex(runs)},
+        {"timings.csv", sha256_hex(timings)},
+        {"tracks.json", sha256_hex(tracks)}}},
       {"threads", threads},
       {"wall_s", 1.0},
       {"map_times", {{{"ran", false}, {"wind_s", 0.0}, {"table_build_s", 0.0}, {"wall_s", 0.0}}}},
@@ -43,6 +48,7 @@ fs::path write_part(const std::string& name, int k, int n, long long total,
   std::ofstream(dir / run::kPartFile) << j.dump(2);
   std::ofstream(dir / "runs.csv") << runs;
   std::ofstream(dir / "timings.csv") << timings;
+  std::ofstream(dir / "tracks.json") << tracks;
   return dir;
 }
 
@@ -84,3 +90,36 @@ TEST(EvaluationParts, AFloatWhereAWholeNumberBelongsIsRefusedNamingTheKey) {
 
 }  // namespace
 }  // namespace plumekit::ste
+
+namespace plumekit::run {
+namespace {
+
+// tracks.json as evaluate writes it is read; anything else is refused naming the file and what.
+TEST(EvaluationTracks, MalformedTracksAreRefusedNamingTheFileAndTheRun) {
+  const std::string good =
+      R"({"format":"plumekit-tracks/1","maps":[],"runs":[{"source":[1,2],"estimate":[1.1,2],)"
+      R"("robots":[{"path":[0,0,1,0],"stops":[1,0,0.5,3.2]}]}]})";
+  EXPECT_EQ(parse_tracks(good, "t.json", 1)["runs"].size(), 1u);
+  auto refusal = [](const std::string& bytes, std::size_t runs) {
+    try {
+      parse_tracks(bytes, "dir/tracks.json", runs);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal(good, 2).find("dir/tracks.json: holds 1 runs' tracks, runs.csv 2"),
+            std::string::npos);
+  EXPECT_NE(refusal("{", 1).find("dir/tracks.json: not plumekit-tracks/1"), std::string::npos);
+  for (const char* damage : {R"("path":[0,0,1])", R"("path":[])", R"("path":"x")"}) {
+    std::string bad = good;
+    bad.replace(bad.find(R"("path":[0,0,1,0])"), 16, damage);
+    EXPECT_NE(refusal(bad, 1).find("run 0's track lacks"), std::string::npos) << damage;
+  }
+  std::string no_robots = good;
+  no_robots.replace(no_robots.find("\"robots\""), 8, "\"robot\"");
+  EXPECT_NE(refusal(no_robots, 1).find("run 0's track lacks"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace plumekit::run

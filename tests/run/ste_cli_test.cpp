@@ -16,6 +16,19 @@ namespace {
 
 using nlohmann::json;
 
+// The data a report.html carries (run/evaluation_html.hpp): the JSON of its data script, which
+// holds no "</" (that would end the script early).
+json report_page_data(const std::filesystem::path& page) {
+  const std::string html = slurp(page);
+  const std::string open = "<script type=\"application/json\" id=\"plumekit-data\">";
+  const std::size_t at = html.find(open), end = html.find("</script>", at);
+  EXPECT_NE(at, std::string::npos) << page;
+  if (at == std::string::npos) return json();
+  const std::string data = html.substr(at + open.size(), end - at - open.size());
+  EXPECT_EQ(data.find("</"), std::string::npos);
+  return json::parse(data);
+}
+
 class SteCli : public CliTest {
  protected:
   std::string write_map() { return write_small_map(dir); }
@@ -165,12 +178,33 @@ TEST_F(SteCli, SeveralMethodsInOneWorldWriteWhatEachWritesAlone) {
   }
   EXPECT_EQ(j["comparison"][0]["method"], "STE (gaussian)");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 4);
+  // report.html (issue 48): every method's runs, each with its track, in one page's data.
+  const json page = report_page_data(dir / "all" / "report.html");
+  EXPECT_EQ(page["format"], "plumekit-report/1");
+  ASSERT_EQ(page["methods"].size(), 3u);
+  EXPECT_EQ(page["methods"][1]["label"], "zigzag");
+  EXPECT_EQ(page["methods"][1]["summary"]["overall"], j["methods"][1]["result"]["overall"]);
+  ASSERT_EQ(page["runs"]["rows"].size(), 12u);
+  ASSERT_EQ(page["tracks"].size(), 12u);
+  const json tracks = json::parse(slurp(dir / "all" / "zigzag" / "tracks.json"));
+  for (std::size_t k = 0; k < 4; ++k) {
+    const json& row = page["runs"]["rows"][4 + k];
+    EXPECT_EQ(row[0], 1);  // zigzag's
+    EXPECT_EQ(page["tracks"][4 + k], tracks["runs"][k]);
+    // The row's start is its track's first point, its source the map's.
+    EXPECT_EQ(row[12], tracks["runs"][k]["robots"][0]["path"][0]);
+    EXPECT_EQ(row[10], tracks["runs"][k]["source"][0]);
+    // A tracker's path: from its start through each stop.
+    EXPECT_GE(tracks["runs"][k]["robots"][0]["path"].size(),
+              tracks["runs"][k]["robots"][0]["stops"].size() / 2);
+  }
+  EXPECT_EQ(page["maps"][0]["name"], "small");
   for (const std::string m : {"ste", "zigzag", "pf-sweep"}) {
     r = run("evaluate --map-dir " + maps + common + " --method " + m + " --out " +
             (dir / ("one-" + m)).string());
     ASSERT_EQ(r.code, 0) << r.err;
     for (const char* f : {"runs.csv", "summary.json", "boxplot-error.png", "boxplot-samples.png",
-                          "trajectories/small.png"}) {
+                          "trajectories/small.png", "tracks.json", "report.html"}) {
       const std::string bytes = slurp(dir / "all" / m / f);
       EXPECT_FALSE(bytes.empty()) << m << ": " << f;
       EXPECT_EQ(bytes, slurp(dir / ("one-" + m) / f)) << m << ": " << f;
@@ -468,6 +502,42 @@ TEST_F(SteCli, DemoRunsAndSaysWhereThePicturesAre) {
   EXPECT_TRUE(std::filesystem::exists(dir / "demo" / "trajectory.png"));
 }
 
+// Issue 48: `evaluate --replays` records every run's replay, linked from report.html (as a script
+// a file:// page may load), and `plumekit replay` draws one; the results are those without it.
+TEST_F(SteCli, EvaluateReplaysEveryRunLinkedFromTheReport) {
+  write_map();
+  const std::string maps = (dir / "maps").string();
+  const std::string common =
+      " --plume-model gaussian --max-samples 5 --max-steps 12 --runs 1 --method ste,zigzag";
+  CliResult r =
+      run("evaluate --map-dir " + maps + common + " --replays --out " + (dir / "with").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run("evaluate --map-dir " + maps + common + " --out " + (dir / "without").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const std::string m : {"ste", "zigzag"})
+    for (const char* f : {"runs.csv", "summary.json", "tracks.json"})
+      EXPECT_EQ(slurp(dir / "with" / m / f), slurp(dir / "without" / m / f)) << m << ": " << f;
+  EXPECT_FALSE(std::filesystem::exists(dir / "without" / "ste" / "replays"));
+  const json page = report_page_data(dir / "with" / "report.html");
+  ASSERT_EQ(page["replays"].size(), 4u);  // 2 methods x 2 sources
+  EXPECT_EQ(page["replays"][0], "ste/replays/small-s0-r0");
+  EXPECT_EQ(page["replays"][3], "zigzag/replays/small-s1-r0");
+  for (const auto& link : page["replays"]) {
+    const std::filesystem::path folder = dir / "with" / link.get<std::string>();
+    const std::string replay = slurp(folder / "replay.json");
+    EXPECT_EQ(slurp(folder / "replay.js"), "plumekitReplay(" + replay + ");\n") << folder;
+    EXPECT_EQ(json::parse(replay)["format"], "plumekit-replay/1");
+  }
+  // A method's own report links its own folder's replays.
+  EXPECT_EQ(report_page_data(dir / "with" / "zigzag" / "report.html")["replays"][1],
+            "replays/small-s1-r0");
+  EXPECT_FALSE(report_page_data(dir / "without" / "report.html").contains("replays"));
+  r = run("replay " + (dir / "with" / "zigzag" / "replays" / "small-s1-r0").string() +
+          " --at 5 --out " + (dir / "frame.png").string());
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir / "frame.png"));
+}
+
 // Issue "plumekit from Python, and on many machines": `evaluate --shard K/N` parts joined by
 // `evaluate merge` give a single run's runs.csv, summary.json and box plots, byte for byte.
 class SteShards : public SteCli {
@@ -517,7 +587,8 @@ TEST_F(SteShards, MergedPartsAreTheSingleRunByteForByte) {
         run("evaluate merge" + parts + " --json --out " + (dir / ("merged-" + tag)).string());
     ASSERT_EQ(merged.code, 0) << merged.err;
     EXPECT_EQ(json::parse(merged.out)["parts"].get<int>(), n);
-    for (const char* f : {"runs.csv", "summary.json", "boxplot-error.png", "boxplot-samples.png"})
+    for (const char* f : {"runs.csv", "summary.json", "boxplot-error.png", "boxplot-samples.png",
+                          "tracks.json", "report.html"})
       EXPECT_EQ(slurp(dir / ("merged-" + tag) / f), slurp(dir / ("one-" + tag) / f))
           << f << " of " << n << " parts";
     // The timings have every run, in the same order, with the part's measured times.
@@ -554,6 +625,14 @@ TEST_F(SteShards, MergeRefusesBadPartsAndWritesNothing) {
   csv[csv.size() / 2] = csv[csv.size() / 2] == '1' ? '2' : '1';
   std::ofstream(dir / "bad" / "runs.csv") << csv;
   refused(p + "-0 " + p + "-1 " + (dir / "bad").string(), "runs.csv: does not match its checksum");
+  std::filesystem::copy(p + "-2/runs.csv", dir / "bad" / "runs.csv",
+                        std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(dir / "bad" / "tracks.json", std::ios::app) << " ";
+  refused(p + "-0 " + p + "-1 " + (dir / "bad").string(),
+          "tracks.json: does not match its checksum");
+  std::filesystem::remove(dir / "bad" / "tracks.json");
+  refused(p + "-0 " + p + "-1 " + (dir / "bad").string(), "tracks.json");
+  std::filesystem::copy(p + "-2/tracks.json", dir / "bad" / "tracks.json");
   const std::string part = slurp(p + "-2/part.json");
   std::ofstream(dir / "bad" / "part.json") << part.substr(0, part.size() / 2);
   refused(p + "-0 " + p + "-1 " + (dir / "bad").string(), "not a well-formed evaluate part");
