@@ -75,8 +75,8 @@ ordered_json map_geometry_json(const Map& map) {
   for (const Vec2& s : map.sources)
     sources.push_back({mm(s.x), mm(s.y)});
   return {{"name", map.name},
-          {"width", map.width},
-          {"height", map.height},
+          {"width", mm(map.width)},
+          {"height", mm(map.height)},
           {"obstacles", std::move(obstacles)},
           {"sources", std::move(sources)}};
 }

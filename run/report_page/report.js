@@ -840,7 +840,9 @@
     for (const grp of groups) {
       const map = grp.map;
       const bits = [];
-      if (isNum(map.width) && isNum(map.height)) bits.push(map.width + ' \u00d7 ' + map.height + ' m');
+      if (isNum(map.width) && isNum(map.height)) {
+        bits.push(Number(map.width.toFixed(2)) + ' \u00d7 ' + Number(map.height.toFixed(2)) + ' m');
+      }
       if (Array.isArray(map.obstacles)) bits.push(plural(map.obstacles.length, 'obstacle'));
       if (Array.isArray(map.sources)) bits.push(plural(map.sources.length, 'source'));
       bits.push(plural(grp.runs.length, 'run'));
