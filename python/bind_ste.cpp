@@ -79,12 +79,9 @@ py::object run_once(const run::Scenario& sc, const py::handle& source, const py:
   nlohmann::ordered_json j;
   {
     ReleasedGil release;
-    std::optional<run::ReplayRecorder> recorder;
-    if (!animation.empty())
-      recorder.emplace(map, std::max(1, sc.options().team.robots), 1.0,
-                       sc.options().world.filament.dt);
-    const run::LocalizeRun r =
-        run::localize_once(sc, s, requested, seed, recorder ? &*recorder : nullptr);
+    const std::unique_ptr<run::ReplayRecorder> recorder =
+        animation.empty() ? nullptr : run::replay_recorder_for(sc);
+    const run::LocalizeRun r = run::localize_once(sc, s, requested, seed, recorder.get());
     j = run::run_report(sc, r.source, r.result).json;
     if (recorder) {
       const run::Replay replay =

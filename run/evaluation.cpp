@@ -87,10 +87,7 @@ void fill_record(const Scenario& scenario, RunRecord& rec) {
 // `slot`: the method's robot's number in a plume several methods share.
 std::unique_ptr<ReplayRecorder> recorder_for(const Scenario& scenario, const ReplaySink& replays,
                                              int slot = 0) {
-  if (!replays) return nullptr;
-  return std::make_unique<ReplayRecorder>(scenario.map(),
-                                          std::max(1, scenario.options().team.robots), 1.0,
-                                          scenario.options().world.filament.dt, slot);
+  return replays ? replay_recorder_for(scenario, slot) : nullptr;
 }
 
 // Hands method m's replay of `rec` to the sink.

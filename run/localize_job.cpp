@@ -81,11 +81,10 @@ LocalizeReport localize_job(const LocalizeRequest& q) {
   SteOptions options = q.ste;
   options.world.filament.threads = 0;
   const Scenario sc(map, options);
-  std::optional<ReplayRecorder> recorder;
-  if (!q.animate.empty())
-    recorder.emplace(sc.map(), std::max(1, options.team.robots), 1.0, options.world.filament.dt);
-  const LocalizeRun r = localize_once(sc, map.from_frame(q.source), requested, q.seed,
-                                      recorder ? &*recorder : nullptr);
+  const std::unique_ptr<ReplayRecorder> recorder =
+      q.animate.empty() ? nullptr : replay_recorder_for(sc);
+  const LocalizeRun r =
+      localize_once(sc, map.from_frame(q.source), requested, q.seed, recorder.get());
   // The pictures first, so that the time they take is in the summary's total.
   RunPictures pictures;
   if (out) pictures = write_run_pictures(sc, r.source, r.result, out->open());

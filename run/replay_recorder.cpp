@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "dataset/plume.hpp"
+#include "run/scenario.hpp"
 #include "ste/posterior.hpp"
 
 namespace plumekit::run {
@@ -137,6 +138,12 @@ Replay ReplayRecorder::finish(const LocalizationResult& result, Vec2 source,
   r.stopped_by = result.stopped_by;
   r.approach = result.approach;
   return r;
+}
+
+std::unique_ptr<ReplayRecorder> replay_recorder_for(const Scenario& scenario, int first_robot) {
+  return std::make_unique<ReplayRecorder>(scenario.map(),
+                                          std::max(1, scenario.options().team.robots), 1.0,
+                                          scenario.options().world.filament.dt, first_robot);
 }
 
 }  // namespace plumekit::run

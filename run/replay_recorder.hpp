@@ -4,6 +4,7 @@
 // method's belief after each decision, and the run's result gives the stops, the readings and the
 // end. Recording reads what the run computes anyway plus one concentration grid per frame; the
 // run itself is the same with or without it.
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "world/simulated_world.hpp"
 
 namespace plumekit::run {
+
+class Scenario;  // run/scenario.hpp
 
 // The top of the replay's log scale for these concentration frames: the 99.9th percentile of
 // the concentrations above kReplayPlumeFloor (one hot cell at the source would otherwise squeeze
@@ -53,5 +56,9 @@ class ReplayRecorder : public world::WorldWatcher {
   std::vector<std::uint8_t> belief_cells_;
   bool has_estimate_ = false;
 };
+
+// The recorder of a run of `scenario`: its robots, a frame a second on its plume's steps; the
+// world numbers its robots from `first_robot` (see the constructor).
+std::unique_ptr<ReplayRecorder> replay_recorder_for(const Scenario& scenario, int first_robot = 0);
 
 }  // namespace plumekit::run
