@@ -73,9 +73,8 @@ ReplaySink replay_writer(const MapFolder& maps, const EvaluationOptions& eo, Out
   return [&maps, &o, seeds = eo.seeds](std::size_t m, const RunRecord& rec, const Replay& replay) {
     const fs::path folder = o.dirs[m]->open() / replay_folder(maps, rec, seeds);
     fs::create_directory(folder);
-    write_replay(replay, folder);
     write_file_atomic(folder / "replay.js",
-                      "plumekitReplay(" + read_file(folder / kReplayFile) + ");\n");
+                      "plumekitReplay(" + write_replay(replay, folder) + ");\n");
   };
 }
 

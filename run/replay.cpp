@@ -71,7 +71,7 @@ void write_checked(const fs::path& file, const std::string& bytes) {
 
 }  // namespace
 
-void write_replay(const Replay& r, const fs::path& dir) {
+std::string write_replay(const Replay& r, const fs::path& dir) {
   const Map& m = r.map;
   ordered_json j{{"format", kReplayFormat}, {"generated_by", "plumekit"}, {"title", r.title}};
   j["map"] = map_to_json(m);
@@ -125,7 +125,9 @@ void write_replay(const Replay& r, const fs::path& dir) {
   j["approach"] = approach;
   write_checked(dir / kReplayPlumeFile, plume);
   write_checked(dir / kReplayBeliefFile, belief);
-  write_checked(dir / kReplayFile, j.dump(1) + "\n");
+  std::string text = j.dump(1) + "\n";
+  write_checked(dir / kReplayFile, text);
+  return text;
 }
 
 namespace {

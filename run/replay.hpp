@@ -93,8 +93,8 @@ struct Replay {
 inline constexpr double kReplayPlumeFloor = 5.0;
 
 // Writes the replay's three files into `dir` (a folder being written; see localize_job.cpp) and
-// reads each back to check it.
-void write_replay(const Replay& replay, const std::filesystem::path& dir);
+// reads each back to check it; returns replay.json's text.
+std::string write_replay(const Replay& replay, const std::filesystem::path& dir);
 // Reads a run folder's replay; InputError naming the file and field when anything is missing,
 // malformed or does not match its recorded SHA-256.
 Replay read_replay(const std::filesystem::path& dir);
