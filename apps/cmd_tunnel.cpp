@@ -99,7 +99,7 @@ void add_localize_tunnel(CLI::App* localize) {
   auto* cmd = localize->add_subcommand(
       "tunnel", "Find a gas source in seed 004's 3-D wind tunnel (3-D STE, surge-spiral, ...)");
   struct Args {
-    std::string method = "ste-3d", source, start, out;
+    std::string method = "ste-3d", source, start, out, animate;
     std::uint64_t seed = kDefaultSeed;
     run::TunnelOptions options;
   };
@@ -116,10 +116,19 @@ void add_localize_tunnel(CLI::App* localize) {
              "tunnel.start");
   add_seed_flag(cmd, a->seed, "Seed of the plume, the chain, the walk and random points");
   cmd->add_option("--out,-o", a->out, "Write run.json and trajectory.png here");
+  cmd->add_option("--animate", a->animate,
+                  "Write a replay of the mission seen from above and from the side: FILE.mp4 (a "
+                  "video) or FILE.png (an animated PNG); with --out, the run's replay files too, "
+                  "for `plumekit replay` (docs/replay.md)");
   add_tunnel_options(cmd, a->options);
   add_common_flags(cmd);
   cmd->callback([a] {
-    run::TunnelLocalizeRequest q{a->options, std::nullopt, std::nullopt, a->seed, a->out};
+    run::TunnelLocalizeRequest q;
+    q.options = a->options;
+    q.seed = a->seed;
+    q.out = a->out;
+    q.animate = a->animate;
+    q.progress = !output().json;
     q.options.method = run::parse_tunnel_method(a->method);
     q.options.validate();  // before the points: of both mistakes, the options' is the one said
     if (!a->source.empty()) q.source = parse_point3(a->source, "--source");
@@ -136,6 +145,7 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
     std::string methods = "ste-3d", out = "out/evaluate-tunnel";
     int runs = 10, threads = kDefaultThreads;
     std::uint64_t seed = kDefaultSeed;
+    bool replays = false;
     run::TunnelOptions options;
   };
   auto a = std::make_shared<Args>();
@@ -152,13 +162,19 @@ void add_evaluate_tunnel(CLI::App* evaluate) {
   add_seed_flag(cmd, a->seed, "Seed of plumes, chains, walks, sources and starts");
   cmd->add_option("--out,-o", a->out,
                   "Output folder (new, empty, or an earlier output, which is replaced): "
-                  "runs.csv, summary.json, boxplot.png, trajectory-median.png")
+                  "runs.csv, summary.json, tracks.json, report.html, boxplot.png, "
+                  "trajectory-median.png")
       ->capture_default_str();
+  cmd->add_flag("--replays", a->replays,
+                "Record every run's replay into replays/ (report.html plays them from above and "
+                "from the side; `plumekit replay` draws one as a video); the runs take longer, "
+                "their results are the same");
   add_tunnel_options(cmd, a->options);
   add_common_flags(cmd);
   cmd->callback([a] {
-    const run::TunnelEvaluateRequest q{
+    run::TunnelEvaluateRequest q{
         a->options, run::parse_tunnel_methods(a->methods), a->runs, a->threads, a->seed, a->out};
+    q.replays = a->replays;
     ProgressBar bar("evaluate tunnel");
     const Report rep = run::evaluate_tunnel_job(
         q, [&bar](double fraction, const std::string& note) { bar.update(fraction, note); });

@@ -523,9 +523,9 @@ void MapCanvas::draw_axes() {
     const int w = text_.size(s).width;
     text_.put(image_, s, p + cv::Point(-tick_ - gap_ / 2 - w, -text_h_ / 2));
   }
-  const int y_label_len = text_.size("y [m]").width;
+  const int y_label_len = text_.size(frame_.y_label).width;
   const int y_label_y = std::max(top_, arena.y + arena.height / 2 - y_label_len / 2);
-  text_.put_vertical(image_, "y [m]", {gap_, y_label_y});
+  text_.put_vertical(image_, frame_.y_label, {gap_, y_label_y});
 }
 
 namespace {

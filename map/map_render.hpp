@@ -134,6 +134,8 @@ struct Frame {
   // has sources) come first unless map_legend is false; then these.
   std::vector<LegendEntry> legend;
   bool map_legend = true;
+  // The vertical axis's name: "z [m]" for the tunnel seen from the side.
+  std::string y_label = "y [m]";
 };
 
 class MapCanvas {

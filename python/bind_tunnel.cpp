@@ -6,10 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "core/animation.hpp"
 #include "core/error.hpp"
 #include "core/seed.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "run/replay_render.hpp"
+#include "run/tunnel_replay.hpp"
 #include "run/tunnel_report.hpp"
 #include "run/tunnel_run.hpp"
 
@@ -50,16 +53,30 @@ void bind_tunnel(py::module_& m) {
       [](const std::string& method, const std::optional<std::vector<double>>& source,
          const std::optional<std::vector<double>>& start, std::uint64_t seed,
          const std::vector<double>& tunnel, double wind_speed, double release_rate,
-         double threshold, double time_limit, double noise, double sigma_rel) {
+         double threshold, double time_limit, double noise, double sigma_rel,
+         const py::object& animate) {
         const run::TunnelOptions o = tunnel_options(method, tunnel, wind_speed, release_rate,
                                                     threshold, time_limit, noise, sigma_rel);
         std::optional<Vec3> src, from;
         if (source) src = to_point3(*source, "source");
         if (start) from = to_point3(*start, "start");
+        const std::string animation = animate.is_none() ? "" : py::str(animate).cast<std::string>();
+        if (!animation.empty()) check_animation_target(animation, "animate");
         nlohmann::ordered_json j;
         {
           ReleasedGil release;
-          j = run::tunnel_run_json(run::localize_tunnel(o, src, from, seed), true);
+          std::optional<run::TunnelReplayRecorder> recorder;
+          std::function<run::TunnelReplayRecorder*(Vec3)> record;
+          if (!animation.empty())
+            record = [&](Vec3 at) { return &recorder.emplace(run::tunnel_replay_recorder(o, at)); };
+          const run::TunnelRun r = run::localize_tunnel(o, src, from, seed, 0, record);
+          j = run::tunnel_run_json(r, true);
+          if (recorder) {
+            const run::Replay replay =
+                recorder->finish(r, run::tunnel_replay_title(o, r.source, seed));
+            std::string text;  // the command's line; Python takes the dict
+            run::report_animation(run::animate_replay(replay, animation, "animate"), j, text);
+          }
         }
         return from_json(j);
       },
@@ -67,10 +84,12 @@ void bind_tunnel(py::module_& m) {
       py::arg("seed") = kDefaultSeed, py::arg("tunnel") = std::vector<double>{10.0, 4.0, 2.0},
       py::arg("wind_speed") = 0.9, py::arg("release_rate") = 1000.0, py::arg("threshold") = 0.7,
       py::arg("time_limit") = 720.0, py::arg("noise") = 0.0, py::arg("sigma_rel") = 0.5,
+      py::arg("animate") = py::none(),
       "One run in seed 004's 3-D wind tunnel (`plumekit localize tunnel`): method 'ste-3d', "
       "'surge-spiral' or 'surge-cast-2d'; points (x, y, z) in metres, x downwind, z up; random "
       "when None (the same seed, the same run). Returns run.json's content: 'estimate', "
-      "'error_m', 'error_xyz_m', 'stopped_by', 'steps', ...");
+      "'error_m', 'error_xyz_m', 'stopped_by', 'steps', ...; animate='run.mp4' (or .png) draws "
+      "its replay there, seen from above and from the side (docs/replay.md)");
   m.def(
       "evaluate_tunnel",
       [](const std::string& method, int runs, std::uint64_t seed, int threads,

@@ -57,9 +57,10 @@ ordered_json report_data(const std::vector<ReportMethod>& methods) {
   const ordered_json& maps = methods.front().tracks->at("maps");
   const std::size_t runs = methods.front().result->runs.size();
   ordered_json j{{"format", kReportFormat}};
-  j["title"] = "evaluate: " + std::to_string(maps.size()) + " maps x " +
-               std::to_string(methods.size()) + (methods.size() == 1 ? " method, " : " methods, ") +
-               std::to_string(runs) + " runs each";
+  j["title"] = "evaluate: " + std::to_string(maps.size()) +
+               (maps.size() == 1 ? " map x " : " maps x ") + std::to_string(methods.size()) +
+               (methods.size() == 1 ? " method, " : " methods, ") + std::to_string(runs) +
+               " runs each";
   j["settings"] = settings_of(methods.front().summary);
   j["methods"] = ordered_json::array();
   j["maps"] = maps;

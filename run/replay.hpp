@@ -12,8 +12,13 @@
 // On disk, three files of a run's folder: replay.json (everything but the grids), replay-plume.png
 // and replay-belief.png, 8-bit grey film strips of the grids (frame after frame, top to bottom;
 // each frame's first image row is the arena's top), whose SHA-256 replay.json records.
+//
+// A run in the 3-D tunnel (run/tunnel_replay.hpp) is seen from above and from the side: its map
+// is the tunnel from above, its plume and belief the views from above, and `side` adds the view
+// from the side, every point's height and two more strips.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +32,8 @@ inline constexpr const char* kReplayFormat = "plumekit-replay/1";
 inline constexpr const char* kReplayFile = "replay.json";
 inline constexpr const char* kReplayPlumeFile = "replay-plume.png";
 inline constexpr const char* kReplayBeliefFile = "replay-belief.png";
+inline constexpr const char* kReplayPlumeSideFile = "replay-plume-side.png";
+inline constexpr const char* kReplayBeliefSideFile = "replay-belief-side.png";
 
 // A stop: where the robot sampled, from when to when, what it read and what it believed after.
 struct ReplayStop {
@@ -35,6 +42,7 @@ struct ReplayStop {
   double arrived_s = 0.0, time_s = 0.0;
   double value = 0.0;
   Vec2 estimate;  // the method's estimate after the stop (where it stood, for a tracker)
+  double z = 0.0, estimate_z = 0.0;  // in the tunnel: the heights of position and estimate
 };
 
 // A reading taken on the way between stops.
@@ -42,6 +50,7 @@ struct ReplayReading {
   int robot = 0;
   Vec2 position;
   double time_s = 0.0, value = 0.0;
+  double z = 0.0;  // in the tunnel: the height of position
 };
 
 // The belief after a decision: its cells in Replay::belief_cells, scaled to `peak`.
@@ -49,6 +58,20 @@ struct ReplayBelief {
   int robot = 0;
   double time_s = 0.0;
   double peak = 0.0;  // the largest cell's value (a probability per cell)
+};
+
+// The tunnel from the side: the gas in the vertical plane through the source (y = plane_y), the
+// belief's (x, z) marginal, and the heights the view from above leaves out.
+struct ReplaySide {
+  double height = 0.0;                  // the tunnel's, m: the view's vertical extent
+  double plane_y = 0.0, plane_z = 0.0;  // this view's plane, and the view from above's (z)
+  GridShape plume_grid;                 // x along the tunnel, y up (z)
+  std::vector<std::uint8_t> plume;      // per frame, on the replay's log levels
+  GridShape belief_grid;
+  std::vector<double> belief_peaks;  // per belief (Replay::beliefs)
+  std::vector<std::uint8_t> belief_cells;
+  std::vector<std::vector<double>> z;  // per frame, each robot's height
+  double source_z = 0.0, estimate_z = 0.0;
 };
 
 struct Replay {
@@ -79,6 +102,7 @@ struct Replay {
   double declared_s = 0.0, ended_s = 0.0;
   std::string stopped_by;
   std::vector<Vec2> approach;
+  std::optional<ReplaySide> side;  // a tunnel run's
 
   int frames() const { return static_cast<int>(positions.size()); }
   double time_of(int frame) const { return frame * every_s; }

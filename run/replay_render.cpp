@@ -136,30 +136,38 @@ class ReplayPainter::Panels {
   Panels(const Replay& r, cv::Size size) : r_(r), size_(size) {
     header_ = std::max(48, size.height / 13);
     const int half = size.width / 2, body = size.height - header_;
-    const cv::Size world_box(half, body);
     std::vector<LegendEntry> legend = {
         {LegendEntry::Symbol::Dot, robot_colour(0), r.robots > 1 ? "robots" : "robot"},
         {LegendEntry::Symbol::Dot, cv::Scalar(255, 255, 255), "stop (coloured by its reading)"},
         {LegendEntry::Symbol::Cross, colours::kEstimate, "estimate"}};
     Map with_source = r.map;
     with_source.sources = {r.source};
-    world_ = map_panel(with_source, world_box,
-                       Frame{"the world: gas (log scale) and robots", std::nullopt, legend, true});
-    // The readings over time go under both maps where a wide map leaves room, else under the
-    // belief.
-    const int below = body - world_.background.rows;
-    cv::Size belief_box(size.width - half, body * 62 / 100);
-    if (below >= body * 3 / 10) {
-      belief_box.height = world_.background.rows;
-      series_ = cv::Rect(0, header_ + world_.background.rows, size.width, below);
+    if (r.side) {
+      tunnel_layout(with_source, legend, half, body);
     } else {
-      series_ =
-          cv::Rect(half, header_ + belief_box.height, size.width - half, body - belief_box.height);
+      const cv::Size world_box(half, body);
+      worlds_.emplace_back(
+          map_panel(with_source, world_box,
+                    Frame{"the world: gas (log scale) and robots", std::nullopt, legend, true}),
+          false);
+      const int world_rows = worlds_[0].panel.background.rows;
+      // The readings over time go under both maps where a wide map leaves room, else under the
+      // belief.
+      const int below = body - world_rows;
+      cv::Size belief_box(size.width - half, body * 62 / 100);
+      if (below >= body * 3 / 10) {
+        belief_box.height = world_rows;
+        series_ = cv::Rect(0, header_ + world_rows, size.width, below);
+      } else {
+        series_ = cv::Rect(half, header_ + belief_box.height, size.width - half,
+                           body - belief_box.height);
+      }
+      beliefs_.emplace_back(
+          map_panel(with_source, belief_box, Frame{"the method's belief", std::nullopt, {}, false}),
+          false);
+      worlds_[0].at = {(world_box.width - worlds_[0].panel.background.cols) / 2, header_};
+      beliefs_[0].at = {half + (belief_box.width - beliefs_[0].panel.background.cols) / 2, header_};
     }
-    belief_ =
-        map_panel(with_source, belief_box, Frame{"the method's belief", std::nullopt, {}, false});
-    world_at_ = {(world_box.width - world_.background.cols) / 2, header_};
-    belief_at_ = {half + (belief_box.width - belief_.background.cols) / 2, header_};
     gas_ = colour_table(cv::COLORMAP_INFERNO, true);
     belief_table_ = colour_table(cv::COLORMAP_VIRIDIS, true, true);
     for (const ReplayStop& s : r.stops)
@@ -173,14 +181,76 @@ class ReplayPainter::Panels {
     cv::Mat image(size_, CV_8UC3, cv::Scalar(255, 255, 255));
     const double t = r_.time_of(k);
     add_readings(t);
-    draw_world(image, k, t);
-    draw_belief(image, t);
+    for (View& v : worlds_)
+      draw_world(image, v, k, t);
+    for (const View& v : beliefs_)
+      draw_belief(image, v, t);
     draw_series(image, t);
     draw_header(image, t);
     return image;
   }
 
  private:
+  // A map panel where the frame shows it; `side`: the tunnel from the side (x, z). The layers of
+  // the readings on the way drawn so far over a world view (add_readings).
+  struct View {
+    MapPanel panel;
+    cv::Point at;
+    bool side = false;
+    cv::Mat dots, dots_mask;
+    View(MapPanel p, bool is_side) : panel(std::move(p)), side(is_side) {}
+  };
+
+  // The tunnel's views: from above over from the side (the same metres per pixel, so that x lines
+  // up), the world's on the left and the belief's on the right, the readings over time below.
+  void tunnel_layout(const Map& above, const std::vector<LegendEntry>& legend, int half, int body) {
+    const ReplaySide& s = *r_.side;
+    Map side = above;
+    side.height = s.height;
+    side.sources = {{r_.source.x, s.source_z}};
+    for (Opening& o : side.openings)  // the tunnel's inlet and outlet span its walls
+      if (o.vertical()) o.from.y = 0.0, o.to.y = s.height;
+    const int views_h = body * 76 / 100;
+    const std::string at_z = "from above, z = " + fixed(s.plane_z, 2) + " m";
+    const std::string at_y = "from the side, y = " + fixed(s.plane_y, 2) + " m";
+    const Frame top{"gas (log scale), " + at_z, std::nullopt, legend, true};
+    Frame low{"gas, " + at_y, std::nullopt, {}, false};
+    low.y_label = "z [m]";
+    const Frame belief_top{"belief (x, y), summed over z", std::nullopt, {}, false};
+    Frame belief_low{"belief (x, z), summed over y", std::nullopt, {}, false};
+    belief_low.y_label = "z [m]";
+    // Each column as wide as both views fit above each other at one scale (a view fitted to its
+    // width alone has the column's scale).
+    int width = half;
+    for (int attempt = 0; attempt < 6; ++attempt) {
+      worlds_.clear();
+      beliefs_.clear();
+      const cv::Size box(width, 100000);
+      worlds_.emplace_back(map_panel(above, box, top), false);
+      worlds_.emplace_back(map_panel(side, box, low), true);
+      beliefs_.emplace_back(map_panel(above, box, belief_top), false);
+      beliefs_.emplace_back(map_panel(side, box, belief_low), true);
+      const int tall =
+          std::max(worlds_[0].panel.background.rows + worlds_[1].panel.background.rows,
+                   beliefs_[0].panel.background.rows + beliefs_[1].panel.background.rows);
+      if (tall <= views_h) break;
+      width = static_cast<int>(width * 0.98 * views_h / tall);
+    }
+    for (int col = 0; col < 2; ++col) {
+      std::vector<View>& views = col == 0 ? worlds_ : beliefs_;
+      const int x0 = col * half;
+      views[0].at = {x0 + (half - views[0].panel.background.cols) / 2, header_};
+      views[1].at = {x0 + (half - views[1].panel.background.cols) / 2,
+                     header_ + views[0].panel.background.rows};
+    }
+    const int used = std::max(worlds_[1].at.y + worlds_[1].panel.background.rows,
+                              beliefs_[1].at.y + beliefs_[1].panel.background.rows);
+    series_ = cv::Rect(0, used, size_.width, size_.height - used);
+  }
+
+  // Where a view shows a point with its height z.
+  static Vec2 seen(const View& v, Vec2 p, double z) { return v.side ? Vec2{p.x, z} : p; }
+
   // Colour of a reading on the gas scale.
   cv::Scalar reading_colour(double v) const {
     const int level = r_.plume_level(v);
@@ -188,54 +258,69 @@ class ReplayPainter::Panels {
     return {static_cast<double>(c[0]), static_cast<double>(c[1]), static_cast<double>(c[2])};
   }
 
-  void draw_world(cv::Mat& image, int k, double t) {
-    cv::Mat panel = world_.background.clone();
-    const std::size_t cells = r_.plume_grid.size();
-    paint_levels(panel, world_, r_.plume.data() + static_cast<std::size_t>(k) * cells,
-                 r_.plume_grid, gas_);
+  double robot_z(int k, int robot) const {
+    return r_.side ? r_.side->z[static_cast<std::size_t>(k)][static_cast<std::size_t>(robot)] : 0.0;
+  }
+
+  void draw_world(cv::Mat& image, const View& v, int k, double t) {
+    const MapPanel& w = v.panel;
+    cv::Mat panel = w.background.clone();
+    if (v.side) {
+      const std::size_t cells = r_.side->plume_grid.size();
+      paint_levels(panel, w, r_.side->plume.data() + static_cast<std::size_t>(k) * cells,
+                   r_.side->plume_grid, gas_);
+    } else {
+      const std::size_t cells = r_.plume_grid.size();
+      paint_levels(panel, w, r_.plume.data() + static_cast<std::size_t>(k) * cells, r_.plume_grid,
+                   gas_);
+    }
     // Each robot's way so far, from the frames' positions.
     for (int robot = 0; robot < r_.robots; ++robot) {
       std::vector<cv::Point> way;
       for (int f = 0; f <= k; ++f)
-        way.push_back(fixed_point(world_.px(r_.positions[f][robot])));
+        way.push_back(fixed_point(w.px(seen(v, r_.positions[f][robot], robot_z(f, robot)))));
       cv::polylines(panel, std::vector<std::vector<cv::Point>>{way}, false, robot_colour(robot), 1,
                     cv::LINE_AA, 4);
     }
-    world_dots_.copyTo(panel, world_dots_mask_);
+    v.dots.copyTo(panel, v.dots_mask);
     for (const ReplayStop& s : r_.stops)
       if (s.arrived_s <= t)
-        dot(panel, world_.px(s.position), 5, reading_colour(s.value), robot_colour(s.robot));
-    const cv::Point2d source = world_.px(r_.source);
-    cross(panel, source, 6, colours::kSource, 2);
+        dot(panel, w.px(seen(v, s.position, s.z)), 5, reading_colour(s.value),
+            robot_colour(s.robot));
+    cross(panel, w.px(seen(v, r_.source, r_.side ? r_.side->source_z : 0.0)), 6, colours::kSource,
+          2);
     if (const ReplayStop* last = last_stop(t); last && r_.has_estimate)
-      cross(panel, world_.px(last->estimate), 6, colours::kEstimate, 2);
+      cross(panel, w.px(seen(v, last->estimate, last->estimate_z)), 6, colours::kEstimate, 2);
     for (int robot = 0; robot < r_.robots; ++robot)
-      dot(panel, world_.px(r_.positions[k][robot]), 7, robot_colour(robot),
+      dot(panel, w.px(seen(v, r_.positions[k][robot], robot_z(k, robot))), 7, robot_colour(robot),
           cv::Scalar(255, 255, 255));
-    panel.copyTo(image(cv::Rect(world_at_, panel.size())));
+    panel.copyTo(image(cv::Rect(v.at, panel.size())));
   }
 
-  void draw_belief(cv::Mat& image, double t) {
-    cv::Mat panel = belief_.background.clone();
+  void draw_belief(cv::Mat& image, const View& v, double t) {
+    const MapPanel& b = v.panel;
+    cv::Mat panel = b.background.clone();
     int latest = -1;
-    for (std::size_t b = 0; b < r_.beliefs.size() && r_.beliefs[b].time_s <= t; ++b)
-      latest = static_cast<int>(b);
+    for (std::size_t k = 0; k < r_.beliefs.size() && r_.beliefs[k].time_s <= t; ++k)
+      latest = static_cast<int>(k);
     TextPainter text(0.45, 1);
     if (latest >= 0) {
-      paint_levels(panel, belief_, r_.belief_cells.data() + latest * r_.belief_grid.size(),
-                   r_.belief_grid, belief_table_);
+      const GridShape& g = v.side ? r_.side->belief_grid : r_.belief_grid;
+      const std::vector<std::uint8_t>& cells = v.side ? r_.side->belief_cells : r_.belief_cells;
+      paint_levels(panel, b, cells.data() + latest * g.size(), g, belief_table_);
       if (r_.robots > 1)
         text.put_on_white(panel, "robot " + std::to_string(r_.beliefs[latest].robot + 1) + "'s",
-                          belief_.arena.tl() + cv::Point(4, 4));
-    } else {
+                          b.arena.tl() + cv::Point(4, 4));
+    } else if (!v.side) {
       text.put_on_white(panel,
                         r_.beliefs.empty() ? r_.method + " holds no belief" : "no reading yet",
-                        belief_.arena.tl() + cv::Point(4, 4));
+                        b.arena.tl() + cv::Point(4, 4));
     }
-    cross(panel, belief_.px(r_.source), 5, colours::kSource, 2);
+    cross(panel, b.px(seen(v, r_.source, r_.side ? r_.side->source_z : 0.0)), 5, colours::kSource,
+          2);
     if (const ReplayStop* last = last_stop(t); last && r_.has_estimate)
-      cross(panel, belief_.px(last->estimate), 5, colours::kEstimate, 2);
-    panel.copyTo(image(cv::Rect(belief_at_, panel.size())));
+      cross(panel, b.px(seen(v, last->estimate, last->estimate_z)), 5, colours::kEstimate, 2);
+    panel.copyTo(image(cv::Rect(v.at, panel.size())));
   }
 
   // The readings over time's plot area, and where a reading at `time` of `v` lies in it.
@@ -254,9 +339,11 @@ class ReplayPainter::Panels {
   // The readings on the way up to `t` into their layers, which only grow with time (a long
   // mission has thousands; each frame copies the layers instead of drawing them all again).
   void add_readings(double t) {
-    if (world_dots_.empty() || t < dots_until_) {
-      world_dots_ = cv::Mat(world_.background.size(), CV_8UC3, cv::Scalar(0, 0, 0));
-      world_dots_mask_ = cv::Mat(world_.background.size(), CV_8U, cv::Scalar(0));
+    if (series_dots_.empty() || t < dots_until_) {
+      for (View& v : worlds_) {
+        v.dots = cv::Mat(v.panel.background.size(), CV_8UC3, cv::Scalar(0, 0, 0));
+        v.dots_mask = cv::Mat(v.panel.background.size(), CV_8U, cv::Scalar(0));
+      }
       series_dots_ = cv::Mat(size_, CV_8UC3, cv::Scalar(0, 0, 0));
       series_dots_mask_ = cv::Mat(size_, CV_8U, cv::Scalar(0));
       dots_drawn_ = 0;
@@ -265,9 +352,12 @@ class ReplayPainter::Panels {
     for (; dots_drawn_ < r_.readings.size() && r_.readings[dots_drawn_].time_s <= t;
          ++dots_drawn_) {
       const ReplayReading& s = r_.readings[dots_drawn_];
-      const cv::Point p = world_.px(s.position), q = series_at(s.time_s, s.value);
-      cv::circle(world_dots_, p, 2, reading_colour(s.value), cv::FILLED);
-      cv::circle(world_dots_mask_, p, 2, cv::Scalar(255), cv::FILLED);
+      for (View& v : worlds_) {
+        const cv::Point p = v.panel.px(seen(v, s.position, s.z));
+        cv::circle(v.dots, p, 2, reading_colour(s.value), cv::FILLED);
+        cv::circle(v.dots_mask, p, 2, cv::Scalar(255), cv::FILLED);
+      }
+      const cv::Point q = series_at(s.time_s, s.value);
       cv::circle(series_dots_, q, 1, cv::Scalar(150, 150, 150), cv::FILLED);
       cv::circle(series_dots_mask_, q, 1, cv::Scalar(255), cv::FILLED);
     }
@@ -311,14 +401,20 @@ class ReplayPainter::Panels {
       stops += s.time_s <= t;
     status += "   stops " + std::to_string(stops);
     const int robot = 0;  // a tracker's distance: the first robot's
+    // In the tunnel, distances in 3-D.
+    const double source_z = r_.side ? r_.side->source_z : 0.0;
+    const auto off = [&](Vec2 p, double z) {
+      return std::hypot(norm(p - r_.source), z - source_z);
+    };
     if (!r_.has_estimate) {
       const int k = std::min(r_.frames() - 1, static_cast<int>(std::lround(t / r_.every_s)));
-      status += "   " + fixed(norm(r_.positions[k][robot] - r_.source), 2) +
+      status += "   " + fixed(off(r_.positions[k][robot], robot_z(k, robot)), 2) +
                 " m from the source (" + r_.method + " holds no estimate)";
     } else if (const ReplayStop* last = last_stop(t)) {
       const Vec2 e = r_.map.to_frame(last->estimate);
-      status += "   estimate (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) + "), error " +
-                fixed(norm(last->estimate - r_.source), 2) + " m";
+      status += "   estimate (" + fixed(e.x, 2) + ", " + fixed(e.y, 2) +
+                (r_.side ? ", " + fixed(last->estimate_z, 2) : "") + "), error " +
+                fixed(off(last->estimate, last->estimate_z), 2) + " m";
     }
     if (t >= r_.declared_s - 1e-9 && !r_.stopped_by.empty())
       status += "   stopped (" + r_.stopped_by + ") at " + fixed(r_.declared_s, 0) + " s";
@@ -337,14 +433,13 @@ class ReplayPainter::Panels {
   const Replay& r_;
   cv::Size size_;
   int header_ = 48;
-  MapPanel world_, belief_;
-  cv::Point world_at_, belief_at_;
+  std::vector<View> worlds_, beliefs_;  // a view each, or the tunnel's from above and the side
   cv::Rect series_;
   cv::Mat gas_, belief_table_;
   double top_reading_ = 1.0;
   // The readings on the way drawn so far (add_readings): up to time dots_until_, the first
   // dots_drawn_ of them.
-  cv::Mat world_dots_, world_dots_mask_, series_dots_, series_dots_mask_;
+  cv::Mat series_dots_, series_dots_mask_;
   std::size_t dots_drawn_ = 0;
   double dots_until_ = -1.0;
 };

@@ -9,24 +9,24 @@ namespace plumekit::run {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
-namespace {
-
 // Millimetres: finer than any robot's position noise, and a third of the file's size of full
 // precision.
-double mm(double metres) {
+double track_metres(double metres) {
   return std::round(metres * 1000.0) / 1000.0;
 }
 
-// A reading to four significant digits (the pictures' colour scale needs no more).
-double digits4(double value) {
+// Four significant digits: the pictures' colour scale needs no more.
+double track_reading(double value) {
   if (!(value != 0.0) || !std::isfinite(value)) return std::isfinite(value) ? value : 0.0;
   const double scale = std::pow(10.0, 3 - std::floor(std::log10(std::abs(value))));
   return std::round(value * scale) / scale;
 }
 
+namespace {
+
 void add_point(ordered_json& flat, Vec2 p) {
-  flat.push_back(mm(p.x));
-  flat.push_back(mm(p.y));
+  flat.push_back(track_metres(p.x));
+  flat.push_back(track_metres(p.y));
 }
 
 ordered_json robot_json(Vec2 start, const std::vector<Step>& steps,
@@ -38,7 +38,7 @@ ordered_json robot_json(Vec2 start, const std::vector<Step>& steps,
     for (std::size_t i = 1; i < s.path_in.size(); ++i)
       add_point(path, s.path_in[i]);
     add_point(stops, s.position);
-    stops.push_back(digits4(s.value));
+    stops.push_back(track_reading(s.value));
     stops.push_back(std::round(s.time_s * 10.0) / 10.0);
   }
   for (std::size_t i = 1; i < approach.size(); ++i)
@@ -59,8 +59,8 @@ ordered_json run_track_json(const RunRecord& run) {
           robot_json(r.team[k].start, r.team[k].steps,
                      static_cast<int>(k) == r.declared_by ? r.approach : std::vector<Vec2>{}));
   }
-  return {{"source", {mm(run.source.x), mm(run.source.y)}},
-          {"estimate", {mm(run.estimate.x), mm(run.estimate.y)}},
+  return {{"source", {track_metres(run.source.x), track_metres(run.source.y)}},
+          {"estimate", {track_metres(run.estimate.x), track_metres(run.estimate.y)}},
           {"robots", std::move(robots)}};
 }
 
@@ -73,10 +73,10 @@ ordered_json map_geometry_json(const Map& map) {
     obstacles.push_back(std::move(flat));
   }
   for (const Vec2& s : map.sources)
-    sources.push_back({mm(s.x), mm(s.y)});
+    sources.push_back({track_metres(s.x), track_metres(s.y)});
   return {{"name", map.name},
-          {"width", mm(map.width)},
-          {"height", mm(map.height)},
+          {"width", track_metres(map.width)},
+          {"height", track_metres(map.height)},
           {"obstacles", std::move(obstacles)},
           {"sources", std::move(sources)}};
 }

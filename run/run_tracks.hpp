@@ -16,6 +16,11 @@ namespace plumekit::run {
 inline constexpr const char* kTracksFormat = "plumekit-tracks/1";
 inline constexpr const char* kTracksFile = "tracks.json";
 
+// A position as tracks.json holds it (to the millimetre), and a reading (four significant
+// digits).
+double track_metres(double metres);
+double track_reading(double value);
+
 // One run: {"source": [x, y], "estimate": [x, y], "robots": [{"path": [x, y, ...], "stops": [x,
 // y, value, time_s, ...]}]}, in the arena's metres (as the map file's geometry, not runs.csv's
 // map frame), rounded to the millimetre; a path starts at the robot's start.

@@ -10,6 +10,11 @@
 #include "core/output_target.hpp"
 #include "core/statistics.hpp"
 #include "map/map_render.hpp"
+#include "run/evaluation_html.hpp"
+#include "run/replay_render.hpp"
+#include "run/run_tracks.hpp"
+#include "run/tunnel_page.hpp"
+#include "run/tunnel_replay.hpp"
 #include "run/tunnel_report.hpp"
 
 namespace plumekit::run {
@@ -21,22 +26,38 @@ Report localize_tunnel_job(const TunnelLocalizeRequest& q) {
   q.options.validate();
   std::optional<OutputDirectory> out;
   if (!q.out.empty()) out.emplace(q.out, "localize");
-  const TunnelRun run = localize_tunnel(q.options, q.source, q.start, q.seed);
+  if (!q.animate.empty()) check_animation_target(q.animate, "--animate");
+  std::optional<TunnelReplayRecorder> recorder;
+  std::function<TunnelReplayRecorder*(Vec3)> record;
+  if (!q.animate.empty())
+    record = [&](Vec3 source) {
+      return &recorder.emplace(tunnel_replay_recorder(q.options, source));
+    };
+  const TunnelRun run = localize_tunnel(q.options, q.source, q.start, q.seed, 0, record);
   ordered_json j{{"ok", true}, {"seed", q.seed}};
   j["settings"] = tunnel_settings(q.options);
   j.update(tunnel_run_json(run, false));
   std::string text = tunnel_run_line(run);
+  std::optional<Replay> replay;
+  if (recorder) replay = recorder->finish(run, tunnel_replay_title(q.options, run.source, q.seed));
   if (out) {
     const fs::path& dir = out->open();
     ordered_json file = j;
     file.update(tunnel_run_json(run, true));
     write_file_atomic(dir / "run.json", file.dump(2) + "\n");
     write_png(draw_tunnel_run(run, q.options.tunnel, text), dir / "trajectory.png");
+    if (replay) write_replay(*replay, dir);
     out->commit();
     const fs::path& d = q.out;
     j["out"] = {{"run", (d / "run.json").string()},
                 {"trajectory", (d / "trajectory.png").string()}};
+    if (replay) j["out"]["replay"] = (d / kReplayFile).string();
     text += "\nwrote " + (d / "trajectory.png").string() + ", " + (d / "run.json").string();
+  }
+  if (replay) {
+    AnimateOptions a;
+    a.progress = q.progress;
+    report_animation(animate_replay(*replay, q.animate, "--animate", a), j, text);
   }
   return {j, text};
 }
@@ -54,11 +75,15 @@ std::size_t median_tunnel_run(const std::vector<TunnelRun>& runs) {
 
 namespace {
 
-// One method's folder: runs.csv, summary.json, the box plot and the median run's picture.
+// One method's folder: runs.csv, summary.json, tracks.json, the box plot, the median run's
+// picture and report.html.
 void write_tunnel_files(const fs::path& dir, const std::vector<TunnelRun>& runs,
-                        const TunnelOptions& o, const ordered_json& summary) {
+                        const TunnelOptions& o, const ordered_json& summary,
+                        const TunnelPageMethod& page, std::uint64_t seed) {
   write_file_atomic(dir / "runs.csv", tunnel_runs_csv(runs));
   write_file_atomic(dir / "summary.json", summary.dump(2) + "\n");
+  write_file_atomic(dir / kTracksFile, tunnel_tracks_json(o.tunnel, runs).dump() + "\n");
+  write_file_atomic(dir / kReportFile, tunnel_report_html({page}, seed));
   const std::string name = o.method;
   write_png(draw_tunnel_box_plot(runs, name + ", " + std::to_string(runs.size()) + " runs, wind " +
                                            compact(o.tunnel.speed) + " m/s"),
@@ -78,8 +103,24 @@ std::string tunnel_summary_line(const ordered_json& s, std::size_t runs, const f
        << s["median_error_m"].get<double>() << " m (z " << s["median_error_z_m"].get<double>()
        << " m), median distance " << s["median_distance_m"].get<double>() << " m, median time "
        << s["median_mission_s"].get<double>() << " s\n  wrote " << out.string()
-       << "/{runs.csv, summary.json, boxplot.png, trajectory-median.png}\n";
+       << "/{runs.csv, summary.json, tracks.json, report.html, boxplot.png, "
+          "trajectory-median.png}\n";
   return line.str();
+}
+
+// Run k's replay folder in its method's folder (--replays), relative to it.
+std::string replay_folder(int k) {
+  return "replays/tunnel-r" + std::to_string(k);
+}
+
+// Writes each run's replay into `dir`'s replays/ as it comes (with replay.js for the page).
+TunnelReplaySink replay_writer(const fs::path& dir) {
+  return [dir](int k, const TunnelRun&, const Replay& replay) {
+    const fs::path folder = dir / replay_folder(k);
+    fs::create_directories(folder);
+    write_file_atomic(folder / "replay.js",
+                      "plumekitReplay(" + write_replay(replay, folder) + ");\n");
+  };
 }
 
 }  // namespace
@@ -105,23 +146,40 @@ Report evaluate_tunnel_job(const TunnelEvaluateRequest& q, const JobProgress& pr
   ordered_json j{{"ok", true}, {"seed", q.seed}, {"methods", ordered_json::array()}};
   std::string text;
   const int total = q.runs * static_cast<int>(methods.size());
+  std::vector<std::vector<TunnelRun>> runs(methods.size());
+  std::vector<TunnelPageMethod> pages;
   for (std::size_t m = 0; m < methods.size(); ++m) {
     const int before = q.runs * static_cast<int>(m);
-    const std::vector<TunnelRun> runs =
-        evaluate_tunnel(each[m], q.runs, q.seed, q.threads, [&](int done, int) {
+    const fs::path& dir = dirs[m]->open();
+    runs[m] = evaluate_tunnel(
+        each[m], q.runs, q.seed, q.threads,
+        [&](int done, int) {
           if (progress)
             progress(static_cast<double>(before + done) / total,
                      std::to_string(before + done) + "/" + std::to_string(total) + " runs");
-        });
+        },
+        q.replays ? replay_writer(dir) : TunnelReplaySink());
+    pages.push_back({&each[m], &runs[m], {}});
+    if (q.replays)
+      for (int k = 0; k < q.runs; ++k)
+        pages.back().replays.push_back(replay_folder(k));
     ordered_json summary{{"method", methods[m]}, {"seed", q.seed}};
     summary["settings"] = tunnel_settings(each[m]);
-    summary.update(tunnel_summary(runs));
-    write_tunnel_files(dirs[m]->open(), runs, each[m], summary);
+    summary.update(tunnel_summary(runs[m]));
+    write_tunnel_files(dir, runs[m], each[m], summary, pages.back(), q.seed);
     dirs[m]->commit();
     j["methods"].push_back(summary);
-    text += tunnel_summary_line(summary, runs.size(), outs[m]);
+    text += tunnel_summary_line(summary, runs[m].size(), outs[m]);
   }
-  if (whole) whole->commit();
+  if (whole) {
+    // The page of all methods, their replays in their folders.
+    for (std::size_t m = 0; m < methods.size(); ++m)
+      for (std::string& folder : pages[m].replays)
+        folder = methods[m] + "/" + folder;
+    write_file_atomic(whole->open() / kReportFile, tunnel_report_html(pages, q.seed));
+    whole->commit();
+    text += "wrote " + (q.out / kReportFile).string() + " (all methods)\n";
+  }
   return {j, text};
 }
 

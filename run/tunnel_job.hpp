@@ -21,6 +21,10 @@ struct TunnelLocalizeRequest {
   std::optional<Vec3> source, start;  // none: random (localize_tunnel)
   std::uint64_t seed = kDefaultSeed;
   std::filesystem::path out;  // empty: no files; else run.json and trajectory.png
+  // A replay of the mission, seen from above and from the side, as a video (.mp4) or animated
+  // PNG (.png); empty: none. With `out`, the run's replay files too, for `plumekit replay`.
+  std::filesystem::path animate;
+  bool progress = false;  // a progress bar while the replay is drawn
 };
 // One run: its summary (run.json without the steps), and with an output folder the files.
 Report localize_tunnel_job(const TunnelLocalizeRequest& request);
@@ -31,9 +35,12 @@ struct TunnelEvaluateRequest {
   int runs = 10, threads = kDefaultThreads;
   std::uint64_t seed = kDefaultSeed;
   std::filesystem::path out = "out/evaluate-tunnel";
+  bool replays = false;  // every run's replay into replays/tunnel-rN/ (slower; the same runs)
 };
-// Each method's runs.csv, summary.json, boxplot.png and trajectory-median.png, the output written
-// whole; returns every method's summary and a line each. `progress` counts the runs of all.
+// Each method's runs.csv, summary.json, boxplot.png, trajectory-median.png, tracks.json and
+// report.html (run/tunnel_page.hpp), with several methods OUT/report.html of all, the output
+// written whole; returns every method's summary and a line each. `progress` counts the runs of
+// all.
 Report evaluate_tunnel_job(const TunnelEvaluateRequest& request, const JobProgress& progress = {});
 
 // The run a picture of an evaluation shows: STE's of median error, a tracker's of median time.

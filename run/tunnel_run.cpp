@@ -12,6 +12,7 @@
 #include "core/thread_pool.hpp"
 #include "methods/registry.hpp"
 #include "run/method_run.hpp"
+#include "run/tunnel_replay.hpp"
 #include "world/random_streams.hpp"
 #include "world/tunnel_world.hpp"
 
@@ -53,10 +54,12 @@ std::unique_ptr<methods::LocalizationMethod3> tunnel_method(const TunnelOptions&
 // time limit.
 class TunnelRobot {
  public:
-  TunnelRobot(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed)
-      : o_(o), world_(o.tunnel, source, o.world, seed), robot_(start) {
+  TunnelRobot(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed,
+              TunnelReplayRecorder* recorder)
+      : o_(o), world_(o.tunnel, source, o.world, seed), robot_(start), recorder_(recorder) {
     method_ = tunnel_method(o, source, seed);
     run_.spinup_s = world_.spinup_s();
+    world_.watch(recorder);
   }
 
   bool sense() {
@@ -77,6 +80,7 @@ class TunnelRobot {
       step.entropy = post->entropy;
       run_.max_entropy = post->max_entropy;
     }
+    if (recorder_) recorder_->belief(world_.time(), method_->posterior());
     run_.stopped_by = stop_rule();
     if (run_.stopped_by.empty()) goal_ = method_->next(robot_).goal;
     step.compute_s = thread_cpu_s() - cpu;
@@ -120,6 +124,7 @@ class TunnelRobot {
   TunnelRun run_;
   Vec3 robot_, goal_;
   world::Reading3 reading_;
+  TunnelReplayRecorder* recorder_;
 };
 
 }  // namespace
@@ -260,11 +265,12 @@ Vec3 random_tunnel_start(const TunnelOptions& o, Vec3 source, std::uint64_t seed
                    " m from the source " + point_text(source));
 }
 
-TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed) {
+TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint64_t seed,
+                     TunnelReplayRecorder* recorder) {
   o.validate();
   check_tunnel_point(o, source, "source");
   check_tunnel_point(o, start, "start");
-  TunnelRobot robot(o, source, start, seed);
+  TunnelRobot robot(o, source, start, seed, recorder);
   run_loop(robot);
   TunnelRun run = robot.finish();
   run.method = o.method;
@@ -274,16 +280,18 @@ TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint6
 }
 
 TunnelRun localize_tunnel(const TunnelOptions& o, std::optional<Vec3> source,
-                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run) {
+                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run,
+                          const std::function<TunnelReplayRecorder*(Vec3)>& recorder) {
   const std::uint64_t s = world::run_seed(seed, 0, 0, run);
   if (!source) source = random_tunnel_source(o, s);
   check_tunnel_point(o, *source, "source");  // before a start is drawn about it
   if (!start) start = random_tunnel_start(o, *source, s);
-  return run_tunnel(o, *source, *start, s);
+  return run_tunnel(o, *source, *start, s, recorder ? recorder(*source) : nullptr);
 }
 
 std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::uint64_t seed,
-                                       int threads, const std::function<void(int, int)>& progress) {
+                                       int threads, const std::function<void(int, int)>& progress,
+                                       const TunnelReplaySink& replayed) {
   o.validate();
   check_count("tunnel.runs", runs, 1, 100'000, "the default is 10");
   std::vector<TunnelRun> out(runs);
@@ -291,7 +299,15 @@ std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::ui
   std::mutex mutex;
   int done = 0;
   pool.parallel_for(runs, [&](std::size_t k) {
-    out[k] = localize_tunnel(o, std::nullopt, std::nullopt, seed, k);
+    std::optional<TunnelReplayRecorder> recorder;
+    std::function<TunnelReplayRecorder*(Vec3)> record;
+    if (replayed)
+      record = [&](Vec3 source) { return &recorder.emplace(tunnel_replay_recorder(o, source)); };
+    out[k] = localize_tunnel(o, std::nullopt, std::nullopt, seed, k, record);
+    if (recorder)
+      replayed(static_cast<int>(k), out[k],
+               recorder->finish(out[k], tunnel_replay_title(o, out[k].source, seed) + ", run " +
+                                            std::to_string(k)));
     std::lock_guard<std::mutex> lock(mutex);
     if (progress) progress(++done, runs);
   });

@@ -26,6 +26,9 @@
 
 namespace plumekit::run {
 
+class TunnelReplayRecorder;  // run/tunnel_replay.hpp
+struct Replay;               // run/replay.hpp
+
 // The tunnel's methods come from the registry (methods/registry.hpp's tunnel_method_registry):
 // `name` checked there, OptionError on tunnel.method otherwise.
 std::string parse_tunnel_method(const std::string& name);
@@ -101,17 +104,25 @@ void check_tunnel_point(const TunnelOptions& options, Vec3 p, const std::string&
 
 // One run of options.method from `start` to find `source`; the world, the chain and the tracker
 // draw from `seed`.
-TunnelRun run_tunnel(const TunnelOptions& options, Vec3 source, Vec3 start, std::uint64_t seed);
+// `recorder`, when given, records the run's replay (run/tunnel_replay.hpp).
+TunnelRun run_tunnel(const TunnelOptions& options, Vec3 source, Vec3 start, std::uint64_t seed,
+                     TunnelReplayRecorder* recorder = nullptr);
 
 // Run `run` of a command's `seed` (`localize tunnel` is run 0): its seed run_seed(seed, 0, 0,
 // run), and the source and start given, or drawn from it (random_tunnel_source, _start).
+// `recorder(source)`, when given, makes the recorder of the run's replay once its source is known.
 TunnelRun localize_tunnel(const TunnelOptions& options, std::optional<Vec3> source,
-                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run = 0);
+                          std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run = 0,
+                          const std::function<TunnelReplayRecorder*(Vec3 source)>& recorder = {});
 
 // `runs` runs (localize_tunnel's runs 0 .. runs - 1) from random sources and starts, on
 // `threads` threads (0: one per core); progress(done, total) after each run.
+// `replayed(k, run, replay)`, when given, receives run k's replay (the same run, recorded as it
+// goes: slower) on the run's thread as soon as it ends (`evaluate tunnel --replays`).
+using TunnelReplaySink = std::function<void(int, const TunnelRun&, const Replay&)>;
 std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& options, int runs, std::uint64_t seed,
                                        int threads,
-                                       const std::function<void(int, int)>& progress = {});
+                                       const std::function<void(int, int)>& progress = {},
+                                       const TunnelReplaySink& replayed = {});
 
 }  // namespace plumekit::run

@@ -113,6 +113,7 @@ Posterior3 Ste3dEstimator::posterior() {
   Posterior3 post;
   post.expected.assign(state_.size(), 0.0);
   post.marginal.assign(bin_count(), 0.0);
+  post.nx = nx_, post.ny = ny_, post.nz = nz_;
   const double w = 1.0 / chain_.size();
   for (const std::vector<double>& m : chain_) {
     for (std::size_t k = 0; k < m.size(); ++k)

@@ -50,6 +50,8 @@ struct Posterior3 {
   std::vector<double> expected;             // of {x_s, y_s, z_s, Q, a, b}: the declared estimate
   Vec3 map;                                 // the most probable source visited (navigation)
   std::vector<double> marginal;             // the (x, y, z) marginal on the bins (sums to 1)
+  int nx = 0, ny = 0, nz = 0;               // its bins along x, y, z; bin (i, j, k) is
+                                            // marginal[(k * ny + j) * nx + i]
   double entropy = 0.0, max_entropy = 0.0;  // nats
   Vec3 expected_source() const { return {expected.at(0), expected.at(1), expected.at(2)}; }
 };

@@ -106,4 +106,33 @@ double TunnelPlume::concentration_at(Vec3 p) const {
   return c * mass_ / (kPi * std::sqrt(kPi));
 }
 
+void TunnelPlume::concentration_on(const GridShape& g, Plane plane, double at,
+                                   std::vector<float>& out) const {
+  std::vector<double> c(g.size(), 0.0);
+  const double cut2 = o_.cutoff * o_.cutoff;
+  for (const Filament3& f : filaments_) {
+    const double off = plane == Plane::Top ? f.position.z - at : f.position.y - at;
+    const double reach2 = cut2 * f.radius2 - off * off;
+    if (reach2 < 0.0) continue;
+    // The cells whose centres lie within the filament's cut-off circle in the plane.
+    const double reach = std::sqrt(reach2);
+    const double u = f.position.x, v = plane == Plane::Top ? f.position.y : f.position.z;
+    const int i0 = std::max(0, static_cast<int>(std::ceil((u - reach) / g.dx() - 0.5)));
+    const int i1 = std::min(g.nx - 1, static_cast<int>(std::floor((u + reach) / g.dx() - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((v - reach) / g.dy() - 0.5)));
+    const int j1 = std::min(g.ny - 1, static_cast<int>(std::floor((v + reach) / g.dy() - 0.5)));
+    const double weight = 1.0 / (f.radius2 * std::sqrt(f.radius2));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const Vec2 p = g.centre(i, j);
+        const double r2 = (p.x - u) * (p.x - u) + (p.y - v) * (p.y - v) + off * off;
+        if (r2 <= cut2 * f.radius2) c[g.index(i, j)] += std::exp(-r2 / f.radius2) * weight;
+      }
+  }
+  const double scale = mass_ / (kPi * std::sqrt(kPi));
+  out.resize(g.size());
+  for (std::size_t k = 0; k < c.size(); ++k)
+    out[k] = static_cast<float>(c[k] * scale);
+}
+
 }  // namespace plumekit::world

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/grid.hpp"
 #include "core/random.hpp"
 #include "world/filament_model.hpp"
 
@@ -56,6 +57,11 @@ class TunnelPlume {
   Vec3 wind() const { return Vec3{tunnel_.speed, 0.0, 0.0} + meander_; }
   // The concentration at p now.
   double concentration_at(Vec3 p) const;
+  // The concentration now at the centres of g's cells in a plane: seen from above, cell (i, j)
+  // is (x_i, y_j, at); from the side, (x_i, at, z_j). concentration_at's values, summed per
+  // filament over the cells it reaches (a replay's frame: a few thousand cells).
+  enum class Plane { Top, Side };
+  void concentration_on(const GridShape& g, Plane plane, double at, std::vector<float>& out) const;
   const Tunnel& tunnel() const { return tunnel_; }
   const FilamentOptions& options() const { return o_; }
 

@@ -38,20 +38,29 @@ TunnelWorld::TunnelWorld(const world::Tunnel& tunnel, Vec3 source, const WorldOp
   spinup_s_ = plume_.time();
 }
 
-void TunnelWorld::advance(double seconds) {
+void TunnelWorld::advance(double seconds, Vec3 from, Vec3 to) {
+  if (watcher_ && !started_) watcher_->frame(0, 0.0, plume_, from);
+  started_ = true;
   debt_ += seconds;
   const double dt = options_.filament.dt;
+  double gone = 0.0;
   while (debt_ >= dt - 1e-12) {
     plume_.step();
     debt_ -= dt;
     time_ += dt;
+    gone += dt;
+    ++steps_;
+    if (watcher_ && steps_ % watcher_->every_steps() == 0) {
+      const double f = seconds > 0.0 ? std::min(1.0, gone / seconds) : 1.0;
+      watcher_->frame(steps_, time_, plume_, from + f * (to - from));
+    }
   }
 }
 
 double TunnelWorld::read(Vec3 p) {
   double c = gas_.read(plume_.concentration_at(p));
   if (options_.noise > 0.0) c = std::max(0.0, c + normal(noise_, noise_rng_, 0.0, options_.noise));
-  advance(1.0 / options_.sample_rate);
+  advance(1.0 / options_.sample_rate, p, p);
   return c;
 }
 
@@ -64,12 +73,13 @@ Vec3 TunnelWorld::recorded(Vec3 p, double sd) {
 
 void TunnelWorld::travel(Vec3 from, Vec3 to) {
   const double seconds = norm(to - from) / options_.speed;
-  if (!gas_.has_memory()) return advance(seconds);
+  if (!gas_.has_memory()) return advance(seconds, from, to);
   const double interval = 1.0 / options_.sample_rate;
   const int readings = static_cast<int>(std::floor(seconds / interval));
   for (int k = 1; k <= readings; ++k)
     read(from + (k * interval / seconds) * (to - from));
-  advance(seconds - readings * interval);
+  const Vec3 last = from + (readings * interval / seconds) * (to - from);
+  advance(seconds - readings * interval, last, to);
 }
 
 Reading3 TunnelWorld::readings(Vec3 from, Vec3 to, int n) {

@@ -30,6 +30,15 @@ struct Reading3 {
 // (not at its default), else WorldOptions::validate().
 void validate_tunnel_world(const WorldOptions& options);
 
+// Watches a tunnel run (a replay's recorder, run/tunnel_replay.hpp): every every_steps() plume
+// steps from the robot's start (step 0), the plume and where the robot is then.
+class TunnelWatcher {
+ public:
+  virtual ~TunnelWatcher() = default;
+  virtual long long every_steps() const = 0;
+  virtual void frame(long long step, double time_s, const TunnelPlume& plume, Vec3 robot) = 0;
+};
+
 class TunnelWorld {
  public:
   // The plume of `source` (seeded by `seed`) with options.filament, spun up; the sensors draw
@@ -50,9 +59,12 @@ class TunnelWorld {
   const world::Tunnel& tunnel() const { return plume_.tunnel(); }
   const WorldOptions& options() const { return options_; }
   double spinup_s() const { return spinup_s_; }
+  // Shows the run to `watcher` (null: nobody) from the robot's start on; the run is the same.
+  void watch(TunnelWatcher* watcher) { watcher_ = watcher; }
 
  private:
-  void advance(double seconds);
+  // The plume runs on `seconds` while the robot goes straight from `from` to `to`.
+  void advance(double seconds, Vec3 from, Vec3 to);
   // One reading at p, then one reading interval passes.
   double read(Vec3 p);
   // n readings at the points k / n of the way from `from` to `to` (k = 1 .. n; all at `to` for a
@@ -67,6 +79,9 @@ class TunnelWorld {
   std::mt19937_64 noise_rng_, position_rng_;
   NormalSampler noise_, position_;
   double time_ = 0.0, debt_ = 0.0, spinup_s_ = 0.0;
+  TunnelWatcher* watcher_ = nullptr;
+  long long steps_ = 0;  // plume steps since the robot started
+  bool started_ = false;
 };
 
 }  // namespace plumekit::world

@@ -27,3 +27,13 @@ def test_evaluate_and_bad_input():
         plumekit.localize_tunnel(source=(1.0, 2.0, 2.5))
     with pytest.raises(ValueError, match="tunnel.method"):
         plumekit.localize_tunnel(method="ste")
+
+
+def test_animate_draws_the_run_from_above_and_the_side(tmp_path):
+    out = tmp_path / "run.png"
+    run = plumekit.localize_tunnel(method="surge-spiral", source=(1.0, 2.0, 1.0), time_limit=30,
+                                   animate=str(out))
+    assert run["animation"]["format"] == "apng" and out.exists()
+    assert run["animation"]["frames"] == int(run["mission_s"] + 1e-9) + 1
+    bare = plumekit.localize_tunnel(method="surge-spiral", source=(1.0, 2.0, 1.0), time_limit=30)
+    assert bare["estimate"] == run["estimate"]  # recording changes nothing of the run

@@ -1227,6 +1227,11 @@
     return Array.isArray(p) && isNum(p[0]) && isNum(p[1]) ? p : null;
   }
 
+  // A tunnel's point [x, y, z] as the side view draws it: (x, z).
+  function arrXZ(p) {
+    return Array.isArray(p) && isNum(p[0]) && isNum(p[2]) ? [p[0], p[2]] : null;
+  }
+
   // Checks the fields the player uses; throws naming what is wrong.
   function checkReplay(rp) {
     if (rp.format !== undefined && rp.format !== 'plumekit-replay/1') {
@@ -1236,6 +1241,11 @@
     const g = rp.plume && rp.plume.grid;
     if (!g || !(g.nx > 0) || !(g.ny > 0)) throw new Error('replay has no plume grid');
     if (!rp.map || !Array.isArray(rp.map.size)) throw new Error('replay has no map');
+    if (rp.side !== undefined) {
+      if (!rp.side || !(rp.side.height > 0)) throw new Error('replay\u2019s side has no height');
+      const sg = rp.side.plume && rp.side.plume.grid;
+      if (!sg || !(sg.nx > 0) || !(sg.ny > 0)) throw new Error('replay\u2019s side has no plume grid');
+    }
   }
 
   function makePlayer(box, folder) {
@@ -1257,25 +1267,32 @@
       const beliefSteps = rp.belief && Array.isArray(rp.belief.steps) ? rp.belief.steps : [];
       const bg = rp.belief && rp.belief.grid;
       const withBelief = beliefSteps.length > 0 && bg && bg.nx > 0 && bg.ny > 0;
+      // A tunnel's replay has strips of the side too; its belief's only where the top one is.
+      const side = rp.side || null;
+      const sbg = side && side.belief && side.belief.grid;
+      const withSideBelief = withBelief && sbg && sbg.nx > 0 && sbg.ny > 0;
       return Promise.all([loadImage(base + encodeURIComponent(rp.plume.file || 'replay-plume.png')),
                           withBelief ? loadImage(base + encodeURIComponent(rp.belief.file || 'replay-belief.png'))
-                                     : Promise.resolve(null)])
-        .then(([plumeImg, beliefImg]) => {
-          if (!destroyed) build(rp, plumeImg, beliefImg);
+                                     : Promise.resolve(null),
+                          side ? loadImage(base + encodeURIComponent(side.plume.file || 'replay-plume-side.png'))
+                               : Promise.resolve(null),
+                          withSideBelief ? loadImage(base + encodeURIComponent(side.belief.file ||
+                                                                               'replay-belief-side.png'))
+                                         : Promise.resolve(null)])
+        .then(([plumeImg, beliefImg, sidePlumeImg, sideBeliefImg]) => {
+          if (!destroyed) build(rp, plumeImg, beliefImg, sidePlumeImg, sideBeliefImg);
         });
     }).catch(fail);
 
-    function build(rp, plumeImg, beliefImg) {
+    function build(rp, plumeImg, beliefImg, sidePlumeImg, sideBeliefImg) {
       box.dataset.state = 'ready';
       status.remove();
       const nRobots = Math.max(1, rp.robots | 0);
       const every = isNum(rp.every_s) && rp.every_s > 0 ? rp.every_s : 1;
       const frames = rp.positions.length;
       const pg = rp.plume.grid;
-      const plumeFrames = Math.floor(plumeImg.naturalHeight / pg.ny);
       const bgd = rp.belief && rp.belief.grid;
       const steps = beliefImg ? rp.belief.steps : [];
-      const beliefFrames = beliefImg ? Math.floor(beliefImg.naturalHeight / bgd.ny) : 0;
       const stops = (Array.isArray(rp.stops) ? rp.stops : []).filter((s) => s && arr2(s.position));
       const readings = rp.readings && Array.isArray(rp.readings.rows) ? rp.readings.rows : [];
       const rc = rp.readings && Array.isArray(rp.readings.columns) ? rp.readings.columns : [];
@@ -1294,15 +1311,43 @@
       const concentration = (q) => floor * (Math.pow(1 + top / floor, q) - 1);
       const stopColour = (v) => (isNum(v) && v > 0 ? rgb(tableColour(GAS_TABLE, Math.max(level(v), 40 / 255)))
                                                   : '#ffffff');
+      // The planes the views draw: from above (x, y) and, in a tunnel's replay, from the side (x, z)
+      // up to the tunnel's height, over the same x as from above so that the two line up.
+      const side = sidePlumeImg ? rp.side : null;
+      const fromAbove = {ext, at: arr2, obstacles, readings: false};
+      // From the side the readings on the way that met gas show at what height it was met (those of
+      // none would only cover the way).
+      const fromSide = side ? {ext: {x0: ext.x0, y0: 0, x1: ext.x1, y1: side.height}, at: arrXZ, obstacles: [],
+                               readings: true} : null;
+      const readingColours = side && rcol.v >= 0 ? readings.map((r) => stopColour(r[rcol.v])) : [];
 
       const wide = W / H > 1.6 || !beliefImg;
       const views = el('div', {class: 'player-views' + (wide ? ' stacked' : '')});
       const worldCanvas = el('canvas', {class: 'world', role: 'img', 'aria-label': 'the gas and the robots'});
       const beliefCanvas = el('canvas', {class: 'belief', role: 'img', 'aria-label': 'the method\u2019s belief'});
       for (const c of [worldCanvas, beliefCanvas]) c.style.aspectRatio = (W + 0.4) + ' / ' + (H + 0.4);
-      views.append(el('figure', null, worldCanvas, el('figcaption', {text: 'Gas (log scale) and robots' +
-                                                                       (beliefImg ? '' : '; this method holds no belief')})));
-      if (beliefImg) views.append(el('figure', null, beliefCanvas, el('figcaption', {text: 'The method\u2019s belief'})));
+      const sideWorldCanvas = side ? el('canvas', {class: 'world-side', role: 'img',
+                                                   'aria-label': 'the gas and the robots from the side'}) : null;
+      const sideBeliefCanvas = sideBeliefImg ? el('canvas', {class: 'belief-side', role: 'img',
+                                                             'aria-label': 'the method\u2019s belief from the side'})
+                                             : null;
+      for (const c of [sideWorldCanvas, sideBeliefCanvas]) {
+        if (c) c.style.aspectRatio = (W + 0.4) + ' / ' + (side.height + 0.4);
+      }
+      // A tunnel's views say which plane they show; a 2-D replay's need no label.
+      const label = (text) => (side ? el('div', {class: 'view-label', text}) : null);
+      const planeAt = (axis, v) => (isNum(v) ? ' at ' + axis + ' = ' + v.toFixed(2) + ' m' : '');
+      views.append(el('figure', null,
+                      label('from above (x, y)' + planeAt('z', side && side.plane_z)), worldCanvas,
+                      label('from the side (x, z)' + planeAt('y', side && side.plane_y)), sideWorldCanvas,
+                      el('figcaption', {text: 'Gas (log scale) and robots' +
+                                              (beliefImg ? '' : '; this method holds no belief')})));
+      if (beliefImg) {
+        views.append(el('figure', null,
+                        label('from above: the (x, y) marginal'), beliefCanvas,
+                        sideBeliefImg ? label('from the side: the (x, z) marginal') : null, sideBeliefCanvas,
+                        el('figcaption', {text: 'The method\u2019s belief'})));
+      }
       const play = el('button', {type: 'button', class: 'play', 'aria-label': 'play', text: '\u25b6'});
       const slider = el('input', {type: 'range', class: 'slider', min: 0, max: frames - 1, step: 1, value: 0,
                                   'aria-label': 'time'});
@@ -1322,10 +1367,11 @@
       box.append(controls, views, timeline.node, legend);
 
       let frame = -1;
-      function pxFor(canvas) {
+      function pxFor(canvas, plane) {
         const w = Math.max(50, Math.round(canvas.clientWidth * (window.devicePixelRatio || 1)));
         const pad = 0.2;
-        const pe = {x0: ext.x0 - pad, y0: ext.y0 - pad, x1: ext.x1 + pad, y1: ext.y1 + pad};
+        const e = plane.ext;
+        const pe = {x0: e.x0 - pad, y0: e.y0 - pad, x1: e.x1 + pad, y1: e.y1 + pad};
         const pr = projection(pe, w, 0);
         const h = Math.round(pr.height);
         if (canvas.width !== w || canvas.height !== h) {
@@ -1334,9 +1380,9 @@
         }
         return pr;
       }
-      function drawObstacles(ctx, pr) {
+      function drawObstacles(ctx, pr, plane) {
         ctx.fillStyle = '#6b7178';
-        for (const poly of obstacles) {
+        for (const poly of plane.obstacles) {
           if (!Array.isArray(poly) || poly.length < 3) continue;
           ctx.beginPath();
           poly.forEach((p, k) => {
@@ -1349,13 +1395,17 @@
         }
         ctx.strokeStyle = '#30343a';
         ctx.lineWidth = Math.max(1, pr.s * 0.03);
-        ctx.strokeRect(pr.x(ext.x0), pr.y(ext.y1), W * pr.s, H * pr.s);
+        const e = plane.ext;
+        ctx.strokeRect(pr.x(e.x0), pr.y(e.y1), (e.x1 - e.x0) * pr.s, (e.y1 - e.y0) * pr.s);
       }
-      function drawGrid(ctx, pr, img, k, ny, nx, filterId) {
+      // Frame k of a film strip over the plane; none where the strip ends before it.
+      function drawGrid(ctx, pr, plane, img, k, ny, nx, filterId) {
+        if (k < 0 || k >= Math.floor(img.naturalHeight / ny)) return;
+        const e = plane.ext;
         ctx.save();
         ctx.filter = 'url(#' + filterId + ')';
         ctx.imageSmoothingEnabled = true;
-        ctx.drawImage(img, 0, k * ny, nx, ny, pr.x(ext.x0), pr.y(ext.y1), W * pr.s, H * pr.s);
+        ctx.drawImage(img, 0, k * ny, nx, ny, pr.x(e.x0), pr.y(e.y1), (e.x1 - e.x0) * pr.s, (e.y1 - e.y0) * pr.s);
         ctx.restore();
       }
       function dot(ctx, x, y, r, fill, stroke, lw) {
@@ -1386,28 +1436,30 @@
         if (isNum(rp.declared_s) && t >= rp.declared_s && arr2(rp.estimate)) e = rp.estimate;
         return e;
       }
-      function markers(ctx, pr, t, u) {
+      function markers(ctx, pr, plane, t, u) {
         const e = hasEstimate ? estimateAt(t) : null;
-        if (e) {
-          xmark(ctx, pr.x(e[0]), pr.y(e[1]), 7 * u, 'rgba(255,255,255,0.85)', 5 * u);
-          xmark(ctx, pr.x(e[0]), pr.y(e[1]), 7 * u, ESTIMATE_COLOUR, 2.4 * u);
+        const ep = e && plane.at(e);
+        if (ep) {
+          xmark(ctx, pr.x(ep[0]), pr.y(ep[1]), 7 * u, 'rgba(255,255,255,0.85)', 5 * u);
+          xmark(ctx, pr.x(ep[0]), pr.y(ep[1]), 7 * u, ESTIMATE_COLOUR, 2.4 * u);
         }
-        if (source) dot(ctx, pr.x(source[0]), pr.y(source[1]), 5.5 * u, SOURCE_COLOUR, '#fff', 1.5 * u);
+        const sp = plane.at(rp.source);
+        if (sp) dot(ctx, pr.x(sp[0]), pr.y(sp[1]), 5.5 * u, SOURCE_COLOUR, '#fff', 1.5 * u);
       }
-      function drawWorld(k, t) {
-        const pr = pxFor(worldCanvas);
+      function drawWorld(canvas, plane, img, grid, k, t) {
+        const pr = pxFor(canvas, plane);
         const u = window.devicePixelRatio || 1;
-        const ctx = worldCanvas.getContext('2d');
+        const ctx = canvas.getContext('2d');
         ctx.fillStyle = '#ffffff';
-        ctx.fillRect(0, 0, worldCanvas.width, worldCanvas.height);
-        if (k < plumeFrames) drawGrid(ctx, pr, plumeImg, k, pg.ny, pg.nx, GAS_FILTER_ID);
-        drawObstacles(ctx, pr);
+        ctx.fillRect(0, 0, canvas.width, canvas.height);
+        drawGrid(ctx, pr, plane, img, k, grid.ny, grid.nx, GAS_FILTER_ID);
+        drawObstacles(ctx, pr, plane);
         ctx.lineJoin = 'round';
         for (let r = 0; r < nRobots; ++r) {
           ctx.beginPath();
           let started = false;
           for (let f = 0; f <= k; ++f) {
-            const p = arr2(rp.positions[f] && rp.positions[f][r]);
+            const p = plane.at(rp.positions[f] && rp.positions[f][r]);
             if (!p) continue;
             if (started) ctx.lineTo(pr.x(p[0]), pr.y(p[1]));
             else ctx.moveTo(pr.x(p[0]), pr.y(p[1]));
@@ -1419,37 +1471,45 @@
           ctx.stroke();
           ctx.globalAlpha = 1;
         }
+        if (plane.readings && rcol.t >= 0 && rcol.p >= 0 && rcol.v >= 0) {
+          readings.forEach((r, i) => {
+            const p = isNum(r[rcol.t]) && r[rcol.t] <= t && r[rcol.v] > 0 ? plane.at(r[rcol.p]) : null;
+            if (p) dot(ctx, pr.x(p[0]), pr.y(p[1]), 1.6 * u, readingColours[i] || '#999');
+          });
+        }
         for (const s of stops) {
-          if (!(isNum(s.time_s) && s.time_s <= t)) continue;
-          dot(ctx, pr.x(s.position[0]), pr.y(s.position[1]), 4.5 * u, stopColour(s.value),
+          const p = isNum(s.time_s) && s.time_s <= t ? plane.at(s.position) : null;
+          if (!p) continue;
+          dot(ctx, pr.x(p[0]), pr.y(p[1]), 4.5 * u, stopColour(s.value),
               ROBOT_COLOURS[(s.robot | 0) % ROBOT_COLOURS.length], 1.5 * u);
         }
-        markers(ctx, pr, t, u);
+        markers(ctx, pr, plane, t, u);
         for (let r = 0; r < nRobots; ++r) {
-          const p = arr2(rp.positions[k] && rp.positions[k][r]);
+          const p = plane.at(rp.positions[k] && rp.positions[k][r]);
           if (p) dot(ctx, pr.x(p[0]), pr.y(p[1]), 6 * u, ROBOT_COLOURS[r % ROBOT_COLOURS.length], '#fff', 2 * u);
         }
       }
-      function drawBelief(k, t) {
-        const pr = pxFor(beliefCanvas);
+      // The belief after the latest decision by t; from the side its frame of the same index.
+      function drawBelief(canvas, plane, img, grid, k, t) {
+        const pr = pxFor(canvas, plane);
         const u = window.devicePixelRatio || 1;
-        const ctx = beliefCanvas.getContext('2d');
+        const ctx = canvas.getContext('2d');
         ctx.fillStyle = '#ffffff';
-        ctx.fillRect(0, 0, beliefCanvas.width, beliefCanvas.height);
+        ctx.fillRect(0, 0, canvas.width, canvas.height);
         let j = -1;
         for (let s = 0; s < steps.length; ++s) if (isNum(steps[s].time_s) && steps[s].time_s <= t + 1e-9) j = s;
-        if (j >= 0 && j < beliefFrames) drawGrid(ctx, pr, beliefImg, j, bgd.ny, bgd.nx, BELIEF_FILTER_ID);
-        drawObstacles(ctx, pr);
-        markers(ctx, pr, t, u);
+        drawGrid(ctx, pr, plane, img, j, grid.ny, grid.nx, BELIEF_FILTER_ID);
+        drawObstacles(ctx, pr, plane);
+        markers(ctx, pr, plane, t, u);
         for (let r = 0; r < nRobots; ++r) {
-          const p = arr2(rp.positions[k] && rp.positions[k][r]);
+          const p = plane.at(rp.positions[k] && rp.positions[k][r]);
           if (p) dot(ctx, pr.x(p[0]), pr.y(p[1]), 4 * u, ROBOT_COLOURS[r % ROBOT_COLOURS.length], '#fff', 1.5 * u);
         }
         if (j < 0) {
           ctx.fillStyle = '#555';
           ctx.font = Math.round(13 * u) + 'px system-ui, sans-serif';
           ctx.textAlign = 'center';
-          ctx.fillText('no decision yet', beliefCanvas.width / 2, beliefCanvas.height / 2);
+          ctx.fillText('no decision yet', canvas.width / 2, canvas.height / 2);
         }
       }
       function readingsTimeline() {
@@ -1511,8 +1571,10 @@
       function show(k) {
         frame = Math.max(0, Math.min(frames - 1, k));
         const t = frame * every;
-        drawWorld(frame, t);
-        if (beliefImg) drawBelief(frame, t);
+        drawWorld(worldCanvas, fromAbove, plumeImg, pg, frame, t);
+        if (side) drawWorld(sideWorldCanvas, fromSide, sidePlumeImg, side.plume.grid, frame, t);
+        if (beliefImg) drawBelief(beliefCanvas, fromAbove, beliefImg, bgd, frame, t);
+        if (sideBeliefImg) drawBelief(sideBeliefCanvas, fromSide, sideBeliefImg, side.belief.grid, frame, t);
         timeline.setTime(t);
         slider.value = String(frame);
         box.dataset.frame = String(frame);
@@ -1520,7 +1582,11 @@
         const e = hasEstimate ? estimateAt(t) : null;
         let text = 't = ' + t.toFixed(0) + ' s of ' + endT.toFixed(0) + ' s \u00b7 ' + nStops +
                    (nStops === 1 ? ' stop' : ' stops');
-        if (e && source) text += ' \u00b7 error ' + Math.hypot(e[0] - source[0], e[1] - source[1]).toFixed(2) + ' m';
+        if (e && source) {
+          // In the tunnel the error is in 3-D, as the run's.
+          const dz = side && isNum(e[2]) && isNum(rp.source[2]) ? e[2] - rp.source[2] : 0;
+          text += ' \u00b7 error ' + Math.hypot(e[0] - source[0], e[1] - source[1], dz).toFixed(2) + ' m';
+        }
         if (isNum(rp.declared_s) && t >= rp.declared_s && rp.stopped_by) text += ' \u00b7 ' + rp.stopped_by;
         clock.textContent = text;
       }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The browser test of report.html (issue 48; tests/browser/README.md): a small real evaluation of
-# two methods on two of the test maps, its report.html opened in headless Chromium by
-# report_test.mjs (Playwright), which clicks through it and checks its screenshot.
+# two methods on two of the test maps, and one of the 3-D tunnel with its replays, each report.html
+# opened in headless Chromium by report_test.mjs (Playwright), which clicks through it and checks
+# its screenshot.
 # Usage: report_page_test.sh PLUMEKIT_EXE WORK_DIR
 set -euo pipefail
 exe=$1
@@ -24,3 +25,7 @@ cp "$here/../../data/test-maps/test-0-empty.json" "$here/../../data/test-maps/te
   --sources 3 --max-samples 8 --max-steps 30 --threads 2 --out "$work/eval" > "$work/evaluate.log"
 node "$here/report_test.mjs" --report "$work/eval/report.html" --screenshot "$work/report.png" \
   --chromium "$chromium"
+"$exe" evaluate tunnel --method ste-3d,surge-spiral --runs 2 --time-limit 60 --threads 2 \
+  --replays --out "$work/tunnel" > "$work/evaluate-tunnel.log"
+node "$here/report_test.mjs" --report "$work/tunnel/report.html" \
+  --screenshot "$work/report-tunnel.png" --chromium "$chromium" --tunnel

@@ -1,7 +1,9 @@
 // Opens a plumekit report.html in headless Chromium and checks that it works (tests/browser/README.md).
 //
 //   node tests/browser/report_test.mjs --report DIR/report.html --screenshot OUT.png [--chromium PATH]
+//        [--tunnel]
 //
+// --tunnel: the page of `evaluate tunnel --replays`, whose replays show the tunnel from the side.
 // Prints a line per check and exits 1 at the first that fails (or 2 on a usage error).
 import fs from 'node:fs';
 import path from 'node:path';
@@ -11,13 +13,17 @@ import {chromium} from 'playwright-core';
 function usage(message) {
   if (message) console.error('report_test: ' + message);
   console.error('usage: node tests/browser/report_test.mjs --report REPORT.html --screenshot OUT.png ' +
-                '[--chromium /usr/bin/chromium]');
+                '[--chromium /usr/bin/chromium] [--tunnel]');
   process.exit(2);
 }
 
 const args = {chromium: '/usr/bin/chromium'};
 for (let k = 2; k < process.argv.length; ++k) {
   const a = process.argv[k];
+  if (a === '--tunnel') {  // a tunnel evaluation's page: its replays have a view from the side
+    args.tunnel = true;
+    continue;
+  }
   const m = /^--(report|screenshot|chromium)(?:=(.*))?$/.exec(a);
   if (!m) usage('unknown argument ' + a);
   args[m[1]] = m[2] !== undefined ? m[2] : process.argv[++k];
@@ -324,6 +330,21 @@ async function main() {
     await rp.click('#run-view .player .play');
     expect(playing > mid, 'its play button plays on (frame ' + playing + ')');
     await rp.locator('#run-view .player .slider').fill(String(mid));
+    // A tunnel run's replay (--tunnel) shows the tunnel from the side too, its gas painted.
+    const side = rp.locator('#run-view .player canvas.world-side');
+    const sides = await side.count();
+    if (args.tunnel !== undefined) {
+      expect(sides === 1, 'the tunnel\u2019s replay shows the view from the side', sides + ' side views');
+      const box = await side.boundingBox();
+      const [sideStats] = await pixelStats(context, await side.screenshot(),
+                                           [{x: 0, y: 0, width: box.width, height: box.height,
+                                             background: 'rgb(255, 255, 255)', colours: []}]);
+      expect(sideStats.inked > 0.2 * sideStats.pixels,
+             'the view from the side shows the gas (' + (100 * sideStats.inked / sideStats.pixels).toFixed(0) +
+             ' % drawn)', JSON.stringify(sideStats));
+    } else {
+      expect(sides === 0, 'a 2-D replay has no view from the side', sides + ' side views');
+    }
     noProblems('with the replay');
   }
 

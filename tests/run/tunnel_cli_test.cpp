@@ -59,11 +59,61 @@ TEST_F(TunnelCli, EvaluateWritesEachMethodsFolder) {
   const json j = json::parse(r.out);
   ASSERT_EQ(j["methods"].size(), 2u);
   for (const char* m : {"ste-3d", "surge-spiral"}) {
-    for (const char* f : {"runs.csv", "summary.json", "boxplot.png", "trajectory-median.png"})
+    for (const char* f :
+         {"runs.csv", "summary.json", "boxplot.png", "trajectory-median.png", "report.html"})
       EXPECT_TRUE(fs::exists(out / m / f)) << m << "/" << f;
     const json s = json::parse(slurp(out / m / "summary.json"));
     EXPECT_EQ(s["runs"], 2);
+    // tracks.json: the tunnel from above as the map, each run's way with its heights.
+    const json t = json::parse(slurp(out / m / "tracks.json"));
+    EXPECT_EQ(t["format"], "plumekit-tracks/1");
+    EXPECT_EQ(t["maps"][0]["width"], 10.0);
+    ASSERT_EQ(t["runs"].size(), 2u);
+    const json& way = t["runs"][0]["robots"][0];
+    EXPECT_EQ(way["path"].size(), 2 * way["path_z"].size());
+    EXPECT_GE(way["path_z"].size(), 2u);
   }
+  const std::string page = slurp(out / "report.html");  // both methods
+  EXPECT_TRUE(has(page, "\"format\":\"plumekit-report/1\"")) << page.substr(0, 400);
+  EXPECT_TRUE(has(page, "\"surge-spiral\"") && has(page, "\"ste-3d\""));
+}
+
+TEST_F(TunnelCli, ReplaysFromAboveAndTheSideChangeNoResult) {
+  // A run's replay: its video, and its files drawn again by `plumekit replay`.
+  const fs::path run_dir = dir / "run";
+  CliResult r =
+      run("localize tunnel --source 1,1.5,0.6 --start 6,2.5,1.5 --seed 3 "
+          "--max-samples 6 --json --out " +
+          run_dir.string() + " --animate " + (dir / "run.png").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  const int frames = j["animation"]["frames"].get<int>();
+  EXPECT_EQ(frames, static_cast<int>(j["mission_s"].get<double>() + 1e-9) + 1);
+  const json replay = json::parse(slurp(run_dir / "replay.json"));
+  EXPECT_EQ(replay["side"]["plane_y"], 1.5);
+  EXPECT_EQ(replay["source"], json::array({1.0, 1.5, 0.6}));
+  EXPECT_TRUE(fs::exists(run_dir / "replay-plume-side.png"));
+  r = run("replay " + run_dir.string() + " --out " + (dir / "again.png").string() +
+          " --size 640x360 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(json::parse(r.out)["frames"].get<int>(), frames);
+
+  // An evaluation's replays, one folder per run, and the same results without them.
+  const fs::path with = dir / "with", without = dir / "without";
+  const std::string eval = "evaluate tunnel --method surge-spiral --runs 2 --time-limit 20 --out ";
+  r = run(eval + with.string() + " --replays");
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run(eval + without.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(slurp(with / "runs.csv"), slurp(without / "runs.csv"));
+  EXPECT_EQ(slurp(with / "tracks.json"), slurp(without / "tracks.json"));
+  for (const char* run : {"tunnel-r0", "tunnel-r1"}) {
+    const fs::path folder = with / "replays" / run;
+    EXPECT_TRUE(has(slurp(folder / "replay.js"), "plumekitReplay({")) << run;
+    EXPECT_TRUE(fs::exists(folder / "replay-belief-side.png")) << run;
+  }
+  EXPECT_TRUE(has(slurp(with / "report.html"), "\"replays\":[\"replays/tunnel-r0\""));
+  EXPECT_FALSE(fs::exists(without / "replays"));
 }
 
 TEST_F(TunnelCli, BadInputExitsTwoNamingTheFlag) {

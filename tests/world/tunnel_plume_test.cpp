@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/grid.hpp"
 #include "world/tunnel_plume.hpp"
 
 namespace plumekit::dataset {
@@ -94,6 +95,33 @@ TEST(TunnelPlume, SameSeedSameConcentrations) {
     a.step(), b.step(), c.step();
   EXPECT_EQ(a.concentration_at({4.0, 2.0, 1.0}), b.concentration_at({4.0, 2.0, 1.0}));
   EXPECT_NE(a.concentration_at({4.0, 2.0, 1.0}), c.concentration_at({4.0, 2.0, 1.0}));
+}
+
+TEST(TunnelPlume, APlanesGridIsTheConcentrationAtItsCellCentres) {
+  const world::Tunnel tunnel;
+  world::TunnelPlume plume(tunnel, {1.0, 2.0, 1.0}, world::tunnel_filament_options(), 5);
+  for (int s = 0; s < 300; ++s)
+    plume.step();
+  const GridShape top{50, 20, tunnel.length, tunnel.width},
+      side{50, 10, tunnel.length, tunnel.height};
+  std::vector<float> above, beside;
+  plume.concentration_on(top, world::TunnelPlume::Plane::Top, 1.1, above);
+  plume.concentration_on(side, world::TunnelPlume::Plane::Side, 1.9, beside);
+  double peak = 0.0;
+  for (int j = 0; j < top.ny; ++j)
+    for (int i = 0; i < top.nx; ++i) {
+      const Vec2 c = top.centre(i, j);
+      const double want = plume.concentration_at({c.x, c.y, 1.1});
+      peak = std::max(peak, want);
+      EXPECT_NEAR(above[top.index(i, j)], want, 1e-5 * want + 1e-9) << i << ", " << j;
+    }
+  for (int j = 0; j < side.ny; ++j)
+    for (int i = 0; i < side.nx; ++i) {
+      const Vec2 c = side.centre(i, j);
+      const double want = plume.concentration_at({c.x, 1.9, c.y});
+      EXPECT_NEAR(beside[side.index(i, j)], want, 1e-5 * want + 1e-9) << i << ", " << j;
+    }
+  EXPECT_GT(peak, 100.0);  // the plane cuts the plume
 }
 
 }  // namespace
