@@ -5,7 +5,8 @@
 #    random building (seed 48, the first of three): `localize` without and with --animate, three
 #    times each; `replay` of its run folder to a 720p MP4, three times; medians, the files' sizes.
 # 2. A frame (`replay --at`) of: cluttered-1 (surrogate STE), the depot floor (physics STE), a team
-#    of three on the thesis arena, the particle filter and surge-cast on cluttered-2.
+#    of three on the thesis arena, the particle filter and surge-cast on cluttered-2, and the 3-D
+#    tunnel (STE and surge-spiral).
 # Writes OUT/table.md and OUT/frame-*.png (and every run's folder and video).
 set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
@@ -51,6 +52,17 @@ frame team 20 data/test-maps/test-1-block.json --source 7,1.5 --start 1,2.5 --ro
   --team cooperative --plume-model physics --seed 2
 frame pf-sweep 60 data/maps/cluttered-2.json --source 8,2 --start 1,2 --method pf-sweep --seed 3
 frame surge-cast 30 data/maps/cluttered-2.json --source 8,2 --start 1,2 --method surge-cast --seed 3
+# The 3-D tunnel, seen from above and from the side: 3-D STE and the surge-spiral tracker.
+tunnel() {  # NAME AT LOCALIZE-TUNNEL-ARGS...
+  local name=$1 at=$2
+  shift 2
+  rm -rf "$out/run-$name" "$out/run-$name.mp4"
+  "$plumekit" localize tunnel "$@" --out "$out/run-$name" --animate "$out/run-$name.mp4" \
+    >>"$out/log"
+  "$plumekit" replay "$out/run-$name" --at "$at" --out "$out/frame-$name.png" >>"$out/log"
+}
+tunnel tunnel-ste 40 --source 1,0.99,1.28 --start 4.86,2.58,1.4 --seed 3
+tunnel tunnel-spiral 100 --method surge-spiral --source 1,1.5,0.8 --seed 3
 
 /usr/bin/python3 - "$out" "$frames" "${plain[*]}" "${animated[*]}" "${replayed[*]}" <<'PY' \
   >"$out/table.md"

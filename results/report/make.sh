@@ -7,8 +7,10 @@
 #    headless Chromium (tests/browser/measure_open.mjs).
 # 2. STE, surge-cast and the particle filter on the three real floors (data/floors), 1 run of
 #    2 sources each, --replays.
+# 3. The 3-D tunnel: `evaluate tunnel` of 3-D STE and surge-spiral, 10 runs each, --replays.
 # Each page is put through the browser test (tests/browser/report_test.mjs), whose screenshot of
-# an opened run is kept: OUT/shot-test-maps.png, OUT/shot-floors.png. Writes OUT/table.md.
+# an opened run is kept: OUT/shot-test-maps.png, OUT/shot-floors.png, OUT/shot-tunnel.png.
+# Writes OUT/table.md.
 set -- "${1:+$(realpath -m -- "$1")}" "${@:2}"
 cd "$(dirname "$0")/../.."
 source results/make-lib.sh "$1"
@@ -20,10 +22,13 @@ t0=$(date +%s)
 evaluate_s=$(($(date +%s) - t0))
 "$plumekit" evaluate --map-dir data/floors --runs 1 --sources 2 --method ste,surge-cast,pf-sweep \
   --plume-model physics --replays --threads 2 --out "$out/floors" >"$out/floors.log"
+"$plumekit" evaluate tunnel --method ste-3d,surge-spiral --runs 10 --replays --threads 2 \
+  --out "$out/tunnel" >"$out/tunnel.log"
 
-for name in test-maps floors; do
+for name in test-maps floors tunnel; do
   node tests/browser/report_test.mjs --report "$out/$name/report.html" \
-    --screenshot "$out/shot-$name.png" >"$out/browser-$name.log"
+    --screenshot "$out/shot-$name.png" $([[ $name == tunnel ]] && echo --tunnel) \
+    >"$out/browser-$name.log"
 done
 node tests/browser/measure_open.mjs "$out/test-maps/report.html" --runs 7 >"$out/open.json"
 
