@@ -113,8 +113,10 @@ std::string replay_folder(int k) {
   return "replays/tunnel-r" + std::to_string(k);
 }
 
-// Writes each run's replay into `dir`'s replays/ as it comes (with replay.js for the page).
+// Writes each run's replay into `dir`'s replays/ as it comes (with replay.js for the page), from
+// the runs' threads: replays/ is made first, each run's folder by its own thread.
 TunnelReplaySink replay_writer(const fs::path& dir) {
+  fs::create_directories(dir / "replays");
   return [dir](int k, const TunnelRun&, const Replay& replay) {
     const fs::path folder = dir / replay_folder(k);
     fs::create_directories(folder);
