@@ -11,8 +11,8 @@
 #include "core/seed.hpp"
 #include "python/bindings.hpp"
 #include "python/convert.hpp"
+#include "run/replay.hpp"
 #include "run/replay_render.hpp"
-#include "run/tunnel_replay.hpp"
 #include "run/tunnel_report.hpp"
 #include "run/tunnel_run.hpp"
 
@@ -65,17 +65,13 @@ void bind_tunnel(py::module_& m) {
         nlohmann::ordered_json j;
         {
           ReleasedGil release;
-          std::optional<run::TunnelReplayRecorder> recorder;
-          std::function<run::TunnelReplayRecorder*(Vec3)> record;
-          if (!animation.empty())
-            record = [&](Vec3 at) { return &recorder.emplace(run::tunnel_replay_recorder(o, at)); };
-          const run::TunnelRun r = run::localize_tunnel(o, src, from, seed, 0, record);
+          std::optional<run::Replay> replay;
+          const run::TunnelRun r =
+              run::localize_tunnel(o, src, from, seed, 0, animation.empty() ? nullptr : &replay);
           j = run::tunnel_run_json(r, true);
-          if (recorder) {
-            const run::Replay replay =
-                recorder->finish(r, run::tunnel_replay_title(o, r.source, seed));
+          if (replay) {
             std::string text;  // the command's line; Python takes the dict
-            run::report_animation(run::animate_replay(replay, animation, "animate"), j, text);
+            run::report_animation(run::animate_replay(*replay, animation, "animate"), j, text);
           }
         }
         return from_json(j);

@@ -74,15 +74,31 @@ void add_steps(Replay& r, int robot, const std::vector<Step>& steps) {
 
 }  // namespace
 
-double replay_plume_top(const std::vector<std::vector<float>>& frames) {
+double replay_plume_top(const std::vector<std::vector<float>>& frames,
+                        const std::vector<std::vector<float>>& more) {
   std::vector<float> seen;
-  for (const std::vector<float>& f : frames)
-    for (float c : f)
-      if (c > kReplayPlumeFloor) seen.push_back(c);
+  for (const auto* view : {&frames, &more})
+    for (const std::vector<float>& f : *view)
+      for (float c : f)
+        if (c > kReplayPlumeFloor) seen.push_back(c);
   if (seen.empty()) return 10.0 * kReplayPlumeFloor;
   const std::size_t k = std::min(seen.size() - 1, static_cast<std::size_t>(0.999 * seen.size()));
   std::nth_element(seen.begin(), seen.begin() + static_cast<std::ptrdiff_t>(k), seen.end());
   return std::max(10.0 * kReplayPlumeFloor, static_cast<double>(seen[k]));
+}
+
+void fill_unseen_frames(std::vector<std::vector<float>>& frames, std::size_t count,
+                        std::size_t cells) {
+  frames.resize(count);
+  for (std::size_t f = 0; f < frames.size(); ++f)
+    if (frames[f].empty()) frames[f] = f > 0 ? frames[f - 1] : std::vector<float>(cells, 0.0f);
+}
+
+void append_plume_levels(const Replay& scale, const std::vector<std::vector<float>>& frames,
+                         std::vector<std::uint8_t>& levels) {
+  for (const std::vector<float>& f : frames)
+    for (float c : f)
+      levels.push_back(scale.plume_level(c));
 }
 
 Replay ReplayRecorder::finish(const LocalizationResult& result, Vec2 source,
@@ -108,15 +124,10 @@ Replay ReplayRecorder::finish(const LocalizationResult& result, Vec2 source,
   }
   r.plume_grid = plume_grid_;
   std::vector<std::vector<float>> frames = plume_;
-  frames.resize(r.positions.size());
-  for (std::size_t f = 0; f < frames.size(); ++f)
-    if (frames[f].empty())
-      frames[f] = f > 0 ? frames[f - 1] : std::vector<float>(plume_grid_.size(), 0.0f);
+  fill_unseen_frames(frames, r.positions.size(), plume_grid_.size());
   r.plume_top = replay_plume_top(frames);
   r.plume.reserve(frames.size() * plume_grid_.size());
-  for (const std::vector<float>& f : frames)
-    for (float c : f)
-      r.plume.push_back(r.plume_level(c));
+  append_plume_levels(r, frames, r.plume);
   r.belief_grid = belief_grid_;
   r.beliefs = beliefs_;
   r.belief_cells = belief_cells_;

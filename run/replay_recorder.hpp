@@ -17,10 +17,19 @@ namespace plumekit::run {
 
 class Scenario;  // run/scenario.hpp
 
-// The top of the replay's log scale for these concentration frames: the 99.9th percentile of
-// the concentrations above kReplayPlumeFloor (one hot cell at the source would otherwise squeeze
-// the whole plume into a few levels), at least 10 floors.
-double replay_plume_top(const std::vector<std::vector<float>>& frames);
+// The top of the replay's log scale for these concentration frames (and those of a second view,
+// `more`, on the same scale): the 99.9th percentile of the concentrations above
+// kReplayPlumeFloor (one hot cell at the source would otherwise squeeze the whole plume into a
+// few levels), at least 10 floors.
+double replay_plume_top(const std::vector<std::vector<float>>& frames,
+                        const std::vector<std::vector<float>>& more = {});
+// Makes `frames` `count` long: a frame the world did not show (nobody had stepped the plume to
+// it) shows the one before it, no gas before the first.
+void fill_unseen_frames(std::vector<std::vector<float>>& frames, std::size_t count,
+                        std::size_t cells);
+// Appends each frame's cells on `scale`'s log levels (Replay::plume_level) to `levels`.
+void append_plume_levels(const Replay& scale, const std::vector<std::vector<float>>& frames,
+                         std::vector<std::uint8_t>& levels);
 
 class ReplayRecorder : public world::WorldWatcher {
  public:

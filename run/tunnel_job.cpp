@@ -11,10 +11,10 @@
 #include "core/statistics.hpp"
 #include "map/map_render.hpp"
 #include "run/evaluation_html.hpp"
+#include "run/replay.hpp"
 #include "run/replay_render.hpp"
 #include "run/run_tracks.hpp"
 #include "run/tunnel_page.hpp"
-#include "run/tunnel_replay.hpp"
 #include "run/tunnel_report.hpp"
 
 namespace plumekit::run {
@@ -27,19 +27,13 @@ Report localize_tunnel_job(const TunnelLocalizeRequest& q) {
   std::optional<OutputDirectory> out;
   if (!q.out.empty()) out.emplace(q.out, "localize");
   if (!q.animate.empty()) check_animation_target(q.animate, "--animate");
-  std::optional<TunnelReplayRecorder> recorder;
-  std::function<TunnelReplayRecorder*(Vec3)> record;
-  if (!q.animate.empty())
-    record = [&](Vec3 source) {
-      return &recorder.emplace(tunnel_replay_recorder(q.options, source));
-    };
-  const TunnelRun run = localize_tunnel(q.options, q.source, q.start, q.seed, 0, record);
+  std::optional<Replay> replay;
+  const TunnelRun run = localize_tunnel(q.options, q.source, q.start, q.seed, 0,
+                                        q.animate.empty() ? nullptr : &replay);
   ordered_json j{{"ok", true}, {"seed", q.seed}};
   j["settings"] = tunnel_settings(q.options);
   j.update(tunnel_run_json(run, false));
   std::string text = tunnel_run_line(run);
-  std::optional<Replay> replay;
-  if (recorder) replay = recorder->finish(run, tunnel_replay_title(q.options, run.source, q.seed));
   if (out) {
     const fs::path& dir = out->open();
     ordered_json file = j;

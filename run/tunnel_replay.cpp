@@ -110,29 +110,21 @@ Replay TunnelReplayRecorder::finish(const TunnelRun& run, const std::string& tit
   s.plane_z = source_.z;
   s.source_z = run.source.z;
   s.estimate_z = run.estimate.z;
-  // Every frame the run reached; one the world had not shown (none should be) keeps the last.
+  // Every frame the run reached, with the robot where the world showed it.
   Vec3 last = run.start;
-  std::vector<std::vector<float>> top = top_, side = side_;
-  for (std::size_t f = 0; f < where_.size(); ++f) {
-    if (where_[f]) last = *where_[f];
+  for (const std::optional<Vec3>& at : where_) {
+    if (at) last = *at;
     r.positions.push_back({Vec2{last.x, last.y}});
     s.z.push_back({last.z});
-    if (top[f].empty()) {
-      top[f] = f > 0 ? top[f - 1] : std::vector<float>(top_grid_.size(), 0.0f);
-      side[f] = f > 0 ? side[f - 1] : std::vector<float>(side_grid_.size(), 0.0f);
-    }
   }
-  std::vector<std::vector<float>> both = top;
-  both.insert(both.end(), side.begin(), side.end());
-  r.plume_top = replay_plume_top(both);
+  std::vector<std::vector<float>> top = top_, side = side_;
+  fill_unseen_frames(top, where_.size(), top_grid_.size());
+  fill_unseen_frames(side, where_.size(), side_grid_.size());
+  r.plume_top = replay_plume_top(top, side);  // both views on one scale
   r.plume_grid = top_grid_;
   s.plume_grid = side_grid_;
-  for (const std::vector<float>& f : top)
-    for (float c : f)
-      r.plume.push_back(r.plume_level(c));
-  for (const std::vector<float>& f : side)
-    for (float c : f)
-      s.plume.push_back(r.plume_level(c));
+  append_plume_levels(r, top, r.plume);
+  append_plume_levels(r, side, s.plume);
   r.belief_grid = belief_top_grid_;
   r.beliefs = beliefs_;
   r.belief_cells = belief_top_;

@@ -281,12 +281,16 @@ TunnelRun run_tunnel(const TunnelOptions& o, Vec3 source, Vec3 start, std::uint6
 
 TunnelRun localize_tunnel(const TunnelOptions& o, std::optional<Vec3> source,
                           std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run,
-                          const std::function<TunnelReplayRecorder*(Vec3)>& recorder) {
+                          std::optional<Replay>* replay) {
   const std::uint64_t s = world::run_seed(seed, 0, 0, run);
   if (!source) source = random_tunnel_source(o, s);
   check_tunnel_point(o, *source, "source");  // before a start is drawn about it
   if (!start) start = random_tunnel_start(o, *source, s);
-  return run_tunnel(o, *source, *start, s, recorder ? recorder(*source) : nullptr);
+  if (!replay) return run_tunnel(o, *source, *start, s);
+  TunnelReplayRecorder recorder = tunnel_replay_recorder(o, *source);
+  TunnelRun r = run_tunnel(o, *source, *start, s, &recorder);
+  *replay = recorder.finish(r, tunnel_replay_title(o, r.source, seed));
+  return r;
 }
 
 std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::uint64_t seed,
@@ -299,15 +303,12 @@ std::vector<TunnelRun> evaluate_tunnel(const TunnelOptions& o, int runs, std::ui
   std::mutex mutex;
   int done = 0;
   pool.parallel_for(runs, [&](std::size_t k) {
-    std::optional<TunnelReplayRecorder> recorder;
-    std::function<TunnelReplayRecorder*(Vec3)> record;
-    if (replayed)
-      record = [&](Vec3 source) { return &recorder.emplace(tunnel_replay_recorder(o, source)); };
-    out[k] = localize_tunnel(o, std::nullopt, std::nullopt, seed, k, record);
-    if (recorder)
-      replayed(static_cast<int>(k), out[k],
-               recorder->finish(out[k], tunnel_replay_title(o, out[k].source, seed) + ", run " +
-                                            std::to_string(k)));
+    std::optional<Replay> replay;
+    out[k] = localize_tunnel(o, std::nullopt, std::nullopt, seed, k, replayed ? &replay : nullptr);
+    if (replay) {
+      replay->title += ", run " + std::to_string(k);
+      replayed(static_cast<int>(k), out[k], *replay);
+    }
     std::lock_guard<std::mutex> lock(mutex);
     if (progress) progress(++done, runs);
   });

@@ -110,10 +110,11 @@ TunnelRun run_tunnel(const TunnelOptions& options, Vec3 source, Vec3 start, std:
 
 // Run `run` of a command's `seed` (`localize tunnel` is run 0): its seed run_seed(seed, 0, 0,
 // run), and the source and start given, or drawn from it (random_tunnel_source, _start).
-// `recorder(source)`, when given, makes the recorder of the run's replay once its source is known.
+// With `replay`, the run's replay is recorded into it (run/tunnel_replay.hpp: the same run,
+// slower), titled by tunnel_replay_title with `seed`.
 TunnelRun localize_tunnel(const TunnelOptions& options, std::optional<Vec3> source,
                           std::optional<Vec3> start, std::uint64_t seed, std::uint64_t run = 0,
-                          const std::function<TunnelReplayRecorder*(Vec3 source)>& recorder = {});
+                          std::optional<Replay>* replay = nullptr);
 
 // `runs` runs (localize_tunnel's runs 0 .. runs - 1) from random sources and starts, on
 // `threads` threads (0: one per core); progress(done, total) after each run.
