@@ -8,11 +8,11 @@
 #include <fstream>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
 #include "map/map_json.hpp"
 #include "run/replay.hpp"
 #include "run/replay_recorder.hpp"
 #include "run/scenario.hpp"
+#include "support/replay_refusal.hpp"
 #include "world/filament_model.hpp"
 
 namespace plumekit::run {
@@ -185,16 +185,6 @@ TEST(Replay, WritesAndReadsBackEveryField) {
   fs::remove_all(dir);
 }
 
-// The message of read_replay's refusal of `dir`.
-std::string refusal(const fs::path& dir) {
-  try {
-    read_replay(dir);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
-
 TEST(Replay, RefusesAMissingAlteredOrMalformedReplayNamingTheFileAndField) {
   const SteOptions o = quick_options();
   const Scenario sc(block_map(), o);
@@ -205,20 +195,16 @@ TEST(Replay, RefusesAMissingAlteredOrMalformedReplayNamingTheFileAndField) {
   const std::string json = read_file(dir / kReplayFile);
   const std::string plume = read_file(dir / kReplayPlumeFile);
 
-  EXPECT_NE(refusal(dir / "none").find("holds no replay.json"), std::string::npos);
+  EXPECT_NE(replay_refusal(dir / "none").find("holds no replay.json"), std::string::npos);
   std::string flipped = plume;
   flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
   write_file_atomic(dir / kReplayPlumeFile, flipped);
-  EXPECT_NE(refusal(dir).find("replay-plume.png: does not match the SHA-256"), std::string::npos)
-      << refusal(dir);
+  EXPECT_NE(replay_refusal(dir).find("replay-plume.png: does not match the SHA-256"),
+            std::string::npos)
+      << replay_refusal(dir);
   write_file_atomic(dir / kReplayPlumeFile, plume);
   auto with = [&](const std::string& from, const std::string& to) {
-    std::string j = json;
-    const std::size_t at = j.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    j.replace(at, from.size(), to);
-    write_file_atomic(dir / kReplayFile, j);
-    return refusal(dir);
+    return replay_refusal_with(dir, json, from, to);
   };
   EXPECT_NE(with("plumekit-replay/1", "plumekit-replay/9").find("format"), std::string::npos);
   EXPECT_NE(with("\"every_s\":", "\"every_z\":").find("every_s is missing"), std::string::npos);
@@ -226,7 +212,7 @@ TEST(Replay, RefusesAMissingAlteredOrMalformedReplayNamingTheFileAndField) {
             std::string::npos);
   EXPECT_NE(with("{", "[").find("is not JSON"), std::string::npos);
   write_file_atomic(dir / kReplayFile, json);
-  EXPECT_EQ(refusal(dir), "(accepted)");
+  EXPECT_EQ(replay_refusal(dir), "(accepted)");
   fs::remove_all(dir);
 }
 

@@ -10,9 +10,9 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/atomic_file.hpp"
-#include "core/error.hpp"
 #include "run/replay_render.hpp"
 #include "run/tunnel_replay.hpp"
+#include "support/replay_refusal.hpp"
 
 namespace plumekit::run {
 namespace {
@@ -119,15 +119,6 @@ TEST(TunnelReplay, WritesAndReadsBackEveryHeight) {
   fs::remove_all(dir);
 }
 
-std::string refusal(const fs::path& dir) {
-  try {
-    read_replay(dir);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(accepted)";
-}
-
 TEST(TunnelReplay, RefusesAnAlteredOrMalformedSideNamingTheFileAndField) {
   const fs::path dir = scratch("refusals");
   write_replay(recorded(quick_options()).replay, dir);
@@ -136,17 +127,12 @@ TEST(TunnelReplay, RefusesAnAlteredOrMalformedSideNamingTheFileAndField) {
   std::string flipped = side;
   flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
   write_file_atomic(dir / kReplayPlumeSideFile, flipped);
-  EXPECT_NE(refusal(dir).find("replay-plume-side.png: does not match the SHA-256"),
+  EXPECT_NE(replay_refusal(dir).find("replay-plume-side.png: does not match the SHA-256"),
             std::string::npos)
-      << refusal(dir);
+      << replay_refusal(dir);
   write_file_atomic(dir / kReplayPlumeSideFile, side);
   auto with = [&](const std::string& from, const std::string& to) {
-    std::string j = json;
-    const std::size_t at = j.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    j.replace(at, from.size(), to);
-    write_file_atomic(dir / kReplayFile, j);
-    return refusal(dir);
+    return replay_refusal_with(dir, json, from, to);
   };
   EXPECT_NE(with("\"peaks\": [", "\"peaks\": [1, ").find("side.belief.peaks"), std::string::npos);
   EXPECT_NE(with("\"plane_y\":", "\"plane_x\":").find("side.plane_y is missing"),
@@ -154,7 +140,7 @@ TEST(TunnelReplay, RefusesAnAlteredOrMalformedSideNamingTheFileAndField) {
   // Without its side, a tunnel replay's points have a coordinate too many.
   EXPECT_NE(with("\"side\":", "\"aside\":").find("is not a point [x, y]"), std::string::npos);
   write_file_atomic(dir / kReplayFile, json);
-  EXPECT_EQ(refusal(dir), "(accepted)");
+  EXPECT_EQ(replay_refusal(dir), "(accepted)");
   fs::remove_all(dir);
 }
 
